@@ -1,0 +1,17 @@
+//! truckmpc-core: the physics and optimisation kernel of truckmpc, free of any Python dependency.
+//!
+//! - [`vehicle`]: the truck model (thesis chapter 2, appendix B.1), the one source of the equations;
+//! - [`levels`]: pedal and brake levels joining two speeds (B.5, B.7) and stationary points (B.3);
+//! - [`road`]: a road profile with piecewise-constant slope;
+//! - [`plant`]: the truck integrated in time at a fine step, for closed-loop simulation.
+
+pub mod error;
+pub mod levels;
+pub mod plant;
+pub mod road;
+pub mod vehicle;
+
+pub use error::{CoreError, CoreResult};
+pub use plant::{Control, Plant, PlantState};
+pub use road::Road;
+pub use vehicle::{Vehicle, VehicleParams, NEUTRAL};

@@ -1,0 +1,94 @@
+//! A road profile as the plant and the controller see it: a piecewise-linear altitude over
+//! distance, i.e. a constant slope on each segment between two profile points.
+//! Beyond its last point the road is taken to continue flat (the look-ahead needs slopes past the end).
+
+use crate::error::{CoreError, CoreResult};
+
+/// Road profile: segment boundaries [m] and the grade of each segment [-].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Road {
+    distance_m: Vec<f64>,
+    altitude_m: Vec<f64>,
+    slope: Vec<f64>,
+}
+
+impl Road {
+    /// Build from profile points `distance_m` (strictly increasing, ≥ 2 points) and the grade of each
+    /// segment [i, i+1) (`slope.len() == distance_m.len() - 1`). Altitude starts at 0 m.
+    pub fn new(distance_m: Vec<f64>, slope: Vec<f64>) -> CoreResult<Self> {
+        if distance_m.len() < 2 {
+            return Err(CoreError::invalid("distance_m", "expected at least two profile points"));
+        }
+        if slope.len() + 1 != distance_m.len() {
+            return Err(CoreError::invalid(
+                "slope",
+                format!("expected {} segment slopes, got {}", distance_m.len() - 1, slope.len()),
+            ));
+        }
+        if let Some(i) = distance_m.windows(2).position(|w| !(w[1] > w[0]) || !w[1].is_finite()) {
+            return Err(CoreError::invalid("distance_m", format!("expected strictly increasing distances at point {}", i + 1)));
+        }
+        if let Some(i) = slope.iter().position(|s| !s.is_finite()) {
+            return Err(CoreError::invalid("slope", format!("expected a finite slope on segment {i}")));
+        }
+        let mut altitude_m = Vec::with_capacity(distance_m.len());
+        altitude_m.push(0.0);
+        for (i, s) in slope.iter().enumerate() {
+            altitude_m.push(altitude_m[i] + s * (distance_m[i + 1] - distance_m[i]));
+        }
+        Ok(Road { distance_m, altitude_m, slope })
+    }
+
+    /// Distance of the first profile point [m].
+    pub fn start_m(&self) -> f64 {
+        self.distance_m[0]
+    }
+
+    /// Distance of the last profile point [m].
+    pub fn end_m(&self) -> f64 {
+        *self.distance_m.last().unwrap()
+    }
+
+    /// Index of the segment containing `s_m`, searching forward from `hint` (the last answer)
+    /// for the common case of a vehicle moving forward; clamps outside the road.
+    #[inline]
+    pub fn segment(&self, s_m: f64, hint: usize) -> usize {
+        let last = self.slope.len() - 1;
+        let mut i = hint.min(last);
+        if s_m < self.distance_m[i] {
+            // Moving backwards (rare): binary search.
+            return self.distance_m.partition_point(|&d| d <= s_m).saturating_sub(1).min(last);
+        }
+        while i < last && s_m >= self.distance_m[i + 1] {
+            i += 1;
+        }
+        i
+    }
+
+    /// Grade at `s_m` [-]: the segment's slope, 0 beyond the end. `hint` as for [`Road::segment`].
+    #[inline]
+    pub fn slope_at(&self, s_m: f64, hint: &mut usize) -> f64 {
+        if s_m >= self.end_m() {
+            return 0.0;
+        }
+        *hint = self.segment(s_m, *hint);
+        self.slope[*hint]
+    }
+
+    /// Altitude at `s_m` [m] relative to the first point, flat beyond the end.
+    pub fn altitude_at(&self, s_m: f64) -> f64 {
+        if s_m >= self.end_m() {
+            return *self.altitude_m.last().unwrap();
+        }
+        if s_m <= self.start_m() {
+            return self.slope[0] * (s_m - self.start_m());
+        }
+        let i = self.segment(s_m, 0);
+        self.altitude_m[i] + self.slope[i] * (s_m - self.distance_m[i])
+    }
+
+    /// Mean grade over [s0, s1] [-]: altitude difference over length, the slope a DP stage sees.
+    pub fn mean_slope(&self, s0_m: f64, s1_m: f64) -> f64 {
+        (self.altitude_at(s1_m) - self.altitude_at(s0_m)) / (s1_m - s0_m)
+    }
+}

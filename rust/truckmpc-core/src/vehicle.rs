@@ -1,0 +1,387 @@
+//! The longitudinal truck model of the thesis, chapter 2 and appendix B.1: engine fits (2.3)–(2.8),
+//! stiff driveline with gearbox and final drive, air drag, rolling resistance and gravity, in the
+//! compact form (B.1), fuel mass flow (B.2) and engine speed (2.9).
+//!
+//! This is the single implementation of the vehicle equations; the Python package calls it.
+//! Units: speeds in m/s, engine speed in rpm, torque in Nm, fuel in g, fueling in mg/stroke,
+//! slope as a grade (Δh/ΔL, dimensionless) used directly as the angle α.
+
+use crate::error::{CoreError, CoreResult};
+
+/// Gear number of neutral. Forward gears are numbered 1..=n.
+pub const NEUTRAL: usize = 0;
+
+/// Every parameter of the vehicle, with its unit in its name. Defaults are table A.1 / A.2 (40 t).
+#[derive(Debug, Clone, PartialEq)]
+pub struct VehicleParams {
+    /// Total vehicle mass [kg].
+    pub mass_kg: f64,
+    /// Engine (flywheel) inertia J_e [kg m²].
+    pub engine_inertia_kgm2: f64,
+    /// Number of cylinders n_cyl [-].
+    pub cylinders: f64,
+    /// Crankshaft revolutions per stroke n_r [-].
+    pub revolutions_per_stroke: f64,
+    /// Engine map slope in engine speed a_e [Nm/rpm], (2.3).
+    pub torque_map_a_nm_per_rpm: f64,
+    /// Engine map slope in fueling b_e [Nm·stroke/mg], (2.3).
+    pub torque_map_b_nm_stroke_per_mg: f64,
+    /// Engine map offset c_e [Nm], (2.3).
+    pub torque_map_c_nm: f64,
+    /// Fueling bound quadratic coefficient a_δ [mg/(rpm²·stroke)], (2.6).
+    pub fueling_max_a_mg_per_rpm2: f64,
+    /// Fueling bound linear coefficient b_δ [mg/(rpm·stroke)], (2.6).
+    pub fueling_max_b_mg_per_rpm: f64,
+    /// Fueling bound offset c_δ [mg/stroke], (2.6).
+    pub fueling_max_c_mg: f64,
+    /// Drag torque slope a_d [Nm/rpm], (2.4).
+    pub drag_torque_a_nm_per_rpm: f64,
+    /// Drag torque offset b_d [Nm], (2.4).
+    pub drag_torque_b_nm: f64,
+    /// Engine idle speed N_idle [rpm].
+    pub idle_speed_rpm: f64,
+    /// Idle fueling δ_idle [mg/stroke].
+    pub idle_fueling_mg_per_stroke: f64,
+    /// Final drive ratio i_f [-].
+    pub final_drive_ratio: f64,
+    /// Final drive efficiency η_f [-].
+    pub final_drive_efficiency: f64,
+    /// Wheel inertia J_w [kg m²].
+    pub wheel_inertia_kgm2: f64,
+    /// Rolling resistance coefficient c_r [-].
+    pub rolling_resistance: f64,
+    /// Gravitational acceleration g [m/s²].
+    pub gravity_mps2: f64,
+    /// Air drag coefficient c_w [-].
+    pub air_drag_coefficient: f64,
+    /// Maximum cross-section area A_a [m²].
+    pub frontal_area_m2: f64,
+    /// Air density ρ_a [kg/m³].
+    pub air_density_kgpm3: f64,
+    /// Wheel radius r_w [m].
+    pub wheel_radius_m: f64,
+    /// Brake torque at full brake k_b [Nm]. Table A.1 prints 20e3; tables B.1/B.2 need 1e5.
+    pub brake_torque_max_nm: f64,
+    /// Gearbox ratios i_t of gears 1..=n [-], table A.2.
+    pub gear_ratios: Vec<f64>,
+    /// Gearbox efficiencies η_t of gears 1..=n [-], table A.2.
+    pub gear_efficiencies: Vec<f64>,
+}
+
+impl Default for VehicleParams {
+    fn default() -> Self {
+        VehicleParams {
+            mass_kg: 40_000.0,
+            engine_inertia_kgm2: 3.5,
+            cylinders: 6.0,
+            revolutions_per_stroke: 2.0,
+            torque_map_a_nm_per_rpm: -3.30e-3,
+            torque_map_b_nm_stroke_per_mg: 9.16,
+            torque_map_c_nm: -82.53,
+            fueling_max_a_mg_per_rpm2: -1.59e-4,
+            fueling_max_b_mg_per_rpm: 0.42,
+            fueling_max_c_mg: -57.05,
+            drag_torque_a_nm_per_rpm: -8.80e-2,
+            drag_torque_b_nm: -51.51,
+            idle_speed_rpm: 600.0,
+            idle_fueling_mg_per_stroke: 10.44,
+            final_drive_ratio: 3.27,
+            final_drive_efficiency: 0.97,
+            wheel_inertia_kgm2: 32.9,
+            rolling_resistance: 7e-3,
+            gravity_mps2: 9.81,
+            air_drag_coefficient: 0.6,
+            frontal_area_m2: 10.0,
+            air_density_kgpm3: 1.29,
+            wheel_radius_m: 0.52,
+            brake_torque_max_nm: 1.0e5,
+            gear_ratios: vec![11.27, 9.14, 7.17, 5.81, 4.62, 3.75, 3.01, 2.44, 1.91, 1.55, 1.23, 1.0],
+            gear_efficiencies: vec![
+                0.88, 0.89, 0.90, 0.91, 0.92, 0.93, 0.94, 0.95, 0.96, 0.97, 0.98, 0.99,
+            ],
+        }
+    }
+}
+
+impl VehicleParams {
+    /// Check every parameter's range; the error names the first parameter that is out of range.
+    pub fn validate(&self) -> CoreResult<()> {
+        let positive = [
+            ("mass_kg", self.mass_kg),
+            ("engine_inertia_kgm2", self.engine_inertia_kgm2),
+            ("cylinders", self.cylinders),
+            ("revolutions_per_stroke", self.revolutions_per_stroke),
+            ("torque_map_b_nm_stroke_per_mg", self.torque_map_b_nm_stroke_per_mg),
+            ("idle_speed_rpm", self.idle_speed_rpm),
+            ("final_drive_ratio", self.final_drive_ratio),
+            ("wheel_radius_m", self.wheel_radius_m),
+            ("gravity_mps2", self.gravity_mps2),
+            ("brake_torque_max_nm", self.brake_torque_max_nm),
+        ];
+        for (name, value) in positive {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(CoreError::invalid(name, format!("expected a number > 0, got {value}")));
+            }
+        }
+        let non_negative = [
+            ("idle_fueling_mg_per_stroke", self.idle_fueling_mg_per_stroke),
+            ("wheel_inertia_kgm2", self.wheel_inertia_kgm2),
+            ("rolling_resistance", self.rolling_resistance),
+            ("air_drag_coefficient", self.air_drag_coefficient),
+            ("frontal_area_m2", self.frontal_area_m2),
+            ("air_density_kgpm3", self.air_density_kgpm3),
+        ];
+        for (name, value) in non_negative {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(CoreError::invalid(name, format!("expected a number >= 0, got {value}")));
+            }
+        }
+        let finite = [
+            ("torque_map_a_nm_per_rpm", self.torque_map_a_nm_per_rpm),
+            ("torque_map_c_nm", self.torque_map_c_nm),
+            ("fueling_max_a_mg_per_rpm2", self.fueling_max_a_mg_per_rpm2),
+            ("fueling_max_b_mg_per_rpm", self.fueling_max_b_mg_per_rpm),
+            ("fueling_max_c_mg", self.fueling_max_c_mg),
+            ("drag_torque_a_nm_per_rpm", self.drag_torque_a_nm_per_rpm),
+            ("drag_torque_b_nm", self.drag_torque_b_nm),
+        ];
+        for (name, value) in finite {
+            if !value.is_finite() {
+                return Err(CoreError::invalid(name, format!("expected a finite number, got {value}")));
+            }
+        }
+        check_fraction("final_drive_efficiency", self.final_drive_efficiency)?;
+        if self.gear_ratios.is_empty() {
+            return Err(CoreError::invalid("gear_ratios", "expected at least one forward gear"));
+        }
+        if self.gear_ratios.len() != self.gear_efficiencies.len() {
+            return Err(CoreError::invalid(
+                "gear_efficiencies",
+                format!(
+                    "expected one efficiency per gear ratio ({}), got {}",
+                    self.gear_ratios.len(),
+                    self.gear_efficiencies.len()
+                ),
+            ));
+        }
+        for (i, pair) in self.gear_ratios.windows(2).enumerate() {
+            if !(pair[1] < pair[0]) {
+                return Err(CoreError::invalid(
+                    "gear_ratios",
+                    format!("expected strictly decreasing ratios, gear {} is not below gear {}", i + 2, i + 1),
+                ));
+            }
+        }
+        for &r in &self.gear_ratios {
+            if !(r.is_finite() && r > 0.0) {
+                return Err(CoreError::invalid("gear_ratios", format!("expected ratios > 0, got {r}")));
+            }
+        }
+        for &e in &self.gear_efficiencies {
+            check_fraction("gear_efficiencies", e)?;
+        }
+        Ok(())
+    }
+}
+
+fn check_fraction(name: &str, value: f64) -> CoreResult<()> {
+    if value.is_finite() && value > 0.0 && value <= 1.0 {
+        Ok(())
+    } else {
+        Err(CoreError::invalid(name, format!("expected a value in (0, 1], got {value}")))
+    }
+}
+
+/// The gear-dependent constants of (B.1): c1 [m/(kg m²)·...] so that dv/dt = c1·(torque sum) in m/s²,
+/// c3 = η_t i_t η_f i_f [-] and c4 = 30 i_t i_f / (π r_w) [rpm per m/s]. Neutral has c3 = c4 = 0.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GearConstants {
+    /// r_w / (J_w + m r_w² + η_t i_t² η_f i_f² J_e) [1/(kg m)].
+    pub c1: f64,
+    /// Torque gain from engine to wheel η_t i_t η_f i_f [-].
+    pub c3: f64,
+    /// Engine speed per vehicle speed 30 i_t i_f / (π r_w) [rpm/(m/s)].
+    pub c4: f64,
+}
+
+/// A validated vehicle with the constants of (B.1) precomputed.
+#[derive(Debug, Clone)]
+pub struct Vehicle {
+    params: VehicleParams,
+    gears: Vec<GearConstants>,
+    /// ½ c_w A_a ρ_a r_w [N m s²/m²].
+    c2: f64,
+    /// n_cyl / (6·10⁴ n_r): fuel flow [g/s] per rpm·mg/stroke.
+    c5: f64,
+    /// m g r_w sqrt(1 + c_r²) [Nm].
+    c6: f64,
+    /// arctan c_r [rad].
+    c7: f64,
+}
+
+impl Vehicle {
+    /// Validate the parameters and precompute the model constants.
+    pub fn new(params: VehicleParams) -> CoreResult<Self> {
+        params.validate()?;
+        let p = &params;
+        let base_inertia = p.wheel_inertia_kgm2 + p.mass_kg * p.wheel_radius_m.powi(2);
+        let mut gears = vec![GearConstants { c1: p.wheel_radius_m / base_inertia, c3: 0.0, c4: 0.0 }];
+        for (&i_t, &eta_t) in p.gear_ratios.iter().zip(&p.gear_efficiencies) {
+            let i_f = p.final_drive_ratio;
+            let reflected = eta_t * i_t * i_t * p.final_drive_efficiency * i_f * i_f * p.engine_inertia_kgm2;
+            gears.push(GearConstants {
+                c1: p.wheel_radius_m / (base_inertia + reflected),
+                c3: eta_t * i_t * p.final_drive_efficiency * i_f,
+                c4: 30.0 * i_t * i_f / (std::f64::consts::PI * p.wheel_radius_m),
+            });
+        }
+        let c2 = 0.5 * p.air_drag_coefficient * p.frontal_area_m2 * p.air_density_kgpm3 * p.wheel_radius_m;
+        let c5 = p.cylinders / (6.0e4 * p.revolutions_per_stroke);
+        let c6 = p.mass_kg * p.gravity_mps2 * p.wheel_radius_m * (1.0 + p.rolling_resistance.powi(2)).sqrt();
+        let c7 = p.rolling_resistance.atan();
+        Ok(Vehicle { params, gears, c2, c5, c6, c7 })
+    }
+
+    /// The parameters this vehicle was built from.
+    pub fn params(&self) -> &VehicleParams {
+        &self.params
+    }
+
+    /// Number of forward gears (gear numbers 1..=n; 0 is neutral).
+    pub fn forward_gears(&self) -> usize {
+        self.gears.len() - 1
+    }
+
+    /// The (B.1) constants of a gear (0 = neutral). Panics on a gear number above `forward_gears()`.
+    #[inline]
+    pub fn gear(&self, gear: usize) -> GearConstants {
+        self.gears[gear]
+    }
+
+    /// Air drag constant c2 of (B.1) [N m s²/m²]: air drag torque at the wheel is c2·v².
+    #[inline]
+    pub fn c2(&self) -> f64 {
+        self.c2
+    }
+
+    /// Fuel constant c5 of (B.2): mass flow [g/s] = c5 · N [rpm] · δ [mg/stroke].
+    #[inline]
+    pub fn c5(&self) -> f64 {
+        self.c5
+    }
+
+    /// Gravity and rolling-resistance torque at the wheel on a slope, c6 sin(α + c7) [Nm].
+    #[inline]
+    pub fn slope_torque_nm(&self, slope: f64) -> f64 {
+        self.c6 * (slope + self.c7).sin()
+    }
+
+    /// Engine speed (2.9) [rpm]: c4·v in gear, idle speed in neutral.
+    #[inline]
+    pub fn engine_speed_rpm(&self, v_mps: f64, gear: usize) -> f64 {
+        if gear == NEUTRAL {
+            self.params.idle_speed_rpm
+        } else {
+            self.gears[gear].c4 * v_mps
+        }
+    }
+
+    /// Upper fueling bound δ_max(N) (2.6) [mg/stroke], never below zero (the fit turns negative near
+    /// 2500 rpm, where no fuel can be injected).
+    #[inline]
+    pub fn fueling_max_mg(&self, n_rpm: f64) -> f64 {
+        let p = &self.params;
+        (p.fueling_max_a_mg_per_rpm2 * n_rpm * n_rpm + p.fueling_max_b_mg_per_rpm * n_rpm + p.fueling_max_c_mg)
+            .max(0.0)
+    }
+
+    /// d δ_max / dN [mg/(stroke·rpm)], zero where the bound is clamped.
+    #[inline]
+    fn fueling_max_slope(&self, n_rpm: f64) -> f64 {
+        let p = &self.params;
+        if self.fueling_max_mg(n_rpm) > 0.0 {
+            2.0 * p.fueling_max_a_mg_per_rpm2 * n_rpm + p.fueling_max_b_mg_per_rpm
+        } else {
+            0.0
+        }
+    }
+
+    /// Drag torque T_drag(N) (2.4) [Nm], the engine torque at fuel cut (negative).
+    #[inline]
+    pub fn drag_torque_nm(&self, n_rpm: f64) -> f64 {
+        self.params.drag_torque_a_nm_per_rpm * n_rpm + self.params.drag_torque_b_nm
+    }
+
+    /// Engine torque (2.8) [Nm]: the map at fueling P·δ_max(N) for P > 0, the drag torque for
+    /// P ≤ 0 (the jump between the two at P = 0 is the thesis's), zero in neutral. The upper torque
+    /// bound is the map at δ_max (2.7), so it needs no separate clamp.
+    #[inline]
+    pub fn engine_torque_nm(&self, n_rpm: f64, pedal: f64, gear: usize) -> f64 {
+        let p = &self.params;
+        if gear == NEUTRAL {
+            0.0
+        } else if pedal > 0.0 {
+            p.torque_map_a_nm_per_rpm * n_rpm
+                + p.torque_map_b_nm_stroke_per_mg * pedal * self.fueling_max_mg(n_rpm)
+                + p.torque_map_c_nm
+        } else {
+            self.drag_torque_nm(n_rpm)
+        }
+    }
+
+    /// Upper torque bound T_max(N) = T_map(N, δ_max(N)) [Nm], (2.7).
+    pub fn max_torque_nm(&self, n_rpm: f64) -> f64 {
+        self.engine_torque_nm(n_rpm, 1.0, 1)
+    }
+
+    /// Acceleration dv/dt (B.1) [m/s²] at speed v, pedal P ∈ [0,1], brake B ∈ [0,1], gear, slope.
+    #[inline]
+    pub fn accel_mps2(&self, v_mps: f64, pedal: f64, brake: f64, gear: usize, slope: f64) -> f64 {
+        let g = self.gears[gear];
+        let torque = if gear == NEUTRAL { 0.0 } else { self.engine_torque_nm(g.c4 * v_mps, pedal, gear) };
+        g.c1 * (g.c3 * torque
+            - self.params.brake_torque_max_nm * brake
+            - self.c2 * v_mps * v_mps
+            - self.slope_torque_nm(slope))
+    }
+
+    /// Fuel mass flow (B.2) [g/s]: c5·N·P·δ_max(N) in gear (zero at fuel cut), idle fueling in neutral.
+    #[inline]
+    pub fn fuel_rate_gps(&self, v_mps: f64, pedal: f64, gear: usize) -> f64 {
+        if gear == NEUTRAL {
+            self.c5 * self.params.idle_speed_rpm * self.params.idle_fueling_mg_per_stroke
+        } else if pedal > 0.0 {
+            let n = self.gears[gear].c4 * v_mps;
+            self.c5 * n * pedal * self.fueling_max_mg(n)
+        } else {
+            0.0
+        }
+    }
+
+    /// Brake force at the wheel contact [N] for brake level B.
+    #[inline]
+    pub fn brake_force_n(&self, brake: f64) -> f64 {
+        self.params.brake_torque_max_nm * brake / self.params.wheel_radius_m
+    }
+
+    /// Lowest speed [m/s] at which the lowest gear still turns the engine at idle speed. Below it the
+    /// model (no clutch slip) does not apply and a truck that slows down further has stalled.
+    pub fn stall_speed_mps(&self) -> f64 {
+        self.params.idle_speed_rpm / self.gears[1].c4
+    }
+
+    /// ∂(dv/dt)/∂v [1/s] at (v, P, B, gear): the derivative of (B.1) in the speed.
+    pub fn accel_derivative_per_s(&self, v_mps: f64, pedal: f64, gear: usize) -> f64 {
+        let g = self.gears[gear];
+        let p = &self.params;
+        let dtorque_dn = if gear == NEUTRAL {
+            0.0
+        } else if pedal > 0.0 {
+            p.torque_map_a_nm_per_rpm
+                + p.torque_map_b_nm_stroke_per_mg * pedal * self.fueling_max_slope(g.c4 * v_mps)
+        } else {
+            p.drag_torque_a_nm_per_rpm
+        };
+        g.c1 * (g.c3 * dtorque_dn * g.c4 - 2.0 * self.c2 * v_mps)
+    }
+}
