@@ -34,11 +34,18 @@ impl AffineAccel {
 /// fuelled branch of (2.8). `gain` is zero where δ_max(N) is zero.
 #[inline]
 pub fn pedal_accel(vehicle: &Vehicle, v0_mps: f64, gear: usize, slope: f64) -> AffineAccel {
+    pedal_accel_on(vehicle, v0_mps, gear, vehicle.slope_torque_nm(slope))
+}
+
+/// [`pedal_accel`] with the slope given as its wheel torque c6·sin(α + c7) [Nm], precomputed by
+/// callers that evaluate many speeds on one slope.
+#[inline]
+pub fn pedal_accel_on(vehicle: &Vehicle, v0_mps: f64, gear: usize, slope_torque_nm: f64) -> AffineAccel {
     debug_assert!(gear != NEUTRAL);
     let g = vehicle.gear(gear);
     let p = vehicle.params();
     let n = g.c4 * v0_mps;
-    let load = vehicle.c2() * v0_mps * v0_mps + vehicle.slope_torque_nm(slope);
+    let load = vehicle.c2() * v0_mps * v0_mps + slope_torque_nm;
     AffineAccel {
         accel_at_zero: g.c1 * (g.c3 * (p.torque_map_a_nm_per_rpm * n + p.torque_map_c_nm) - load),
         gain: g.c1 * g.c3 * p.torque_map_b_nm_stroke_per_mg * vehicle.fueling_max_mg(n),
@@ -49,9 +56,15 @@ pub fn pedal_accel(vehicle: &Vehicle, v0_mps: f64, gear: usize, slope: f64) -> A
 /// coasting in neutral.
 #[inline]
 pub fn brake_accel(vehicle: &Vehicle, v0_mps: f64, gear: usize, slope: f64) -> AffineAccel {
+    brake_accel_on(vehicle, v0_mps, gear, vehicle.slope_torque_nm(slope))
+}
+
+/// [`brake_accel`] with the slope given as its wheel torque c6·sin(α + c7) [Nm].
+#[inline]
+pub fn brake_accel_on(vehicle: &Vehicle, v0_mps: f64, gear: usize, slope_torque_nm: f64) -> AffineAccel {
     let g = vehicle.gear(gear);
     let drag = if gear == NEUTRAL { 0.0 } else { vehicle.drag_torque_nm(g.c4 * v0_mps) };
-    let load = vehicle.c2() * v0_mps * v0_mps + vehicle.slope_torque_nm(slope);
+    let load = vehicle.c2() * v0_mps * v0_mps + slope_torque_nm;
     AffineAccel {
         accel_at_zero: g.c1 * (g.c3 * drag - load),
         gain: -g.c1 * vehicle.params().brake_torque_max_nm,

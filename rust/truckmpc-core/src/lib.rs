@@ -3,8 +3,10 @@
 //! - [`vehicle`]: the truck model (thesis chapter 2, appendix B.1), the one source of the equations;
 //! - [`levels`]: pedal and brake levels joining two speeds (B.5, B.7) and stationary points (B.3);
 //! - [`road`]: a road profile with piecewise-constant slope;
-//! - [`plant`]: the truck integrated in time at a fine step, for closed-loop simulation.
+//! - [`plant`]: the truck integrated in time at a fine step, for closed-loop simulation;
+//! - [`dp`]: the look-ahead controller's search space and backward dynamic program (chapter 5).
 
+pub mod dp;
 pub mod error;
 pub mod levels;
 pub mod plant;

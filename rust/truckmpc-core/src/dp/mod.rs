@@ -1,0 +1,9 @@
+//! The look-ahead controller's optimisation (thesis chapter 5): parameters, search space and the
+//! backward dynamic program.
+
+pub mod params;
+pub mod solver;
+pub mod space;
+
+pub use params::{GridAnchor, MpcParams, NeutralRule};
+pub use solver::{InitialState, Solution, Solver, TrajectoryPoint};

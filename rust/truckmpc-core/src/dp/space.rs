@@ -1,0 +1,158 @@
+//! The search space of section 5.4: usable gears per speed (5.7), the reachable speed interval
+//! per stage cut to the allowed band, the backward pass from the final stage's v_ref bound, and
+//! the velocity grid of each stage (5.8). Speeds in m/s.
+
+use super::params::{GridAnchor, MpcParams};
+use crate::levels::{brake_accel, pedal_accel};
+use crate::vehicle::{Vehicle, NEUTRAL};
+
+/// Forward gears whose engine speed at `v_mps` lies in [n_min, n_max], as an inclusive range of
+/// gear numbers (engine speed falls with the gear number, so the set is contiguous); None if empty.
+pub fn usable_gears(vehicle: &Vehicle, v_mps: f64, n_min_rpm: f64, n_max_rpm: f64) -> Option<(usize, usize)> {
+    let mut range: Option<(usize, usize)> = None;
+    for g in 1..=vehicle.forward_gears() {
+        let n = vehicle.gear(g).c4 * v_mps;
+        if n >= n_min_rpm && n <= n_max_rpm {
+            range = Some(match range {
+                None => (g, g),
+                Some((lo, _)) => (lo, g),
+            });
+        }
+    }
+    range
+}
+
+/// Gears used to bound reachability from `v_mps`: the usable ones, or if none, the forward gear
+/// whose engine speed is closest to the window (so a truck outside the window still has a bound).
+fn reach_gears(vehicle: &Vehicle, params: &MpcParams, v_mps: f64) -> (usize, usize) {
+    usable_gears(vehicle, v_mps, params.n_min_rpm, params.n_max_rpm).unwrap_or_else(|| {
+        let distance = |g: usize| {
+            let n = vehicle.gear(g).c4 * v_mps;
+            (params.n_min_rpm - n).max(n - params.n_max_rpm)
+        };
+        let best = (1..=vehicle.forward_gears()).min_by(|&a, &b| distance(a).total_cmp(&distance(b))).unwrap();
+        (best, best)
+    })
+}
+
+/// Speeds after one stage at full pedal, over the reachability gears: (max, min) [m/s].
+/// Neutral counts towards the maximum when allowed: on a steep descent it can beat a gear.
+fn full_pedal_speeds(vehicle: &Vehicle, params: &MpcParams, v_mps: f64, slope: f64) -> (f64, f64) {
+    let h = params.stage_m;
+    let (lo, hi) = reach_gears(vehicle, params, v_mps);
+    let mut best = f64::NEG_INFINITY;
+    let mut worst = f64::INFINITY;
+    for g in lo..=hi {
+        let v1 = pedal_accel(vehicle, v_mps, g, slope).step(v_mps, h, 1.0);
+        best = best.max(v1);
+        worst = worst.min(v1);
+    }
+    if params.allow_neutral {
+        best = best.max(brake_accel(vehicle, v_mps, NEUTRAL, slope).step(v_mps, h, 0.0));
+    }
+    (best, worst)
+}
+
+/// Lowest speed after one stage without brakes: fuel cut in the gear with the most engine drag.
+fn lowest_speed(vehicle: &Vehicle, params: &MpcParams, v_mps: f64, slope: f64) -> f64 {
+    let h = params.stage_m;
+    let (lo, hi) = reach_gears(vehicle, params, v_mps);
+    let mut v_min = f64::INFINITY;
+    for g in lo..=hi {
+        v_min = v_min.min(brake_accel(vehicle, v_mps, g, slope).step(v_mps, h, 0.0));
+    }
+    if params.allow_neutral {
+        v_min = v_min.min(brake_accel(vehicle, v_mps, NEUTRAL, slope).step(v_mps, h, 0.0));
+    }
+    v_min
+}
+
+/// One stage's velocity grid: v(j) = first_mps + j·δ for j in 0..count.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Grid {
+    /// Speed of the first grid point [m/s].
+    pub first_mps: f64,
+    /// Number of grid points.
+    pub count: usize,
+}
+
+impl Grid {
+    /// Speed of grid point `j` [m/s].
+    #[inline]
+    pub fn speed(&self, j: usize, delta_mps: f64) -> f64 {
+        self.first_mps + j as f64 * delta_mps
+    }
+}
+
+/// Considered speed intervals [lo, hi] of stages 0..=N [m/s]; stage 0 is the initial speed.
+#[derive(Debug, Clone, Default)]
+pub struct Intervals {
+    pub lo: Vec<f64>,
+    pub hi: Vec<f64>,
+}
+
+/// Forward reachability from `v0_mps` cut to [v_min, v_max] (5.4.2), then the final stage's lower
+/// bound raised to v_ref and the backward pass removing speeds that cannot reach it.
+pub fn intervals(vehicle: &Vehicle, params: &MpcParams, v0_mps: f64, slopes: &[f64], out: &mut Intervals) {
+    let (v_min, v_max) = (params.v_min_mps(), params.v_max_mps());
+    out.lo.clear();
+    out.hi.clear();
+    out.lo.push(v0_mps);
+    out.hi.push(v0_mps);
+    for (k, &slope) in slopes.iter().enumerate() {
+        let (v_plus, v_plus_low) = full_pedal_speeds(vehicle, params, out.hi[k], slope);
+        let v_minus = lowest_speed(vehicle, params, out.lo[k], slope);
+        let hi = v_plus.min(v_max);
+        let lo = if v_plus >= v_min { v_minus.max(v_min).min(v_max) } else { v_plus_low.min(hi) };
+        out.lo.push(lo.min(hi));
+        out.hi.push(hi);
+    }
+    let n = slopes.len();
+    out.lo[n] = params.v_ref_mps().min(out.hi[n]);
+    for k in (1..n).rev() {
+        let needed = min_speed_reaching(vehicle, params, out.lo[k], out.hi[k], slopes[k], out.lo[k + 1]);
+        out.lo[k] = out.lo[k].max(needed);
+    }
+}
+
+/// Smallest speed in [lo, hi] from which full pedal reaches `target` in one stage (bisection to a
+/// hundredth of δ; full-pedal end speed grows with the start speed). Returns `hi` if none does.
+fn min_speed_reaching(vehicle: &Vehicle, params: &MpcParams, lo: f64, hi: f64, slope: f64, target: f64) -> f64 {
+    let reaches = |v: f64| full_pedal_speeds(vehicle, params, v, slope).0 >= target;
+    if reaches(lo) {
+        return lo;
+    }
+    if !reaches(hi) {
+        return hi;
+    }
+    let (mut a, mut b) = (lo, hi);
+    let tolerance = 0.01 * params.delta_mps();
+    while b - a > tolerance {
+        let mid = 0.5 * (a + b);
+        if reaches(mid) {
+            b = mid;
+        } else {
+            a = mid;
+        }
+    }
+    b
+}
+
+/// The velocity grid of an interval (5.8), moving (anchored at lo) or fixed (multiples of δ).
+pub fn grid(params: &MpcParams, lo: f64, hi: f64) -> Grid {
+    let delta = params.delta_mps();
+    // Absorbs rounding so that an interval exactly k·δ wide keeps its last point.
+    const SLACK: f64 = 1e-9;
+    match params.grid {
+        GridAnchor::Moving => Grid { first_mps: lo, count: ((hi - lo) / delta + SLACK).floor() as usize + 1 },
+        GridAnchor::Fixed => {
+            let first = (lo / delta - SLACK).ceil();
+            let last = (hi / delta + SLACK).floor();
+            if last >= first {
+                Grid { first_mps: first * delta, count: (last - first) as usize + 1 }
+            } else {
+                Grid { first_mps: (0.5 * (lo + hi) / delta).round() * delta, count: 1 }
+            }
+        }
+    }
+}
