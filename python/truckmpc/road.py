@@ -1,0 +1,393 @@
+"""Road profiles: altitude along the road, read from CSV, written to CSV, or generated.
+
+A profile is a list of points (distance [m], altitude [m]); the road between two points has the
+constant slope Δh/ΔL (thesis section 1.2), so the slope of segment i is the difference of the
+altitudes over the difference of the distances. Slopes are grades: 0.01 = 1 %, positive uphill.
+
+CSV format: `#` comment lines, blank lines ignored; a header naming `distance_m` and `altitude_m`
+and/or `grade`; other columns are ignored. With only `grade`, the grade on a row is that of the
+segment starting at the row, and the altitude is its integral. With both, the altitude is used.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from . import _core
+from .atomic import atomic_write_text
+from .errors import RoadError
+
+__all__ = [
+    "MAX_GRADE",
+    "SECTION_KINDS",
+    "RoadProfile",
+    "concatenate",
+    "default_test_track",
+    "load_road",
+    "make_section",
+    "shipped_roads",
+    "write_road",
+    "write_shipped_roads",
+]
+
+PathLike = str | os.PathLike[str]
+MAX_GRADE = 0.30
+"""Largest accepted |grade| [-] (30 %); steeper roads are taken to be input errors."""
+
+# Slack on the limit check so that a profile at the limit survives being written (altitudes
+# rounded to 1 um) and read back.
+_GRADE_CHECK = MAX_GRADE + 1e-3
+_REVERSED = "-reversed"
+
+
+@dataclass(frozen=True, eq=False)
+class RoadProfile:
+    """A road: points `distance_m` [m] (strictly increasing, from wherever the road starts) with
+    their `altitude_m` [m] (relative). Arrays are float64 and read-only."""
+
+    name: str
+    distance_m: np.ndarray
+    altitude_m: np.ndarray
+    source: str | None = None
+    _road: Any = field(default=None, init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        distance = _frozen_array(self.distance_m)
+        altitude = _frozen_array(self.altitude_m)
+        object.__setattr__(self, "distance_m", distance)
+        object.__setattr__(self, "altitude_m", altitude)
+        where = self.source or self.name
+        if distance.ndim != 1 or altitude.shape != distance.shape:
+            raise RoadError(f"{where}: expected 1-D distance and altitude arrays of equal length")
+        if distance.size < 2:
+            raise RoadError(f"{where}: expected at least two points, got {distance.size}")
+        if not (np.all(np.isfinite(distance)) and np.all(np.isfinite(altitude))):
+            raise RoadError(f"{where}: expected finite distances and altitudes")
+        step = np.diff(distance)
+        if not np.all(step > 0):
+            raise RoadError(f"{where}: expected strictly increasing distances (point {int(np.argmin(step > 0)) + 1})")
+        steep = np.flatnonzero(np.abs(self.slope) > _GRADE_CHECK)
+        if steep.size:
+            i = int(steep[0])
+            raise RoadError(f"{where}: slope {self.slope[i]:.4g} at {distance[i]:g} m exceeds |grade| <= {MAX_GRADE:g}")
+
+    @property
+    def slope(self) -> np.ndarray:
+        """Grade of each segment between consecutive points [-] (length n-1): Δaltitude/Δdistance."""
+        return np.diff(self.altitude_m) / np.diff(self.distance_m)
+
+    @property
+    def length_m(self) -> float:
+        """Road length from the first to the last point [m]."""
+        return float(self.distance_m[-1] - self.distance_m[0])
+
+    def core(self) -> _core.Road:
+        """The road for the Rust core (`_core.Road(distance_m, slope)`), built once."""
+        if self._road is None:
+            road = _core.Road(np.ascontiguousarray(self.distance_m), np.ascontiguousarray(self.slope))
+            object.__setattr__(self, "_road", road)
+        return self._road
+
+    def reversed(self) -> RoadProfile:
+        """The same road driven the other way: distances measured from the far end (over the same
+        range), altitudes unchanged; uphill becomes downhill."""
+        start, end = self.distance_m[0], self.distance_m[-1]
+        name = self.name.removesuffix(_REVERSED) if self.name.endswith(_REVERSED) else self.name + _REVERSED
+        return RoadProfile(name, (start + end) - self.distance_m[::-1], self.altitude_m[::-1], self.source)
+
+    def resampled(self, step_m: float) -> RoadProfile:
+        """The altitude linearly interpolated onto points every `step_m` metres from the start,
+        plus the end point (so the length is kept)."""
+        if not (math.isfinite(step_m) and step_m > 0):
+            raise RoadError(f"{self.source or self.name}: resampling step: expected a number > 0 m, got {step_m!r}")
+        grid = _grid(float(self.distance_m[0]), float(self.distance_m[-1]), step_m)
+        return RoadProfile(self.name, grid, np.interp(grid, self.distance_m, self.altitude_m), self.source)
+
+
+def _frozen_array(values: Any) -> np.ndarray:
+    array = np.array(values, dtype=np.float64, copy=True)
+    array.flags.writeable = False
+    return array
+
+
+def _grid(start_m: float, end_m: float, step_m: float) -> np.ndarray:
+    """Points start, start+step, ... and end; a grid point within 1 mm of the end is dropped."""
+    count = int(math.floor((end_m - start_m) / step_m + 1e-9)) + 1
+    grid = start_m + step_m * np.arange(count, dtype=np.float64)
+    grid = grid[grid < end_m - 1e-3]
+    return np.append(grid, end_m)
+
+
+# ---------------------------------------------------------------------------------------------
+# CSV files.
+
+
+def load_road(path: PathLike) -> RoadProfile:
+    """Read a road profile CSV (format in the module doc); errors name the file and line."""
+    path = Path(path)
+    where = str(path)
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except FileNotFoundError:
+        raise RoadError(f"{where}: no such file") from None
+    except IsADirectoryError:
+        raise RoadError(f"{where}: is a directory, expected a CSV file") from None
+    except UnicodeDecodeError:
+        raise RoadError(f"{where}: not a UTF-8 text file") from None
+    lines = [(n, line.strip()) for n, line in enumerate(text.splitlines(), start=1)]
+    lines = [(n, line) for n, line in lines if line and not line.startswith("#")]
+    if not lines:
+        raise RoadError(f"{where}: no header line (expected columns distance_m and altitude_m and/or grade)")
+    columns = _header(where, *lines[0])
+    distance, altitude, grade = _rows(where, columns, lines[1:])
+    if altitude is None:
+        altitude = np.concatenate([[0.0], np.cumsum(grade[:-1] * np.diff(distance))])
+    return RoadProfile(path.stem, distance, altitude, where)
+
+
+def _header(where: str, number: int, line: str) -> list[str]:
+    columns = [name.strip().strip('"').strip() for name in line.split(",")]
+    if "distance_m" not in columns or not {"altitude_m", "grade"} & set(columns):
+        raise RoadError(
+            f"{where}:{number}: expected a header with columns distance_m and altitude_m and/or grade, got {line[:80]!r}"
+        )
+    return columns
+
+
+def _rows(where: str, columns: list[str], lines: list[tuple[int, str]]) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
+    """Distances, altitudes (None without that column) and grades (zeros without that column)."""
+    wanted = [name for name in ("distance_m", "altitude_m", "grade") if name in columns]
+    index = {name: columns.index(name) for name in wanted}
+    data: dict[str, list[float]] = {name: [] for name in wanted}
+    for number, line in lines:
+        cells = line.split(",")
+        if len(cells) != len(columns):
+            raise RoadError(f"{where}:{number}: expected {len(columns)} columns, got {len(cells)}")
+        for name in wanted:
+            data[name].append(_cell(where, number, name, cells[index[name]]))
+        _check_row(where, number, data)
+    if len(data["distance_m"]) < 2:
+        raise RoadError(f"{where}: expected at least two data rows, got {len(data['distance_m'])}")
+    distance = np.array(data["distance_m"])
+    altitude = np.array(data["altitude_m"]) if "altitude_m" in data else None
+    grade = np.array(data["grade"]) if "grade" in data else np.zeros_like(distance)
+    return distance, altitude, grade
+
+
+def _cell(where: str, number: int, name: str, text: str) -> float:
+    text = text.strip()
+    try:
+        value = float(text)
+    except ValueError:
+        raise RoadError(f"{where}:{number}: column {name!r}: expected a number, got {text!r}") from None
+    if not math.isfinite(value):
+        raise RoadError(f"{where}:{number}: column {name!r}: expected a finite number, got {text!r}")
+    return value
+
+
+def _check_row(where: str, number: int, data: dict[str, list[float]]) -> None:
+    """Checks of the newest row against the previous one: increasing distance, |slope| <= 30 %."""
+    distance = data["distance_m"]
+    uses_grade = "altitude_m" not in data
+    if uses_grade and abs(data["grade"][-1]) > _GRADE_CHECK:
+        raise RoadError(f"{where}:{number}: column 'grade': expected |grade| <= {MAX_GRADE:g}, got {data['grade'][-1]:g}")
+    if len(distance) < 2:
+        return
+    if not distance[-1] > distance[-2]:
+        raise RoadError(
+            f"{where}:{number}: column 'distance_m': expected more than the previous row's {distance[-2]:g}, got {distance[-1]:g}"
+        )
+    if not uses_grade:
+        slope = (data["altitude_m"][-1] - data["altitude_m"][-2]) / (distance[-1] - distance[-2])
+        if abs(slope) > _GRADE_CHECK:
+            raise RoadError(
+                f"{where}:{number}: column 'altitude_m': slope from the previous row is {slope:.4g}, expected |slope| <= {MAX_GRADE:g}"
+            )
+
+
+def write_road(profile: RoadProfile, path: PathLike, comments: Sequence[str] = ()) -> None:
+    """Write `profile` atomically as CSV: `# comment` lines, then `distance_m,altitude_m,grade`
+    rows (%.3f m, %.6f m, %.6f); a row's grade is that of the segment starting there, the last
+    row repeats the previous one."""
+    distance = [f"{d:.3f}" for d in profile.distance_m]
+    if any(float(b) <= float(a) for a, b in zip(distance, distance[1:])):
+        raise RoadError(f"{path}: points closer than 1 mm cannot be written with 1 mm resolution")
+    grade = np.append(profile.slope, profile.slope[-1])
+    lines = [f"# {line}".rstrip() for comment in comments for line in str(comment).splitlines() or [""]]
+    lines.append("distance_m,altitude_m,grade")
+    lines += [f"{d},{_fixed(h)},{_fixed(g)}" for d, h, g in zip(distance, profile.altitude_m, grade)]
+    atomic_write_text(path, "\n".join(lines) + "\n")
+
+
+def _fixed(value: float) -> str:
+    """`value` with 6 decimals, without a minus sign on zero."""
+    text = f"{value:.6f}"
+    return "0.000000" if text == "-0.000000" else text
+
+
+# ---------------------------------------------------------------------------------------------
+# Generated sections (thesis sections 1.2, 6.2, 6.3).
+
+SECTION_KINDS: dict[str, tuple[float, float]] = {
+    "flat": (0.0, 0.0),
+    "hill": (500.0, 1500.0),
+    "crest": (500.0, 1000.0),
+    "depression": (500.0, 1000.0),
+}
+"""Section kinds and their default flat lead-in and run-out lengths [m] (thesis sections 6.2, 6.3)."""
+
+
+def make_section(
+    kind: str,
+    length_m: float,
+    slope_pct: float | None = None,
+    lead_m: float | None = None,
+    tail_m: float | None = None,
+    step_m: float = 25.0,
+) -> RoadProfile:
+    """An artificial road section: `lead_m` flat, the feature over `length_m`, `tail_m` flat.
+
+    Kinds: `flat` (no slope); `hill`, constant slope `slope_pct` [%] (negative: a descent);
+    `crest`, slope falling linearly from +|slope_pct| to -|slope_pct|; `depression`, rising from
+    -|slope_pct| to +|slope_pct|. Lead and tail default to the thesis's (`SECTION_KINDS`).
+    Points every `step_m` metres plus the feature's ends (and a crest's top, a depression's bottom);
+    altitudes are the exact integral of the slope law, so each segment's differenced slope is the
+    mean slope over it.
+    """
+    where = f"section {kind!r}"
+    if kind not in SECTION_KINDS:
+        raise RoadError(f"{where}: unknown kind (expected one of {', '.join(SECTION_KINDS)})")
+    default_lead, default_tail = SECTION_KINDS[kind]
+    lead = default_lead if lead_m is None else lead_m
+    tail = default_tail if tail_m is None else tail_m
+    _check_positive(where, "length_m", length_m)
+    _check_positive(where, "step_m", step_m)
+    for name, value in (("lead_m", lead), ("tail_m", tail)):
+        if not (math.isfinite(value) and value >= 0):
+            raise RoadError(f"{where}: {name}: expected a number >= 0, got {value!r}")
+    start_grade, end_grade = _slope_law(where, kind, slope_pct)
+    # The feature's ends and, for a crest or depression, its top or bottom are always points.
+    middle = [lead + length_m / 2] if start_grade != end_grade else []
+    breaks = np.array([0.0, lead, *middle, lead + length_m, lead + length_m + tail])
+    grid = _grid(0.0, float(breaks[-1]), step_m)
+    keep = np.min(np.abs(grid[:, None] - breaks[None, :]), axis=1) > 1e-3
+    distance = np.unique(np.concatenate([grid[keep], breaks]))
+    x = np.clip(distance - lead, 0.0, length_m)
+    altitude = start_grade * x + (end_grade - start_grade) * x**2 / (2.0 * length_m)
+    return RoadProfile(_section_name(kind, length_m, slope_pct, lead, tail), distance, altitude, None)
+
+
+def _check_positive(where: str, name: str, value: float) -> None:
+    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+        raise RoadError(f"{where}: {name}: expected a number > 0, got {value!r}")
+
+
+def _slope_law(where: str, kind: str, slope_pct: float | None) -> tuple[float, float]:
+    """Grades [-] at the start and end of the feature."""
+    if kind == "flat":
+        if slope_pct not in (None, 0, 0.0):
+            raise RoadError(f"{where}: slope_pct: expected none for a flat section, got {slope_pct!r}")
+        return 0.0, 0.0
+    limit_pct = 100 * MAX_GRADE
+    if slope_pct is None or not math.isfinite(slope_pct) or not 0 < abs(slope_pct) <= limit_pct:
+        raise RoadError(f"{where}: slope_pct: expected a non-zero slope within +-{limit_pct:g} %, got {slope_pct!r}")
+    grade = slope_pct / 100.0
+    return {"hill": (grade, grade), "crest": (abs(grade), -abs(grade)), "depression": (-abs(grade), abs(grade))}[kind]
+
+
+def _section_name(kind: str, length_m: float, slope_pct: float | None, lead_m: float, tail_m: float) -> str:
+    """E.g. `hill_L500_A3.5`, `hill_L300_A-3` (a descent), `crest_L1500_A2`, `flat_L1000`;
+    a non-default lead or tail is appended as `_lead200`, `_tail800`."""
+    name = f"{kind}_L{length_m:g}"
+    if kind != "flat":
+        name += f"_A{(slope_pct if kind == 'hill' else abs(slope_pct)):g}"
+    default_lead, default_tail = SECTION_KINDS[kind]
+    name += f"_lead{lead_m:g}" if lead_m != default_lead else ""
+    name += f"_tail{tail_m:g}" if tail_m != default_tail else ""
+    return name
+
+
+def concatenate(parts: Sequence[RoadProfile], name: str) -> RoadProfile:
+    """One road made of `parts` driven in order, each continuing where the previous one ends
+    (distance and altitude shifted to join)."""
+    if not parts:
+        raise RoadError(f"{name}: expected at least one part to concatenate")
+    distance, altitude = [parts[0].distance_m], [parts[0].altitude_m]
+    for part in parts[1:]:
+        shift_m = distance[-1][-1] - part.distance_m[0]
+        lift_m = altitude[-1][-1] - part.altitude_m[0]
+        distance.append(part.distance_m[1:] + shift_m)
+        altitude.append(part.altitude_m[1:] + lift_m)
+    return RoadProfile(name, np.concatenate(distance), np.concatenate(altitude), None)
+
+
+def default_test_track() -> RoadProfile:
+    """The bundled 8.5 km test track: the thesis's features separated by 1000 m of flat road
+    (500 m flat, 500 m at +3.5 %, 500 m at -3 %, a 1500 m crest and a 1500 m depression at 2 %)."""
+    flat = make_section("flat", 1000)
+    parts = [
+        make_section("flat", 500),
+        make_section("hill", 500, 3.5, lead_m=0, tail_m=0),
+        flat,
+        make_section("hill", 500, -3.0, lead_m=0, tail_m=0),
+        flat,
+        make_section("crest", 1500, 2.0, lead_m=0, tail_m=0),
+        flat,
+        make_section("depression", 1500, 2.0, lead_m=0, tail_m=0),
+        flat,
+    ]
+    return concatenate(parts, "test-track")
+
+
+# The thesis's example sections: (kind, length [m], slope [%], where in the thesis).
+_THESIS_SECTIONS = (
+    ("hill", 500, 3.5, "section 6.2, fig. 6.3: 500 m ascent at 3.5 %"),
+    ("hill", 500, 2.0, "section 6.2, fig. 6.4: 500 m ascent at 2 %"),
+    ("hill", 300, -3.0, "section 6.2, fig. 6.5: 300 m descent at -3 %"),
+    ("hill", 500, -3.0, "section 6.2, fig. 6.6: 500 m descent at -3 %"),
+    ("crest", 1500, 2.0, "section 6.3, fig. 6.9: 1500 m crest, slope +2 % to -2 %"),
+    ("depression", 1500, 2.0, "section 6.3, fig. 6.10: 1500 m depression, slope -2 % to +2 %"),
+    ("crest", 1500, 4.0, "section 6.3, fig. 6.11: 1500 m crest, slope +4 % to -4 %"),
+    ("depression", 1500, 4.0, "section 6.3, fig. 6.12: 1500 m depression, slope -4 % to +4 %"),
+)
+_COLUMNS_COMMENT = "distance_m [m]; altitude_m [m], relative; grade [-] of the segment starting at the row (0.01 = 1 %)"
+
+
+def _shipped() -> dict[str, tuple[RoadProfile, list[str]]]:
+    """File name -> (profile, comment lines) of every shipped road."""
+    generated = "Generated by truckmpc.road.write_shipped_roads() (CLI: truckmpc road regenerate); do not edit by hand."
+    roads: dict[str, tuple[RoadProfile, list[str]]] = {}
+    for kind, length_m, slope_pct, what in _THESIS_SECTIONS:
+        profile = make_section(kind, length_m, slope_pct)
+        lead_m, tail_m = SECTION_KINDS[kind]
+        call = f"make_section({kind!r}, {length_m}, {slope_pct:g})"
+        detail = f"Thesis {what}; {lead_m:g} m flat before, {tail_m:g} m flat after."
+        roads[f"{profile.name}.csv"] = (profile, [generated, f"{call}: {detail}", _COLUMNS_COMMENT])
+    track = default_test_track()
+    detail = "default_test_track(): " + " ".join((default_test_track.__doc__ or "").split())
+    roads[f"{track.name}.csv"] = (track, [generated, detail, _COLUMNS_COMMENT])
+    return roads
+
+
+def shipped_roads() -> dict[str, RoadProfile]:
+    """The roads shipped in the repository's `roads/`: file name -> profile (the thesis's example
+    sections and `test-track.csv`)."""
+    return {name: profile for name, (profile, _) in _shipped().items()}
+
+
+def write_shipped_roads(out_dir: PathLike) -> list[Path]:
+    """(Re)generate every shipped road as CSV in `out_dir`; returns the paths written."""
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    written = []
+    for name, (profile, comments) in _shipped().items():
+        write_road(profile, out_dir / name, comments)
+        written.append(out_dir / name)
+    return written
