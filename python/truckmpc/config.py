@@ -436,8 +436,107 @@ _SIM_PARSERS: dict[str, Parser] = {
     "start_speed_kmh": _optional(_number(0, above=True)),
 }
 
+SHIFT_SPACING_M = 200.0
+"""Table 6.1: the shift limit k_lim is chosen so that S * k_lim = 200 m."""
+
+
+@dataclass(frozen=True)
+class MpcConfig:
+    """The look-ahead controller (chapter 5; tables 5.2, 6.1, 6.2); see `configs/mpc.yaml`.
+
+    Speeds in km/h. The cost weighs fuel in grams and speeds in m/s (NOTES.md). `k_lim` None means
+    200 m / S (table 6.1); `q_speed_below` None means table 6.2's rule: 5 at delta = 0.1 km/h and
+    7 at 0.2 km/h (5 below 0.15 km/h, else 7).
+    """
+
+    stage_m: float
+    horizon_m: float
+    delta_kmh: float
+    epsilon: float
+    v_ref_kmh: float
+    v_inc_kmh: float
+    v_dec_kmh: float
+    k_lim: int | None
+    n_min_rpm: float
+    n_max_rpm: float
+    allow_neutral: bool
+    q_fuel: float
+    q_speed_below: float | None
+    q_speed_change: float
+    q_gear_shift: float
+    q_brake: float
+    neutral_rule: str
+    grid: str
+    source: str
+
+    def core_params(self) -> dict[str, Any]:
+        """The parameters as the Rust kernel takes them, with the table 6.1/6.2 defaults resolved."""
+        params = dataclasses.asdict(self)
+        params.pop("source")
+        if params["k_lim"] is None:
+            params["k_lim"] = max(1, round(SHIFT_SPACING_M / self.stage_m))
+        if params["q_speed_below"] is None:
+            params["q_speed_below"] = 5.0 if self.delta_kmh < 0.15 else 7.0
+        return params
+
+
+def _flag(value: Any) -> bool:
+    if not isinstance(value, bool):
+        raise _Invalid("true or false", value)
+    return value
+
+
+def _whole(value: Any) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        raise _Invalid("a whole number >= 1", value)
+    return value
+
+
+def _one_of(*choices: str) -> Parser:
+    def parse(value: Any) -> str:
+        if value not in choices:
+            raise _Invalid(" or ".join(repr(c) for c in choices), value)
+        return value
+
+    return parse
+
+
+_MPC_PARSERS: dict[str, Parser] = {
+    "stage_m": _number(0, above=True),
+    "horizon_m": _number(0, above=True),
+    "delta_kmh": _number(0, above=True),
+    "epsilon": _number(0),
+    "v_ref_kmh": _number(0, above=True),
+    "v_inc_kmh": _number(0, why=_V_INC_WHY),
+    "v_dec_kmh": _number(0),
+    "k_lim": _optional(_whole),
+    "n_min_rpm": _number(0),
+    "n_max_rpm": _number(0, above=True),
+    "allow_neutral": _flag,
+    "q_fuel": _number(0),
+    "q_speed_below": _optional(_number(0)),
+    "q_speed_change": _number(0),
+    "q_gear_shift": _number(0),
+    "q_brake": _number(0),
+    "neutral_rule": _one_of("nearest", "interpolate"),
+    "grid": _one_of("moving", "fixed"),
+}
+
+
+def _build_mpc(values: dict[str, Any], source: str) -> MpcConfig:
+    """Ranges that involve several keys are the kernel's to judge (one source of truth)."""
+    config = MpcConfig(**values, source=source)
+    try:
+        _core.MpcSolver.check_params(config.core_params())
+    except ValueError as err:
+        key, _, text = str(err).partition(": ")
+        raise _Invalid(text.removeprefix("expected "), key=key if key in values else None, show_got=False) from None
+    return config
+
+
 SECTIONS: dict[str, Section] = {
     "pi": Section("pi.yaml", _PI_PARSERS, _build_pi, _check_pi_gears),
+    "mpc": Section("mpc.yaml", _MPC_PARSERS, _build_mpc),
     "sim": Section("simulation.yaml", _SIM_PARSERS, lambda values, source: SimConfig(**values, source=source)),
 }
 """Registry of controller/simulation sections, keyed by their `RunConfig` field name."""
@@ -445,10 +544,11 @@ SECTIONS: dict[str, Section] = {
 
 @dataclass(frozen=True)
 class RunConfig:
-    """Everything a simulation run needs: vehicle, PI controller, simulation settings."""
+    """Everything a simulation run needs: vehicle, PI and MPC controllers, simulation settings."""
 
     vehicle: VehicleConfig
     pi: PiConfig
+    mpc: MpcConfig
     sim: SimConfig
 
     def as_dict(self) -> dict[str, Any]:

@@ -3,11 +3,12 @@
 
 use std::sync::Arc;
 
-use numpy::PyReadonlyArray1;
+use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use truckmpc_core as core;
+use truckmpc_core::dp;
 use truckmpc_core::levels;
 
 /// Turn a core error into a Python `ValueError` carrying its one-line message.
@@ -293,9 +294,171 @@ impl PyPlant {
     }
 }
 
+/// The MPC parameter names the core accepts (table 5.2 / 6.1 / 6.2).
+const MPC_NAMES: [&str; 18] = [
+    "stage_m", "horizon_m", "delta_kmh", "epsilon", "v_ref_kmh", "v_inc_kmh", "v_dec_kmh", "k_lim", "n_min_rpm",
+    "n_max_rpm", "allow_neutral", "q_fuel", "q_speed_below", "q_speed_change", "q_gear_shift", "q_brake",
+    "neutral_rule", "grid",
+];
+
+fn mpc_params_from_dict(dict: &Bound<'_, PyDict>) -> PyResult<dp::MpcParams> {
+    for key in dict.keys() {
+        let key: String = key.extract()?;
+        if !MPC_NAMES.contains(&key.as_str()) {
+            return Err(PyValueError::new_err(format!("{key}: unknown MPC parameter")));
+        }
+    }
+    let d = dp::MpcParams::default();
+    let k_lim = match dict.get_item("k_lim")? {
+        Some(v) => v.extract::<u32>().map_err(|_| PyValueError::new_err("k_lim: expected a whole number >= 0"))?,
+        None => d.k_lim,
+    };
+    let allow_neutral = match dict.get_item("allow_neutral")? {
+        Some(v) => v.extract::<bool>().map_err(|_| PyValueError::new_err("allow_neutral: expected true or false"))?,
+        None => d.allow_neutral,
+    };
+    let neutral_rule = match dict.get_item("neutral_rule")? {
+        Some(v) => match v.extract::<String>().as_deref() {
+            Ok("nearest") => dp::NeutralRule::Nearest,
+            Ok("interpolate") => dp::NeutralRule::Interpolate,
+            _ => return Err(PyValueError::new_err("neutral_rule: expected 'nearest' or 'interpolate'")),
+        },
+        None => d.neutral_rule,
+    };
+    let grid = match dict.get_item("grid")? {
+        Some(v) => match v.extract::<String>().as_deref() {
+            Ok("moving") => dp::GridAnchor::Moving,
+            Ok("fixed") => dp::GridAnchor::Fixed,
+            _ => return Err(PyValueError::new_err("grid: expected 'moving' or 'fixed'")),
+        },
+        None => d.grid,
+    };
+    let params = dp::MpcParams {
+        stage_m: get_f64(dict, "stage_m", d.stage_m)?,
+        horizon_m: get_f64(dict, "horizon_m", d.horizon_m)?,
+        delta_kmh: get_f64(dict, "delta_kmh", d.delta_kmh)?,
+        epsilon: get_f64(dict, "epsilon", d.epsilon)?,
+        v_ref_kmh: get_f64(dict, "v_ref_kmh", d.v_ref_kmh)?,
+        v_inc_kmh: get_f64(dict, "v_inc_kmh", d.v_inc_kmh)?,
+        v_dec_kmh: get_f64(dict, "v_dec_kmh", d.v_dec_kmh)?,
+        k_lim,
+        n_min_rpm: get_f64(dict, "n_min_rpm", d.n_min_rpm)?,
+        n_max_rpm: get_f64(dict, "n_max_rpm", d.n_max_rpm)?,
+        allow_neutral,
+        q_fuel: get_f64(dict, "q_fuel", d.q_fuel)?,
+        q_speed_below: get_f64(dict, "q_speed_below", d.q_speed_below)?,
+        q_speed_change: get_f64(dict, "q_speed_change", d.q_speed_change)?,
+        q_gear_shift: get_f64(dict, "q_gear_shift", d.q_gear_shift)?,
+        q_brake: get_f64(dict, "q_brake", d.q_brake)?,
+        neutral_rule,
+        grid,
+    };
+    params.validate().map_err(to_py)?;
+    Ok(params)
+}
+
+/// The look-ahead DP of chapter 5 on a road, with its reusable workspace.
+///
+/// Args:
+///     vehicle: the truck model the controller predicts with.
+///     road: the road whose slopes it looks ahead at.
+///     params: dict of MPC parameters (`parameter_names()`); missing keys take tables 6.1/6.2.
+#[pyclass(name = "MpcSolver", module = "truckmpc._core")]
+struct PyMpcSolver {
+    vehicle: Arc<core::Vehicle>,
+    road: Arc<core::Road>,
+    solver: dp::Solver,
+    slopes: Vec<f64>,
+    last: dp::Solution,
+}
+
+/// What `MpcSolver.solve` returns: (feasible, pedal, brake, gear, cost, states, transitions).
+type SolveTuple = (bool, f64, f64, usize, f64, usize, usize);
+
+#[pymethods]
+impl PyMpcSolver {
+    #[new]
+    fn new(vehicle: &PyVehicle, road: &PyRoad, params: &Bound<'_, PyDict>) -> PyResult<Self> {
+        let params = mpc_params_from_dict(params)?;
+        Ok(PyMpcSolver {
+            vehicle: vehicle.inner.clone(),
+            road: road.inner.clone(),
+            solver: dp::Solver::new(params),
+            slopes: Vec::new(),
+            last: dp::Solution::default(),
+        })
+    }
+
+    /// Names of the MPC parameters.
+    #[staticmethod]
+    fn parameter_names() -> Vec<&'static str> {
+        MPC_NAMES.to_vec()
+    }
+
+    /// Validate a dict of MPC parameters; raises ValueError("key: what was expected").
+    #[staticmethod]
+    fn check_params(params: &Bound<'_, PyDict>) -> PyResult<()> {
+        mpc_params_from_dict(params).map(|_| ())
+    }
+
+    /// Number of stages N of the horizon.
+    #[getter]
+    fn stages(&self) -> usize {
+        self.solver.params().stages()
+    }
+
+    /// Stage length S [m].
+    #[getter]
+    fn stage_m(&self) -> f64 {
+        self.solver.params().stage_m
+    }
+
+    /// Speed [m/s] one stage ahead of `s_m` under the inputs being applied, by the controller's model.
+    fn predict_speed(&self, s_m: f64, v_mps: f64, pedal: f64, brake: f64, gear: usize) -> PyResult<f64> {
+        if gear > self.vehicle.forward_gears() {
+            return Err(PyValueError::new_err(format!("gear: expected 0..={}, got {gear}", self.vehicle.forward_gears())));
+        }
+        let u = core::Control { pedal, brake, gear };
+        Ok(dp::horizon::predict_speed(&self.vehicle, &self.road, s_m, v_mps, u, self.solver.params().stage_m))
+    }
+
+    /// Solve the horizon starting at `s_m` from speed `v_mps` [m/s] in `gear` with
+    /// `stages_since_shift` stages driven since the last shift. Releases the GIL.
+    ///
+    /// Returns:
+    ///     (feasible, pedal, brake, gear, cost, states, transitions) for the first stage.
+    fn solve(&mut self, py: Python<'_>, s_m: f64, v_mps: f64, gear: usize, stages_since_shift: u32) -> PyResult<SolveTuple> {
+        if gear > self.vehicle.forward_gears() {
+            return Err(PyValueError::new_err(format!("gear: expected 0..={}, got {gear}", self.vehicle.forward_gears())));
+        }
+        if !(v_mps.is_finite() && v_mps > 0.0) {
+            return Err(PyValueError::new_err(format!("speed: expected > 0 m/s, got {v_mps}")));
+        }
+        let start = dp::InitialState { v_mps, gear, stages_since_shift };
+        let (solver, slopes, vehicle, road) = (&mut self.solver, &mut self.slopes, &self.vehicle, &self.road);
+        let solution = py.detach(|| dp::horizon::solve_at(solver, vehicle, road, s_m, start, slopes));
+        let out = (solution.feasible, solution.pedal, solution.brake, solution.gear, solution.cost, solution.states, solution.transitions);
+        self.last = solution;
+        Ok(out)
+    }
+
+    /// Predicted optimal trajectory of the last solve: dict of arrays `speed_mps`, `gear`, `pedal`,
+    /// `brake`, one entry per stage boundary (empty when infeasible).
+    fn last_trajectory<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let t = &self.last.trajectory;
+        let out = PyDict::new(py);
+        out.set_item("speed_mps", t.iter().map(|p| p.v_mps).collect::<Vec<_>>().into_pyarray(py))?;
+        out.set_item("gear", t.iter().map(|p| p.gear as i64).collect::<Vec<_>>().into_pyarray(py))?;
+        out.set_item("pedal", t.iter().map(|p| p.pedal).collect::<Vec<_>>().into_pyarray(py))?;
+        out.set_item("brake", t.iter().map(|p| p.brake).collect::<Vec<_>>().into_pyarray(py))?;
+        Ok(out)
+    }
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyVehicle>()?;
+    m.add_class::<PyMpcSolver>()?;
     m.add_class::<PyRoad>()?;
     m.add_class::<PyPlant>()?;
     Ok(())

@@ -1,6 +1,7 @@
 //! The look-ahead controller's optimisation (thesis chapter 5): parameters, search space and the
 //! backward dynamic program.
 
+pub mod horizon;
 pub mod params;
 pub mod solver;
 pub mod space;

@@ -1,0 +1,32 @@
+//! The receding-horizon step of section 5.6 on a road: the slopes the DP sees ahead of a position,
+//! and the prediction of the speed one stage ahead under the inputs being applied now.
+
+use super::solver::{InitialState, Solution, Solver};
+use crate::levels::euler_step;
+use crate::plant::Control;
+use crate::road::Road;
+use crate::vehicle::Vehicle;
+
+/// Mean grade of each of the `stages` stages of length `stage_m` starting at `s0_m` (the road is
+/// flat beyond its end), written into `out`.
+pub fn stage_slopes(road: &Road, s0_m: f64, stage_m: f64, stages: usize, out: &mut Vec<f64>) {
+    out.clear();
+    out.extend((0..stages).map(|k| {
+        let a = s0_m + k as f64 * stage_m;
+        road.mean_slope(a, a + stage_m)
+    }));
+}
+
+/// Speed [m/s] one stage ahead of `s_m` with `u` held, by the controller's own model (one Euler
+/// stage of (5.4) on the stage's mean slope).
+pub fn predict_speed(vehicle: &Vehicle, road: &Road, s_m: f64, v_mps: f64, u: Control, stage_m: f64) -> f64 {
+    let slope = road.mean_slope(s_m, s_m + stage_m);
+    euler_step(vehicle, v_mps, u.pedal, u.brake, u.gear, slope, stage_m)
+}
+
+/// Solve the DP for the horizon starting at `s_m` from `start`, reusing `slopes` as scratch.
+pub fn solve_at(solver: &mut Solver, vehicle: &Vehicle, road: &Road, s_m: f64, start: InitialState, slopes: &mut Vec<f64>) -> Solution {
+    let p = solver.params();
+    stage_slopes(road, s_m, p.stage_m, p.stages(), slopes);
+    solver.solve(vehicle, start, slopes)
+}
