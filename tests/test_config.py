@@ -108,7 +108,8 @@ def test_run_config_defaults_and_plain_dict() -> None:
     data = yaml.safe_load(yaml.safe_dump(run.as_dict()))
     assert data["pi"]["gear_up_rpm"][-1] is None
     assert data["vehicle"]["mass_kg"] == 40000.0
-    assert set(data["sources"]) == {"vehicle", "pi", "sim"}
+    assert set(data["sources"]) == {"vehicle", "pi", "mpc", "sim"}
+    assert data["mpc"]["k_lim"] is None  # resolved to 200 m / S only when the kernel gets it
 
 
 def test_configs_are_frozen() -> None:
