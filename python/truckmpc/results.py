@@ -1,0 +1,142 @@
+"""Run outputs: ``summary.json``, ``trace-<controller>.csv`` and the short table the CLI prints.
+
+``summary.json``::
+
+    {"road": <name>, "length_m": <m>,
+     "pi": {<summary of the PI run>},
+     "mpc": {...}, "delta_fuel_pct": ..., "delta_time_pct": ...}   # when both ran
+
+The deltas follow the thesis (section 6.1): (x_mpc − x_pi) / x_pi in percent. All files of a run are
+written through :class:`truckmpc.atomic.OutputDir`, so a failed run leaves nothing half-written.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+import os
+from collections.abc import Mapping
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from truckmpc.atomic import OutputDir
+from truckmpc.sim import TRACE_COLUMNS, RunResult
+
+if TYPE_CHECKING:
+    from truckmpc.road import RoadProfile
+
+BASELINE = "pi"
+"""The controller every other one is compared against."""
+
+_CSV_FORMATS = {
+    "distance_m": "%.3f",
+    "time_s": "%.4f",
+    "speed_kmh": "%.5f",
+    "gear": "%d",
+    "pedal": "%.6f",
+    "brake": "%.6f",
+    "engine_speed_rpm": "%.2f",
+    "slope": "%.6f",
+    "altitude_m": "%.4f",
+    "fuel_g": "%.4f",
+    "brake_energy_kj": "%.4f",
+}
+
+
+def _pct(new: float, base: float) -> float | None:
+    return 100.0 * (new - base) / base if base else None
+
+
+def summary_document(road: RoadProfile, results: Mapping[str, RunResult]) -> dict[str, Any]:
+    """The ``summary.json`` content for runs of several controllers over ``road``."""
+    doc: dict[str, Any] = {"road": road.name, "length_m": float(road.length_m)}
+    for name, result in results.items():
+        doc[name] = dict(result.summary)
+    base = results.get(BASELINE)
+    for name, result in results.items():
+        if base is None or name == BASELINE:
+            continue
+        suffix = "" if len(results) == 2 else f"_{name}"
+        doc[f"delta_fuel_pct{suffix}"] = _pct(result.summary["fuel_kg"], base.summary["fuel_kg"])
+        doc[f"delta_time_pct{suffix}"] = _pct(result.summary["time_s"], base.summary["time_s"])
+    return doc
+
+
+def trace_csv(result: RunResult) -> str:
+    """The trace of one run as CSV text (header line, then one row per sample)."""
+    columns = [c for c in TRACE_COLUMNS if c in result.trace] + [c for c in result.trace if c not in TRACE_COLUMNS]
+    table = np.column_stack([np.asarray(result.trace[c], dtype=float) for c in columns])
+    buffer = io.StringIO()
+    np.savetxt(buffer, table, fmt=[_CSV_FORMATS.get(c, "%.6g") for c in columns], delimiter=",",
+               header=",".join(columns), comments="")
+    return buffer.getvalue()
+
+
+def _json_default(value: Any) -> Any:
+    if isinstance(value, np.generic):
+        return value.item()
+    raise TypeError(f"not JSON-serialisable: {type(value).__name__}")
+
+
+def _clean(value: Any) -> Any:
+    """NaN and infinities are not JSON; write them as null."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, dict):
+        return {k: _clean(v) for k, v in value.items()}
+    return value
+
+
+def write_outputs(out_dir: str | os.PathLike[str], road: RoadProfile, results: Mapping[str, RunResult]) -> list[Path]:
+    """Write ``summary.json`` and one ``trace-<controller>.csv`` per run into ``out_dir``, all or nothing.
+
+    Returns the paths written.
+    """
+    out = Path(out_dir)
+    names = ["summary.json"] + [f"trace-{name}.csv" for name in results]
+    with OutputDir(out) as staging:
+        text = json.dumps(_clean(summary_document(road, results)), indent=2, default=_json_default)
+        (staging / "summary.json").write_text(text + "\n", encoding="utf-8")
+        for name, result in results.items():
+            (staging / f"trace-{name}.csv").write_text(trace_csv(result), encoding="utf-8")
+    return [out / name for name in names]
+
+
+_ROWS = (
+    ("fuel", "fuel_kg", "kg", "{:.3f}"),
+    ("fuel per 100 km", "fuel_kg_per_100km", "kg", "{:.2f}"),
+    ("trip time", "time_s", "s", "{:.1f}"),
+    ("mean speed", "mean_speed_kmh", "km/h", "{:.2f}"),
+    ("end speed", "end_speed_kmh", "km/h", "{:.2f}"),
+    ("gear shifts", "gear_shifts", "", "{:d}"),
+    ("brake energy", "brake_energy_kj", "kJ", "{:.1f}"),
+    ("neutral distance", "neutral_distance_m", "m", "{:.0f}"),
+    ("compute time", "compute_time_s", "s", "{:.2f}"),
+    ("realtime ratio", "realtime_ratio", "", "{:.2e}"),
+)
+
+
+def format_table(road: RoadProfile, results: Mapping[str, RunResult]) -> str:
+    """A short plain-text table of the runs' main figures, one column per controller."""
+    names = list(results)
+    doc = summary_document(road, results)
+    lines = [f"road {road.name}: {road.length_m / 1000:.2f} km"]
+    width = max(len(label) + len(unit) + 3 for label, _, unit, _ in _ROWS)
+    lines.append(" " * width + "".join(f"{name:>14}" for name in names))
+    for label, key, unit, fmt in _ROWS:
+        head = f"{label} [{unit}]" if unit else label
+        cells = []
+        for name in names:
+            value = results[name].summary.get(key)
+            cells.append(f"{'-' if value is None else fmt.format(value):>14}")
+        lines.append(f"{head:<{width}}" + "".join(cells))
+    for key in ("delta_fuel_pct", "delta_time_pct"):
+        if doc.get(key) is not None:
+            lines.append(f"{key.replace('_pct', ' [%]').replace('_', ' '):<{width}}{doc[key]:>+14.2f}")
+    for name in names:
+        if results[name].message:
+            lines.append(f"{name}: {results[name].message}")
+    return "\n".join(lines)
