@@ -1,1 +1,48 @@
-"""truckmpc: look-ahead cruise control for heavy trucks, compared against a PI baseline."""
+"""truckmpc: look-ahead cruise control for heavy trucks, compared against a PI baseline.
+
+Public API::
+
+    from truckmpc import load_run_config, load_road, default_test_track, simulate
+    result = simulate(default_test_track(), load_run_config())
+    result.summary["fuel_kg"], result.trace["speed_kmh"]
+"""
+
+from truckmpc.config import PiConfig, RunConfig, SimConfig, VehicleConfig, load_run_config, load_vehicle
+from truckmpc.controller import Control, Controller, PlantState
+from truckmpc.errors import ConfigError, RoadError, TruckmpcError
+from truckmpc.pi import GearLogic, PiController, steady_gear
+from truckmpc.results import format_table, summary_document, trace_csv, write_outputs
+from truckmpc.road import RoadProfile, default_test_track, load_road, make_section, shipped_roads, write_road
+from truckmpc.sim import CONTROLLERS, TRACE_COLUMNS, RunResult, simulate
+
+__all__ = [
+    "CONTROLLERS",
+    "TRACE_COLUMNS",
+    "ConfigError",
+    "Control",
+    "Controller",
+    "GearLogic",
+    "PiConfig",
+    "PiController",
+    "PlantState",
+    "RoadError",
+    "RoadProfile",
+    "RunConfig",
+    "RunResult",
+    "SimConfig",
+    "TruckmpcError",
+    "VehicleConfig",
+    "default_test_track",
+    "format_table",
+    "load_road",
+    "load_run_config",
+    "load_vehicle",
+    "make_section",
+    "shipped_roads",
+    "simulate",
+    "steady_gear",
+    "summary_document",
+    "trace_csv",
+    "write_outputs",
+    "write_road",
+]

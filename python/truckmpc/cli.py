@@ -1,0 +1,224 @@
+"""The ``truckmpc`` command line.
+
+Commands::
+
+    truckmpc simulate [--road FILE] [--controller pi] [--vehicle FILE] [--config FILE ...]
+                      [--set key=value ...] [--out DIR] [--reverse]
+    truckmpc model stationary --speed-kmh V --slope-pct A [--gear G|neutral] [--vehicle FILE] [--json]
+    truckmpc road make {flat,hill,crest,depression} --length-m L [--slope-pct A] [--lead-m X]
+                       [--tail-m Y] -o FILE
+    truckmpc road regenerate [--dir roads]
+
+Every input problem (a :class:`~truckmpc.errors.TruckmpcError`, a usage error, an unreadable or
+unwritable file) ends the command with exactly one line ``error: ...`` on stderr and exit code 2, no
+traceback and no output files.
+"""
+
+from __future__ import annotations
+
+import enum
+import json
+import sys
+from pathlib import Path
+from typing import Annotated, Any, NoReturn
+
+import typer
+from typer.core import TyperGroup
+
+from truckmpc.config import load_run_config
+from truckmpc.errors import TruckmpcError
+from truckmpc.pi import steady_gear
+from truckmpc.results import format_table, write_outputs
+from truckmpc.road import default_test_track, load_road, make_section, write_road, write_shipped_roads
+from truckmpc.sim import CONTROLLERS, simulate
+
+USAGE_EXIT_CODE = 2
+
+
+def _usage_error_types() -> tuple[type[Exception], ...]:
+    """Usage-error base classes: Typer >= 0.20 vendors click (``typer.TyperException``); older
+    versions raise ``click.ClickException``."""
+    types: list[type[Exception]] = []
+    if hasattr(typer, "TyperException"):
+        types.append(typer.TyperException)
+    try:
+        import click
+    except ImportError:
+        pass
+    else:
+        types.append(click.ClickException)
+    return tuple(types)
+
+
+_USAGE_ERRORS = _usage_error_types()
+_COLUMNS_COMMENT = "distance_m [m]; altitude_m [m], relative; grade [-] of the segment starting at the row (0.01 = 1 %)"
+
+
+def _fail(message: str, code: int = USAGE_EXIT_CODE) -> NoReturn:
+    text = " ".join(str(message).split())
+    typer.echo(f"error: {text}", err=True)
+    sys.exit(code)
+
+
+class _OneLineErrors(TyperGroup):
+    """Root command group that turns every user-facing error into one ``error:`` line and exit code 2.
+
+    Living in the group (not only in :func:`main`) means Typer's ``CliRunner`` sees the same behaviour
+    as the installed command.
+    """
+
+    def main(self, args: Any = None, prog_name: str | None = None, complete_var: str | None = None,
+             standalone_mode: bool = True, **extra: Any) -> Any:
+        try:
+            rv = super().main(args=args, prog_name=prog_name, complete_var=complete_var,
+                              standalone_mode=False, **extra)
+        except _USAGE_ERRORS as err:  # usage errors, bad parameter values
+            message = err.format_message() if hasattr(err, "format_message") else str(err)
+            _fail(message or "missing command or arguments (usage above; --help for more)")
+        except TruckmpcError as err:
+            _fail(str(err))
+        except OSError as err:  # e.g. an output directory that cannot be written
+            where = f"{err.filename}: " if err.filename else ""
+            _fail(f"{where}{err.strerror or err}")
+        except typer.Abort:
+            _fail("aborted", 1)
+        if not standalone_mode:
+            return rv
+        sys.exit(rv if isinstance(rv, int) else 0)
+
+
+app = typer.Typer(
+    cls=_OneLineErrors,
+    help="Look-ahead cruise control for heavy trucks: simulate a PI baseline (and, next, a DP-MPC) over road profiles.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+model_app = typer.Typer(help="Query the vehicle model.", no_args_is_help=True)
+road_app = typer.Typer(help="Make and regenerate road profiles.", no_args_is_help=True)
+app.add_typer(model_app, name="model")
+app.add_typer(road_app, name="road")
+
+ControllerChoice = enum.Enum("ControllerChoice", {name: name for name in CONTROLLERS}, type=str)  # type: ignore[misc]
+"""``--controller`` values: every controller registered in :data:`truckmpc.sim.CONTROLLERS`."""
+
+
+class SectionKind(str, enum.Enum):
+    flat = "flat"
+    hill = "hill"
+    crest = "crest"
+    depression = "depression"
+
+
+VehicleOpt = Annotated[Path | None, typer.Option("--vehicle", help="Vehicle YAML file (default: packaged truck-40t.yaml).")]
+ConfigOpt = Annotated[list[Path] | None, typer.Option("--config", help="Controller/simulation YAML overlay; repeatable.")]
+SetOpt = Annotated[list[str] | None, typer.Option("--set", help="Override any vehicle, controller or simulation key: key=value; repeatable.")]
+
+
+@app.command("simulate")
+def simulate_cmd(
+    road: Annotated[Path | None, typer.Option("--road", help="Road profile CSV (default: the bundled test track).")] = None,
+    controller: Annotated[ControllerChoice, typer.Option("--controller", help="Controller to run.")] = ControllerChoice("pi"),  # type: ignore[valid-type]
+    vehicle: VehicleOpt = None,
+    config: ConfigOpt = None,
+    set_: SetOpt = None,
+    out: Annotated[Path | None, typer.Option("--out", help="Output directory (default: out/<road name>).")] = None,
+    reverse: Annotated[bool, typer.Option("--reverse", help="Drive the road in the opposite direction.")] = False,
+) -> None:
+    """Run a controller over a road; print a short table, write DIR/summary.json and DIR/trace-<controller>.csv."""
+    run_config = load_run_config(vehicle_path=vehicle, config_paths=tuple(config or ()), overrides=tuple(set_ or ()))
+    profile = default_test_track() if road is None else load_road(road)
+    if reverse:
+        profile = profile.reversed()
+    result = simulate(profile, run_config, controller.value)
+    results = {result.name: result}
+    out_dir = Path("out") / profile.name if out is None else out
+    written = write_outputs(out_dir, profile, results)
+    typer.echo(format_table(profile, results))
+    typer.echo("wrote " + ", ".join(str(p) for p in written))
+
+
+def _parse_gear(text: str | None, forward_gears: int) -> int | None:
+    if text is None:
+        return None
+    if text.strip().lower() in ("n", "neutral"):
+        return 0
+    try:
+        gear = int(text)
+    except ValueError:
+        gear = -1
+    if not 0 <= gear <= forward_gears:
+        raise typer.BadParameter(f"expected 1..{forward_gears} or 'neutral', got {text!r}", param_hint="'--gear'")
+    return gear
+
+
+@model_app.command("stationary")
+def stationary_cmd(
+    speed_kmh: Annotated[float, typer.Option("--speed-kmh", help="Speed to hold [km/h].")],
+    slope_pct: Annotated[float, typer.Option("--slope-pct", help="Road grade [%], negative downhill.")],
+    gear: Annotated[str | None, typer.Option("--gear", help="Gear 1..12 or 'neutral' (default: the PI gear logic's gear at this speed).")] = None,
+    vehicle: VehicleOpt = None,
+    config: ConfigOpt = None,
+    set_: SetOpt = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of text.")] = False,
+) -> None:
+    """Pedal or brake level holding a speed on a grade, its feasibility and eigenvalue λ = ∂(dv/ds)/∂v [1/m]."""
+    if not speed_kmh > 0:
+        raise typer.BadParameter(f"expected a speed > 0 km/h, got {speed_kmh:g}", param_hint="'--speed-kmh'")
+    run_config = load_run_config(vehicle_path=vehicle, config_paths=tuple(config or ()), overrides=tuple(set_ or ()))
+    core = run_config.vehicle.core()
+    v_mps = speed_kmh / 3.6
+    chosen = _parse_gear(gear, core.forward_gears)
+    if chosen is None:
+        chosen = steady_gear(core, v_mps, run_config.pi)
+    point = core.stationary(v_mps, slope_pct / 100.0, chosen)
+    doc = {
+        "speed_kmh": speed_kmh,
+        "slope_pct": slope_pct,
+        "gear": chosen,
+        "pedal": point["pedal"],
+        "brake": point["brake"],
+        "feasible": bool(point["feasible"]),
+        "eigenvalue_per_m": point["eigenvalue_per_m"],
+    }
+    if as_json:
+        typer.echo(json.dumps(doc))
+        return
+    gear_text = "neutral" if chosen == 0 else str(chosen)
+    typer.echo(f"speed {speed_kmh:g} km/h on {slope_pct:g} % in gear {gear_text}")
+    typer.echo(f"  pedal       {doc['pedal']:.4f}")
+    typer.echo(f"  brake       {doc['brake']:.4f}")
+    typer.echo(f"  feasible    {'yes' if doc['feasible'] else 'no (levels clipped to [0, 1])'}")
+    typer.echo(f"  eigenvalue  {doc['eigenvalue_per_m'] * 1e3:.4f}e-3 1/m")
+
+
+@road_app.command("make")
+def road_make_cmd(
+    kind: Annotated[SectionKind, typer.Argument(help="Section shape.")],
+    length_m: Annotated[float, typer.Option("--length-m", help="Length of the hill (or crest/depression) [m].")],
+    output: Annotated[Path, typer.Option("-o", "--output", help="CSV file to write.")],
+    slope_pct: Annotated[float | None, typer.Option("--slope-pct", help="Grade [%] (negative for a descent); not for flat.")] = None,
+    lead_m: Annotated[float | None, typer.Option("--lead-m", help="Flat lead-in [m] (default: the thesis's).")] = None,
+    tail_m: Annotated[float | None, typer.Option("--tail-m", help="Flat run-out [m] (default: the thesis's).")] = None,
+) -> None:
+    """Write an artificial road section (thesis sections 1.2, 6.2, 6.3) as a road CSV."""
+    profile = make_section(kind.value, length_m, slope_pct, lead_m=lead_m, tail_m=tail_m)
+    command = f"truckmpc road make {kind.value} --length-m {length_m:g}"
+    for flag, value in (("--slope-pct", slope_pct), ("--lead-m", lead_m), ("--tail-m", tail_m)):
+        command += "" if value is None else f" {flag} {value:g}"
+    write_road(profile, output, comments=(f"Generated by: {command}", _COLUMNS_COMMENT))
+    typer.echo(f"wrote {output} ({profile.name}, {profile.length_m / 1000:.2f} km)")
+
+
+@road_app.command("regenerate")
+def road_regenerate_cmd(
+    directory: Annotated[Path, typer.Option("--dir", help="Directory of the shipped roads.")] = Path("roads"),
+) -> None:
+    """Rewrite the shipped example sections and the test track from their definitions."""
+    written = write_shipped_roads(directory)
+    typer.echo(f"wrote {len(written)} road files to {directory}")
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Entry point of the ``truckmpc`` command."""
+    app(args=argv, prog_name="truckmpc")

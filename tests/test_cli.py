@@ -1,0 +1,223 @@
+"""The `truckmpc` command line: simulate, model stationary, road make/regenerate, and bad input."""
+
+from __future__ import annotations
+
+import json
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from truckmpc.cli import app
+from truckmpc.config import default_config_path
+
+REPO = Path(__file__).resolve().parents[1]
+runner = CliRunner()
+
+
+def run(*args: str):
+    return runner.invoke(app, [str(a) for a in args])
+
+
+@pytest.fixture(autouse=True)
+def in_tmp(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
+
+
+# ---------------------------------------------------------------------------------------------
+# simulate
+
+
+def test_simulate_without_road_runs_the_bundled_test_track(in_tmp):
+    result = run("simulate")
+    assert result.exit_code == 0, result.stderr
+    assert "test-track" in result.stdout and "fuel [kg]" in result.stdout
+    out = in_tmp / "out" / "test-track"
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["road"] == "test-track" and summary["length_m"] == pytest.approx(8500.0)
+    for key in ("fuel_kg", "time_s", "mean_speed_kmh", "end_speed_kmh", "gear_shifts", "brake_energy_kj",
+                "neutral_distance_m", "compute_time_s", "realtime_ratio", "stalled"):
+        assert key in summary["pi"]
+    header = (out / "trace-pi.csv").read_text().splitlines()[0].split(",")
+    for column in ("distance_m", "time_s", "speed_kmh", "gear", "pedal", "brake", "engine_speed_rpm", "slope", "fuel_g"):
+        assert column in header
+    assert sorted(p.name for p in out.iterdir()) == ["summary.json", "trace-pi.csv"]
+
+
+def test_simulate_a_road_file_reversed_with_overrides(in_tmp):
+    assert run("road", "make", "hill", "--length-m", "500", "--slope-pct", "3.5", "-o", "hill.csv").exit_code == 0
+    result = run("simulate", "--road", "hill.csv", "--reverse", "--set", "mass_kg=20000",
+                 "--set", "v_ref_kmh=80", "--out", "res", "--controller", "pi")
+    assert result.exit_code == 0, result.stderr
+    summary = json.loads((in_tmp / "res" / "summary.json").read_text())
+    assert summary["road"] == "hill-reversed"  # the file name, reversed
+    assert summary["pi"]["start_speed_kmh"] == 80.0
+
+
+def test_simulate_reports_a_stall(in_tmp):
+    assert run("road", "make", "hill", "--length-m", "2000", "--slope-pct", "25", "-o", "wall.csv").exit_code == 0
+    result = run("simulate", "--road", "wall.csv", "--set", "mass_kg=60000", "--out", "res")
+    assert result.exit_code == 0
+    assert re.search(r"stalled at km \d+\.\d\d", result.stdout)
+    assert json.loads((in_tmp / "res" / "summary.json").read_text())["pi"]["stalled"] is True
+
+
+# ---------------------------------------------------------------------------------------------
+# model stationary: tables B.1 (40 t) and B.2 (20 t) of the thesis, within 2 %.
+
+TABLES_B1_B2 = [
+    # vehicle, speed [km/h], slope [%], gear option, pedal, brake, lambda [1/m]
+    ("truck-40t.yaml", 85, 0.0, None, 0.443, 0.0, -0.238e-3),
+    ("truck-40t.yaml", 90, -4.0, None, 0.0, 0.0490, -0.224e-3),
+    ("truck-40t.yaml", 85, -1.25, "neutral", 0.0, 0.0, -0.192e-3),
+    ("truck-20t.yaml", 85, 0.0, None, 0.331, 0.0, -0.451e-3),
+    ("truck-20t.yaml", 90, -4.0, None, 0.0, 0.0153, -0.445e-3),
+    ("truck-20t.yaml", 85, -1.80, "neutral", 0.0, 0.0, -0.382e-3),
+]
+
+
+@pytest.mark.parametrize(("vehicle", "speed", "slope", "gear", "pedal", "brake", "eigenvalue"), TABLES_B1_B2)
+def test_model_stationary_reproduces_tables_b1_b2(vehicle, speed, slope, gear, pedal, brake, eigenvalue):
+    args = ["model", "stationary", "--speed-kmh", speed, "--slope-pct", slope,
+            "--vehicle", default_config_path(vehicle), "--json"]
+    if gear is not None:
+        args += ["--gear", gear]
+    result = run(*args)
+    assert result.exit_code == 0, result.stderr
+    doc = json.loads(result.stdout)
+    assert {"pedal", "brake", "gear", "feasible", "eigenvalue_per_m"} <= set(doc)
+    assert doc["gear"] == (0 if gear == "neutral" else 12)
+    assert doc["feasible"] is True
+    # The neutral rows have P = B = 0 by construction (the thesis solved for the slope): the level
+    # needed there is zero up to the slope's printed rounding.
+    for key, expected in (("pedal", pedal), ("brake", brake)):
+        assert doc[key] == pytest.approx(expected, rel=0.02, abs=1e-3 if expected == 0 else 0)
+    assert doc["eigenvalue_per_m"] == pytest.approx(eigenvalue, rel=0.02)
+
+
+def test_model_stationary_text_output_and_infeasible_point():
+    result = run("model", "stationary", "--speed-kmh", "85", "--slope-pct", "6", "--gear", "12")
+    assert result.exit_code == 0
+    assert "gear 12" in result.stdout and "feasible    no" in result.stdout
+
+
+# ---------------------------------------------------------------------------------------------
+# road make / regenerate
+
+
+def test_road_make_writes_a_loadable_section(in_tmp):
+    result = run("road", "make", "crest", "--length-m", "1500", "--slope-pct", "2", "--lead-m", "200",
+                 "--tail-m", "300", "-o", "crest.csv")
+    assert result.exit_code == 0, result.stderr
+    text = (in_tmp / "crest.csv").read_text()
+    assert text.startswith("# Generated by: truckmpc road make crest --length-m 1500 --slope-pct 2")
+    from truckmpc.road import load_road
+
+    assert load_road(in_tmp / "crest.csv").length_m == pytest.approx(2000.0)
+
+
+def test_road_regenerate_reproduces_the_shipped_roads(in_tmp):
+    result = run("road", "regenerate", "--dir", "roads")
+    assert result.exit_code == 0, result.stderr
+    shipped = sorted((REPO / "roads").glob("*.csv"))
+    assert shipped
+    for path in shipped:
+        assert (in_tmp / "roads" / path.name).read_text() == path.read_text(), path.name
+    assert sorted(p.name for p in (in_tmp / "roads").iterdir()) == [p.name for p in shipped]
+
+
+# ---------------------------------------------------------------------------------------------
+# Bad input: one `error:` line naming the place, exit code 2, no output directory.
+
+VEHICLE_40T = default_config_path("truck-40t.yaml").read_text()
+
+BAD_FILES = {
+    "nan.csv": "distance_m,altitude_m\n0,0\n25,nan\n50,1\n",
+    "text.csv": "# a comment\ndistance_m,altitude_m\n0,0\n25,abc\n50,1\n",
+    "backwards.csv": "distance_m,altitude_m\n0,0\n25,0\n25,1\n",
+    "single.csv": "distance_m,altitude_m\n0,0\n",
+    "steep.csv": "distance_m,grade\n0,0.01\n25,0.35\n50,0\n",
+    "unknown.yaml": "v_ref_kmh: 85\nbogus_key: 1\n",
+    "wrongtype.yaml": "v_ref_kmh: fast\n",
+    "mass0.yaml": re.sub(r"(?m)^mass_kg:.*$", "mass_kg: 0", VEHICLE_40T),
+    "vehicle-unknown.yaml": VEHICLE_40T + "wings_m2: 3\n",
+}
+
+BAD_INPUTS = [
+    # args, words the message must contain
+    (["--road", "missing.csv"], ["missing.csv"]),
+    (["--road", "nan.csv"], ["nan.csv:3"]),
+    (["--road", "text.csv"], ["text.csv:4", "abc"]),
+    (["--road", "backwards.csv"], ["backwards.csv:4"]),
+    (["--road", "single.csv"], ["single.csv", "two"]),
+    (["--road", "steep.csv"], ["steep.csv"]),
+    (["--config", "unknown.yaml"], ["unknown.yaml", "bogus_key"]),
+    (["--config", "wrongtype.yaml"], ["wrongtype.yaml", "v_ref_kmh"]),
+    (["--vehicle", "mass0.yaml"], ["mass0.yaml", "mass_kg"]),
+    (["--vehicle", "vehicle-unknown.yaml"], ["vehicle-unknown.yaml", "wings_m2"]),
+    (["--set", "mass_kg=0"], ["--set mass_kg"]),
+    (["--set", "mass_kg=-5"], ["--set mass_kg"]),
+    (["--set", "v_inc_kmh=-1"], ["--set v_inc_kmh"]),
+    (["--set", "top_speed=3"], ["--set top_speed", "unknown"]),
+    (["--set", "mass_kg"], ["--set", "key=value"]),
+    (["--controller", "fuzzy"], ["--controller"]),
+    (["--no-such-option"], ["--no-such-option"]),
+]
+
+
+@pytest.mark.parametrize(("args", "words"), BAD_INPUTS, ids=[" ".join(a) for a, _ in BAD_INPUTS])
+def test_bad_input_gives_one_error_line_exit_2_and_no_output(in_tmp, args, words):
+    for name, text in BAD_FILES.items():
+        (in_tmp / name).write_text(text)
+    result = run("simulate", *args, "--out", "results")
+    assert result.exit_code == 2
+    lines = result.stderr.splitlines()
+    assert len(lines) == 1, result.stderr
+    assert lines[0].startswith("error: ")
+    for word in words:
+        assert word in lines[0]
+    assert "Traceback" not in result.stdout + result.stderr
+    assert not (in_tmp / "results").exists()
+    assert not (in_tmp / "out").exists()
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["model", "stationary", "--speed-kmh", "85"],
+        ["model", "stationary", "--speed-kmh", "0", "--slope-pct", "0"],
+        ["model", "stationary", "--speed-kmh", "85", "--slope-pct", "0", "--gear", "13"],
+        ["road", "make", "hill", "--length-m", "500", "-o", "x.csv"],
+        ["road", "make", "hill", "--length-m", "-1", "--slope-pct", "2", "-o", "x.csv"],
+        ["road", "make", "spiral", "--length-m", "500", "-o", "x.csv"],
+        ["no-such-command"],
+        [],
+    ],
+)
+def test_other_commands_fail_with_one_line(in_tmp, args):
+    result = run(*args)
+    assert result.exit_code == 2
+    assert len(result.stderr.splitlines()) == 1 and result.stderr.startswith("error: ")
+    assert not (in_tmp / "x.csv").exists()
+
+
+def test_installed_command_fails_with_one_line_in_a_real_process(in_tmp):
+    proc = subprocess.run(
+        [sys.executable, "-c", "from truckmpc.cli import main; main()", "simulate", "--road", "missing.csv",
+         "--out", "results"],
+        capture_output=True, text=True, cwd=in_tmp, check=False,
+    )
+    assert proc.returncode == 2
+    assert proc.stderr.splitlines() == ["error: missing.csv: no such file"]
+    assert proc.stdout == ""
+    assert not (in_tmp / "results").exists()
+
+
+def test_help_exits_zero():
+    result = run("--help")
+    assert result.exit_code == 0
+    assert "simulate" in result.stdout
