@@ -221,3 +221,13 @@ def test_help_exits_zero():
     result = run("--help")
     assert result.exit_code == 0
     assert "simulate" in result.stdout
+
+
+def test_ci_runs_exactly_the_readme_test_command():
+    readme = (REPO / "README.md").read_text()
+    commands = re.findall(r"```sh\n(.+?)\n```", readme)
+    test_command = next(c for c in commands if "pytest" in c)
+    ci_lines = (REPO / ".ci" / "run").read_text().splitlines()
+    assert test_command in ci_lines
+    assert ci_lines[-1] == test_command  # the last thing CI does, so its exit code is CI's
+    assert "set -euo pipefail" in ci_lines
