@@ -75,6 +75,20 @@ impl Road {
         self.slope[*hint]
     }
 
+    /// The first profile point strictly beyond `s_m` (where the slope may jump) [m]; infinite
+    /// past the end. `hint` as for [`Road::segment`].
+    #[inline]
+    pub fn next_point_after(&self, s_m: f64, hint: &mut usize) -> f64 {
+        if s_m >= self.end_m() {
+            return f64::INFINITY;
+        }
+        if s_m < self.start_m() {
+            return self.start_m();
+        }
+        *hint = self.segment(s_m, *hint);
+        self.distance_m[*hint + 1]
+    }
+
     /// Altitude at `s_m` [m] relative to the first point, flat beyond the end.
     pub fn altitude_at(&self, s_m: f64) -> f64 {
         if s_m >= self.end_m() {

@@ -337,12 +337,16 @@ impl Vehicle {
     /// Acceleration dv/dt (B.1) [m/s²] at speed v, pedal P ∈ [0,1], brake B ∈ [0,1], gear, slope.
     #[inline]
     pub fn accel_mps2(&self, v_mps: f64, pedal: f64, brake: f64, gear: usize, slope: f64) -> f64 {
+        self.accel_on(v_mps, pedal, brake, gear, self.slope_torque_nm(slope))
+    }
+
+    /// [`Vehicle::accel_mps2`] with the slope given as its wheel torque c6·sin(α + c7) [Nm], for
+    /// callers that evaluate one slope many times.
+    #[inline]
+    pub fn accel_on(&self, v_mps: f64, pedal: f64, brake: f64, gear: usize, slope_torque_nm: f64) -> f64 {
         let g = self.gears[gear];
         let torque = if gear == NEUTRAL { 0.0 } else { self.engine_torque_nm(g.c4 * v_mps, pedal, gear) };
-        g.c1 * (g.c3 * torque
-            - self.params.brake_torque_max_nm * brake
-            - self.c2 * v_mps * v_mps
-            - self.slope_torque_nm(slope))
+        g.c1 * (g.c3 * torque - self.params.brake_torque_max_nm * brake - self.c2 * v_mps * v_mps - slope_torque_nm)
     }
 
     /// Fuel mass flow (B.2) [g/s]: c5·N·P·δ_max(N) in gear (zero at fuel cut), idle fueling in neutral.
