@@ -39,13 +39,20 @@ def test_simulate_without_road_runs_the_bundled_test_track(in_tmp):
     out = in_tmp / "out" / "test-track"
     summary = json.loads((out / "summary.json").read_text())
     assert summary["road"] == "test-track" and summary["length_m"] == pytest.approx(8500.0)
-    for key in ("fuel_kg", "time_s", "mean_speed_kmh", "end_speed_kmh", "gear_shifts", "brake_energy_kj",
-                "neutral_distance_m", "compute_time_s", "realtime_ratio", "stalled"):
-        assert key in summary["pi"]
-    header = (out / "trace-pi.csv").read_text().splitlines()[0].split(",")
-    for column in ("distance_m", "time_s", "speed_kmh", "gear", "pedal", "brake", "engine_speed_rpm", "slope", "fuel_g"):
-        assert column in header
-    assert sorted(p.name for p in out.iterdir()) == ["summary.json", "trace-pi.csv"]
+    for name in ("pi", "mpc"):  # the default runs both and compares them
+        for key in ("fuel_kg", "time_s", "mean_speed_kmh", "end_speed_kmh", "gear_shifts", "brake_energy_kj",
+                    "neutral_distance_m", "compute_time_s", "realtime_ratio", "stalled"):
+            assert key in summary[name]
+        header = (out / f"trace-{name}.csv").read_text().splitlines()[0].split(",")
+        for column in ("distance_m", "time_s", "speed_kmh", "gear", "pedal", "brake", "engine_speed_rpm", "slope", "fuel_g"):
+            assert column in header
+    for key in ("infeasible_solves", "solve_ms_mean", "solve_ms_max"):
+        assert key in summary["mpc"]
+    pi, mpc = summary["pi"], summary["mpc"]
+    assert summary["delta_fuel_pct"] == pytest.approx(100 * (mpc["fuel_kg"] - pi["fuel_kg"]) / pi["fuel_kg"])
+    assert summary["delta_time_pct"] == pytest.approx(100 * (mpc["time_s"] - pi["time_s"]) / pi["time_s"])
+    assert "delta fuel [%]" in result.stdout
+    assert sorted(p.name for p in out.iterdir()) == ["summary.json", "trace-mpc.csv", "trace-pi.csv"]
 
 
 def test_simulate_a_road_file_reversed_with_overrides(in_tmp):
@@ -145,6 +152,8 @@ BAD_FILES = {
     "wrongtype.yaml": "v_ref_kmh: fast\n",
     "mass0.yaml": re.sub(r"(?m)^mass_kg:.*$", "mass_kg: 0", VEHICLE_40T),
     "vehicle-unknown.yaml": VEHICLE_40T + "wings_m2: 3\n",
+    "mpc-typo.yaml": "horizon_m: 1500\nhorizn_m: 2000\n",
+    "mpc-delta.yaml": "delta_kmh: 0\n",
 }
 
 BAD_INPUTS = [
@@ -165,6 +174,18 @@ BAD_INPUTS = [
     (["--set", "top_speed=3"], ["--set top_speed", "unknown"]),
     (["--set", "mass_kg"], ["--set", "key=value"]),
     (["--controller", "fuzzy"], ["--controller"]),
+    # MPC configuration (issue 3): each names the key and what was expected.
+    (["--set", "delta_kmh=0"], ["--set delta_kmh", "> 0"]),
+    (["--set", "delta_kmh=-0.1"], ["--set delta_kmh"]),
+    (["--set", "n_min_rpm=2000"], ["--set n_min_rpm", "n_max_rpm"]),
+    (["--set", "n_max_rpm=900"], ["n_max_rpm"]),
+    (["--set", "epsilon=-0.1"], ["--set epsilon", ">= 0"]),
+    (["--set", "horizon_m=10"], ["--set horizon_m", "stage"]),
+    (["--set", "k_lim=0"], ["--set k_lim"]),
+    (["--set", "neutral_rule=closest"], ["--set neutral_rule", "nearest"]),
+    (["--set", "allow_neutral=maybe"], ["--set allow_neutral", "true or false"]),
+    (["--config", "mpc-typo.yaml"], ["mpc-typo.yaml", "horizn_m", "horizon_m"]),
+    (["--config", "mpc-delta.yaml"], ["mpc-delta.yaml", "delta_kmh"]),
     (["--no-such-option"], ["--no-such-option"]),
 ]
 

@@ -99,8 +99,11 @@ road_app = typer.Typer(help="Make and regenerate road profiles.", no_args_is_hel
 app.add_typer(model_app, name="model")
 app.add_typer(road_app, name="road")
 
-ControllerChoice = enum.Enum("ControllerChoice", {name: name for name in CONTROLLERS}, type=str)  # type: ignore[misc]
-"""``--controller`` values: every controller registered in :data:`truckmpc.sim.CONTROLLERS`."""
+BOTH = "both"
+"""``--controller both``: PI and MPC on the same road and vehicle, with Δfuel and Δtime."""
+
+ControllerChoice = enum.Enum("ControllerChoice", {name: name for name in [*CONTROLLERS, BOTH]}, type=str)  # type: ignore[misc]
+"""``--controller`` values: every controller registered in :data:`truckmpc.sim.CONTROLLERS`, and ``both``."""
 
 
 class SectionKind(str, enum.Enum):
@@ -118,20 +121,23 @@ SetOpt = Annotated[list[str] | None, typer.Option("--set", help="Override any ve
 @app.command("simulate")
 def simulate_cmd(
     road: Annotated[Path | None, typer.Option("--road", help="Road profile CSV (default: the bundled test track).")] = None,
-    controller: Annotated[ControllerChoice, typer.Option("--controller", help="Controller to run.")] = ControllerChoice("pi"),  # type: ignore[valid-type]
+    controller: Annotated[ControllerChoice, typer.Option("--controller", help="Controller to run; both = PI and MPC compared.")] = ControllerChoice(BOTH),  # type: ignore[valid-type]
     vehicle: VehicleOpt = None,
     config: ConfigOpt = None,
     set_: SetOpt = None,
     out: Annotated[Path | None, typer.Option("--out", help="Output directory (default: out/<road name>).")] = None,
     reverse: Annotated[bool, typer.Option("--reverse", help="Drive the road in the opposite direction.")] = False,
 ) -> None:
-    """Run a controller over a road; print a short table, write DIR/summary.json and DIR/trace-<controller>.csv."""
+    """Run controllers over a road; print a short table, write DIR/summary.json and DIR/trace-<controller>.csv.
+
+    The default, both, runs PI and MPC and reports delta fuel and delta time, (MPC - PI) / PI in %.
+    """
     run_config = load_run_config(vehicle_path=vehicle, config_paths=tuple(config or ()), overrides=tuple(set_ or ()))
     profile = default_test_track() if road is None else load_road(road)
     if reverse:
         profile = profile.reversed()
-    result = simulate(profile, run_config, controller.value)
-    results = {result.name: result}
+    names = ["pi", "mpc"] if controller.value == BOTH else [controller.value]
+    results = {name: simulate(profile, run_config, name) for name in names}
     out_dir = Path("out") / profile.name if out is None else out
     written = write_outputs(out_dir, profile, results)
     typer.echo(format_table(profile, results))

@@ -9,6 +9,9 @@ and how long to hold them:
   then ask again. A look-ahead controller that decides once per stage of S metres (chapter 5) uses
   this; the plant still integrates with its fine step underneath.
 
+A controller may also offer ``summary() -> dict`` (the MPC does: solves, infeasible solves, time per
+solve); its entries join the run's summary.
+
 Both kinds run in the same loop (:func:`truckmpc.sim.simulate`), so their fuel and time figures are
 computed identically.
 """

@@ -116,6 +116,9 @@ _ROWS = (
     ("neutral distance", "neutral_distance_m", "m", "{:.0f}"),
     ("compute time", "compute_time_s", "s", "{:.2f}"),
     ("realtime ratio", "realtime_ratio", "", "{:.2e}"),
+    ("infeasible solves", "infeasible_solves", "", "{:d}"),
+    ("solve time mean", "solve_ms_mean", "ms", "{:.3f}"),
+    ("solve time max", "solve_ms_max", "ms", "{:.3f}"),
 )
 
 

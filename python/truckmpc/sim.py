@@ -28,6 +28,7 @@ import numpy as np
 from truckmpc import _core
 from truckmpc.controller import Control, Controller, PlantState
 from truckmpc.errors import ConfigError
+from truckmpc.mpc import MpcController
 from truckmpc.pi import PiController
 
 if TYPE_CHECKING:
@@ -57,6 +58,7 @@ ControllerFactory = Callable[[_core.Vehicle, "RunConfig"], Controller]
 
 CONTROLLERS: dict[str, ControllerFactory] = {
     "pi": lambda vehicle, config: PiController(vehicle, config.pi),
+    "mpc": lambda vehicle, config: MpcController(vehicle, config.mpc, config.pi),
 }
 """Controllers selectable by name (``truckmpc simulate --controller``)."""
 
@@ -233,6 +235,7 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
         "stall_distance_m": state.s_m if state.stalled else None,
         "message": None,
         "plant_dt_s": dt,
+        **(ctrl.summary() if hasattr(ctrl, "summary") else {}),
     }
     if stuck and end_m - state.s_m > 1e-3:
         summary["message"] = f"stopped at km {state.s_m / 1000:.2f}: the controller's inputs no longer move the truck"
