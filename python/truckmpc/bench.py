@@ -1,0 +1,259 @@
+"""The real-time benchmark: closed-loop MPC runs on a fixed, named road at fixed settings.
+
+Each setting drives the whole road with the MPC (:func:`truckmpc.sim.simulate`) in a fresh Python
+process, so its peak resident memory is its own. The settings (:data:`SETTINGS`) are the thesis's
+worst case, S 25 m, δ 0.1 km/h, 3000 m horizon, neutral allowed, and S 50 m, δ 0.2 km/h, 2000 m;
+every other key keeps its configured value (``grid`` and ``neutral_rule`` are reported per run).
+
+The default road is the EU VECTO long-haul cycle (108 km), ``../shared/roads/`` beside the
+repository checkout (or the working directory), else the bundled test track; ``--quick`` keeps the
+first 10 km of it. Figures per run (from the run's summary, but for the last two):
+
+- ``realtime_ratio``: wall time of the run / simulated trip time (the target is <= 0.001);
+- ``solve_ms_mean``, ``solve_ms_max``, ``solves``, ``states_per_solve``, ``transitions_per_solve``;
+- ``ns_per_transition``: mean solve time / transitions per solve;
+- ``peak_rss_mb``: the run's process peak resident set [MB], Python and numpy included.
+
+Nothing here asserts a time: the figures are printed for people and CI to read.
+
+Usage: ``truckmpc bench [--json] [--road FILE] [--quick] [--set key=value ...]``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import resource
+import subprocess
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Annotated, Any
+
+import numpy as np
+import typer
+
+from truckmpc.config import load_run_config
+from truckmpc.errors import TruckmpcError
+from truckmpc.road import RoadProfile, default_test_track, load_road
+
+__all__ = ["SETTINGS", "BenchError", "BenchResult", "bench_cmd", "default_road_path", "format_bench", "run_bench"]
+
+SETTINGS: tuple[dict[str, Any], ...] = (
+    {"stage_m": 25.0, "delta_kmh": 0.1, "horizon_m": 3000.0, "allow_neutral": True},
+    {"stage_m": 50.0, "delta_kmh": 0.2, "horizon_m": 2000.0, "allow_neutral": True},
+)
+"""The benchmark's settings, in run order: the thesis's worst case first."""
+
+DEFAULT_ROAD = Path("..") / "shared" / "roads" / "eu_vecto_longhaul_2015_108km.csv"
+"""The default road, relative to the repository root (or the working directory)."""
+
+QUICK_M = 10_000.0
+"""``--quick`` drives the first this many metres of the road [m]."""
+
+
+
+class BenchError(TruckmpcError):
+    """A benchmark run failed (its process ended with an error)."""
+
+
+def default_road_path() -> Path | None:
+    """The VECTO long-haul road beside the repository checkout of this package, or beside the
+    working directory; None when neither exists."""
+    checkout = Path(__file__).resolve().parents[2]
+    roots = [checkout] if (checkout / "pyproject.toml").is_file() else []
+    roots.append(Path.cwd())
+    for root in roots:
+        path = (root / DEFAULT_ROAD).resolve()
+        if path.is_file():
+            return path
+    return None
+
+
+def _first(profile: RoadProfile, length_m: float) -> RoadProfile:
+    """The first ``length_m`` metres of a road (all of it if shorter), named ``<name>-first<N>km``."""
+    start = float(profile.distance_m[0])
+    if profile.length_m <= length_m:
+        return profile
+    end = start + length_m
+    keep = profile.distance_m < end
+    distance = np.append(profile.distance_m[keep], end)
+    altitude = np.append(profile.altitude_m[keep], np.interp(end, profile.distance_m, profile.altitude_m))
+    return RoadProfile(f"{profile.name}-first{length_m / 1000:g}km", distance, altitude, profile.source)
+
+
+def _road(path: str | None, quick: bool) -> RoadProfile:
+    profile = default_test_track() if path is None else load_road(path)
+    return _first(profile, QUICK_M) if quick else profile
+
+
+def _overrides(setting: dict[str, Any], extra: tuple[str, ...]) -> list[str]:
+    fixed = [f"{key}={'true' if value is True else 'false' if value is False else value}" for key, value in setting.items()]
+    return [*extra, *fixed]
+
+
+def _peak_rss_mb() -> float:
+    """This process's peak resident set [MB = 1e6 bytes] (ru_maxrss is KiB on Linux, bytes on macOS)."""
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    return (peak if sys.platform == "darwin" else peak * 1024) / 1e6
+
+
+def run_one(road_path: str | None, quick: bool, setting: dict[str, Any], extra: tuple[str, ...] = ()) -> dict[str, Any]:
+    """One closed-loop MPC run in this process; the figures of :func:`run_bench`'s runs."""
+    from truckmpc.sim import simulate
+
+    config = load_run_config(overrides=_overrides(setting, extra))
+    profile = _road(road_path, quick)
+    summary = simulate(profile, config, "mpc").summary
+    transitions = summary["transitions_per_solve"]
+    return {
+        **setting,
+        "grid": config.mpc.grid,
+        "neutral_rule": config.mpc.neutral_rule,
+        "realtime_ratio": summary["realtime_ratio"],
+        "solve_ms_mean": summary["solve_ms_mean"],
+        "solve_ms_max": summary["solve_ms_max"],
+        "solves": summary["solves"],
+        "infeasible_solves": summary["infeasible_solves"],
+        "states_per_solve": summary["states_per_solve"],
+        "transitions_per_solve": transitions,
+        "ns_per_transition": summary["solve_ms_mean"] * 1e6 / transitions if transitions else None,
+        "compute_time_s": summary["compute_time_s"],
+        "time_s": summary["time_s"],
+        "distance_m": summary["distance_m"],
+        "fuel_kg": summary["fuel_kg"],
+        "stalled": summary["stalled"],
+        "peak_rss_mb": _peak_rss_mb(),
+    }
+
+
+def _spawn(road_path: str | None, quick: bool, setting: dict[str, Any], extra: tuple[str, ...]) -> dict[str, Any]:
+    """:func:`run_one` in a fresh interpreter (``python -m truckmpc.bench --one SPEC``)."""
+    spec = json.dumps({"road": road_path, "quick": quick, "setting": setting, "set": list(extra)})
+    done = subprocess.run([sys.executable, "-m", "truckmpc.bench", "--one", spec], capture_output=True, text=True, check=False)
+    if done.returncode != 0:
+        lines = [line for line in done.stderr.splitlines() if line.strip()]
+        why = lines[-1].removeprefix("error: ") if lines else f"exit code {done.returncode}"
+        raise BenchError(f"benchmark run {setting}: {why}")
+    return json.loads(done.stdout.splitlines()[-1])
+
+
+@dataclass(frozen=True)
+class BenchResult:
+    """What :func:`run_bench` measured: the road and one figures dict per setting."""
+
+    road: str
+    """The road's name (with ``-first10km`` under ``--quick``)."""
+    path: str | None
+    """The road file, None for the bundled test track."""
+    length_m: float
+    fallback: bool
+    """True when the default road was not found and the bundled test track was driven instead."""
+    runs: list[dict[str, Any]]
+
+    def document(self) -> dict[str, Any]:
+        """The ``--json`` document: ``{"road": name, "runs": [...]}``."""
+        return {"road": self.road, "runs": self.runs}
+
+
+def run_bench(road: str | Path | None = None, quick: bool = False, overrides: tuple[str, ...] = ()) -> BenchResult:
+    """Run every setting of :data:`SETTINGS`, each in its own process.
+
+    Parameters
+    ----------
+    road
+        Road CSV; None: the VECTO long-haul road if found (:func:`default_road_path`), else the
+        bundled test track.
+    quick
+        Drive only the first 10 km of the road.
+    overrides
+        Further ``key=value`` settings (e.g. ``grid=fixed``); the keys of :data:`SETTINGS` are fixed.
+    """
+    fixed = {key for setting in SETTINGS for key in setting}
+    for text in overrides:
+        key = text.partition("=")[0].strip()
+        if key in fixed:
+            raise BenchError(f"--set {key}: the benchmark fixes {', '.join(sorted(fixed))}; set other keys only")
+    load_run_config(overrides=overrides)  # report a bad --set once, here, rather than from a child
+    found = default_road_path() if road is None else Path(road)
+    path = None if found is None else str(found)
+    profile = _road(path, quick)
+    runs = [_spawn(path, quick, setting, tuple(overrides)) for setting in SETTINGS]
+    return BenchResult(profile.name, path, profile.length_m, road is None and found is None, runs)
+
+
+def _fmt(value: Any, spec: str) -> str:
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "-"
+    return format(value, spec)
+
+
+_ROWS = (
+    ("realtime ratio", "realtime_ratio", "", ".2e"),
+    ("solve time mean", "solve_ms_mean", "ms", ".3f"),
+    ("solve time max", "solve_ms_max", "ms", ".3f"),
+    ("solves", "solves", "", "d"),
+    ("infeasible solves", "infeasible_solves", "", "d"),
+    ("states per solve", "states_per_solve", "", ".0f"),
+    ("transitions per solve", "transitions_per_solve", "", ".0f"),
+    ("time per transition", "ns_per_transition", "ns", ".2f"),
+    ("compute time", "compute_time_s", "s", ".2f"),
+    ("simulated time", "time_s", "s", ".1f"),
+    ("fuel", "fuel_kg", "kg", ".3f"),
+    ("peak memory", "peak_rss_mb", "MB", ".1f"),
+)
+
+
+def format_bench(result: BenchResult) -> str:
+    """A plain-text table of :func:`run_bench`'s result, one column per setting."""
+    where = result.path or "bundled"
+    if result.fallback:
+        where += f"; {DEFAULT_ROAD} not found"
+    lines = [f"road {result.road}: {result.length_m / 1000:.2f} km, {where}"]
+    runs = result.runs
+    heads = [f"S {r['stage_m']:g} m, δ {r['delta_kmh']:g} km/h, {r['horizon_m']:g} m" for r in runs]
+    extra = [f"neutral {'allowed' if r['allow_neutral'] else 'off'}, {r['grid']} grid" for r in runs]
+    cell = max(len(h) for h in [*heads, *extra]) + 3
+    width = max(len(label) + len(unit) + 3 for label, _, unit, _ in _ROWS)
+    for row in (heads, extra):
+        lines.append(" " * width + "".join(f"{h:>{cell}}" for h in row))
+    for label, key, unit, spec in _ROWS:
+        head = f"{label} [{unit}]" if unit else label
+        lines.append(f"{head:<{width}}" + "".join(f"{_fmt(r.get(key), spec):>{cell}}" for r in runs))
+    for r in runs:
+        if r.get("stalled"):
+            lines.append(f"S {r['stage_m']:g} m, δ {r['delta_kmh']:g} km/h: the truck stalled; figures cover the road up to there")
+    return "\n".join(lines)
+
+
+def bench_cmd(
+    road: Annotated[Path | None, typer.Option("--road", help="Road profile CSV (default: the 108 km VECTO long-haul road of ../shared/roads, else the bundled test track).")] = None,
+    quick: Annotated[bool, typer.Option("--quick", help="Only the first 10 km of the road (for CI).")] = False,
+    set_: Annotated[list[str] | None, typer.Option("--set", help="Any other key=value (e.g. grid=fixed); stage_m, delta_kmh, horizon_m and allow_neutral are fixed.")] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")] = False,
+) -> None:
+    """Time closed-loop MPC runs at (S 25 m, δ 0.1 km/h, 3000 m) and (S 50 m, δ 0.2 km/h, 2000 m), each in its own process.
+
+    Reports the realtime ratio (compute time / simulated time), the time per DP solve, the states and transitions per solve, the time per transition and the peak memory of each run.
+    """
+    result = run_bench(road, quick=quick, overrides=tuple(set_ or ()))
+    typer.echo(json.dumps(result.document()) if as_json else format_bench(result))
+
+
+def _child(argv: list[str]) -> int:
+    """``python -m truckmpc.bench --one SPEC``: one run, its figures as one JSON line on stdout."""
+    if len(argv) != 2 or argv[0] != "--one":
+        print("usage: python -m truckmpc.bench --one SPEC  (internal; use `truckmpc bench`)", file=sys.stderr)
+        return 2
+    spec = json.loads(argv[1])
+    try:
+        figures = run_one(spec["road"], spec["quick"], spec["setting"], tuple(spec["set"]))
+    except TruckmpcError as err:
+        print(f"error: {err}", file=sys.stderr)
+        return 2
+    print(json.dumps(figures))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(_child(sys.argv[1:]))
