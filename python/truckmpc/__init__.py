@@ -14,6 +14,7 @@ from truckmpc.pi import GearLogic, PiController, steady_gear
 from truckmpc.results import format_table, summary_document, trace_csv, write_outputs
 from truckmpc.road import RoadProfile, default_test_track, load_road, make_section, shipped_roads, write_road
 from truckmpc.sim import CONTROLLERS, TRACE_COLUMNS, RunResult, simulate
+from truckmpc.sweep import SweepError, SweepResult, run_sweep
 
 __all__ = [
     "CONTROLLERS",
@@ -30,6 +31,8 @@ __all__ = [
     "RunConfig",
     "RunResult",
     "SimConfig",
+    "SweepError",
+    "SweepResult",
     "TruckmpcError",
     "VehicleConfig",
     "default_test_track",
@@ -38,6 +41,7 @@ __all__ = [
     "load_run_config",
     "load_vehicle",
     "make_section",
+    "run_sweep",
     "shipped_roads",
     "simulate",
     "steady_gear",
