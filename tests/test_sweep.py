@@ -267,3 +267,9 @@ def test_cli_bad_axis_is_one_line_and_writes_nothing(descent, tmp_path, args, me
     assert result.exit_code == 2
     assert result.stderr.startswith(message) and result.stderr.count("\n") == 1, result.stderr
     assert not out.exists()
+
+
+def test_longer_mpc_runs_are_scheduled_first(descent):
+    plan = plan_sweep([descent], ["horizon_m=250,500", "delta_kmh=0.1,0.2"])
+    costs = {(row.values): row.cost for row in plan.rows}
+    assert costs[(500, 0.1)] > costs[(250, 0.1)] and costs[(500, 0.1)] > costs[(500, 0.2)]

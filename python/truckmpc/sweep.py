@@ -196,13 +196,15 @@ def _parse_cell(text: str) -> Any:
 
 @dataclass(frozen=True)
 class Row:
-    """One (road, combination) of a sweep: its place in grid order, its overrides and PI key."""
+    """One (road, combination) of a sweep: its place in grid order, its overrides, its PI key and
+    a rough relative cost of its MPC run (for scheduling only)."""
 
     index: int
     road: int
     values: tuple[Any, ...]
     overrides: tuple[str, ...]
     pi_key: str
+    cost: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -229,6 +231,13 @@ def _pi_key(road: int, config: RunConfig) -> str:
     parts = [road, config.vehicle.params]
     parts += [{k: v for k, v in dataclasses.asdict(section).items() if k != "source"} for section in (config.pi, config.sim)]
     return json.dumps(parts, sort_keys=True)
+
+
+def _mpc_cost(profile: RoadProfile, config: RunConfig) -> float:
+    """Relative work of an MPC run: solves (length / S) times stages per solve (horizon / S) times
+    grid points per stage (1 / delta)."""
+    mpc = config.mpc
+    return profile.length_m / mpc.stage_m * (mpc.horizon_m / mpc.stage_m) / mpc.delta_kmh
 
 
 def _road_digest(profile: RoadProfile) -> str:
@@ -277,8 +286,8 @@ def plan_sweep(
     for values in expand_grid(axes):
         texts = tuple(f"{key}={_yaml_text(v)}" for key, v in zip(keys, values, strict=True))
         combos.append((values, texts, _combination_config(base, axes, values, texts)))
-    rows = [Row(len(combos) * r + i, r, values, texts, _pi_key(r, config))
-            for r in range(len(profiles)) for i, (values, texts, config) in enumerate(combos)]
+    rows = [Row(len(combos) * r + i, r, values, texts, _pi_key(r, config), _mpc_cost(profile, config))
+            for r, profile in enumerate(profiles) for i, (values, texts, config) in enumerate(combos)]
     direction = "reverse" if reverse else "forward"
     config_doc = base_config.as_dict()
     config_doc.pop("sources")
@@ -537,7 +546,9 @@ def run_plan(
     atomic_write_text(out / SETTINGS_NAME, json.dumps({**plan.settings, "jobs": jobs}, indent=2) + "\n")
     pi_tasks = {row.pi_key: row for row in pending if row.pi_key not in pi_cache}
     tasks = [(("pi", key), "pi", row.road, row.overrides) for key, row in pi_tasks.items()]
-    tasks += [(("mpc", row.index), "mpc", row.road, row.overrides) for row in pending]
+    # The PI runs first (every row needs one), then the MPC runs longest first, so that a pool does
+    # not end on one long run while the other workers idle.
+    tasks += [(("mpc", row.index), "mpc", row.road, row.overrides) for row in sorted(pending, key=lambda r: -r.cost)]
     header = _csv_line(columns)
     partial = _PartialFile(out / PARTIAL_NAME, header, [_csv_line(cells) for _, cells in sorted(done.items())])
     waiting: dict[int, dict[str, Any]] = {}
