@@ -97,7 +97,7 @@ impl Road {
         if s_m <= self.start_m() {
             return self.slope[0] * (s_m - self.start_m());
         }
-        let i = self.segment(s_m, 0);
+        let i = self.distance_m.partition_point(|&d| d <= s_m).saturating_sub(1).min(self.slope.len() - 1);
         self.altitude_m[i] + self.slope[i] * (s_m - self.distance_m[i])
     }
 
