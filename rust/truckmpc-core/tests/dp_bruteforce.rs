@@ -6,6 +6,7 @@
 //! exactly; with one, the DP's path must be admissible and can only cost more or the same (the
 //! counter rule of 5.6 is a heuristic, NOTES.md).
 
+use truckmpc_core::dp::rows::BRAKE_WINDOW;
 use truckmpc_core::dp::space::{grid, intervals, usable_gears, Grid, Intervals};
 use truckmpc_core::dp::{InitialState, MpcParams, NeutralRule, Solver, GridAnchor};
 use truckmpc_core::levels::{brake_accel, brake_for_step, pedal_for_step, stage_fuel_g};
@@ -72,7 +73,7 @@ impl Problem<'_> {
             let fuel = stage_fuel_g(self.vehicle, v_i, pedal.clamp(0.0, 1.0), g_j, h);
             return Some(p.q_fuel * fuel + p.q_speed_change * (v_i - v_j).abs() + shift);
         }
-        if pedal < -p.epsilon && (v_j - v_max).abs() < delta {
+        if pedal < -p.epsilon && (v_j - v_max).abs() < delta * BRAKE_WINDOW {
             let brake = brake_for_step(self.vehicle, v_i, v_j, g_j, self.slopes[k], h);
             if (0.0..=1.0).contains(&brake) {
                 return Some(p.q_brake * brake + p.q_speed_change * (v_i - v_j).abs() + shift);

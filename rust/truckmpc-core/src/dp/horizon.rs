@@ -24,9 +24,14 @@ pub fn predict_speed(vehicle: &Vehicle, road: &Road, s_m: f64, v_mps: f64, u: Co
     euler_step(vehicle, v_mps, u.pedal, u.brake, u.gear, slope, stage_m)
 }
 
-/// Solve the DP for the horizon starting at `s_m` from `start`, reusing `slopes` as scratch.
+/// Solve the DP for the horizon starting at `s_m` from `start`, reusing `slopes` as scratch. A
+/// horizon that starts on a stage boundary counted from the road's start gets its absolute stage
+/// index, so a fixed-grid solver can reuse transition costs from the solves before.
 pub fn solve_at(solver: &mut Solver, vehicle: &Vehicle, road: &Road, s_m: f64, start: InitialState, slopes: &mut Vec<f64>) -> Solution {
-    let p = solver.params();
-    stage_slopes(road, s_m, p.stage_m, p.stages(), slopes);
-    solver.solve(vehicle, start, slopes)
+    let stage_m = solver.params().stage_m;
+    stage_slopes(road, s_m, stage_m, solver.params().stages(), slopes);
+    let stages_in = (s_m - road.start_m()) / stage_m;
+    let on_boundary = stages_in >= 0.0 && (stages_in - stages_in.round()).abs() * stage_m < 1e-6;
+    let first_stage = on_boundary.then(|| stages_in.round() as u64);
+    solver.solve_from_stage(vehicle, start, slopes, first_stage)
 }

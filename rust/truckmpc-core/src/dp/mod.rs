@@ -1,8 +1,10 @@
 //! The look-ahead controller's optimisation (thesis chapter 5): parameters, search space and the
 //! backward dynamic program.
 
+pub mod cache;
 pub mod horizon;
 pub mod params;
+pub mod rows;
 pub mod solver;
 pub mod space;
 

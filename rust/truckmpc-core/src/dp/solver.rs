@@ -5,7 +5,9 @@
 //! end speed, so the end speeds reachable with P ∈ [−ε, 1 + ε] form one contiguous band of the next
 //! grid: each state is joined only to that band (plus the brake points next to v_max and the one
 //! neutral arc), not to every state of the next stage. The result is the same as the thesis's
-//! all-pairs search, since every pair outside the band is infeasible there.
+//! all-pairs search, since every pair outside the band is infeasible there. The band's costs come
+//! from [`super::rows`]; on a fixed grid they are cached across solves ([`super::cache`]), and what
+//! remains per solve is a min-plus pass over contiguous arrays.
 //!
 //! Shift limit: each state carries the number of stages until the next shift on its optimal
 //! continuation (k_lim at the final stage). A shift into state j is allowed when that number is at
@@ -13,9 +15,11 @@
 //! 1 + c ≥ k_lim, would let them come k_lim − 1 stages apart, contradicting the forward counter of
 //! (5.6).) Stages reached before the vehicle's own counter allows a shift keep the current gear.
 
-use super::params::{MpcParams, NeutralRule};
+use super::cache::RowCache;
+use super::params::{GridAnchor, MpcParams, NeutralRule};
+use super::rows::{forward_row, inputs, GridIndex, RowSpan};
 use super::space::{self, Grid, Intervals};
-use crate::levels::{brake_accel_on, pedal_accel_on, stage_fuel_g};
+use crate::levels::{brake_accel_on, stage_fuel_g};
 use crate::vehicle::{Vehicle, NEUTRAL};
 
 const INF: f64 = f64::INFINITY;
@@ -63,7 +67,7 @@ pub struct Solution {
     pub trajectory: Vec<TrajectoryPoint>,
     /// Number of (speed, gear) states in the search space.
     pub states: usize,
-    /// Number of transitions whose cost was evaluated.
+    /// Number of transitions whose cost entered the minimisation.
     pub transitions: usize,
 }
 
@@ -73,59 +77,94 @@ struct Choice {
     cost: f64,
     j: u32,
     counter: u32,
-    pedal: f32,
-    brake: f32,
 }
 
-const NO_CHOICE: Choice = Choice { cost: INF, j: 0, counter: 0, pedal: 0.0, brake: 0.0 };
+const NO_CHOICE: Choice = Choice { cost: INF, j: 0, counter: 0 };
 
-/// The decision stored for a state: where it goes and with which inputs.
+/// The decision stored for a state: the next state (grid index, gear).
 #[derive(Debug, Clone, Copy, Default)]
 struct Decision {
     j: u32,
     gear: u8,
-    pedal: f32,
-    brake: f32,
+}
+
+/// One stage's grid: speeds of grid indices `first..first + count` of `index`.
+#[derive(Debug, Clone, Copy)]
+struct StageGrid {
+    index: GridIndex,
+    first: i64,
+    count: usize,
+}
+
+impl StageGrid {
+    #[inline]
+    fn speed(&self, j: usize) -> f64 {
+        self.index.speed(self.first + j as i64)
+    }
 }
 
 /// A DP solver with its workspace; reuse one across solves so nothing is allocated per solve
-/// once the buffers have grown.
+/// once the buffers have grown (and, on a fixed grid, so its row cache pays).
 #[derive(Debug, Clone)]
 pub struct Solver {
     params: MpcParams,
+    caching: bool,
     intervals: Intervals,
-    grids: Vec<Grid>,
-    /// Per stage and gear, the inclusive range of grid indices where a state of that gear exists
+    grids: Vec<StageGrid>,
+    slope_torques: Vec<f64>,
+    /// Per stage and gear, the inclusive range of grid indices j where a state of that gear exists
     /// (empty when lo > hi). Indexed [stage * gears + gear].
     gear_ranges: Vec<(u32, u32)>,
+    /// Per stage, the gears that have states there.
+    active: Vec<Vec<usize>>,
     cost_next: Vec<f64>,
+    /// cost_next where the state's continuation allows a shift into it, +∞ elsewhere.
+    shift_next: Vec<f64>,
     counter_next: Vec<u32>,
     cost_cur: Vec<f64>,
+    shift_cur: Vec<f64>,
     counter_cur: Vec<u32>,
-    /// Decisions per stage, flat; offsets[k] is the start of stage k, indexed [gear * n_k + i].
+    /// Decisions per stage, flat; offsets[k] is the start of stage k, indexed [i * gears + gear]
+    /// (one velocity's gears side by side: they are written together).
     decisions: Vec<Decision>,
     offsets: Vec<usize>,
     best_all: Vec<Choice>,
     best_shift: Vec<Choice>,
+    scratch: Vec<f64>,
+    cache: RowCache,
 }
 
 impl Solver {
-    /// A solver for these parameters (validate them first with [`MpcParams::validate`]).
+    /// A solver for these parameters (validate them first with [`MpcParams::validate`]). On a fixed
+    /// grid it caches transition costs across solves given their absolute stage.
     pub fn new(params: MpcParams) -> Self {
+        let caching = params.grid == GridAnchor::Fixed;
         Solver {
             params,
+            caching,
             intervals: Intervals::default(),
             grids: Vec::new(),
+            slope_torques: Vec::new(),
             gear_ranges: Vec::new(),
+            active: Vec::new(),
             cost_next: Vec::new(),
+            shift_next: Vec::new(),
             counter_next: Vec::new(),
             cost_cur: Vec::new(),
+            shift_cur: Vec::new(),
             counter_cur: Vec::new(),
             decisions: Vec::new(),
             offsets: Vec::new(),
             best_all: Vec::new(),
             best_shift: Vec::new(),
+            scratch: Vec::new(),
+            cache: RowCache::default(),
         }
+    }
+
+    /// Turn the row cache off (or back on, on a fixed grid): the results are the same, only slower.
+    pub fn set_caching(&mut self, on: bool) {
+        self.caching = on && self.params.grid == GridAnchor::Fixed;
     }
 
     /// The parameters.
@@ -133,12 +172,30 @@ impl Solver {
         &self.params
     }
 
+    /// Rows of transition costs computed so far by the cache (diagnostics).
+    pub fn rows_computed(&self) -> u64 {
+        self.cache.computed
+    }
+
     /// Solve over the stages whose slopes are given (one grade per stage, N = slopes.len()).
     pub fn solve(&mut self, vehicle: &Vehicle, start: InitialState, slopes: &[f64]) -> Solution {
+        self.solve_from_stage(vehicle, start, slopes, None)
+    }
+
+    /// As [`Solver::solve`], with the absolute index of the first stage on the road, which lets a
+    /// fixed-grid solver reuse the transition costs of earlier solves.
+    pub fn solve_from_stage(&mut self, vehicle: &Vehicle, start: InitialState, slopes: &[f64], first_stage: Option<u64>) -> Solution {
         let n_stages = slopes.len();
         let gears = vehicle.forward_gears() + 1;
+        self.slope_torques.clear();
+        self.slope_torques.extend(slopes.iter().map(|&a| vehicle.slope_torque_nm(a)));
+        let cached_from = if self.caching { first_stage } else { None };
+        if let Some(stage) = cached_from {
+            // Stage k of this solve (k ≥ 1 has grid states) is absolute stage `stage + k`.
+            self.cache.prepare(stage + 1, &self.slope_torques[1..]);
+        }
         self.build_space(vehicle, start, slopes);
-        let states = self.count_states(gears);
+        let states = self.gear_ranges.iter().map(|&(lo, hi)| if hi >= lo { (hi - lo + 1) as usize } else { 0 }).sum();
 
         // Terminal cost 0; the counters of final states allow any shift before them.
         let last = self.grids[n_stages].count;
@@ -152,40 +209,51 @@ impl Solver {
                 self.counter_next.push(self.params.k_lim);
             }
         }
+        self.shift_next.clone_from(&self.cost_next);
         self.best_all.resize(gears, NO_CHOICE);
         self.best_shift.resize(gears, NO_CHOICE);
 
         let mut transitions = 0usize;
         for k in (0..n_stages).rev() {
-            let slope_torque = vehicle.slope_torque_nm(slopes[k]);
-            transitions += self.backward_stage(vehicle, k, slope_torque, start.gear);
+            transitions += self.backward_stage(vehicle, k, cached_from.map(|s| s + k as u64), start.gear);
             std::mem::swap(&mut self.cost_cur, &mut self.cost_next);
+            std::mem::swap(&mut self.shift_cur, &mut self.shift_next);
             std::mem::swap(&mut self.counter_cur, &mut self.counter_next);
         }
         let cost = self.cost_next[start.gear];
         let mut solution = Solution { feasible: cost.is_finite(), cost, states, transitions, ..Solution::default() };
         if solution.feasible {
-            self.trace(start, &mut solution);
+            self.trace(vehicle, start, &mut solution);
         }
         solution
     }
 
-    /// Intervals, grids and the gear ranges of every stage.
+    /// Intervals, grids, gear ranges and active gears of every stage.
     fn build_space(&mut self, vehicle: &Vehicle, start: InitialState, slopes: &[f64]) {
         let p = &self.params;
         space::intervals(vehicle, p, start.v_mps, slopes, &mut self.intervals);
+        let delta = p.delta_mps();
         self.grids.clear();
-        self.grids.push(Grid { first_mps: start.v_mps, count: 1 });
+        self.grids.push(StageGrid { index: GridIndex { origin_mps: start.v_mps, delta_mps: delta }, first: 0, count: 1 });
         for k in 1..=slopes.len() {
-            self.grids.push(space::grid(p, self.intervals.lo[k], self.intervals.hi[k]));
+            let Grid { first_mps, count } = space::grid(p, self.intervals.lo[k], self.intervals.hi[k]);
+            self.grids.push(match p.grid {
+                GridAnchor::Moving => StageGrid { index: GridIndex { origin_mps: first_mps, delta_mps: delta }, first: 0, count },
+                GridAnchor::Fixed => StageGrid {
+                    index: GridIndex { origin_mps: 0.0, delta_mps: delta },
+                    first: (first_mps / delta).round() as i64,
+                    count,
+                },
+            });
         }
         let gears = vehicle.forward_gears() + 1;
-        let delta = p.delta_mps();
         // Stages 1..=forced are reached before the shift limit lets the truck leave its gear.
         let forced = p.k_lim.saturating_sub(start.stages_since_shift) as usize;
         self.gear_ranges.clear();
+        self.active.resize(self.grids.len(), Vec::new());
         for (k, grid) in self.grids.iter().enumerate() {
             let full = (0u32, grid.count as u32 - 1);
+            self.active[k].clear();
             for g in 0..gears {
                 let range = if k == 0 || k <= forced {
                     if g == start.gear { full } else { (1, 0) }
@@ -194,10 +262,13 @@ impl Solver {
                 } else {
                     // Engine speed in [n_min, n_max]: an interval of speeds, so of grid indices.
                     let c4 = vehicle.gear(g).c4;
-                    let lo = ((p.n_min_rpm / c4 - grid.first_mps) / delta - 1e-9).ceil().max(0.0);
-                    let hi = ((p.n_max_rpm / c4 - grid.first_mps) / delta + 1e-9).floor().min(full.1 as f64);
+                    let lo = (grid.index.ceil(p.n_min_rpm / c4) - grid.first).max(0);
+                    let hi = (grid.index.floor(p.n_max_rpm / c4) - grid.first).min(full.1 as i64);
                     if hi >= lo { (lo as u32, hi as u32) } else { (1, 0) }
                 };
+                if range.1 >= range.0 {
+                    self.active[k].push(g);
+                }
                 self.gear_ranges.push(range);
             }
         }
@@ -207,42 +278,55 @@ impl Solver {
             self.offsets.push(total);
             total += grid.count * gears;
         }
-        self.decisions.clear();
-        self.decisions.resize(total, Decision::default());
+        // Every decision on a traced path is written before it is read: no need to clear.
+        if self.decisions.len() < total {
+            self.decisions.resize(total, Decision::default());
+        }
     }
 
-    fn count_states(&self, gears: usize) -> usize {
-        debug_assert_eq!(self.gear_ranges.len(), self.grids.len() * gears);
-        self.gear_ranges.iter().map(|&(lo, hi)| if hi >= lo { (hi - lo + 1) as usize } else { 0 }).sum()
-    }
-
-    /// J_k from J_{k+1} (in `cost_next`) into `cost_cur`. Returns the transitions evaluated.
-    fn backward_stage(&mut self, vehicle: &Vehicle, k: usize, slope_torque: f64, start_gear: usize) -> usize {
+    /// J_k from J_{k+1} (in `cost_next`) into `cost_cur`. `abs_stage` is this stage's absolute
+    /// index when rows may come from the cache. Returns the transitions evaluated.
+    fn backward_stage(&mut self, vehicle: &Vehicle, k: usize, abs_stage: Option<u64>, start_gear: usize) -> usize {
         let gears = vehicle.forward_gears() + 1;
         let (here, next) = (self.grids[k], self.grids[k + 1]);
-        let delta = self.params.delta_mps();
         let v_ref = self.params.v_ref_mps();
-        let v_max = self.params.v_max_mps();
         let q_speed_below = self.params.q_speed_below;
+        let slope_torque = self.slope_torques[k];
         let mut transitions = 0;
         self.cost_cur.clear();
         self.cost_cur.resize(here.count * gears, INF);
+        self.shift_cur.clear();
+        self.shift_cur.resize(here.count * gears, INF);
         self.counter_cur.clear();
         self.counter_cur.resize(here.count * gears, 0);
+        let active_here = std::mem::take(&mut self.active[k]);
+        let active_next = std::mem::take(&mut self.active[k + 1]);
 
+        let mut cached = match abs_stage {
+            Some(stage) if k > 0 => Some(self.cache.stage(stage, here.first, here.first + here.count as i64 - 1, gears)),
+            _ => None,
+        };
         for i in 0..here.count {
-            let v_i = if k == 0 { here.first_mps } else { here.speed(i, delta) };
-            if !self.state_exists_any(k, i, gears) {
+            if !active_here.iter().any(|&g| {
+                let (lo, hi) = self.gear_ranges[k * gears + g];
+                lo as usize <= i && i <= hi as usize
+            }) {
                 continue;
             }
-            for g in 0..gears {
-                let (lo, hi) = self.gear_ranges[(k + 1) * gears + g];
-                let (all, shift, evaluated) = if hi < lo {
-                    (NO_CHOICE, NO_CHOICE, 0)
-                } else if g == NEUTRAL {
-                    self.neutral_choice(vehicle, v_i, slope_torque, next, (lo, hi))
+            let v_i = here.speed(i);
+            for &g in &active_next {
+                let range = self.gear_ranges[(k + 1) * gears + g];
+                let (all, shift, evaluated) = if g == NEUTRAL {
+                    neutral_choice(&self.params, vehicle, v_i, slope_torque, next, range, &self.cost_next, &self.counter_next)
                 } else {
-                    self.gear_choice(vehicle, g, v_i, slope_torque, next, (lo, hi), v_max)
+                    let (span, row) = match cached.as_mut() {
+                        Some(view) => view.row(vehicle, &self.params, here.first + i as i64, v_i, g, next.index, &mut self.scratch),
+                        None => {
+                            let span = forward_row(vehicle, &self.params, v_i, g, slope_torque, next.index, &mut self.scratch);
+                            (span, &self.scratch[..])
+                        }
+                    };
+                    min_plus(span, row, next, range, g, &self.cost_next, &self.shift_next, &self.counter_next)
                 };
                 self.best_all[g] = all;
                 self.best_shift[g] = shift;
@@ -250,192 +334,65 @@ impl Solver {
             }
             let below = (v_ref - v_i).max(0.0);
             let speed_cost = q_speed_below * below * below;
-            for g_i in 0..gears {
-                if !self.state_exists(k, i, g_i, gears, start_gear) {
+            // The two best shifts, so that each state's best shift to another gear is O(1).
+            let (mut first, mut second) = ((INF, usize::MAX), (INF, usize::MAX));
+            for &g in &active_next {
+                let c = self.best_shift[g].cost;
+                if c < first.0 {
+                    second = first;
+                    first = (c, g);
+                } else if c < second.0 {
+                    second = (c, g);
+                }
+            }
+            for &g_i in &active_here {
+                let (lo, hi) = self.gear_ranges[k * gears + g_i];
+                if (k == 0 && g_i != start_gear) || (i as u32) < lo || (i as u32) > hi {
                     continue;
                 }
-                self.settle_state(k, i, g_i, here.count, gears, speed_cost);
+                let stay = if active_next.contains(&g_i) { self.best_all[g_i] } else { NO_CHOICE };
+                let (shift_cost, shift_gear) = if first.1 != g_i { first } else { second };
+                let q4 = self.params.q_gear_shift;
+                let (best_cost, decision, counter) = if shift_gear != usize::MAX && shift_cost + q4 < stay.cost {
+                    let c = self.best_shift[shift_gear];
+                    (shift_cost + q4, Decision { j: c.j, gear: shift_gear as u8 }, 1)
+                } else {
+                    (stay.cost, Decision { j: stay.j, gear: g_i as u8 }, stay.counter.saturating_add(1).min(u32::MAX / 2))
+                };
+                let idx = g_i * here.count + i;
+                let total = best_cost + speed_cost;
+                self.cost_cur[idx] = total;
+                self.counter_cur[idx] = counter;
+                self.shift_cur[idx] = if counter >= self.params.k_lim { total } else { INF };
+                self.decisions[self.offsets[k] + i * gears + g_i] = decision;
             }
         }
+        self.active[k] = active_here;
+        self.active[k + 1] = active_next;
         transitions
     }
 
-    #[inline]
-    fn state_exists_any(&self, k: usize, i: usize, gears: usize) -> bool {
-        (0..gears).any(|g| {
-            let (lo, hi) = self.gear_ranges[k * gears + g];
-            lo as usize <= i && i <= hi as usize
-        })
-    }
-
-    #[inline]
-    fn state_exists(&self, k: usize, i: usize, g: usize, gears: usize, start_gear: usize) -> bool {
-        if k == 0 {
-            return g == start_gear;
-        }
-        let (lo, hi) = self.gear_ranges[k * gears + g];
-        lo as usize <= i && i <= hi as usize
-    }
-
-    /// J_k(i, g_i): the best of staying in g_i or shifting to another gear where the shift limit
-    /// allows it, plus the speed-deviation cost of the state.
-    fn settle_state(&mut self, k: usize, i: usize, g_i: usize, count: usize, gears: usize, speed_cost: f64) {
-        let p = &self.params;
-        let stay = self.best_all[g_i];
-        let mut best = Decision { j: stay.j, gear: g_i as u8, pedal: stay.pedal, brake: stay.brake };
-        let mut best_cost = stay.cost;
-        let mut counter = stay.counter.saturating_add(1).min(u32::MAX / 2);
-        for g in 0..gears {
-            let c = self.best_shift[g];
-            if g != g_i && c.cost + p.q_gear_shift < best_cost {
-                best_cost = c.cost + p.q_gear_shift;
-                best = Decision { j: c.j, gear: g as u8, pedal: c.pedal, brake: c.brake };
-                counter = 1;
-            }
-        }
-        let idx = g_i * count + i;
-        self.cost_cur[idx] = best_cost + speed_cost;
-        self.counter_cur[idx] = counter;
-        self.decisions[self.offsets[k] + idx] = best;
-    }
-
-    /// Best transitions from speed v_i into the states of forward gear `g` at the next stage:
-    /// over all reachable targets, and over those whose continuation allows a shift now.
-    fn gear_choice(
-        &self,
-        vehicle: &Vehicle,
-        g: usize,
-        v_i: f64,
-        slope_torque: f64,
-        next: Grid,
-        (lo, hi): (u32, u32),
-        v_max: f64,
-    ) -> (Choice, Choice, usize) {
-        let p = &self.params;
-        let h = p.stage_m;
-        let delta = p.delta_mps();
-        let map = pedal_accel_on(vehicle, v_i, g, slope_torque);
-        let mut all = NO_CHOICE;
-        let mut shift = NO_CHOICE;
-        let mut evaluated = 0;
-        let base = g * next.count;
-        let k_lim = p.k_lim;
-        let mut consider = |j: usize, cost: f64, pedal: f64, brake: f64, counter: u32| {
-            let c = Choice { cost, j: j as u32, counter, pedal: pedal as f32, brake: brake as f32 };
-            if cost < all.cost {
-                all = c;
-            }
-            if counter >= k_lim && cost < shift.cost {
-                shift = c;
-            }
-        };
-
-        // The band of next-stage speeds reached with P in [−ε, 1 + ε].
-        let (band_lo_v, band_hi_v) = if map.gain > 0.0 {
-            (map.step(v_i, h, -p.epsilon), map.step(v_i, h, 1.0 + p.epsilon))
-        } else {
-            (INF, -INF)
-        };
-        let j_lo = ((band_lo_v - next.first_mps) / delta - 1e-9).ceil().max(lo as f64);
-        let j_hi = ((band_hi_v - next.first_mps) / delta + 1e-9).floor().min(hi as f64);
-        if j_hi >= j_lo {
-            let (j_lo, j_hi) = (j_lo as usize, j_hi as usize);
-            let full_fuel = stage_fuel_g(vehicle, v_i, 1.0, g, h);
-            let dp_dj = v_i * delta / (h * map.gain);
-            let mut pedal = map.input_for(v_i, next.speed(j_lo, delta), h);
-            for j in j_lo..=j_hi {
-                let v_j = next.speed(j, delta);
-                let to_go = self.cost_next[base + j];
-                if to_go < INF {
-                    let clipped = pedal.clamp(0.0, 1.0);
-                    let cost = p.q_fuel * full_fuel * clipped + p.q_speed_change * (v_i - v_j).abs() + to_go;
-                    consider(j, cost, clipped, 0.0, self.counter_next[base + j]);
-                }
-                pedal += dp_dj;
-            }
-            evaluated += j_hi - j_lo + 1;
-        }
-
-        // Brakes: only for targets next to v_max that even fuel cut overshoots (P < −ε).
-        let brake_map = brake_accel_on(vehicle, v_i, g, slope_torque);
-        let first_brake = ((v_max - delta - next.first_mps) / delta).floor().max(lo as f64) as usize;
-        let last_brake = ((v_max + delta - next.first_mps) / delta).ceil().min(hi as f64);
-        if last_brake >= 0.0 {
-            for j in first_brake..=(last_brake as usize) {
-                let v_j = next.speed(j, delta);
-                if (v_j - v_max).abs() >= delta || v_j >= band_lo_v - 1e-12 {
-                    continue;
-                }
-                let brake = brake_map.input_for(v_i, v_j, h);
-                let to_go = self.cost_next[base + j];
-                evaluated += 1;
-                if (0.0..=1.0).contains(&brake) && to_go < INF {
-                    let cost = p.q_brake * brake + p.q_speed_change * (v_i - v_j).abs() + to_go;
-                    consider(j, cost, 0.0, brake, self.counter_next[base + j]);
-                }
-            }
-        }
-        (all, shift, evaluated)
-    }
-
-    /// The single neutral arc from v_i: its end speed is set by the physics; join it to the next
-    /// grid by the configured rule.
-    fn neutral_choice(&self, vehicle: &Vehicle, v_i: f64, slope_torque: f64, next: Grid, (lo, hi): (u32, u32)) -> (Choice, Choice, usize) {
-        let p = &self.params;
-        let h = p.stage_m;
-        let delta = p.delta_mps();
-        let v_end = brake_accel_on(vehicle, v_i, NEUTRAL, slope_torque).step(v_i, h, 0.0);
-        let x = (v_end - next.first_mps) / delta;
-        let (to_go, j, counter) = match p.neutral_rule {
-            NeutralRule::Nearest => {
-                let j = x.round();
-                if j < lo as f64 || j > hi as f64 {
-                    return (NO_CHOICE, NO_CHOICE, 1);
-                }
-                let j = j as usize;
-                (self.cost_next[j], j, self.counter_next[j])
-            }
-            NeutralRule::Interpolate => {
-                const TOL: f64 = 1e-9;
-                if x < lo as f64 - TOL || x > hi as f64 + TOL {
-                    return (NO_CHOICE, NO_CHOICE, 1);
-                }
-                let x = x.clamp(lo as f64, hi as f64);
-                let j0 = x.floor() as usize;
-                let w = x - j0 as f64;
-                let nearest = if w < 0.5 { j0 } else { j0 + 1 };
-                let to_go = if w == 0.0 {
-                    self.cost_next[j0]
-                } else {
-                    (1.0 - w) * self.cost_next[j0] + w * self.cost_next[j0 + 1]
-                };
-                let counter = if w == 0.0 { self.counter_next[j0] } else { self.counter_next[j0].min(self.counter_next[j0 + 1]) };
-                (to_go, nearest, counter)
-            }
-        };
-        if !to_go.is_finite() {
-            return (NO_CHOICE, NO_CHOICE, 1);
-        }
-        let fuel = stage_fuel_g(vehicle, v_i, 0.0, NEUTRAL, h);
-        let cost = p.q_fuel * fuel + p.q_speed_change * (v_i - v_end).abs() + to_go;
-        let c = Choice { cost, j: j as u32, counter, pedal: 0.0, brake: 0.0 };
-        let shift = if counter >= p.k_lim { c } else { NO_CHOICE };
-        (c, shift, 1)
-    }
-
     /// Follow the stored decisions from the initial state to fill the first control and the
-    /// predicted trajectory.
-    fn trace(&self, start: InitialState, out: &mut Solution) {
-        let delta = self.params.delta_mps();
+    /// predicted trajectory; the inputs of each step are recomputed from its two speeds.
+    fn trace(&self, vehicle: &Vehicle, start: InitialState, out: &mut Solution) {
+        let gears = vehicle.forward_gears() + 1;
         let (mut i, mut g) = (0usize, start.gear);
         let mut v = start.v_mps;
         out.trajectory.clear();
         for k in 0..self.grids.len() - 1 {
-            let d = self.decisions[self.offsets[k] + g * self.grids[k].count + i];
-            out.trajectory.push(TrajectoryPoint { v_mps: v, gear: d.gear as usize, pedal: d.pedal as f64, brake: d.brake as f64 });
-            i = d.j as usize;
-            g = d.gear as usize;
-            v = self.grids[k + 1].speed(i, delta);
+            let d = self.decisions[self.offsets[k] + i * gears + g];
+            let (next_i, next_g) = (d.j as usize, d.gear as usize);
+            let v_next = self.grids[k + 1].speed(next_i);
+            let (pedal, brake) = if next_g == NEUTRAL {
+                (0.0, 0.0)
+            } else {
+                let u = inputs(vehicle, &self.params, v, v_next, next_g, self.slope_torques[k]).unwrap_or(super::rows::Inputs { pedal: 0.0, brake: 0.0 });
+                (u.pedal, u.brake)
+            };
+            out.trajectory.push(TrajectoryPoint { v_mps: v, gear: next_g, pedal, brake });
+            i = next_i;
+            g = next_g;
+            v = v_next;
         }
         out.trajectory.push(TrajectoryPoint { v_mps: v, gear: g, pedal: 0.0, brake: 0.0 });
         let first = out.trajectory[0];
@@ -443,4 +400,94 @@ impl Solver {
         out.brake = first.brake;
         out.gear = first.gear;
     }
+}
+
+/// The single neutral arc from v_i: its end speed is set by the physics; join it to the next grid
+/// by the configured rule. Returns (best, best shiftable, transitions evaluated).
+#[inline]
+fn neutral_choice(p: &MpcParams, vehicle: &Vehicle, v_i: f64, slope_torque: f64, next: StageGrid, (lo, hi): (u32, u32), cost_next: &[f64], counter_next: &[u32]) -> (Choice, Choice, usize) {
+    let h = p.stage_m;
+    let v_end = brake_accel_on(vehicle, v_i, NEUTRAL, slope_torque).step(v_i, h, 0.0);
+    let x = (v_end - next.speed(0)) / p.delta_mps();
+    // Grid indices are never negative; x below −0.5 is outside the grid either way.
+    if x < lo as f64 - 0.5 || x > hi as f64 + 0.5 {
+        return (NO_CHOICE, NO_CHOICE, 1);
+    }
+    let (to_go, j, counter) = match p.neutral_rule {
+        NeutralRule::Nearest => {
+            let j = (x + 0.5) as usize; // round half up without a libm call; x + 0.5 >= 0 here
+            if j < lo as usize || j > hi as usize {
+                return (NO_CHOICE, NO_CHOICE, 1);
+            }
+            (cost_next[j], j, counter_next[j])
+        }
+        NeutralRule::Interpolate => {
+            const TOL: f64 = 1e-9;
+            if x < lo as f64 - TOL || x > hi as f64 + TOL {
+                return (NO_CHOICE, NO_CHOICE, 1);
+            }
+            let x = x.clamp(lo as f64, hi as f64);
+            let j0 = x as usize;
+            let w = x - j0 as f64;
+            if w == 0.0 {
+                (cost_next[j0], j0, counter_next[j0])
+            } else {
+                let to_go = (1.0 - w) * cost_next[j0] + w * cost_next[j0 + 1];
+                let nearest = if w < 0.5 { j0 } else { j0 + 1 };
+                (to_go, nearest, counter_next[j0].min(counter_next[j0 + 1]))
+            }
+        }
+    };
+    if !to_go.is_finite() {
+        return (NO_CHOICE, NO_CHOICE, 1);
+    }
+    let fuel = stage_fuel_g(vehicle, v_i, 0.0, NEUTRAL, h);
+    let cost = p.q_fuel * fuel + p.q_speed_change * (v_i - v_end).abs() + to_go;
+    let c = Choice { cost, j: j as u32, counter };
+    let shift = if counter >= p.k_lim { c } else { NO_CHOICE };
+    (c, shift, 1)
+}
+
+/// The min-plus step for one state and one forward target gear: over the part of the row's span
+/// where the target gear has states, the best of row cost + cost-to-go, and the best among targets
+/// whose continuation allows a shift now. Returns (best, best shiftable, transitions evaluated).
+#[inline]
+fn min_plus(span: RowSpan, row: &[f64], next: StageGrid, (lo, hi): (u32, u32), gear: usize, cost_next: &[f64], shift_next: &[f64], counter_next: &[u32]) -> (Choice, Choice, usize) {
+    if span.len == 0 {
+        return (NO_CHOICE, NO_CHOICE, 0);
+    }
+    // Row index t ↔ next-stage grid index j = span.first + t − next.first.
+    let offset = span.first - next.first;
+    let j_lo = offset.max(lo as i64);
+    let j_hi = (offset + span.len as i64 - 1).min(hi as i64);
+    if j_hi < j_lo {
+        return (NO_CHOICE, NO_CHOICE, 0);
+    }
+    let (j_lo, j_hi) = (j_lo as usize, j_hi as usize);
+    let base = gear * next.count;
+    let row = &row[(j_lo as i64 - offset) as usize..=(j_hi as i64 - offset) as usize];
+    let to_go = &cost_next[base + j_lo..=base + j_hi];
+    let to_go_shift = &shift_next[base + j_lo..=base + j_hi];
+    let (mut best, mut best_t) = (INF, 0usize);
+    let (mut best_s, mut best_s_t) = (INF, 0usize);
+    for t in 0..row.len() {
+        let c = row[t] + to_go[t];
+        if c < best {
+            best = c;
+            best_t = t;
+        }
+        let s = row[t] + to_go_shift[t];
+        if s < best_s {
+            best_s = s;
+            best_s_t = t;
+        }
+    }
+    let choice = |cost: f64, t: usize| {
+        if cost < INF {
+            Choice { cost, j: (j_lo + t) as u32, counter: counter_next[base + j_lo + t] }
+        } else {
+            NO_CHOICE
+        }
+    };
+    (choice(best, best_t), choice(best_s, best_s_t), row.len())
 }

@@ -1,0 +1,46 @@
+//! Receding-horizon solves along a road profile CSV (distance_m, altitude_m, ...), the speed
+//! advanced by the predicted trajectory: the closed loop without Python and without the plant.
+//! Usage: receding ROAD.csv [moving|fixed] [delta_kmh] [horizon_m] [stage_m]
+use std::sync::Arc;
+use std::time::Instant;
+use truckmpc_core::dp::{horizon, GridAnchor, InitialState, MpcParams, Solver};
+use truckmpc_core::{Road, Vehicle, VehicleParams};
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let text = std::fs::read_to_string(&args[1]).unwrap();
+    let (mut d, mut h) = (vec![], vec![]);
+    for line in text.lines().filter(|l| !l.starts_with('#')).skip(1) {
+        let f: Vec<f64> = line.split(',').take(2).map(|x| x.parse().unwrap()).collect();
+        d.push(f[0]);
+        h.push(f[1]);
+    }
+    let slopes: Vec<f64> = (0..d.len() - 1).map(|i| (h[i + 1] - h[i]) / (d[i + 1] - d[i])).collect();
+    let road = Arc::new(Road::new(d, slopes).unwrap());
+    let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
+    let grid = if args.get(2).map(|s| s.as_str()) == Some("fixed") { GridAnchor::Fixed } else { GridAnchor::Moving };
+    let num = |i: usize, dflt: f64| args.get(i).map(|s| s.parse().unwrap()).unwrap_or(dflt);
+    let p = MpcParams { grid, delta_kmh: num(3, 0.1), horizon_m: num(4, 3000.0), stage_m: num(5, 25.0), q_speed_below: 5.0, ..MpcParams::default() };
+    let mut solver = Solver::new(p.clone());
+    let mut scratch = Vec::new();
+    let (mut v, mut gear, mut since) = (85.0 / 3.6, 12usize, 8u32);
+    let (mut solves, mut transitions, mut infeasible) = (0u64, 0u64, 0u64);
+    let t0 = Instant::now();
+    let mut s = road.start_m();
+    while s + p.stage_m <= road.end_m() {
+        let sol = horizon::solve_at(&mut solver, &vehicle, &road, s, InitialState { v_mps: v, gear, stages_since_shift: since }, &mut scratch);
+        solves += 1;
+        transitions += sol.transitions as u64;
+        if sol.feasible {
+            since = if sol.gear != gear { 1 } else { (since + 1).min(p.k_lim) };
+            gear = sol.gear;
+            v = sol.trajectory[1].v_mps;
+        } else {
+            infeasible += 1;
+        }
+        s += p.stage_m;
+    }
+    let secs = t0.elapsed().as_secs_f64();
+    println!("{grid:?}: {solves} solves, {:.3} ms/solve, {:.0} transitions/solve, {:.2} ns/transition, {infeasible} infeasible, rows computed {}",
+        1e3 * secs / solves as f64, transitions as f64 / solves as f64, 1e9 * secs / transitions as f64, solver.rows_computed());
+}

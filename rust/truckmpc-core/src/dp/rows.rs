@@ -1,0 +1,148 @@
+//! Transition costs of one DP state towards one target gear: a "row" over the next stage's grid.
+//!
+//! The part of the stage cost (5.9) that depends only on the two speeds, the gear and the slope —
+//! fuel (Q1), speed change (Q3) and brake (Q5) — is computed here; the speed deviation (Q2) and the
+//! shift (Q4) terms depend on the state alone and are added by the solver. A row covers the
+//! contiguous band of grid indices reached with a pedal level in [−ε, 1 + ε] (B.5 is affine in the
+//! end speed), extended down to the brake points next to v_max; indices in between that no input
+//! reaches hold +∞. Speeds of grid indices come from [`GridIndex`], so a row computed for an
+//! absolute grid is the same whichever solve asks for it (what makes caching exact).
+
+use super::params::MpcParams;
+use crate::levels::{brake_accel_on, pedal_accel_on, stage_fuel_g, AffineAccel};
+use crate::vehicle::Vehicle;
+
+/// Speed of a grid index: v = origin + index·δ [m/s]. A moving grid has its origin at the stage's
+/// lower bound; a fixed grid has origin 0, so an index names the same speed at every stage.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GridIndex {
+    /// Speed of index 0 [m/s].
+    pub origin_mps: f64,
+    /// Grid step δ [m/s].
+    pub delta_mps: f64,
+}
+
+impl GridIndex {
+    /// Speed of `index` [m/s].
+    #[inline]
+    pub fn speed(&self, index: i64) -> f64 {
+        self.origin_mps + index as f64 * self.delta_mps
+    }
+
+    /// Smallest index whose speed is at least `v_mps` (to rounding).
+    #[inline]
+    pub fn ceil(&self, v_mps: f64) -> i64 {
+        ((v_mps - self.origin_mps) / self.delta_mps - 1e-9).ceil() as i64
+    }
+
+    /// Largest index whose speed is at most `v_mps` (to rounding).
+    #[inline]
+    pub fn floor(&self, v_mps: f64) -> i64 {
+        ((v_mps - self.origin_mps) / self.delta_mps + 1e-9).floor() as i64
+    }
+}
+
+/// |v_j − v_max| must be below δ times this for a brake transition (5.4.3).
+pub const BRAKE_WINDOW: f64 = 1.0 - 1e-9;
+
+/// Where a row's costs start on the next grid, and how many there are.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct RowSpan {
+    /// Grid index of the first cost.
+    pub first: i64,
+    /// Number of costs (0: no admissible target).
+    pub len: usize,
+}
+
+/// The inputs joining v_i to v_j in forward gear g: the pedal when some P ∈ [−ε, 1 + ε] does
+/// (clipped to [0, 1]), else the brake at fuel cut when v_j is next to v_max and B ∈ [0, 1].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Inputs {
+    pub pedal: f64,
+    pub brake: f64,
+}
+
+/// The per-state constants of a row: both affine maps of (B.1) at v_i and the full-pedal fuel.
+#[derive(Debug, Clone, Copy)]
+struct RowMaps {
+    pedal: AffineAccel,
+    brake: AffineAccel,
+    full_fuel_g: f64,
+}
+
+fn maps(vehicle: &Vehicle, p: &MpcParams, v_i: f64, gear: usize, slope_torque: f64) -> RowMaps {
+    RowMaps {
+        pedal: pedal_accel_on(vehicle, v_i, gear, slope_torque),
+        brake: brake_accel_on(vehicle, v_i, gear, slope_torque),
+        full_fuel_g: stage_fuel_g(vehicle, v_i, 1.0, gear, p.stage_m),
+    }
+}
+
+/// Inputs and their stage cost (Q1·fuel + Q3·|Δv| + Q5·B) for one pair, None if inadmissible.
+#[inline]
+fn pair(p: &MpcParams, m: &RowMaps, v_i: f64, v_j: f64) -> Option<(Inputs, f64)> {
+    let h = p.stage_m;
+    let change = p.q_speed_change * (v_i - v_j).abs();
+    if m.pedal.gain > 0.0 {
+        let pedal = m.pedal.input_for(v_i, v_j, h);
+        if pedal >= -p.epsilon && pedal <= 1.0 + p.epsilon {
+            let clipped = pedal.clamp(0.0, 1.0);
+            return Some((Inputs { pedal: clipped, brake: 0.0 }, p.q_fuel * m.full_fuel_g * clipped + change));
+        }
+        if pedal > 1.0 + p.epsilon {
+            return None;
+        }
+    }
+    // No pedal level reaches v_j because even fuel cut ends faster: brake, but only next to v_max
+    // (strictly closer than δ; a grid point exactly δ away does not qualify, whatever the rounding).
+    if (v_j - p.v_max_mps()).abs() < p.delta_mps() * BRAKE_WINDOW {
+        let brake = m.brake.input_for(v_i, v_j, h);
+        if (0.0..=1.0).contains(&brake) {
+            return Some((Inputs { pedal: 0.0, brake }, p.q_brake * brake + change));
+        }
+    }
+    None
+}
+
+/// Fill `out` with the costs of joining `v_i` in forward `gear` to the grid indices of the next
+/// stage, and return their span. Indices no input reaches inside the span hold +∞.
+pub fn forward_row(vehicle: &Vehicle, p: &MpcParams, v_i: f64, gear: usize, slope_torque: f64, grid: GridIndex, out: &mut Vec<f64>) -> RowSpan {
+    out.clear();
+    let m = maps(vehicle, p, v_i, gear, slope_torque);
+    let h = p.stage_m;
+    let (mut first, mut last) = (i64::MAX, i64::MIN);
+    if m.pedal.gain > 0.0 {
+        first = grid.ceil(m.pedal.step(v_i, h, -p.epsilon));
+        last = grid.floor(m.pedal.step(v_i, h, 1.0 + p.epsilon));
+    }
+    // Brake points lie within δ of v_max and below the pedal band (`pair` decides which qualify);
+    // only a band that starts above v_max − δ leaves room for them.
+    let v_max = p.v_max_mps();
+    let band_lo = if m.pedal.gain > 0.0 { m.pedal.step(v_i, h, -p.epsilon) } else { f64::INFINITY };
+    if band_lo > v_max - p.delta_mps() {
+        first = first.min(grid.floor(v_max - p.delta_mps()));
+        last = last.max(grid.ceil(v_max + p.delta_mps()));
+    }
+    if last < first {
+        return RowSpan { first: 0, len: 0 };
+    }
+    for index in first..=last {
+        let v_j = grid.speed(index);
+        out.push(pair(p, &m, v_i, v_j).map_or(f64::INFINITY, |(_, cost)| cost));
+    }
+    // Trim unreachable ends so the min-plus loop never scans them.
+    let lead = out.iter().take_while(|c| !c.is_finite()).count();
+    let trail = out.iter().rev().take_while(|c| !c.is_finite()).count();
+    if lead == out.len() {
+        out.clear();
+        return RowSpan { first: 0, len: 0 };
+    }
+    out.truncate(out.len() - trail);
+    out.drain(..lead);
+    RowSpan { first: first + lead as i64, len: out.len() }
+}
+
+/// The inputs of one admissible pair (the solver recomputes them for the path it keeps).
+pub fn inputs(vehicle: &Vehicle, p: &MpcParams, v_i: f64, v_j: f64, gear: usize, slope_torque: f64) -> Option<Inputs> {
+    pair(p, &maps(vehicle, p, v_i, gear, slope_torque), v_i, v_j).map(|(inputs, _)| inputs)
+}
