@@ -4,10 +4,14 @@ Commands::
 
     truckmpc simulate [--road FILE] [--controller pi] [--vehicle FILE] [--config FILE ...]
                       [--set key=value ...] [--out DIR] [--reverse]
+    truckmpc sweep --road FILE [--road FILE ...] [--grid KEY=SPEC ...] [--reverse] [--jobs N]
+                   [--vehicle FILE] [--config FILE ...] [--set key=value ...] [--quiet] --out DIR
     truckmpc model stationary --speed-kmh V --slope-pct A [--gear G|neutral] [--vehicle FILE] [--json]
     truckmpc road make {flat,hill,crest,depression} --length-m L [--slope-pct A] [--lead-m X]
                        [--tail-m Y] -o FILE
     truckmpc road regenerate [--dir roads]
+    truckmpc bench [--json] [--road FILE] [--quick] [--set key=value ...]
+    truckmpc plot DIR [--svg] [--out FILE_OR_DIR]
 
 Every input problem (a :class:`~truckmpc.errors.TruckmpcError`, a usage error, an unreadable or
 unwritable file) ends the command with exactly one line ``error: ...`` on stderr and exit code 2, no
@@ -25,6 +29,7 @@ from typing import Annotated, Any, NoReturn
 import typer
 from typer.core import TyperGroup
 
+from truckmpc.bench import bench_cmd
 from truckmpc.config import load_run_config
 from truckmpc.errors import TruckmpcError
 from truckmpc.pi import steady_gear
@@ -98,6 +103,7 @@ model_app = typer.Typer(help="Query the vehicle model.", no_args_is_help=True)
 road_app = typer.Typer(help="Make and regenerate road profiles.", no_args_is_help=True)
 app.add_typer(model_app, name="model")
 app.add_typer(road_app, name="road")
+app.command("bench")(bench_cmd)
 
 BOTH = "both"
 """``--controller both``: PI and MPC on the same road and vehicle, with Δfuel and Δtime."""
@@ -142,6 +148,47 @@ def simulate_cmd(
     written = write_outputs(out_dir, profile, results)
     typer.echo(format_table(profile, results))
     typer.echo("wrote " + ", ".join(str(p) for p in written))
+
+
+@app.command("sweep")
+def sweep_cmd(
+    road: Annotated[list[Path], typer.Option("--road", help="Road profile CSV; repeatable.")],
+    out: Annotated[Path, typer.Option("--out", help="Output directory: sweep.csv, sweep.json (and sweep.partial.csv while running).")],
+    grid: Annotated[list[str] | None, typer.Option("--grid", help="Axis KEY=start:stop:step or KEY=v1,v2,...; any config key; repeatable.")] = None,
+    reverse: Annotated[bool, typer.Option("--reverse", help="Drive every road in the opposite direction.")] = False,
+    jobs: Annotated[int | None, typer.Option("--jobs", min=1, help="Parallel processes (default: all cores); 1 runs in-process.")] = None,
+    vehicle: VehicleOpt = None,
+    config: ConfigOpt = None,
+    set_: SetOpt = None,
+    quiet: Annotated[bool, typer.Option("--quiet", help="No progress bar.")] = False,
+) -> None:
+    """Run PI and MPC on every road for every combination of the --grid axes; one row each in DIR/sweep.csv.
+
+    Rerun the same command with the same --out to resume an interrupted sweep.
+    """
+    from truckmpc.sweep import SweepInterrupted, SweepWorkerDied, plan_sweep, progress_bar, run_plan
+
+    try:
+        plan = plan_sweep(road, tuple(grid or ()), reverse=reverse, vehicle_path=vehicle,
+                          config_paths=tuple(config or ()), overrides=tuple(set_ or ()))
+        with progress_bar(not quiet) as hook:
+            result = run_plan(plan, out, jobs=jobs, progress=hook)
+    except SweepInterrupted as stop:
+        typer.echo(f"interrupted: {stop.done} of {stop.total} rows kept in {stop.partial_path}; "
+                   "run the same command again to resume", err=True)
+        raise typer.Exit(130) from None
+    except KeyboardInterrupt:
+        typer.echo("interrupted before any run started", err=True)
+        raise typer.Exit(130) from None
+    except SweepWorkerDied as err:
+        _fail(str(err), 1)
+    axes = [axis.key for axis in plan.axes]
+    for row in result.rows:
+        figures = " ".join(f"{key}={row[key]}" for key in axes)
+        deltas = [f"{float(row[k]):+.2f}" if row[k] else "-" for k in ("delta_fuel_pct", "delta_time_pct")]
+        typer.echo(f"{row['road']} {row['direction']} {figures}: delta fuel {deltas[0]} %, delta time {deltas[1]} %")
+    typer.echo(f"wrote {result.csv_path} ({len(result.rows)} rows: {result.mpc_runs} MPC and {result.pi_runs} PI runs, "
+               f"{result.resumed_rows} rows resumed)")
 
 
 def _parse_gear(text: str | None, forward_gears: int) -> int | None:
@@ -223,6 +270,20 @@ def road_regenerate_cmd(
     """Rewrite the shipped example sections and the test track from their definitions."""
     written = write_shipped_roads(directory)
     typer.echo(f"wrote {len(written)} road files to {directory}")
+
+
+@app.command("plot")
+def plot_cmd(
+    directory: Annotated[Path, typer.Argument(metavar="DIR", help="A run directory (summary.json, trace-*.csv) or a sweep directory (sweep.csv).")],
+    svg: Annotated[bool, typer.Option("--svg", help="Also write an SVG beside every PNG.")] = False,
+    out: Annotated[Path | None, typer.Option("--out", help="Output directory, or a .png/.svg file name (default: DIR).")] = None,
+) -> None:
+    """Plot a run (DIR/run.png: altitude, speed, gear, pedal, brake over distance) or a sweep
+    (DIR/sweep.png: delta fuel and delta time against the horizon; DIR/realtime.png). Needs matplotlib."""
+    from truckmpc.plot import plot_dir
+
+    written = plot_dir(directory, out=out, svg=svg)
+    typer.echo("wrote " + ", ".join(str(p) for p in written))
 
 
 def main(argv: list[str] | None = None) -> None:
