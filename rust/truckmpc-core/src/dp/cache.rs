@@ -33,9 +33,12 @@ impl Default for RowMeta {
 #[derive(Debug, Clone, Default)]
 struct StageRows {
     slope_torque_nm: f64,
-    /// Velocity index of the first row block; rows are indexed [(i − i_lo)·gears + g].
+    /// Velocity index of the first row block; rows are indexed [(i − i_lo)·gear_count + g − g_lo]
+    /// (only the gears this stage has seen: the lookups are memory-bound).
     i_lo: i64,
     blocks: usize,
+    g_lo: usize,
+    gear_count: usize,
     meta: Vec<RowMeta>,
     costs: Vec<f64>,
 }
@@ -45,30 +48,46 @@ impl StageRows {
         self.slope_torque_nm = slope_torque_nm;
         self.i_lo = 0;
         self.blocks = 0;
+        self.g_lo = 0;
+        self.gear_count = 0;
         self.meta.clear();
         self.costs.clear();
     }
 
-    /// Make room for velocity index `i` (with some margin, so growth is rare).
-    fn cover(&mut self, i: i64, gears: usize) {
+    /// Make room for velocity indices `i_lo..=i_hi` and gears `g_lo..=g_hi` (with some margin on
+    /// the velocities, so that growth is rare).
+    fn cover(&mut self, i_lo: i64, i_hi: i64, g_lo: usize, g_hi: usize) {
         const MARGIN: i64 = 32;
-        if self.blocks > 0 && i >= self.i_lo && i < self.i_lo + self.blocks as i64 {
+        let i_end = self.i_lo + self.blocks as i64;
+        let g_end = self.g_lo + self.gear_count;
+        let fits = self.blocks > 0 && i_lo >= self.i_lo && i_hi < i_end && g_lo >= self.g_lo && g_hi < g_end;
+        if fits {
             return;
         }
-        let (lo, hi) = if self.blocks == 0 {
-            (i - MARGIN, i + MARGIN)
+        let (new_i_lo, new_i_hi, new_g_lo, new_g_hi) = if self.blocks == 0 {
+            (i_lo - MARGIN, i_hi + MARGIN, g_lo, g_hi)
         } else {
-            ((self.i_lo).min(i - MARGIN), (self.i_lo + self.blocks as i64 - 1).max(i + MARGIN))
+            (
+                self.i_lo.min(i_lo - MARGIN),
+                (i_end - 1).max(i_hi + MARGIN),
+                self.g_lo.min(g_lo),
+                (g_end - 1).max(g_hi),
+            )
         };
-        let blocks = (hi - lo + 1) as usize;
-        let mut meta = vec![RowMeta::default(); blocks * gears];
+        let blocks = (new_i_hi - new_i_lo + 1) as usize;
+        let gear_count = new_g_hi - new_g_lo + 1;
+        let mut meta = vec![RowMeta::default(); blocks * gear_count];
         for b in 0..self.blocks {
-            let to = (self.i_lo + b as i64 - lo) as usize;
-            meta[to * gears..(to + 1) * gears].copy_from_slice(&self.meta[b * gears..(b + 1) * gears]);
+            for g in 0..self.gear_count {
+                let to = (self.i_lo + b as i64 - new_i_lo) as usize * gear_count + (self.g_lo + g - new_g_lo);
+                meta[to] = self.meta[b * self.gear_count + g];
+            }
         }
         self.meta = meta;
-        self.i_lo = lo;
+        self.i_lo = new_i_lo;
         self.blocks = blocks;
+        self.g_lo = new_g_lo;
+        self.gear_count = gear_count;
     }
 }
 
@@ -106,29 +125,28 @@ impl RowCache {
         }
     }
 
-    /// The rows of absolute `stage`, covering velocity indices `i_lo..=i_hi`. `prepare` must have
-    /// covered the stage.
-    pub fn stage(&mut self, stage: u64, i_lo: i64, i_hi: i64, gears: usize) -> StageView<'_> {
+    /// The rows of absolute `stage`, covering velocity indices `i_lo..=i_hi` and forward gears
+    /// `g_lo..=g_hi`. `prepare` must have covered the stage.
+    pub fn stage(&mut self, stage: u64, (i_lo, i_hi): (i64, i64), (g_lo, g_hi): (usize, usize)) -> StageView<'_> {
         let rows = &mut self.stages[(stage - self.first_stage) as usize];
-        rows.cover(i_lo, gears);
-        rows.cover(i_hi, gears);
-        StageView { rows, gears, computed: &mut self.computed }
+        rows.cover(i_lo, i_hi, g_lo, g_hi);
+        StageView { rows, computed: &mut self.computed }
     }
 }
 
 /// One stage's rows, ready for lookups by (velocity index, gear).
 pub struct StageView<'a> {
     rows: &'a mut StageRows,
-    gears: usize,
     computed: &'a mut u64,
 }
 
 impl StageView<'_> {
-    /// The row of velocity index `i` (speed `v_i`) in forward `gear`, computed on first use.
+    /// The row of velocity index `i` (speed `v_i`) in forward `gear` (both within what `stage`
+    /// covered), computed on first use.
     #[inline]
     pub fn row(&mut self, vehicle: &Vehicle, p: &MpcParams, i: i64, v_i: f64, gear: usize, grid: GridIndex, scratch: &mut Vec<f64>) -> (RowSpan, &[f64]) {
         let rows = &mut *self.rows;
-        let at = (i - rows.i_lo) as usize * self.gears + gear;
+        let at = (i - rows.i_lo) as usize * rows.gear_count + gear - rows.g_lo;
         let m = rows.meta[at];
         let m = if m.len != UNFILLED {
             m

@@ -145,6 +145,10 @@ impl MpcParams {
         if self.stages() > 100_000 {
             return Err(CoreError::invalid("horizon_m", "expected at most 100000 stages"));
         }
+        // Grid indices are stored in 16 bits.
+        if (self.v_inc_kmh + self.v_dec_kmh) / self.delta_kmh > 30_000.0 {
+            return Err(CoreError::invalid("delta_kmh", "expected at most 30000 grid points in the speed band v_inc + v_dec"));
+        }
         Ok(())
     }
 

@@ -84,7 +84,7 @@ const NO_CHOICE: Choice = Choice { cost: INF, j: 0, counter: 0 };
 /// The decision stored for a state: the next state (grid index, gear).
 #[derive(Debug, Clone, Copy, Default)]
 struct Decision {
-    j: u32,
+    j: u16,
     gear: u8,
 }
 
@@ -293,17 +293,23 @@ impl Solver {
         let q_speed_below = self.params.q_speed_below;
         let slope_torque = self.slope_torques[k];
         let mut transitions = 0;
-        self.cost_cur.clear();
-        self.cost_cur.resize(here.count * gears, INF);
-        self.shift_cur.clear();
-        self.shift_cur.resize(here.count * gears, INF);
-        self.counter_cur.clear();
-        self.counter_cur.resize(here.count * gears, 0);
+        // No clearing: the next stage reads only existing states (active gears, within their index
+        // ranges), and every existing state is written below before that.
+        let size = here.count * gears;
+        if self.cost_cur.len() < size {
+            self.cost_cur.resize(size, INF);
+            self.shift_cur.resize(size, INF);
+            self.counter_cur.resize(size, 0);
+        }
         let active_here = std::mem::take(&mut self.active[k]);
         let active_next = std::mem::take(&mut self.active[k + 1]);
 
         let mut cached = match abs_stage {
-            Some(stage) if k > 0 => Some(self.cache.stage(stage, here.first, here.first + here.count as i64 - 1, gears)),
+            Some(stage) if k > 0 => {
+                let forward = active_next.iter().filter(|&&g| g != NEUTRAL);
+                let (g_lo, g_hi) = (forward.clone().min().copied().unwrap_or(1), forward.max().copied().unwrap_or(1));
+                Some(self.cache.stage(stage, (here.first, here.first + here.count as i64 - 1), (g_lo, g_hi)))
+            }
             _ => None,
         };
         for i in 0..here.count {
@@ -355,9 +361,9 @@ impl Solver {
                 let q4 = self.params.q_gear_shift;
                 let (best_cost, decision, counter) = if shift_gear != usize::MAX && shift_cost + q4 < stay.cost {
                     let c = self.best_shift[shift_gear];
-                    (shift_cost + q4, Decision { j: c.j, gear: shift_gear as u8 }, 1)
+                    (shift_cost + q4, Decision { j: c.j as u16, gear: shift_gear as u8 }, 1)
                 } else {
-                    (stay.cost, Decision { j: stay.j, gear: g_i as u8 }, stay.counter.saturating_add(1).min(u32::MAX / 2))
+                    (stay.cost, Decision { j: stay.j as u16, gear: g_i as u8 }, stay.counter.saturating_add(1).min(u32::MAX / 2))
                 };
                 let idx = g_i * here.count + i;
                 let total = best_cost + speed_cost;
@@ -400,6 +406,21 @@ impl Solver {
         out.brake = first.brake;
         out.gear = first.gear;
     }
+}
+
+/// The smallest `row[t] + to_go[t]` and its first index t: the min-plus inner loop.
+#[inline]
+fn argmin_sum(row: &[f64], to_go: &[f64]) -> (f64, usize) {
+    let to_go = &to_go[..row.len()]; // equal lengths: lets the compiler drop the bounds checks
+    let (mut best, mut best_t) = (INF, 0usize);
+    for t in 0..row.len() {
+        let c = row[t] + to_go[t];
+        if c < best {
+            best = c;
+            best_t = t;
+        }
+    }
+    (best, best_t)
 }
 
 /// The single neutral arc from v_i: its end speed is set by the physics; join it to the next grid
@@ -467,20 +488,12 @@ fn min_plus(span: RowSpan, row: &[f64], next: StageGrid, (lo, hi): (u32, u32), g
     let base = gear * next.count;
     let row = &row[(j_lo as i64 - offset) as usize..=(j_hi as i64 - offset) as usize];
     let to_go = &cost_next[base + j_lo..=base + j_hi];
-    let to_go_shift = &shift_next[base + j_lo..=base + j_hi];
-    let (mut best, mut best_t) = (INF, 0usize);
-    let (mut best_s, mut best_s_t) = (INF, 0usize);
-    for t in 0..row.len() {
-        let c = row[t] + to_go[t];
-        if c < best {
-            best = c;
-            best_t = t;
-        }
-        let s = row[t] + to_go_shift[t];
-        if s < best_s {
-            best_s = s;
-            best_s_t = t;
-        }
+    let (best, best_t) = argmin_sum(row, to_go);
+    // Usually the best target's continuation allows a shift into it, and then it is also the best
+    // shiftable one; only otherwise scan again among the targets that allow it.
+    let (mut best_s, mut best_s_t) = (best, best_t);
+    if best < INF && shift_next[base + j_lo + best_t] == INF {
+        (best_s, best_s_t) = argmin_sum(row, &shift_next[base + j_lo..=base + j_hi]);
     }
     let choice = |cost: f64, t: usize| {
         if cost < INF {
