@@ -28,7 +28,7 @@ from typing import Any
 import yaml
 
 from . import _core
-from .errors import ConfigError
+from .errors import ConfigError, read_user_text
 
 __all__ = [
     "SECTIONS",
@@ -185,14 +185,7 @@ def _read_mapping(path: PathLike) -> tuple[dict[str, Any], str]:
     """The top-level mapping of a YAML file and the file's display name."""
     path = Path(path)
     where = _display(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ConfigError(f"{where}: no such file") from None
-    except IsADirectoryError:
-        raise ConfigError(f"{where}: is a directory, expected a YAML file") from None
-    except UnicodeDecodeError:
-        raise ConfigError(f"{where}: not a UTF-8 text file") from None
+    text = read_user_text(path, where, "a YAML file", ConfigError)
     try:
         data = yaml.load(text, Loader=_StrictLoader)  # noqa: S506 (a SafeLoader subclass)
     except yaml.MarkedYAMLError as err:

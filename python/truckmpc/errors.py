@@ -8,8 +8,9 @@ and what was expected, ready to print after "error: ".
 from __future__ import annotations
 
 import re
+from pathlib import Path
 
-__all__ = ["ConfigError", "RoadError", "TruckmpcError"]
+__all__ = ["ConfigError", "RoadError", "TruckmpcError", "read_user_text"]
 
 
 class TruckmpcError(ValueError):
@@ -27,3 +28,16 @@ class ConfigError(TruckmpcError):
 
 class RoadError(TruckmpcError):
     """A road profile (CSV file or generated section) is missing or invalid."""
+
+
+def read_user_text(path: Path, where: str, expected: str, error: type[TruckmpcError], encoding: str = "utf-8") -> str:
+    """The text of a user's input file; a missing, directory or non-text file raises `error` with a
+    one-line message starting with `where` and naming what was `expected` ("a YAML file")."""
+    try:
+        return path.read_text(encoding=encoding)
+    except FileNotFoundError:
+        raise error(f"{where}: no such file") from None
+    except IsADirectoryError:
+        raise error(f"{where}: is a directory, expected {expected}") from None
+    except UnicodeDecodeError:
+        raise error(f"{where}: not a UTF-8 text file") from None

@@ -22,7 +22,7 @@ import numpy as np
 
 from . import _core
 from .atomic import atomic_write_text
-from .errors import RoadError
+from .errors import RoadError, read_user_text
 
 __all__ = [
     "MAX_GRADE",
@@ -133,14 +133,7 @@ def load_road(path: PathLike) -> RoadProfile:
     """Read a road profile CSV (format in the module doc); errors name the file and line."""
     path = Path(path)
     where = str(path)
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except FileNotFoundError:
-        raise RoadError(f"{where}: no such file") from None
-    except IsADirectoryError:
-        raise RoadError(f"{where}: is a directory, expected a CSV file") from None
-    except UnicodeDecodeError:
-        raise RoadError(f"{where}: not a UTF-8 text file") from None
+    text = read_user_text(path, where, "a CSV file", RoadError, encoding="utf-8-sig")
     lines = [(n, line.strip()) for n, line in enumerate(text.splitlines(), start=1)]
     lines = [(n, line) for n, line in lines if line and not line.startswith("#")]
     if not lines:

@@ -32,6 +32,16 @@ fn get_vec(dict: &Bound<'_, PyDict>, key: &str, default: &[f64]) -> PyResult<Vec
     }
 }
 
+/// One of a few named values; the error lists them.
+fn get_choice<T: Copy>(dict: &Bound<'_, PyDict>, key: &str, choices: &[(&str, T)], default: T) -> PyResult<T> {
+    let Some(value) = dict.get_item(key)? else { return Ok(default) };
+    let name = value.extract::<String>().ok();
+    choices.iter().find(|(n, _)| Some(*n) == name.as_deref()).map(|&(_, v)| v).ok_or_else(|| {
+        let names: Vec<String> = choices.iter().map(|(n, _)| format!("'{n}'")).collect();
+        PyValueError::new_err(format!("{key}: expected {}", names.join(" or ")))
+    })
+}
+
 /// Build core parameters from a dict whose keys are the field names of `VehicleParams`;
 /// missing keys take the thesis's 40 t defaults, unknown keys are an error.
 fn params_from_dict(dict: &Bound<'_, PyDict>) -> PyResult<core::VehicleParams> {
@@ -317,22 +327,8 @@ fn mpc_params_from_dict(dict: &Bound<'_, PyDict>) -> PyResult<dp::MpcParams> {
         Some(v) => v.extract::<bool>().map_err(|_| PyValueError::new_err("allow_neutral: expected true or false"))?,
         None => d.allow_neutral,
     };
-    let neutral_rule = match dict.get_item("neutral_rule")? {
-        Some(v) => match v.extract::<String>().as_deref() {
-            Ok("nearest") => dp::NeutralRule::Nearest,
-            Ok("interpolate") => dp::NeutralRule::Interpolate,
-            _ => return Err(PyValueError::new_err("neutral_rule: expected 'nearest' or 'interpolate'")),
-        },
-        None => d.neutral_rule,
-    };
-    let grid = match dict.get_item("grid")? {
-        Some(v) => match v.extract::<String>().as_deref() {
-            Ok("moving") => dp::GridAnchor::Moving,
-            Ok("fixed") => dp::GridAnchor::Fixed,
-            _ => return Err(PyValueError::new_err("grid: expected 'moving' or 'fixed'")),
-        },
-        None => d.grid,
-    };
+    let neutral_rule = get_choice(dict, "neutral_rule", &[("nearest", dp::NeutralRule::Nearest), ("interpolate", dp::NeutralRule::Interpolate)], d.neutral_rule)?;
+    let grid = get_choice(dict, "grid", &[("moving", dp::GridAnchor::Moving), ("fixed", dp::GridAnchor::Fixed)], d.grid)?;
     let params = dp::MpcParams {
         stage_m: get_f64(dict, "stage_m", d.stage_m)?,
         horizon_m: get_f64(dict, "horizon_m", d.horizon_m)?,
