@@ -151,7 +151,13 @@ pub fn grid(params: &MpcParams, lo: f64, hi: f64) -> Grid {
             if last >= first {
                 Grid { first_mps: first * delta, count: (last - first) as usize + 1 }
             } else {
-                Grid { first_mps: (0.5 * (lo + hi) / delta).round() * delta, count: 1 }
+                // An interval narrower than δ between two grid points (a climb at full pedal below
+                // v_min, say): keep both neighbours, but never one above v_max. Each transition's
+                // admissibility is still checked, so a neighbour out of reach costs nothing.
+                let below = (lo / delta).floor();
+                let above = below + 1.0;
+                let count = if above * delta <= params.v_max_mps() + SLACK { 2 } else { 1 };
+                Grid { first_mps: below * delta, count }
             }
         }
     }
