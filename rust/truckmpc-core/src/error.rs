@@ -18,3 +18,12 @@ impl CoreError {
 
 /// Result alias of the core.
 pub type CoreResult<T> = Result<T, CoreError>;
+
+/// Check every named value with `ok`; the error names the first that fails and says it was
+/// `expected` ("a number > 0"). NaN fails any range check.
+pub fn check_each(values: &[(&str, f64)], ok: impl Fn(f64) -> bool, expected: &str) -> CoreResult<()> {
+    match values.iter().find(|(_, value)| !(value.is_finite() && ok(*value))) {
+        Some((name, value)) => Err(CoreError::invalid(name, format!("expected {expected}, got {value}"))),
+        None => Ok(()),
+    }
+}

@@ -6,7 +6,7 @@
 //! Units: speeds in m/s, engine speed in rpm, torque in Nm, fuel in g, fueling in mg/stroke,
 //! slope as a grade (Δh/ΔL, dimensionless) used directly as the angle α.
 
-use crate::error::{CoreError, CoreResult};
+use crate::error::{check_each, CoreError, CoreResult};
 
 /// Gear number of neutral. Forward gears are numbered 1..=n.
 pub const NEUTRAL: usize = 0;
@@ -118,11 +118,7 @@ impl VehicleParams {
             ("gravity_mps2", self.gravity_mps2),
             ("brake_torque_max_nm", self.brake_torque_max_nm),
         ];
-        for (name, value) in positive {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(CoreError::invalid(name, format!("expected a number > 0, got {value}")));
-            }
-        }
+        check_each(&positive, |v| v > 0.0, "a number > 0")?;
         let non_negative = [
             ("idle_fueling_mg_per_stroke", self.idle_fueling_mg_per_stroke),
             ("wheel_inertia_kgm2", self.wheel_inertia_kgm2),
@@ -131,11 +127,7 @@ impl VehicleParams {
             ("frontal_area_m2", self.frontal_area_m2),
             ("air_density_kgpm3", self.air_density_kgpm3),
         ];
-        for (name, value) in non_negative {
-            if !(value.is_finite() && value >= 0.0) {
-                return Err(CoreError::invalid(name, format!("expected a number >= 0, got {value}")));
-            }
-        }
+        check_each(&non_negative, |v| v >= 0.0, "a number >= 0")?;
         let finite = [
             ("torque_map_a_nm_per_rpm", self.torque_map_a_nm_per_rpm),
             ("torque_map_c_nm", self.torque_map_c_nm),
@@ -145,11 +137,7 @@ impl VehicleParams {
             ("drag_torque_a_nm_per_rpm", self.drag_torque_a_nm_per_rpm),
             ("drag_torque_b_nm", self.drag_torque_b_nm),
         ];
-        for (name, value) in finite {
-            if !value.is_finite() {
-                return Err(CoreError::invalid(name, format!("expected a finite number, got {value}")));
-            }
-        }
+        check_each(&finite, |_| true, "a finite number")?;
         check_fraction("final_drive_efficiency", self.final_drive_efficiency)?;
         if self.gear_ratios.is_empty() {
             return Err(CoreError::invalid("gear_ratios", "expected at least one forward gear"));

@@ -1,7 +1,7 @@
 //! Parameters of the look-ahead controller (tables 5.2, 6.1, 6.2), in the units a user types.
 //! Internally the solver works in m/s; conversions happen in [`MpcParams::validate`] users.
 
-use crate::error::{CoreError, CoreResult};
+use crate::error::{check_each, CoreError, CoreResult};
 
 /// How a neutral-gear arc, whose end speed is fixed by the physics and generally falls between
 /// two grid points, is joined to the next stage's grid (NOTES.md: the thesis gives no rule).
@@ -100,11 +100,7 @@ impl MpcParams {
             ("v_ref_kmh", self.v_ref_kmh),
             ("n_max_rpm", self.n_max_rpm),
         ];
-        for (name, value) in positive {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(CoreError::invalid(name, format!("expected a number > 0, got {value}")));
-            }
-        }
+        check_each(&positive, |v| v > 0.0, "a number > 0")?;
         let non_negative = [
             ("epsilon", self.epsilon),
             ("v_inc_kmh", self.v_inc_kmh),
@@ -116,11 +112,7 @@ impl MpcParams {
             ("q_gear_shift", self.q_gear_shift),
             ("q_brake", self.q_brake),
         ];
-        for (name, value) in non_negative {
-            if !(value.is_finite() && value >= 0.0) {
-                return Err(CoreError::invalid(name, format!("expected a number >= 0, got {value}")));
-            }
-        }
+        check_each(&non_negative, |v| v >= 0.0, "a number >= 0")?;
         if self.horizon_m < self.stage_m {
             return Err(CoreError::invalid(
                 "horizon_m",
