@@ -72,7 +72,7 @@ class MpcController:
             "solve_ms_max": 1e3 * max(times, default=0.0),
             "states_per_solve": self._states / count,
             "transitions_per_solve": self._transitions / count,
-            "settings": {k: v for k, v in self._params.items()},
+            "settings": dict(self._params),
         }
 
     def last_trajectory(self) -> dict[str, Any]:

@@ -67,10 +67,6 @@ impl Plant {
         &self.vehicle
     }
 
-    /// The road being driven.
-    pub fn road(&self) -> &Road {
-        &self.road
-    }
 
     /// Time derivatives at speed `v_mps` on a slope given by its wheel torque [Nm].
     #[inline]

@@ -317,11 +317,6 @@ impl Vehicle {
         }
     }
 
-    /// Upper torque bound T_max(N) = T_map(N, δ_max(N)) [Nm], (2.7).
-    pub fn max_torque_nm(&self, n_rpm: f64) -> f64 {
-        self.engine_torque_nm(n_rpm, 1.0, 1)
-    }
-
     /// Acceleration dv/dt (B.1) [m/s²] at speed v, pedal P ∈ [0,1], brake B ∈ [0,1], gear, slope.
     #[inline]
     pub fn accel_mps2(&self, v_mps: f64, pedal: f64, brake: f64, gear: usize, slope: f64) -> f64 {
