@@ -24,14 +24,23 @@ fn main() {
     let mut solver = Solver::new(p.clone());
     let mut scratch = Vec::new();
     let (mut v, mut gear, mut since) = (85.0 / 3.6, 12usize, 8u32);
-    let (mut solves, mut transitions, mut infeasible) = (0u64, 0u64, 0u64);
+    let (mut solves, mut transitions, mut infeasible, mut states) = (0u64, 0u64, 0u64, 0u64);
+    // FNV-1a over every solve's first control and next speed: equal digests mean bit-identical traces.
+    let mut digest = 0xcbf29ce484222325u64;
+    let mut mix = |x: u64| digest = (digest ^ x).wrapping_mul(0x100000001b3);
     let t0 = Instant::now();
     let mut s = road.start_m();
     while s + p.stage_m <= road.end_m() {
         let sol = horizon::solve_at(&mut solver, &vehicle, &road, s, InitialState { v_mps: v, gear, stages_since_shift: since }, &mut scratch);
         solves += 1;
         transitions += sol.transitions as u64;
+        states += sol.states as u64;
+        mix(sol.cost.to_bits());
         if sol.feasible {
+            mix(sol.pedal.to_bits());
+            mix(sol.brake.to_bits());
+            mix(sol.gear as u64);
+            mix(sol.trajectory[1].v_mps.to_bits());
             since = if sol.gear != gear { 1 } else { (since + 1).min(p.k_lim) };
             gear = sol.gear;
             v = sol.trajectory[1].v_mps;
@@ -41,6 +50,6 @@ fn main() {
         s += p.stage_m;
     }
     let secs = t0.elapsed().as_secs_f64();
-    println!("{grid:?}: {solves} solves, {:.3} ms/solve, {:.0} transitions/solve, {:.2} ns/transition, {infeasible} infeasible, rows computed {}",
-        1e3 * secs / solves as f64, transitions as f64 / solves as f64, 1e9 * secs / transitions as f64, solver.rows_computed());
+    println!("{grid:?}: {solves} solves, {:.3} ms/solve, {:.0} transitions/solve, {:.2} ns/transition, {infeasible} infeasible, rows computed {}, {:.0} states/solve, trace digest {digest:016x}",
+        1e3 * secs / solves as f64, transitions as f64 / solves as f64, 1e9 * secs / transitions as f64, solver.rows_computed(), states as f64 / solves as f64);
 }

@@ -1,97 +1,149 @@
-//! Rows of transition costs kept across solves, for a fixed (absolute) velocity grid.
+//! Transition costs of one stage, kept across solves on a fixed (absolute) velocity grid.
 //!
 //! Successive receding-horizon solves share all but one of their stages: a stage at absolute road
-//! position k is solved N times, from N different start positions. With a fixed grid a row depends
-//! only on (absolute stage, velocity index, gear), so it is computed once and reused; stages behind
-//! the vehicle are dropped. Rows are filled lazily, only for the states a solve visits.
+//! position k is solved N times, from N different start positions. With a fixed grid a row of
+//! costs depends only on (absolute stage, velocity index, target gear), so it is computed once and
+//! reused; stages behind the vehicle are dropped. A solve without the cache (moving grid, or the
+//! first stage, whose start speed is off the grid) fills a scratch [`StageRows`] the same way.
+//!
+//! Layout: per target gear, the rows of consecutive source velocities are side by side, because
+//! the DP's first pass walks one target gear at a time over all source velocities.
 
 use std::collections::VecDeque;
 
-use super::params::MpcParams;
-use super::rows::{forward_row, GridIndex, RowSpan};
-use crate::vehicle::Vehicle;
+use super::rows::RowSpan;
 
-/// Where one row lives in its stage's cost buffer (12 bytes: the lookups are memory-bound).
-#[derive(Debug, Clone, Copy)]
-struct RowMeta {
-    /// Grid index of the row's first cost.
-    first: i32,
-    offset: u32,
-    /// Number of costs; `UNFILLED` until the row is computed.
-    len: u32,
+/// Values for a contiguous range of source keys (grid indices), grown at either end on demand.
+#[derive(Debug, Clone)]
+pub struct Keyed<T> {
+    key_lo: i64,
+    values: Vec<T>,
 }
 
-const UNFILLED: u32 = u32::MAX;
-
-impl Default for RowMeta {
+impl<T> Default for Keyed<T> {
     fn default() -> Self {
-        RowMeta { first: 0, offset: 0, len: UNFILLED }
+        Keyed { key_lo: 0, values: Vec::new() }
     }
 }
 
-/// The rows of one absolute stage.
+impl<T: Copy> Keyed<T> {
+    fn clear(&mut self) {
+        self.values.clear();
+    }
+
+    /// Make sure keys `lo..=hi` have values, computing the missing ones with `make` (a request
+    /// that leaves a gap to the present range fills the gap too, so the range stays contiguous).
+    /// Returns how many values were computed.
+    pub fn fill(&mut self, lo: i64, hi: i64, mut make: impl FnMut(i64) -> T) -> u64 {
+        if self.values.is_empty() {
+            self.key_lo = lo;
+            self.values.extend((lo..=hi).map(&mut make));
+            return self.values.len() as u64;
+        }
+        let present_hi = self.key_lo + self.values.len() as i64 - 1;
+        let mut computed = 0;
+        if lo < self.key_lo {
+            let mut front: Vec<T> = (lo..self.key_lo).map(&mut make).collect();
+            computed += front.len() as u64;
+            front.extend_from_slice(&self.values);
+            self.values = front;
+            self.key_lo = lo;
+        }
+        if hi > present_hi {
+            self.values.extend((present_hi + 1..=hi).map(&mut make));
+            computed += (hi - present_hi) as u64;
+        }
+        computed
+    }
+
+    /// The values of keys `lo..=hi` (which must have been filled).
+    #[inline]
+    pub fn get(&self, lo: i64, hi: i64) -> &[T] {
+        &self.values[(lo - self.key_lo) as usize..=(hi - self.key_lo) as usize]
+    }
+}
+
+/// Where one row lives in its gear's cost buffer.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RowMeta {
+    /// Next-stage grid index of the row's first cost.
+    pub first: i32,
+    /// Start of the row in the cost buffer.
+    pub offset: u32,
+    /// Number of costs (0: no admissible target).
+    pub len: u32,
+}
+
+impl RowMeta {
+    /// The span the row covers on the next grid.
+    #[inline]
+    pub fn span(&self) -> RowSpan {
+        RowSpan { first: self.first as i64, len: self.len as usize }
+    }
+}
+
+/// The rows of one stage towards one forward target gear, keyed by source grid index.
 #[derive(Debug, Clone, Default)]
-struct StageRows {
+pub struct GearRows {
+    pub meta: Keyed<RowMeta>,
+    pub costs: Vec<f64>,
+}
+
+impl GearRows {
+    /// Make sure the rows of keys `lo..=hi` exist; `row(key, out)` writes one row's costs into
+    /// `out` and returns its span. Returns the rows computed.
+    pub fn fill(&mut self, lo: i64, hi: i64, scratch: &mut Vec<f64>, mut row: impl FnMut(i64, &mut Vec<f64>) -> RowSpan) -> u64 {
+        let costs = &mut self.costs;
+        self.meta.fill(lo, hi, |key| {
+            let span = row(key, scratch);
+            let meta = RowMeta { first: span.first as i32, offset: costs.len() as u32, len: span.len as u32 };
+            costs.extend_from_slice(&scratch[..span.len]);
+            meta
+        })
+    }
+}
+
+/// A neutral arc from one source speed: where it ends and the part of its cost that does not
+/// depend on the cost-to-go (fuel and speed change).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NeutralArc {
+    /// End speed after the stage [m/s].
+    pub v_end_mps: f64,
+    /// Q1·fuel + Q3·|Δv|.
+    pub cost: f64,
+}
+
+/// Everything one stage keeps: its slope, its rows per target gear and its neutral arcs.
+#[derive(Debug, Clone, Default)]
+pub struct StageRows {
     slope_torque_nm: f64,
-    /// Velocity index of the first row block; rows are indexed [(i − i_lo)·gear_count + g − g_lo]
-    /// (only the gears this stage has seen: the lookups are memory-bound).
-    i_lo: i64,
-    blocks: usize,
-    g_lo: usize,
-    gear_count: usize,
-    meta: Vec<RowMeta>,
-    costs: Vec<f64>,
+    /// Indexed by gear; entry 0 (neutral) is unused.
+    gears: Vec<GearRows>,
+    pub neutral: Keyed<NeutralArc>,
 }
 
 impl StageRows {
-    fn reset(&mut self, slope_torque_nm: f64) {
+    /// Empty the stage for a slope (as wheel torque [Nm]).
+    pub fn reset(&mut self, slope_torque_nm: f64) {
         self.slope_torque_nm = slope_torque_nm;
-        self.i_lo = 0;
-        self.blocks = 0;
-        self.g_lo = 0;
-        self.gear_count = 0;
-        self.meta.clear();
-        self.costs.clear();
+        for rows in &mut self.gears {
+            rows.meta.clear();
+            rows.costs.clear();
+        }
+        self.neutral.clear();
     }
 
-    /// Make room for velocity indices `i_lo..=i_hi` and gears `g_lo..=g_hi` (with some margin on
-    /// the velocities, so that growth is rare).
-    fn cover(&mut self, i_lo: i64, i_hi: i64, g_lo: usize, g_hi: usize) {
-        const MARGIN: i64 = 32;
-        let i_end = self.i_lo + self.blocks as i64;
-        let g_end = self.g_lo + self.gear_count;
-        let fits = self.blocks > 0 && i_lo >= self.i_lo && i_hi < i_end && g_lo >= self.g_lo && g_hi < g_end;
-        if fits {
-            return;
+    /// The rows towards forward `gear`.
+    #[inline]
+    pub fn gear(&mut self, gear: usize) -> &mut GearRows {
+        if self.gears.len() <= gear {
+            self.gears.resize_with(gear + 1, GearRows::default);
         }
-        let (new_i_lo, new_i_hi, new_g_lo, new_g_hi) = if self.blocks == 0 {
-            (i_lo - MARGIN, i_hi + MARGIN, g_lo, g_hi)
-        } else {
-            (
-                self.i_lo.min(i_lo - MARGIN),
-                (i_end - 1).max(i_hi + MARGIN),
-                self.g_lo.min(g_lo),
-                (g_end - 1).max(g_hi),
-            )
-        };
-        let blocks = (new_i_hi - new_i_lo + 1) as usize;
-        let gear_count = new_g_hi - new_g_lo + 1;
-        let mut meta = vec![RowMeta::default(); blocks * gear_count];
-        for b in 0..self.blocks {
-            for g in 0..self.gear_count {
-                let to = (self.i_lo + b as i64 - new_i_lo) as usize * gear_count + (self.g_lo + g - new_g_lo);
-                meta[to] = self.meta[b * self.gear_count + g];
-            }
-        }
-        self.meta = meta;
-        self.i_lo = new_i_lo;
-        self.blocks = blocks;
-        self.g_lo = new_g_lo;
-        self.gear_count = gear_count;
+        &mut self.gears[gear]
     }
 }
 
-/// Cached rows for a window of absolute stages.
+/// Cached stages for a window of absolute stages.
 #[derive(Debug, Clone, Default)]
 pub struct RowCache {
     first_stage: u64,
@@ -125,39 +177,9 @@ impl RowCache {
         }
     }
 
-    /// The rows of absolute `stage`, covering velocity indices `i_lo..=i_hi` and forward gears
-    /// `g_lo..=g_hi`. `prepare` must have covered the stage.
-    pub fn stage(&mut self, stage: u64, (i_lo, i_hi): (i64, i64), (g_lo, g_hi): (usize, usize)) -> StageView<'_> {
-        let rows = &mut self.stages[(stage - self.first_stage) as usize];
-        rows.cover(i_lo, i_hi, g_lo, g_hi);
-        StageView { rows, computed: &mut self.computed }
-    }
-}
-
-/// One stage's rows, ready for lookups by (velocity index, gear).
-pub struct StageView<'a> {
-    rows: &'a mut StageRows,
-    computed: &'a mut u64,
-}
-
-impl StageView<'_> {
-    /// The row of velocity index `i` (speed `v_i`) in forward `gear` (both within what `stage`
-    /// covered), computed on first use.
+    /// The rows of absolute `stage` (`prepare` must have covered it) and the miss counter.
     #[inline]
-    pub fn row(&mut self, vehicle: &Vehicle, p: &MpcParams, i: i64, v_i: f64, gear: usize, grid: GridIndex, scratch: &mut Vec<f64>) -> (RowSpan, &[f64]) {
-        let rows = &mut *self.rows;
-        let at = (i - rows.i_lo) as usize * rows.gear_count + gear - rows.g_lo;
-        let m = rows.meta[at];
-        let m = if m.len != UNFILLED {
-            m
-        } else {
-            let span = forward_row(vehicle, p, v_i, gear, rows.slope_torque_nm, grid, scratch);
-            let m = RowMeta { first: span.first as i32, offset: rows.costs.len() as u32, len: span.len as u32 };
-            rows.meta[at] = m;
-            rows.costs.extend_from_slice(scratch);
-            *self.computed += 1;
-            m
-        };
-        (RowSpan { first: m.first as i64, len: m.len as usize }, &rows.costs[m.offset as usize..(m.offset + m.len) as usize])
+    pub fn stage(&mut self, stage: u64) -> (&mut StageRows, &mut u64) {
+        (&mut self.stages[(stage - self.first_stage) as usize], &mut self.computed)
     }
 }

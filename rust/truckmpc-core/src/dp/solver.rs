@@ -15,9 +15,9 @@
 //! 1 + c ≥ k_lim, would let them come k_lim − 1 stages apart, contradicting the forward counter of
 //! (5.6).) Stages reached before the vehicle's own counter allows a shift keep the current gear.
 
-use super::cache::RowCache;
+use super::cache::{NeutralArc, RowCache, RowMeta, StageRows};
 use super::params::{GridAnchor, MpcParams, NeutralRule};
-use super::rows::{forward_row, inputs, GridIndex, RowSpan};
+use super::rows::{forward_row, inputs, GridIndex};
 use super::space::{self, Grid, Intervals};
 use crate::levels::{brake_accel_on, stage_fuel_g};
 use crate::vehicle::{Vehicle, NEUTRAL};
@@ -71,7 +71,9 @@ pub struct Solution {
     pub transitions: usize,
 }
 
-/// The best way out of a state towards one target gear.
+/// The best way out of a source velocity towards one target gear: its cost (fuel, speed change,
+/// brake and cost-to-go; +∞ when none), the next-stage grid index it reaches and the stages to the
+/// next shift on the continuation from there.
 #[derive(Debug, Clone, Copy)]
 struct Choice {
     cost: f64,
@@ -124,13 +126,19 @@ pub struct Solver {
     cost_cur: Vec<f64>,
     shift_cur: Vec<f64>,
     counter_cur: Vec<u32>,
-    /// Decisions per stage, flat; offsets[k] is the start of stage k, indexed [i * gears + gear]
-    /// (one velocity's gears side by side: they are written together).
+    /// Decisions per stage, flat; offsets[k] is the start of stage k, indexed [gear * count + i].
     decisions: Vec<Decision>,
     offsets: Vec<usize>,
+    /// Per target gear and source velocity [gear * count + i]: the best next state, and the best
+    /// one whose continuation allows a shift into it now.
     best_all: Vec<Choice>,
     best_shift: Vec<Choice>,
+    /// Per source velocity, the best and second-best shift targets over all gears.
+    shift_first: Vec<(f64, usize)>,
+    shift_second: Vec<(f64, usize)>,
     scratch: Vec<f64>,
+    /// Rows of the stage being solved when they do not come from the cache.
+    scratch_rows: StageRows,
     cache: RowCache,
 }
 
@@ -157,7 +165,10 @@ impl Solver {
             offsets: Vec::new(),
             best_all: Vec::new(),
             best_shift: Vec::new(),
+            shift_first: Vec::new(),
+            shift_second: Vec::new(),
             scratch: Vec::new(),
+            scratch_rows: StageRows::default(),
             cache: RowCache::default(),
         }
     }
@@ -210,8 +221,6 @@ impl Solver {
             }
         }
         self.shift_next.clone_from(&self.cost_next);
-        self.best_all.resize(gears, NO_CHOICE);
-        self.best_shift.resize(gears, NO_CHOICE);
 
         let mut transitions = 0usize;
         for k in (0..n_stages).rev() {
@@ -286,13 +295,13 @@ impl Solver {
 
     /// J_k from J_{k+1} (in `cost_next`) into `cost_cur`. `abs_stage` is this stage's absolute
     /// index when rows may come from the cache. Returns the transitions evaluated.
+    ///
+    /// Two passes: first, per target gear, the best way from every velocity into that gear (the
+    /// rows of one gear are contiguous, and so is the cost-to-go they are added to); then, per
+    /// state, staying in its gear against the best shift.
     fn backward_stage(&mut self, vehicle: &Vehicle, k: usize, abs_stage: Option<u64>, start_gear: usize) -> usize {
         let gears = vehicle.forward_gears() + 1;
-        let (here, next) = (self.grids[k], self.grids[k + 1]);
-        let v_ref = self.params.v_ref_mps();
-        let q_speed_below = self.params.q_speed_below;
-        let slope_torque = self.slope_torques[k];
-        let mut transitions = 0;
+        let here = self.grids[k];
         // No clearing: the next stage reads only existing states (active gears, within their index
         // ranges), and every existing state is written below before that.
         let size = here.count * gears;
@@ -301,92 +310,136 @@ impl Solver {
             self.shift_cur.resize(size, INF);
             self.counter_cur.resize(size, 0);
         }
+        if self.best_all.len() < size {
+            self.best_all.resize(size, NO_CHOICE);
+            self.best_shift.resize(size, NO_CHOICE);
+        }
         let active_here = std::mem::take(&mut self.active[k]);
         let active_next = std::mem::take(&mut self.active[k + 1]);
-
-        let mut cached = match abs_stage {
-            Some(stage) if k > 0 => {
-                let forward = active_next.iter().filter(|&&g| g != NEUTRAL);
-                let (g_lo, g_hi) = (forward.clone().min().copied().unwrap_or(1), forward.max().copied().unwrap_or(1));
-                Some(self.cache.stage(stage, (here.first, here.first + here.count as i64 - 1), (g_lo, g_hi)))
-            }
-            _ => None,
-        };
-        for i in 0..here.count {
-            if !active_here.iter().any(|&g| {
-                let (lo, hi) = self.gear_ranges[k * gears + g];
-                lo as usize <= i && i <= hi as usize
-            }) {
-                continue;
-            }
-            let v_i = here.speed(i);
-            for &g in &active_next {
-                let range = self.gear_ranges[(k + 1) * gears + g];
-                let (all, shift, evaluated) = if g == NEUTRAL {
-                    neutral_choice(&self.params, vehicle, v_i, slope_torque, next, range, &self.cost_next, &self.counter_next)
-                } else {
-                    let (span, row) = match cached.as_mut() {
-                        Some(view) => view.row(vehicle, &self.params, here.first + i as i64, v_i, g, next.index, &mut self.scratch),
-                        None => {
-                            let span = forward_row(vehicle, &self.params, v_i, g, slope_torque, next.index, &mut self.scratch);
-                            (span, &self.scratch[..])
-                        }
-                    };
-                    min_plus(span, row, next, range, g, &self.cost_next, &self.shift_next, &self.counter_next)
-                };
-                self.best_all[g] = all;
-                self.best_shift[g] = shift;
-                transitions += evaluated;
-            }
-            let below = (v_ref - v_i).max(0.0);
-            let speed_cost = q_speed_below * below * below;
-            // The two best shifts, so that each state's best shift to another gear is O(1).
-            let (mut first, mut second) = ((INF, usize::MAX), (INF, usize::MAX));
-            for &g in &active_next {
-                let c = self.best_shift[g].cost;
-                if c < first.0 {
-                    second = first;
-                    first = (c, g);
-                } else if c < second.0 {
-                    second = (c, g);
-                }
-            }
-            for &g_i in &active_here {
-                let (lo, hi) = self.gear_ranges[k * gears + g_i];
-                if (k == 0 && g_i != start_gear) || (i as u32) < lo || (i as u32) > hi {
-                    continue;
-                }
-                let stay = if active_next.contains(&g_i) { self.best_all[g_i] } else { NO_CHOICE };
-                let (shift_cost, shift_gear) = if first.1 != g_i { first } else { second };
-                let q4 = self.params.q_gear_shift;
-                let (best_cost, decision, counter) = if shift_gear != usize::MAX && shift_cost + q4 < stay.cost {
-                    let c = self.best_shift[shift_gear];
-                    (shift_cost + q4, Decision { j: c.j as u16, gear: shift_gear as u8 }, 1)
-                } else {
-                    (stay.cost, Decision { j: stay.j as u16, gear: g_i as u8 }, stay.counter.saturating_add(1).min(u32::MAX / 2))
-                };
-                let idx = g_i * here.count + i;
-                let total = best_cost + speed_cost;
-                self.cost_cur[idx] = total;
-                self.counter_cur[idx] = counter;
-                self.shift_cur[idx] = if counter >= self.params.k_lim { total } else { INF };
-                self.decisions[self.offsets[k] + i * gears + g_i] = decision;
-            }
+        // Velocities with at least one state here.
+        let mut sources = (usize::MAX, 0usize);
+        for &g in &active_here {
+            let (lo, hi) = self.gear_ranges[k * gears + g];
+            sources = (sources.0.min(lo as usize), sources.1.max(hi as usize));
+        }
+        let mut transitions = 0;
+        if sources.0 <= sources.1 {
+            transitions = self.best_per_target_gear(vehicle, k, abs_stage, sources, &active_next);
+            self.stay_or_shift(k, sources, &active_here, &active_next, start_gear, gears);
         }
         self.active[k] = active_here;
         self.active[k + 1] = active_next;
         transitions
     }
 
+    /// First pass of a stage: for every source velocity in `sources` and every target gear, the
+    /// best next state (and the best one that allows a shift now) into `best_all`/`best_shift`,
+    /// indexed [gear * count + i]. Returns the transitions evaluated.
+    fn best_per_target_gear(&mut self, vehicle: &Vehicle, k: usize, abs_stage: Option<u64>, (i_lo, i_hi): (usize, usize), active_next: &[usize]) -> usize {
+        let gears = vehicle.forward_gears() + 1;
+        let (here, next) = (self.grids[k], self.grids[k + 1]);
+        let p = &self.params;
+        let mut uncounted = 0;
+        let (stage, computed): (&mut StageRows, &mut u64) = match abs_stage {
+            Some(stage) if k > 0 => self.cache.stage(stage),
+            _ => {
+                self.scratch_rows.reset(self.slope_torques[k]);
+                (&mut self.scratch_rows, &mut uncounted)
+            }
+        };
+        let slope_torque = self.slope_torques[k];
+        let (key_lo, key_hi) = (here.first + i_lo as i64, here.first + i_hi as i64);
+        let mut transitions = 0;
+        for &g in active_next {
+            let range = self.gear_ranges[(k + 1) * gears + g];
+            let out = &mut self.best_all[g * here.count + i_lo..=g * here.count + i_hi];
+            let out_shift = &mut self.best_shift[g * here.count + i_lo..=g * here.count + i_hi];
+            if g == NEUTRAL {
+                stage.neutral.fill(key_lo, key_hi, |key| neutral_arc(p, vehicle, here.index.speed(key), slope_torque));
+                for ((arc, all), shift) in stage.neutral.get(key_lo, key_hi).iter().zip(out).zip(out_shift) {
+                    (*all, *shift) = neutral_join(p, arc, next, range, &self.cost_next, &self.counter_next);
+                }
+                transitions += i_hi - i_lo + 1;
+            } else {
+                let rows = stage.gear(g);
+                let scratch = &mut self.scratch;
+                *computed += rows.fill(key_lo, key_hi, scratch, |key, buf| forward_row(vehicle, p, here.index.speed(key), g, slope_torque, next.index, buf));
+                let base = g * next.count;
+                let to_go = &self.cost_next[base..base + next.count];
+                let shiftable = &self.shift_next[base..base + next.count];
+                let counters = &self.counter_next[base..base + next.count];
+                for ((meta, all), shift) in rows.meta.get(key_lo, key_hi).iter().zip(out).zip(out_shift) {
+                    let (a, s, evaluated) = min_plus(meta, &rows.costs, next.first, range, (to_go, shiftable, counters));
+                    (*all, *shift) = (a, s);
+                    transitions += evaluated;
+                }
+            }
+        }
+        transitions
+    }
+
+    /// Second pass of a stage: for every state, stay in its gear or take the best shift, plus the
+    /// speed-deviation cost; writes J_k, the counters and the decisions.
+    fn stay_or_shift(&mut self, k: usize, (i_lo, i_hi): (usize, usize), active_here: &[usize], active_next: &[usize], start_gear: usize, gears: usize) {
+        let here = self.grids[k];
+        let n = here.count;
+        let v_ref = self.params.v_ref_mps();
+        let (q_speed_below, q4, k_lim) = (self.params.q_speed_below, self.params.q_gear_shift, self.params.k_lim);
+        // The two best shift targets per velocity, so that each state's best shift to another
+        // gear is O(1). Gears are scanned in order, keeping the first of equal costs.
+        self.shift_first.clear();
+        self.shift_first.resize(i_hi + 1, (INF, usize::MAX));
+        self.shift_second.clear();
+        self.shift_second.resize(i_hi + 1, (INF, usize::MAX));
+        for &g in active_next {
+            let costs = &self.best_shift[g * n + i_lo..=g * n + i_hi];
+            let firsts = &mut self.shift_first[i_lo..=i_hi];
+            let seconds = &mut self.shift_second[i_lo..=i_hi];
+            for ((c, first), second) in costs.iter().zip(firsts).zip(seconds) {
+                let c = c.cost;
+                if c < first.0 {
+                    *second = *first;
+                    *first = (c, g);
+                } else if c < second.0 {
+                    *second = (c, g);
+                }
+            }
+        }
+        for &g_i in active_here {
+            let (lo, hi) = self.gear_ranges[k * gears + g_i];
+            if (k == 0 && g_i != start_gear) || hi < lo {
+                continue;
+            }
+            let stays = active_next.contains(&g_i);
+            for i in lo as usize..=hi as usize {
+                let stay = if stays { self.best_all[g_i * n + i] } else { NO_CHOICE };
+                let (shift_cost, shift_gear) = if self.shift_first[i].1 != g_i { self.shift_first[i] } else { self.shift_second[i] };
+                let (best_cost, decision, counter) = if shift_gear != usize::MAX && shift_cost + q4 < stay.cost {
+                    let c = self.best_shift[shift_gear * n + i];
+                    (shift_cost + q4, Decision { j: c.j as u16, gear: shift_gear as u8 }, 1)
+                } else {
+                    (stay.cost, Decision { j: stay.j as u16, gear: g_i as u8 }, stay.counter.saturating_add(1).min(u32::MAX / 2))
+                };
+                let v_i = here.speed(i);
+                let below = (v_ref - v_i).max(0.0);
+                let total = best_cost + q_speed_below * below * below;
+                let idx = g_i * n + i;
+                self.cost_cur[idx] = total;
+                self.counter_cur[idx] = counter;
+                self.shift_cur[idx] = if counter >= k_lim { total } else { INF };
+                self.decisions[self.offsets[k] + idx] = decision;
+            }
+        }
+    }
+
     /// Follow the stored decisions from the initial state to fill the first control and the
     /// predicted trajectory; the inputs of each step are recomputed from its two speeds.
     fn trace(&self, vehicle: &Vehicle, start: InitialState, out: &mut Solution) {
-        let gears = vehicle.forward_gears() + 1;
         let (mut i, mut g) = (0usize, start.gear);
         let mut v = start.v_mps;
         out.trajectory.clear();
         for k in 0..self.grids.len() - 1 {
-            let d = self.decisions[self.offsets[k] + i * gears + g];
+            let d = self.decisions[self.offsets[k] + g * self.grids[k].count + i];
             let (next_i, next_g) = (d.j as usize, d.gear as usize);
             let v_next = self.grids[k + 1].speed(next_i);
             let (pedal, brake) = if next_g == NEUTRAL {
@@ -409,43 +462,68 @@ impl Solver {
 }
 
 /// The smallest `row[t] + to_go[t]` and its first index t: the min-plus inner loop.
+///
+/// The minimum is found first on four independent lanes (no loop-carried dependency through an
+/// index, so the compiler can use packed instructions), then its first index by a second scan
+/// for equality; rows are short and the sums are the same floating-point values both times, so
+/// the result equals that of one scan keeping the first strict improvement.
 #[inline]
 fn argmin_sum(row: &[f64], to_go: &[f64]) -> (f64, usize) {
     let to_go = &to_go[..row.len()]; // equal lengths: lets the compiler drop the bounds checks
-    let (mut best, mut best_t) = (INF, 0usize);
-    for t in 0..row.len() {
-        let c = row[t] + to_go[t];
-        if c < best {
-            best = c;
-            best_t = t;
+    let mut lanes = [INF; 4];
+    let (row_chunks, row_tail) = row.as_chunks::<4>();
+    let (to_go_chunks, to_go_tail) = to_go.as_chunks::<4>();
+    for (r, c) in row_chunks.iter().zip(to_go_chunks) {
+        for l in 0..4 {
+            let x = r[l] + c[l];
+            lanes[l] = if x < lanes[l] { x } else { lanes[l] };
         }
     }
+    let mut best = INF;
+    for lane in lanes {
+        best = if lane < best { lane } else { best };
+    }
+    for (r, c) in row_tail.iter().zip(to_go_tail) {
+        let x = r + c;
+        best = if x < best { x } else { best };
+    }
+    if best == INF {
+        return (INF, 0);
+    }
+    let best_t = row.iter().zip(to_go).position(|(r, c)| r + c == best).unwrap_or(0);
     (best, best_t)
 }
 
-/// The single neutral arc from v_i: its end speed is set by the physics; join it to the next grid
-/// by the configured rule. Returns (best, best shiftable, transitions evaluated).
-#[inline]
-fn neutral_choice(p: &MpcParams, vehicle: &Vehicle, v_i: f64, slope_torque: f64, next: StageGrid, (lo, hi): (u32, u32), cost_next: &[f64], counter_next: &[u32]) -> (Choice, Choice, usize) {
+/// The single neutral arc from `v_i_mps` on a stage: where the physics ends it, and its fuel and
+/// speed-change cost.
+fn neutral_arc(p: &MpcParams, vehicle: &Vehicle, v_i_mps: f64, slope_torque: f64) -> NeutralArc {
     let h = p.stage_m;
-    let v_end = brake_accel_on(vehicle, v_i, NEUTRAL, slope_torque).step(v_i, h, 0.0);
-    let x = (v_end - next.speed(0)) / p.delta_mps();
+    let v_end_mps = brake_accel_on(vehicle, v_i_mps, NEUTRAL, slope_torque).step(v_i_mps, h, 0.0);
+    let fuel = stage_fuel_g(vehicle, v_i_mps, 0.0, NEUTRAL, h);
+    NeutralArc { v_end_mps, cost: p.q_fuel * fuel + p.q_speed_change * (v_i_mps - v_end_mps).abs() }
+}
+
+/// Join a neutral arc to the next grid by the configured rule, within the neutral states' index
+/// range. Returns (best, best shiftable).
+#[inline]
+fn neutral_join(p: &MpcParams, arc: &NeutralArc, next: StageGrid, (lo, hi): (u32, u32), cost_next: &[f64], counter_next: &[u32]) -> (Choice, Choice) {
+    let x = (arc.v_end_mps - next.speed(0)) / p.delta_mps();
     // Grid indices are never negative; x below −0.5 is outside the grid either way.
     if x < lo as f64 - 0.5 || x > hi as f64 + 0.5 {
-        return (NO_CHOICE, NO_CHOICE, 1);
+        return (NO_CHOICE, NO_CHOICE);
     }
     let (to_go, j, counter) = match p.neutral_rule {
         NeutralRule::Nearest => {
             let j = (x + 0.5) as usize; // round half up without a libm call; x + 0.5 >= 0 here
             if j < lo as usize || j > hi as usize {
-                return (NO_CHOICE, NO_CHOICE, 1);
+                return (NO_CHOICE, NO_CHOICE);
             }
             (cost_next[j], j, counter_next[j])
         }
         NeutralRule::Interpolate => {
             const TOL: f64 = 1e-9;
             if x < lo as f64 - TOL || x > hi as f64 + TOL {
-                return (NO_CHOICE, NO_CHOICE, 1);
+                return (NO_CHOICE, NO_CHOICE);
             }
             let x = x.clamp(lo as f64, hi as f64);
             let j0 = x as usize;
@@ -460,47 +538,44 @@ fn neutral_choice(p: &MpcParams, vehicle: &Vehicle, v_i: f64, slope_torque: f64,
         }
     };
     if !to_go.is_finite() {
-        return (NO_CHOICE, NO_CHOICE, 1);
+        return (NO_CHOICE, NO_CHOICE);
     }
-    let fuel = stage_fuel_g(vehicle, v_i, 0.0, NEUTRAL, h);
-    let cost = p.q_fuel * fuel + p.q_speed_change * (v_i - v_end).abs() + to_go;
-    let c = Choice { cost, j: j as u32, counter };
+    let c = Choice { cost: arc.cost + to_go, j: j as u32, counter };
     let shift = if counter >= p.k_lim { c } else { NO_CHOICE };
-    (c, shift, 1)
+    (c, shift)
 }
 
-/// The min-plus step for one state and one forward target gear: over the part of the row's span
-/// where the target gear has states, the best of row cost + cost-to-go, and the best among targets
-/// whose continuation allows a shift now. Returns (best, best shiftable, transitions evaluated).
+/// The min-plus step for one source velocity and one forward target gear: over the part of the
+/// row where the target gear has states (`lo..=hi` of the next grid, whose first grid index is
+/// `next_first`), the best of row cost + cost-to-go, and the best among targets whose
+/// continuation allows a shift now. `to_go`, `shiftable` and `counters` are the target gear's
+/// cost_next, shift_next and counter_next. Returns (best, best shiftable, transitions evaluated).
 #[inline]
-fn min_plus(span: RowSpan, row: &[f64], next: StageGrid, (lo, hi): (u32, u32), gear: usize, cost_next: &[f64], shift_next: &[f64], counter_next: &[u32]) -> (Choice, Choice, usize) {
-    if span.len == 0 {
-        return (NO_CHOICE, NO_CHOICE, 0);
-    }
-    // Row index t ↔ next-stage grid index j = span.first + t − next.first.
-    let offset = span.first - next.first;
+fn min_plus(meta: &RowMeta, costs: &[f64], next_first: i64, (lo, hi): (u32, u32), (to_go, shiftable, counters): (&[f64], &[f64], &[u32])) -> (Choice, Choice, usize) {
+    let span = meta.span();
+    // Row index t ↔ next-stage grid index j = span.first + t − next_first.
+    let offset = span.first - next_first;
     let j_lo = offset.max(lo as i64);
     let j_hi = (offset + span.len as i64 - 1).min(hi as i64);
-    if j_hi < j_lo {
+    if span.len == 0 || j_hi < j_lo {
         return (NO_CHOICE, NO_CHOICE, 0);
     }
     let (j_lo, j_hi) = (j_lo as usize, j_hi as usize);
-    let base = gear * next.count;
-    let row = &row[(j_lo as i64 - offset) as usize..=(j_hi as i64 - offset) as usize];
-    let to_go = &cost_next[base + j_lo..=base + j_hi];
-    let (best, best_t) = argmin_sum(row, to_go);
+    let row_start = meta.offset as usize + (j_lo as i64 - offset) as usize;
+    let row = &costs[row_start..=row_start + (j_hi - j_lo)];
+    let (best, best_t) = argmin_sum(row, &to_go[j_lo..=j_hi]);
+    if best == INF {
+        return (NO_CHOICE, NO_CHOICE, row.len());
+    }
+    let choice = |cost: f64, t: usize| Choice { cost, j: (j_lo + t) as u32, counter: counters[j_lo + t] };
+    let all = choice(best, best_t);
     // Usually the best target's continuation allows a shift into it, and then it is also the best
     // shiftable one; only otherwise scan again among the targets that allow it.
-    let (mut best_s, mut best_s_t) = (best, best_t);
-    if best < INF && shift_next[base + j_lo + best_t] == INF {
-        (best_s, best_s_t) = argmin_sum(row, &shift_next[base + j_lo..=base + j_hi]);
-    }
-    let choice = |cost: f64, t: usize| {
-        if cost < INF {
-            Choice { cost, j: (j_lo + t) as u32, counter: counter_next[base + j_lo + t] }
-        } else {
-            NO_CHOICE
-        }
+    let shift = if shiftable[j_lo + best_t] != INF {
+        all
+    } else {
+        let (best_s, best_s_t) = argmin_sum(row, &shiftable[j_lo..=j_hi]);
+        if best_s < INF { choice(best_s, best_s_t) } else { NO_CHOICE }
     };
-    (choice(best, best_t), choice(best_s, best_s_t), row.len())
+    (all, shift, row.len())
 }
