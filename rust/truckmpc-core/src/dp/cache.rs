@@ -14,43 +14,67 @@ use std::collections::VecDeque;
 use super::rows::RowSpan;
 
 /// Values for a contiguous range of source keys (grid indices), grown at either end on demand.
+/// The buffer keeps slack in front of the first value, so growing downwards (the usual way a
+/// stage's range moves between solves) does not move the values.
 #[derive(Debug, Clone)]
 pub struct Keyed<T> {
+    /// Key of `data[start]`.
     key_lo: i64,
-    values: Vec<T>,
+    start: usize,
+    data: Vec<T>,
 }
 
 impl<T> Default for Keyed<T> {
     fn default() -> Self {
-        Keyed { key_lo: 0, values: Vec::new() }
+        Keyed { key_lo: 0, start: 0, data: Vec::new() }
     }
 }
 
-impl<T: Copy> Keyed<T> {
+/// Slack kept in front of the first value when the buffer is (re)built.
+const FRONT_SLACK: usize = 32;
+
+impl<T: Copy + Default> Keyed<T> {
     fn clear(&mut self) {
-        self.values.clear();
+        self.data.clear();
+        self.start = 0;
+    }
+
+    fn len(&self) -> usize {
+        self.data.len() - self.start
     }
 
     /// Make sure keys `lo..=hi` have values, computing the missing ones with `make` (a request
     /// that leaves a gap to the present range fills the gap too, so the range stays contiguous).
     /// Returns how many values were computed.
     pub fn fill(&mut self, lo: i64, hi: i64, mut make: impl FnMut(i64) -> T) -> u64 {
-        if self.values.is_empty() {
+        if self.len() == 0 {
+            self.data.clear();
+            self.data.resize(FRONT_SLACK, T::default());
+            self.start = FRONT_SLACK;
             self.key_lo = lo;
-            self.values.extend((lo..=hi).map(&mut make));
-            return self.values.len() as u64;
+            self.data.extend((lo..=hi).map(&mut make));
+            return (hi - lo + 1) as u64;
         }
-        let present_hi = self.key_lo + self.values.len() as i64 - 1;
+        let present_hi = self.key_lo + self.len() as i64 - 1;
         let mut computed = 0;
         if lo < self.key_lo {
-            let mut front: Vec<T> = (lo..self.key_lo).map(&mut make).collect();
-            computed += front.len() as u64;
-            front.extend_from_slice(&self.values);
-            self.values = front;
+            let missing = (self.key_lo - lo) as usize;
+            if missing > self.start {
+                // Rebuild with fresh slack in front.
+                let mut data = vec![T::default(); missing + FRONT_SLACK];
+                data.extend_from_slice(&self.data[self.start..]);
+                self.start = missing + FRONT_SLACK;
+                self.data = data;
+            }
+            self.start -= missing;
+            for (slot, key) in self.data[self.start..self.start + missing].iter_mut().zip(lo..) {
+                *slot = make(key);
+            }
             self.key_lo = lo;
+            computed += missing as u64;
         }
         if hi > present_hi {
-            self.values.extend((present_hi + 1..=hi).map(&mut make));
+            self.data.extend((present_hi + 1..=hi).map(&mut make));
             computed += (hi - present_hi) as u64;
         }
         computed
@@ -59,48 +83,92 @@ impl<T: Copy> Keyed<T> {
     /// The values of keys `lo..=hi` (which must have been filled).
     #[inline]
     pub fn get(&self, lo: i64, hi: i64) -> &[T] {
-        &self.values[(lo - self.key_lo) as usize..=(hi - self.key_lo) as usize]
+        let at = self.start as i64 - self.key_lo;
+        &self.data[(at + lo) as usize..=(at + hi) as usize]
     }
 }
 
-/// Where one row lives in its gear's cost buffer.
+/// Source velocities per block: the min-plus pass runs the rows of this many consecutive source
+/// velocities side by side, one per SIMD lane.
+pub const LANES: usize = 4;
+
+/// Margin of +∞ values on each side of a gear's block of cost-to-go values: a block whose reach
+/// starts up to this many grid points before the next grid (and ends within as many after it)
+/// needs no clipping.
+pub const PAD: usize = 24;
+
+/// One block of rows: the transition costs from `LANES` consecutive source velocities (keys
+/// `LANES·b ..`) towards one target gear, transposed so that each step of the min-plus pass
+/// loads one cost per lane. Lane l at step d targets next-grid index `first + l + d`: as the
+/// source speed rises by one grid step, so does the band it reaches, so one diagonal band holds
+/// every lane's row with little waste. Costs where a lane's row has no admissible target are +∞.
 #[derive(Debug, Clone, Copy, Default)]
-pub struct RowMeta {
-    /// Next-stage grid index of the row's first cost.
+pub struct Block {
+    /// Next-grid index targeted by lane 0 at step 0.
     pub first: i32,
-    /// Start of the row in the cost buffer.
+    /// Number of steps d.
+    pub steps: u32,
+    /// Start of the block's `steps × LANES` costs in the cost buffer.
     pub offset: u32,
-    /// Number of costs (0: no admissible target).
-    pub len: u32,
+    /// Per lane, its row's span on the next grid: (first index, length).
+    pub spans: [(i32, u32); LANES],
 }
 
-impl RowMeta {
-    /// The span the row covers on the next grid.
-    #[inline]
-    pub fn span(&self) -> RowSpan {
-        RowSpan { first: self.first as i64, len: self.len as usize }
-    }
-}
-
-/// The rows of one stage towards one forward target gear, keyed by source grid index.
+/// The row blocks of one stage towards one forward target gear, keyed by block index.
 #[derive(Debug, Clone, Default)]
-pub struct GearRows {
-    pub meta: Keyed<RowMeta>,
+pub struct GearBlocks {
+    pub blocks: Keyed<Block>,
     pub costs: Vec<f64>,
 }
 
-impl GearRows {
-    /// Make sure the rows of keys `lo..=hi` exist; `row(key, out)` writes one row's costs into
-    /// `out` and returns its span. Returns the rows computed.
+impl GearBlocks {
+    /// Make sure the blocks holding source keys `lo..=hi` exist; `row(key, out)` writes one
+    /// row's costs into `out` and returns its span. Returns the rows computed.
     pub fn fill(&mut self, lo: i64, hi: i64, scratch: &mut Vec<f64>, mut row: impl FnMut(i64, &mut Vec<f64>) -> RowSpan) -> u64 {
         let costs = &mut self.costs;
-        self.meta.fill(lo, hi, |key| {
-            let span = row(key, scratch);
-            let meta = RowMeta { first: span.first as i32, offset: costs.len() as u32, len: span.len as u32 };
-            costs.extend_from_slice(&scratch[..span.len]);
-            meta
-        })
+        let lanes = LANES as i64;
+        let mut rows = [(RowSpan::default(), 0usize); LANES];
+        let mut row_costs: Vec<f64> = Vec::new();
+        LANES as u64
+            * self.blocks.fill(lo.div_euclid(lanes), hi.div_euclid(lanes), |b| {
+                row_costs.clear();
+                for (l, slot) in rows.iter_mut().enumerate() {
+                    let span = row(b * lanes + l as i64, scratch);
+                    *slot = (span, row_costs.len());
+                    row_costs.extend_from_slice(&scratch[..span.len]);
+                }
+                transpose(&rows, &row_costs, costs)
+            })
     }
+
+    /// The blocks holding source keys `lo..=hi` (filled before), the first block's first key.
+    #[inline]
+    pub fn get(&self, lo: i64, hi: i64) -> (&[Block], i64) {
+        let lanes = LANES as i64;
+        (self.blocks.get(lo.div_euclid(lanes), hi.div_euclid(lanes)), lo.div_euclid(lanes) * lanes)
+    }
+}
+
+/// Append the rows of one block (spans and where each row starts in `row_costs`) to `costs`,
+/// transposed onto the block's diagonal band; returns the block.
+fn transpose(rows: &[(RowSpan, usize); LANES], row_costs: &[f64], costs: &mut Vec<f64>) -> Block {
+    let present = || rows.iter().enumerate().filter(|(_, (span, _))| span.len > 0);
+    let first = present().map(|(l, (span, _))| span.first - l as i64).min();
+    let spans = std::array::from_fn(|l| (rows[l].0.first as i32, rows[l].0.len as u32));
+    let Some(first) = first else {
+        return Block { first: 0, steps: 0, offset: costs.len() as u32, spans };
+    };
+    let end = present().map(|(l, (span, _))| span.first - l as i64 + span.len as i64).max().unwrap();
+    let steps = (end - first) as usize;
+    let offset = costs.len();
+    costs.resize(offset + steps * LANES, f64::INFINITY);
+    for (l, (span, start)) in present() {
+        let d0 = (span.first - l as i64 - first) as usize;
+        for (t, &cost) in row_costs[*start..*start + span.len].iter().enumerate() {
+            costs[offset + (d0 + t) * LANES + l] = cost;
+        }
+    }
+    Block { first: first as i32, steps: steps as u32, offset: offset as u32, spans }
 }
 
 /// A neutral arc from one source speed: where it ends and the part of its cost that does not
@@ -118,7 +186,7 @@ pub struct NeutralArc {
 pub struct StageRows {
     slope_torque_nm: f64,
     /// Indexed by gear; entry 0 (neutral) is unused.
-    gears: Vec<GearRows>,
+    gears: Vec<GearBlocks>,
     pub neutral: Keyed<NeutralArc>,
 }
 
@@ -127,17 +195,17 @@ impl StageRows {
     pub fn reset(&mut self, slope_torque_nm: f64) {
         self.slope_torque_nm = slope_torque_nm;
         for rows in &mut self.gears {
-            rows.meta.clear();
+            rows.blocks.clear();
             rows.costs.clear();
         }
         self.neutral.clear();
     }
 
-    /// The rows towards forward `gear`.
+    /// The row blocks towards forward `gear`.
     #[inline]
-    pub fn gear(&mut self, gear: usize) -> &mut GearRows {
+    pub fn gear(&mut self, gear: usize) -> &mut GearBlocks {
         if self.gears.len() <= gear {
-            self.gears.resize_with(gear + 1, GearRows::default);
+            self.gears.resize_with(gear + 1, GearBlocks::default);
         }
         &mut self.gears[gear]
     }

@@ -5,6 +5,7 @@ pub mod cache;
 pub mod horizon;
 pub mod params;
 pub mod rows;
+pub mod simd;
 pub mod solver;
 pub mod space;
 

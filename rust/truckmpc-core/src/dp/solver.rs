@@ -15,14 +15,21 @@
 //! 1 + c ≥ k_lim, would let them come k_lim − 1 stages apart, contradicting the forward counter of
 //! (5.6).) Stages reached before the vehicle's own counter allows a shift keep the current gear.
 
-use super::cache::{NeutralArc, RowCache, RowMeta, StageRows};
+use super::cache::{Block, NeutralArc, RowCache, StageRows, LANES, PAD};
 use super::params::{GridAnchor, MpcParams, NeutralRule};
 use super::rows::{forward_row, inputs, GridIndex};
+use super::simd::{self, LaneMins};
 use super::space::{self, Grid, Intervals};
 use crate::levels::{brake_accel_on, stage_fuel_g};
 use crate::vehicle::{Vehicle, NEUTRAL};
 
 const INF: f64 = f64::INFINITY;
+
+/// Length of one gear's block of values for a grid of `count` points (margins included).
+#[inline]
+fn stride(count: usize) -> usize {
+    count + 2 * PAD
+}
 
 /// Initial state of a solve: the speed predicted at the start of the horizon, the gear used on the
 /// stage leading there, and the stages driven in that gear since the last shift.
@@ -119,6 +126,8 @@ pub struct Solver {
     gear_ranges: Vec<(u32, u32)>,
     /// Per stage, the gears that have states there.
     active: Vec<Vec<usize>>,
+    /// J_{k+1} per gear: a block of `stride(count)` values per gear, state j at
+    /// [gear * stride + PAD + j], +∞ where a gear has no state (and in the margins).
     cost_next: Vec<f64>,
     /// cost_next where the state's continuation allows a shift into it, +∞ elsewhere.
     shift_next: Vec<f64>,
@@ -209,15 +218,15 @@ impl Solver {
         let states = self.gear_ranges.iter().map(|&(lo, hi)| if hi >= lo { (hi - lo + 1) as usize } else { 0 }).sum();
 
         // Terminal cost 0; the counters of final states allow any shift before them.
-        let last = self.grids[n_stages].count;
+        let stride_last = stride(self.grids[n_stages].count);
         self.cost_next.clear();
+        self.cost_next.resize(gears * stride_last, INF);
         self.counter_next.clear();
+        self.counter_next.resize(gears * stride_last, self.params.k_lim);
         for g in 0..gears {
             let (lo, hi) = self.gear_ranges[n_stages * gears + g];
-            for j in 0..last {
-                let exists = (lo as usize) <= j && j <= hi as usize;
-                self.cost_next.push(if exists { 0.0 } else { INF });
-                self.counter_next.push(self.params.k_lim);
+            if hi >= lo {
+                self.cost_next[g * stride_last + PAD + lo as usize..=g * stride_last + PAD + hi as usize].fill(0.0);
             }
         }
         self.shift_next.clone_from(&self.cost_next);
@@ -229,7 +238,7 @@ impl Solver {
             std::mem::swap(&mut self.shift_cur, &mut self.shift_next);
             std::mem::swap(&mut self.counter_cur, &mut self.counter_next);
         }
-        let cost = self.cost_next[start.gear];
+        let cost = self.cost_next[start.gear * stride(1) + PAD];
         let mut solution = Solution { feasible: cost.is_finite(), cost, states, transitions, ..Solution::default() };
         if solution.feasible {
             self.trace(vehicle, start, &mut solution);
@@ -304,12 +313,13 @@ impl Solver {
         let here = self.grids[k];
         // No clearing: the next stage reads only existing states (active gears, within their index
         // ranges), and every existing state is written below before that.
-        let size = here.count * gears;
+        let size = stride(here.count) * gears;
         if self.cost_cur.len() < size {
             self.cost_cur.resize(size, INF);
             self.shift_cur.resize(size, INF);
             self.counter_cur.resize(size, 0);
         }
+        let size = here.count * gears;
         if self.best_all.len() < size {
             self.best_all.resize(size, NO_CHOICE);
             self.best_shift.resize(size, NO_CHOICE);
@@ -357,21 +367,30 @@ impl Solver {
             if g == NEUTRAL {
                 stage.neutral.fill(key_lo, key_hi, |key| neutral_arc(p, vehicle, here.index.speed(key), slope_torque));
                 for ((arc, all), shift) in stage.neutral.get(key_lo, key_hi).iter().zip(out).zip(out_shift) {
-                    (*all, *shift) = neutral_join(p, arc, next, range, &self.cost_next, &self.counter_next);
+                    (*all, *shift) = neutral_join(p, arc, next, range, &self.cost_next[PAD..], &self.counter_next[PAD..]);
                 }
                 transitions += i_hi - i_lo + 1;
             } else {
                 let rows = stage.gear(g);
                 let scratch = &mut self.scratch;
                 *computed += rows.fill(key_lo, key_hi, scratch, |key, buf| forward_row(vehicle, p, here.index.speed(key), g, slope_torque, next.index, buf));
-                let base = g * next.count;
-                let to_go = &self.cost_next[base..base + next.count];
-                let shiftable = &self.shift_next[base..base + next.count];
-                let counters = &self.counter_next[base..base + next.count];
-                for ((meta, all), shift) in rows.meta.get(key_lo, key_hi).iter().zip(out).zip(out_shift) {
-                    let (a, s, evaluated) = min_plus(meta, &rows.costs, next.first, range, (to_go, shiftable, counters));
-                    (*all, *shift) = (a, s);
-                    transitions += evaluated;
+                let values = g * stride(next.count)..(g + 1) * stride(next.count);
+                let values = (&self.cost_next[values.clone()], &self.shift_next[values.clone()], &self.counter_next[values]);
+                let (blocks, first_key) = rows.get(key_lo, key_hi);
+                for (b, block) in blocks.iter().enumerate() {
+                    let key0 = first_key + (b * LANES) as i64;
+                    let mins = block_mins(block, &rows.costs, block.first as i64 - next.first, range, values);
+                    for l in 0..LANES {
+                        let key = key0 + l as i64;
+                        if key < key_lo || key > key_hi {
+                            continue;
+                        }
+                        let at = (key - key_lo) as usize;
+                        (out[at], out_shift[at]) = lane_choices(block, &mins, l, next.first, values.2);
+                        let (first, len) = block.spans[l];
+                        let first = first as i64 - next.first;
+                        transitions += ((first + len as i64 - 1).min(range.1 as i64) - first.max(range.0 as i64) + 1).max(0) as usize;
+                    }
                 }
             }
         }
@@ -423,11 +442,17 @@ impl Solver {
                 let v_i = here.speed(i);
                 let below = (v_ref - v_i).max(0.0);
                 let total = best_cost + q_speed_below * below * below;
-                let idx = g_i * n + i;
-                self.cost_cur[idx] = total;
-                self.counter_cur[idx] = counter;
-                self.shift_cur[idx] = if counter >= k_lim { total } else { INF };
-                self.decisions[self.offsets[k] + idx] = decision;
+                let at = g_i * stride(n) + PAD + i;
+                self.cost_cur[at] = total;
+                self.counter_cur[at] = counter;
+                self.shift_cur[at] = if counter >= k_lim { total } else { INF };
+                self.decisions[self.offsets[k] + g_i * n + i] = decision;
+            }
+            // The rest of the gear's block (no state there) is +∞ for the min-plus pass.
+            let block = g_i * stride(n)..(g_i + 1) * stride(n);
+            for part in [block.start..block.start + PAD + lo as usize, block.start + PAD + hi as usize + 1..block.end] {
+                self.cost_cur[part.clone()].fill(INF);
+                self.shift_cur[part].fill(INF);
             }
         }
     }
@@ -459,39 +484,6 @@ impl Solver {
         out.brake = first.brake;
         out.gear = first.gear;
     }
-}
-
-/// The smallest `row[t] + to_go[t]` and its first index t: the min-plus inner loop.
-///
-/// The minimum is found first on four independent lanes (no loop-carried dependency through an
-/// index, so the compiler can use packed instructions), then its first index by a second scan
-/// for equality; rows are short and the sums are the same floating-point values both times, so
-/// the result equals that of one scan keeping the first strict improvement.
-#[inline]
-fn argmin_sum(row: &[f64], to_go: &[f64]) -> (f64, usize) {
-    let to_go = &to_go[..row.len()]; // equal lengths: lets the compiler drop the bounds checks
-    let mut lanes = [INF; 4];
-    let (row_chunks, row_tail) = row.as_chunks::<4>();
-    let (to_go_chunks, to_go_tail) = to_go.as_chunks::<4>();
-    for (r, c) in row_chunks.iter().zip(to_go_chunks) {
-        for l in 0..4 {
-            let x = r[l] + c[l];
-            lanes[l] = if x < lanes[l] { x } else { lanes[l] };
-        }
-    }
-    let mut best = INF;
-    for lane in lanes {
-        best = if lane < best { lane } else { best };
-    }
-    for (r, c) in row_tail.iter().zip(to_go_tail) {
-        let x = r + c;
-        best = if x < best { x } else { best };
-    }
-    if best == INF {
-        return (INF, 0);
-    }
-    let best_t = row.iter().zip(to_go).position(|(r, c)| r + c == best).unwrap_or(0);
-    (best, best_t)
 }
 
 /// The single neutral arc from `v_i_mps` on a stage: where the physics ends it, and its fuel and
@@ -545,37 +537,108 @@ fn neutral_join(p: &MpcParams, arc: &NeutralArc, next: StageGrid, (lo, hi): (u32
     (c, shift)
 }
 
-/// The min-plus step for one source velocity and one forward target gear: over the part of the
-/// row where the target gear has states (`lo..=hi` of the next grid, whose first grid index is
-/// `next_first`), the best of row cost + cost-to-go, and the best among targets whose
-/// continuation allows a shift now. `to_go`, `shiftable` and `counters` are the target gear's
-/// cost_next, shift_next and counter_next. Returns (best, best shiftable, transitions evaluated).
+/// The min-plus pass over one block of rows towards one forward target gear: per lane, the best
+/// of row cost + cost-to-go and the best among targets whose continuation allows a shift now.
+/// `base` is the next-grid index of lane 0 at step 0; `values` the target gear's blocks of
+/// cost_next, shift_next and counter_next (margins included, state j at PAD + j).
 #[inline]
-fn min_plus(meta: &RowMeta, costs: &[f64], next_first: i64, (lo, hi): (u32, u32), (to_go, shiftable, counters): (&[f64], &[f64], &[u32])) -> (Choice, Choice, usize) {
-    let span = meta.span();
-    // Row index t ↔ next-stage grid index j = span.first + t − next_first.
-    let offset = span.first - next_first;
-    let j_lo = offset.max(lo as i64);
-    let j_hi = (offset + span.len as i64 - 1).min(hi as i64);
-    if span.len == 0 || j_hi < j_lo {
-        return (NO_CHOICE, NO_CHOICE, 0);
+fn block_mins(block: &Block, costs: &[f64], base: i64, (lo, hi): (u32, u32), (to_go, shiftable, _): (&[f64], &[f64], &[u32])) -> LaneMins {
+    let steps = block.steps as usize;
+    let at = base + PAD as i64;
+    let costs = &costs[block.offset as usize..];
+    if steps > 0 && at >= 0 && at as usize + steps + LANES - 1 <= to_go.len() {
+        // The values outside the target gear's states are +∞ (margins included): no clipping.
+        let at = at as usize;
+        return simd::block_mins(costs, steps, &to_go[at..], &shiftable[at..]);
     }
-    let (j_lo, j_hi) = (j_lo as usize, j_hi as usize);
-    let row_start = meta.offset as usize + (j_lo as i64 - offset) as usize;
-    let row = &costs[row_start..=row_start + (j_hi - j_lo)];
-    let (best, best_t) = argmin_sum(row, &to_go[j_lo..=j_hi]);
-    if best == INF {
-        return (NO_CHOICE, NO_CHOICE, row.len());
+    block_mins_clipped(costs, steps, base, (lo, hi), to_go, shiftable)
+}
+
+/// [`block_mins`] for a block reaching beyond the margins: only targets that are states count.
+#[cold]
+fn block_mins_clipped(costs: &[f64], steps: usize, base: i64, (lo, hi): (u32, u32), to_go: &[f64], shiftable: &[f64]) -> LaneMins {
+    let mut out = LaneMins { all: [INF; LANES], all_step: [0; LANES], shift: [INF; LANES], shift_step: [0; LANES] };
+    for d in 0..steps {
+        for l in 0..LANES {
+            let j = base + (l + d) as i64;
+            if j < lo as i64 || j > hi as i64 {
+                continue;
+            }
+            let c = costs[d * LANES + l];
+            let (x, y) = (c + to_go[PAD + j as usize], c + shiftable[PAD + j as usize]);
+            if x < out.all[l] {
+                (out.all[l], out.all_step[l]) = (x, d as u32);
+            }
+            if y < out.shift[l] {
+                (out.shift[l], out.shift_step[l]) = (y, d as u32);
+            }
+        }
     }
-    let choice = |cost: f64, t: usize| Choice { cost, j: (j_lo + t) as u32, counter: counters[j_lo + t] };
-    let all = choice(best, best_t);
-    // Usually the best target's continuation allows a shift into it, and then it is also the best
-    // shiftable one; only otherwise scan again among the targets that allow it.
-    let shift = if shiftable[j_lo + best_t] != INF {
-        all
-    } else {
-        let (best_s, best_s_t) = argmin_sum(row, &shiftable[j_lo..=j_hi]);
-        if best_s < INF { choice(best_s, best_s_t) } else { NO_CHOICE }
+    out
+}
+
+/// Lane `l`'s choices from a block pass: (best, best shiftable), with the next-grid index and
+/// the target's counter (`counters` is the target gear's counter_next block).
+#[inline]
+fn lane_choices(block: &Block, mins: &LaneMins, l: usize, next_first: i64, counters: &[u32]) -> (Choice, Choice) {
+    let choice = |cost: f64, step: u32| {
+        if cost < INF {
+            let j = (block.first as i64 - next_first) as usize + l + step as usize;
+            Choice { cost, j: j as u32, counter: counters[PAD + j] }
+        } else {
+            NO_CHOICE
+        }
     };
-    (all, shift, row.len())
+    (choice(mins.all[l], mins.all_step[l]), choice(mins.shift[l], mins.shift_step[l]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Per lane, the first strict improvement over the targets that are states (`lo..=hi`).
+    fn scalar_lane(costs: &[f64], steps: usize, base: i64, (lo, hi): (u32, u32), values: &[f64], l: usize) -> (f64, u32) {
+        let mut best = (INF, 0);
+        for d in 0..steps {
+            let j = base + (l + d) as i64;
+            if j >= lo as i64 && j <= hi as i64 {
+                let x = costs[d * LANES + l] + values[PAD + j as usize];
+                if x < best.0 {
+                    best = (x, d as u32);
+                }
+            }
+        }
+        best
+    }
+
+    #[test]
+    fn block_pass_inside_and_beyond_the_margins_matches_a_scalar_scan() {
+        let (count, steps) = (30usize, 20usize);
+        let (lo, hi) = (3u32, 25u32);
+        let mut seed = 5u64;
+        let mut next = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 35) % 9
+        };
+        for _ in 0..50 {
+            let costs: Vec<f64> = (0..steps * LANES).map(|_| if next() == 0 { INF } else { next() as f64 * 0.5 }).collect();
+            // Values as the solver keeps them: +∞ outside the states and in the margins.
+            let mut to_go = vec![INF; stride(count)];
+            let mut shiftable = vec![INF; stride(count)];
+            for j in lo..=hi {
+                to_go[PAD + j as usize] = next() as f64;
+                shiftable[PAD + j as usize] = if next() < 3 { INF } else { to_go[PAD + j as usize] };
+            }
+            let counters = vec![0u32; stride(count)];
+            let block = Block { first: 0, steps: steps as u32, offset: 0, spans: [(0, 0); LANES] };
+            // Inside the margins (packed pass) and reaching below them (clipped pass).
+            for base in [-4i64, 10, -(PAD as i64) - 3, count as i64 - 5] {
+                let mins = block_mins(&block, &costs, base, (lo, hi), (&to_go, &shiftable, &counters));
+                for l in 0..LANES {
+                    assert_eq!((mins.all[l], mins.all_step[l]), scalar_lane(&costs, steps, base, (lo, hi), &to_go, l), "base {base} lane {l}");
+                    assert_eq!((mins.shift[l], mins.shift_step[l]), scalar_lane(&costs, steps, base, (lo, hi), &shiftable, l), "base {base} lane {l}");
+                }
+            }
+        }
+    }
 }

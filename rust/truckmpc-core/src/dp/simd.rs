@@ -1,0 +1,169 @@
+//! The DP's innermost loop: for a block of `LANES` source velocities towards one target gear,
+//! per lane the smallest row cost + cost-to-go and its first index, against both the cost-to-go
+//! and the cost-to-go of targets that allow a shift.
+//!
+//! Lanes are source velocities, not row entries: rows are short (about 8 to 17 admissible targets)
+//! and a horizontal minimum per row costs a reduction and a data-dependent branch, while one step
+//! across lanes needs neither. On x86-64 with AVX2 (detected at run time) a step is a handful of
+//! 4-wide instructions; elsewhere the portable loop, which the compiler vectorises as it can. Only
+//! additions, comparisons and selects are used, so every path gives the same bits as a scalar
+//! scan of each row keeping the first strict improvement ([`argmin_sum_scalar`], which the tests
+//! compare against).
+
+use super::cache::LANES;
+
+const INF: f64 = f64::INFINITY;
+
+/// The reference for one lane: a scan of `row[t] + to_go[t]` keeping the first strict improvement
+/// (+∞ and 0 when every sum is +∞).
+#[inline]
+pub fn argmin_sum_scalar(row: &[f64], to_go: &[f64]) -> (f64, usize) {
+    let to_go = &to_go[..row.len()];
+    let (mut best, mut best_t) = (INF, 0usize);
+    for t in 0..row.len() {
+        let c = row[t] + to_go[t];
+        if c < best {
+            best = c;
+            best_t = t;
+        }
+    }
+    (best, best_t)
+}
+
+/// Per lane of a block: the smallest cost + to-go and the first step reaching it, and the same
+/// against the shiftable to-go (cost +∞ and step 0 when none is finite).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LaneMins {
+    pub all: [f64; LANES],
+    pub all_step: [u32; LANES],
+    pub shift: [f64; LANES],
+    pub shift_step: [u32; LANES],
+}
+
+/// The min-plus pass over one block of rows (see [`crate::dp::cache::Block`]): `costs` holds
+/// `steps × LANES` costs, step-major; lane l at step d adds `to_go[l + d]` (and
+/// `shiftable[l + d]`). Both value slices hold at least `steps + LANES − 1` values. Scanning the
+/// steps in order and keeping strict improvements gives each lane the first index of its minimum,
+/// as a scalar scan of its row would.
+#[inline]
+pub fn block_mins(costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64]) -> LaneMins {
+    let costs = &costs[..steps * LANES];
+    let (to_go, shiftable) = (&to_go[..steps + LANES - 1], &shiftable[..steps + LANES - 1]);
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked just above).
+            return unsafe { block_mins_avx2(costs, steps, to_go, shiftable) };
+        }
+    }
+    block_mins_portable(costs, steps, to_go, shiftable)
+}
+
+/// [`block_mins`] in AVX2: one 4-wide step per d. Only additions, comparisons, minima and
+/// blends, so the results are those of the portable version bit for bit.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn block_mins_avx2(costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64]) -> LaneMins {
+    use std::arch::x86_64::*;
+    const _: () = assert!(LANES == 4);
+    let (c, a, b) = (costs.as_ptr(), to_go.as_ptr(), shiftable.as_ptr());
+    let (mut all, mut shift) = (_mm256_set1_pd(INF), _mm256_set1_pd(INF));
+    // Steps as f64 lanes, so that they blend like the costs; exact for any realistic count.
+    let (mut all_step, mut shift_step, mut step) = (_mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd());
+    let one = _mm256_set1_pd(1.0);
+    for d in 0..steps {
+        // SAFETY: the caller checked costs.len() = steps·LANES and to_go, shiftable ≥ steps + LANES − 1.
+        let cost = _mm256_loadu_pd(c.add(d * LANES));
+        let x = _mm256_add_pd(cost, _mm256_loadu_pd(a.add(d)));
+        let better = _mm256_cmp_pd::<_CMP_LT_OQ>(x, all);
+        all = _mm256_blendv_pd(all, x, better);
+        all_step = _mm256_blendv_pd(all_step, step, better);
+        let y = _mm256_add_pd(cost, _mm256_loadu_pd(b.add(d)));
+        let better = _mm256_cmp_pd::<_CMP_LT_OQ>(y, shift);
+        shift = _mm256_blendv_pd(shift, y, better);
+        shift_step = _mm256_blendv_pd(shift_step, step, better);
+        step = _mm256_add_pd(step, one);
+    }
+    let mut out = LaneMins { all: [0.0; LANES], all_step: [0; LANES], shift: [0.0; LANES], shift_step: [0; LANES] };
+    let (mut all_steps, mut shift_steps) = ([0.0; LANES], [0.0; LANES]);
+    _mm256_storeu_pd(out.all.as_mut_ptr(), all);
+    _mm256_storeu_pd(out.shift.as_mut_ptr(), shift);
+    _mm256_storeu_pd(all_steps.as_mut_ptr(), all_step);
+    _mm256_storeu_pd(shift_steps.as_mut_ptr(), shift_step);
+    for l in 0..LANES {
+        out.all_step[l] = all_steps[l] as u32;
+        out.shift_step[l] = shift_steps[l] as u32;
+    }
+    out
+}
+
+#[inline(always)]
+fn block_mins_portable(costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64]) -> LaneMins {
+    let mut out = LaneMins { all: [INF; LANES], all_step: [0; LANES], shift: [INF; LANES], shift_step: [0; LANES] };
+    for d in 0..steps {
+        let c: &[f64; LANES] = costs[d * LANES..d * LANES + LANES].try_into().unwrap();
+        let a: &[f64; LANES] = to_go[d..d + LANES].try_into().unwrap();
+        let b: &[f64; LANES] = shiftable[d..d + LANES].try_into().unwrap();
+        for l in 0..LANES {
+            let x = c[l] + a[l];
+            let better = x < out.all[l];
+            out.all[l] = if better { x } else { out.all[l] };
+            out.all_step[l] = if better { d as u32 } else { out.all_step[l] };
+            let y = c[l] + b[l];
+            let better = y < out.shift[l];
+            out.shift[l] = if better { y } else { out.shift[l] };
+            out.shift_step[l] = if better { d as u32 } else { out.shift_step[l] };
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Deterministic pseudo-random costs with ties and +∞ (a small LCG: no dependency).
+    fn costs(seed: &mut u64, n: usize) -> Vec<f64> {
+        (0..n)
+            .map(|_| {
+                *seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                match (*seed >> 33) % 7 {
+                    0 => INF,
+                    1 => 1.5,
+                    k => (k as f64) * 0.25 + ((*seed >> 40) % 5) as f64 * 1e-3,
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn block_mins_equal_per_lane_scalar_scans() {
+        let mut seed = 3;
+        for steps in 0..40 {
+            for _ in 0..20 {
+                let costs = costs(&mut seed, steps * LANES);
+                let (to_go, shiftable) = (costs_of(&mut seed, steps + LANES - 1), costs_of(&mut seed, steps + LANES - 1));
+                let got = block_mins(&costs, steps, &to_go, &shiftable);
+                assert_eq!(got, block_mins_portable(&costs[..steps * LANES], steps, &to_go[..steps + LANES - 1], &shiftable[..steps + LANES - 1]));
+                for l in 0..LANES {
+                    let row: Vec<f64> = (0..steps).map(|d| costs[d * LANES + l]).collect();
+                    let (a, t) = argmin_sum_scalar(&row, &to_go[l..]);
+                    let (b, u) = argmin_sum_scalar(&row, &shiftable[l..]);
+                    assert_eq!((got.all[l].to_bits(), got.all_step[l] as usize), (a.to_bits(), t), "steps {steps} lane {l}");
+                    assert_eq!((got.shift[l].to_bits(), got.shift_step[l] as usize), (b.to_bits(), u), "steps {steps} lane {l}");
+                }
+            }
+        }
+    }
+
+    /// `costs` of at least one value (a block's value slices are never empty).
+    fn costs_of(seed: &mut u64, n: usize) -> Vec<f64> {
+        costs(seed, n.max(LANES - 1))
+    }
+
+    #[test]
+    fn all_infinite_lanes_give_infinity_at_step_zero() {
+        let got = block_mins(&[INF; 3 * LANES], 3, &[1.0; 3 + LANES - 1], &[INF; 3 + LANES - 1]);
+        assert_eq!(got, LaneMins { all: [INF; LANES], all_step: [0; LANES], shift: [INF; LANES], shift_step: [0; LANES] });
+    }
+}
