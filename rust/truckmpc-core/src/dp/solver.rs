@@ -78,17 +78,57 @@ pub struct Solution {
     pub transitions: usize,
 }
 
-/// The best way out of a source velocity towards one target gear: its cost (fuel, speed change,
-/// brake and cost-to-go; +∞ when none), the next-stage grid index it reaches and the stages to the
-/// next shift on the continuation from there.
-#[derive(Debug, Clone, Copy)]
-struct Choice {
-    cost: f64,
-    j: u32,
-    counter: u32,
+/// What the first pass of a stage finds, per target gear and source slot [gear * width + slot]
+/// (slot = source grid index − `base_key`, blocks of `LANES` aligned): the cheapest way into that
+/// gear (fuel, speed change, brake and cost-to-go; +∞ when none) and the next-stage index it
+/// reaches, and the same among targets that allow a shift now.
+#[derive(Debug, Clone, Default)]
+struct Choices {
+    base_key: i64,
+    width: usize,
+    all_cost: Vec<f64>,
+    all_j: Vec<u32>,
+    shift_cost: Vec<f64>,
+    shift_j: Vec<u32>,
+    /// Per slot, the counter of the neutral choice (the interpolating rule takes the smaller of
+    /// the two neighbours', so it is not the counter at all_j).
+    neutral_counter: Vec<u32>,
+    /// Per slot, the best and second-best shift targets over all gears: (cost, gear).
+    shift_first: Vec<(f64, u32)>,
+    shift_second: Vec<(f64, u32)>,
 }
 
-const NO_CHOICE: Choice = Choice { cost: INF, j: 0, counter: 0 };
+/// No gear (in the two best shifts).
+const NO_GEAR: u32 = u32::MAX;
+
+impl Choices {
+    /// Room for `gears` target gears and source grid indices `key_lo..=key_hi`.
+    fn prepare(&mut self, gears: usize, key_lo: i64, key_hi: i64) {
+        let lanes = LANES as i64;
+        self.base_key = key_lo.div_euclid(lanes) * lanes;
+        self.width = (key_hi.div_euclid(lanes) * lanes + lanes - self.base_key) as usize;
+        let size = gears * self.width;
+        for v in [&mut self.all_cost, &mut self.shift_cost] {
+            if v.len() < size {
+                v.resize(size, INF);
+            }
+        }
+        for v in [&mut self.all_j, &mut self.shift_j] {
+            if v.len() < size {
+                v.resize(size, 0);
+            }
+        }
+        for v in [&mut self.shift_first, &mut self.shift_second] {
+            if v.len() < self.width {
+                v.resize(self.width, (INF, NO_GEAR));
+            }
+            v[..self.width].fill((INF, NO_GEAR));
+        }
+        if self.neutral_counter.len() < self.width {
+            self.neutral_counter.resize(self.width, 0);
+        }
+    }
+}
 
 /// The decision stored for a state: the next state (grid index, gear).
 #[derive(Debug, Clone, Copy, Default)]
@@ -138,13 +178,7 @@ pub struct Solver {
     /// Decisions per stage, flat; offsets[k] is the start of stage k, indexed [gear * count + i].
     decisions: Vec<Decision>,
     offsets: Vec<usize>,
-    /// Per target gear and source velocity [gear * count + i]: the best next state, and the best
-    /// one whose continuation allows a shift into it now.
-    best_all: Vec<Choice>,
-    best_shift: Vec<Choice>,
-    /// Per source velocity, the best and second-best shift targets over all gears.
-    shift_first: Vec<(f64, usize)>,
-    shift_second: Vec<(f64, usize)>,
+    choices: Choices,
     scratch: Vec<f64>,
     /// Rows of the stage being solved when they do not come from the cache.
     scratch_rows: StageRows,
@@ -172,10 +206,7 @@ impl Solver {
             counter_cur: Vec::new(),
             decisions: Vec::new(),
             offsets: Vec::new(),
-            best_all: Vec::new(),
-            best_shift: Vec::new(),
-            shift_first: Vec::new(),
-            shift_second: Vec::new(),
+            choices: Choices::default(),
             scratch: Vec::new(),
             scratch_rows: StageRows::default(),
             cache: RowCache::default(),
@@ -319,11 +350,6 @@ impl Solver {
             self.shift_cur.resize(size, INF);
             self.counter_cur.resize(size, 0);
         }
-        let size = here.count * gears;
-        if self.best_all.len() < size {
-            self.best_all.resize(size, NO_CHOICE);
-            self.best_shift.resize(size, NO_CHOICE);
-        }
         let active_here = std::mem::take(&mut self.active[k]);
         let active_next = std::mem::take(&mut self.active[k + 1]);
         // Velocities with at least one state here.
@@ -334,6 +360,7 @@ impl Solver {
         }
         let mut transitions = 0;
         if sources.0 <= sources.1 {
+            self.choices.prepare(gears, here.first + sources.0 as i64, here.first + sources.1 as i64);
             transitions = self.best_per_target_gear(vehicle, k, abs_stage, sources, &active_next);
             self.stay_or_shift(k, sources, &active_here, &active_next, start_gear, gears);
         }
@@ -343,8 +370,8 @@ impl Solver {
     }
 
     /// First pass of a stage: for every source velocity in `sources` and every target gear, the
-    /// best next state (and the best one that allows a shift now) into `best_all`/`best_shift`,
-    /// indexed [gear * count + i]. Returns the transitions evaluated.
+    /// best next state and the best one that allows a shift now, into `choices`. Returns the
+    /// transitions evaluated.
     fn best_per_target_gear(&mut self, vehicle: &Vehicle, k: usize, abs_stage: Option<u64>, (i_lo, i_hi): (usize, usize), active_next: &[usize]) -> usize {
         let gears = vehicle.forward_gears() + 1;
         let (here, next) = (self.grids[k], self.grids[k + 1]);
@@ -359,38 +386,46 @@ impl Solver {
         };
         let slope_torque = self.slope_torques[k];
         let (key_lo, key_hi) = (here.first + i_lo as i64, here.first + i_hi as i64);
+        let ch = &mut self.choices;
         let mut transitions = 0;
         for &g in active_next {
-            let range = self.gear_ranges[(k + 1) * gears + g];
-            let out = &mut self.best_all[g * here.count + i_lo..=g * here.count + i_hi];
-            let out_shift = &mut self.best_shift[g * here.count + i_lo..=g * here.count + i_hi];
+            let (lo, hi) = self.gear_ranges[(k + 1) * gears + g];
+            let out = g * ch.width;
             if g == NEUTRAL {
                 stage.neutral.fill(key_lo, key_hi, |key| neutral_arc(p, vehicle, here.index.speed(key), slope_torque));
-                for ((arc, all), shift) in stage.neutral.get(key_lo, key_hi).iter().zip(out).zip(out_shift) {
-                    (*all, *shift) = neutral_join(p, arc, next, range, &self.cost_next[PAD..], &self.counter_next[PAD..]);
+                let slot0 = (key_lo - ch.base_key) as usize;
+                for (s, arc) in stage.neutral.get(key_lo, key_hi).iter().enumerate() {
+                    let (cost, j, counter) = neutral_join(p, arc, next, (lo, hi), &self.cost_next[PAD..], &self.counter_next[PAD..]);
+                    let at = out + slot0 + s;
+                    (ch.all_cost[at], ch.all_j[at], ch.neutral_counter[slot0 + s]) = (cost, j, counter);
+                    (ch.shift_cost[at], ch.shift_j[at]) = (if counter >= p.k_lim { cost } else { INF }, j);
                 }
                 transitions += i_hi - i_lo + 1;
-            } else {
-                let rows = stage.gear(g);
-                let scratch = &mut self.scratch;
-                *computed += rows.fill(key_lo, key_hi, scratch, |key, buf| forward_row(vehicle, p, here.index.speed(key), g, slope_torque, next.index, buf));
-                let values = g * stride(next.count)..(g + 1) * stride(next.count);
-                let values = (&self.cost_next[values.clone()], &self.shift_next[values.clone()], &self.counter_next[values]);
-                let (blocks, first_key) = rows.get(key_lo, key_hi);
-                for (b, block) in blocks.iter().enumerate() {
-                    let key0 = first_key + (b * LANES) as i64;
-                    let mins = block_mins(block, &rows.costs, block.first as i64 - next.first, range, values);
-                    for l in 0..LANES {
-                        let key = key0 + l as i64;
-                        if key < key_lo || key > key_hi {
-                            continue;
-                        }
-                        let at = (key - key_lo) as usize;
-                        (out[at], out_shift[at]) = lane_choices(block, &mins, l, next.first, values.2);
-                        let (first, len) = block.spans[l];
-                        let first = first as i64 - next.first;
-                        transitions += ((first + len as i64 - 1).min(range.1 as i64) - first.max(range.0 as i64) + 1).max(0) as usize;
-                    }
+                continue;
+            }
+            let rows = stage.gear(g);
+            *computed += rows.fill(key_lo, key_hi, &mut self.scratch, |key, buf| forward_row(vehicle, p, here.index.speed(key), g, slope_torque, next.index, buf));
+            let values = g * stride(next.count)..(g + 1) * stride(next.count);
+            let values = (&self.cost_next[values.clone()], &self.shift_next[values]);
+            let (blocks, first_key) = rows.get(key_lo, key_hi);
+            debug_assert_eq!(first_key, ch.base_key);
+            for (b, block) in blocks.iter().enumerate() {
+                let base = block.first as i64 - next.first;
+                let mins = block_mins(block, &rows.costs, base, (lo, hi), values);
+                let at = out + b * LANES..out + (b + 1) * LANES;
+                ch.all_cost[at.clone()].copy_from_slice(&mins.all);
+                ch.shift_cost[at.clone()].copy_from_slice(&mins.shift);
+                let (all_j, shift_j) = (&mut ch.all_j[at.clone()], &mut ch.shift_j[at]);
+                let key0 = first_key + (b * LANES) as i64;
+                for l in 0..LANES {
+                    // Next-grid index of a lane's step; meaningless where the cost is +∞.
+                    let j = |step: u32| (base + (l as u32 + step) as i64) as u32;
+                    (all_j[l], shift_j[l]) = (j(mins.all_step[l]), j(mins.shift_step[l]));
+                    let key = key0 + l as i64;
+                    let (first, len) = block.spans[l];
+                    let first = first as i64 - next.first;
+                    let reached = ((first + len as i64 - 1).min(hi as i64) - first.max(lo as i64) + 1).max(0) as usize;
+                    transitions += if key >= key_lo && key <= key_hi { reached } else { 0 };
                 }
             }
         }
@@ -400,57 +435,73 @@ impl Solver {
     /// Second pass of a stage: for every state, stay in its gear or take the best shift, plus the
     /// speed-deviation cost; writes J_k, the counters and the decisions.
     fn stay_or_shift(&mut self, k: usize, (i_lo, i_hi): (usize, usize), active_here: &[usize], active_next: &[usize], start_gear: usize, gears: usize) {
-        let here = self.grids[k];
+        let (here, next) = (self.grids[k], self.grids[k + 1]);
         let n = here.count;
         let v_ref = self.params.v_ref_mps();
         let (q_speed_below, q4, k_lim) = (self.params.q_speed_below, self.params.q_gear_shift, self.params.k_lim);
+        let ch = &mut self.choices;
+        // Slot of source velocity i.
+        let s0 = (here.first - ch.base_key) as usize;
         // The two best shift targets per velocity, so that each state's best shift to another
         // gear is O(1). Gears are scanned in order, keeping the first of equal costs.
-        self.shift_first.clear();
-        self.shift_first.resize(i_hi + 1, (INF, usize::MAX));
-        self.shift_second.clear();
-        self.shift_second.resize(i_hi + 1, (INF, usize::MAX));
         for &g in active_next {
-            let costs = &self.best_shift[g * n + i_lo..=g * n + i_hi];
-            let firsts = &mut self.shift_first[i_lo..=i_hi];
-            let seconds = &mut self.shift_second[i_lo..=i_hi];
-            for ((c, first), second) in costs.iter().zip(firsts).zip(seconds) {
-                let c = c.cost;
+            let costs = &ch.shift_cost[g * ch.width + s0 + i_lo..=g * ch.width + s0 + i_hi];
+            let firsts = &mut ch.shift_first[s0 + i_lo..=s0 + i_hi];
+            let seconds = &mut ch.shift_second[s0 + i_lo..=s0 + i_hi];
+            for ((&c, first), second) in costs.iter().zip(firsts).zip(seconds) {
                 if c < first.0 {
                     *second = *first;
-                    *first = (c, g);
+                    *first = (c, g as u32);
                 } else if c < second.0 {
-                    *second = (c, g);
+                    *second = (c, g as u32);
                 }
             }
         }
+        let stride_n = stride(next.count);
         for &g_i in active_here {
             let (lo, hi) = self.gear_ranges[k * gears + g_i];
             if (k == 0 && g_i != start_gear) || hi < lo {
                 continue;
             }
             let stays = active_next.contains(&g_i);
-            for i in lo as usize..=hi as usize {
-                let stay = if stays { self.best_all[g_i * n + i] } else { NO_CHOICE };
-                let (shift_cost, shift_gear) = if self.shift_first[i].1 != g_i { self.shift_first[i] } else { self.shift_second[i] };
-                let (best_cost, decision, counter) = if shift_gear != usize::MAX && shift_cost + q4 < stay.cost {
-                    let c = self.best_shift[shift_gear * n + i];
-                    (shift_cost + q4, Decision { j: c.j as u16, gear: shift_gear as u8 }, 1)
+            let (lo, hi) = (lo as usize, hi as usize);
+            let (slots, out) = (s0 + lo..s0 + hi + 1, g_i * ch.width + s0 + lo..g_i * ch.width + s0 + hi + 1);
+            let values = g_i * stride(n) + PAD + lo..g_i * stride(n) + PAD + hi + 1;
+            let decisions = self.offsets[k] + g_i * n + lo..self.offsets[k] + g_i * n + hi + 1;
+            let (all_cost, all_j) = (&ch.all_cost[out.clone()], &ch.all_j[out]);
+            let (firsts, seconds, neutral_counters) = (&ch.shift_first[slots.clone()], &ch.shift_second[slots.clone()], &ch.neutral_counter[slots]);
+            let (cost_cur, counter_cur) = (&mut self.cost_cur[values.clone()], &mut self.counter_cur[values.clone()]);
+            let (shift_cur, decisions) = (&mut self.shift_cur[values], &mut self.decisions[decisions]);
+            let m = hi - lo + 1;
+            // Equal lengths, stated once: the loop below then needs no bounds checks on them.
+            assert!(all_cost.len() == m && all_j.len() == m && firsts.len() == m && seconds.len() == m && neutral_counters.len() == m);
+            assert!(cost_cur.len() == m && counter_cur.len() == m && shift_cur.len() == m && decisions.len() == m);
+            for t in 0..m {
+                let i = lo + t;
+                let stay_cost = if stays { all_cost[t] } else { INF };
+                let (shift_cost, shift_gear) = if firsts[t].1 != g_i as u32 { firsts[t] } else { seconds[t] };
+                let (best_cost, decision, counter) = if shift_gear != NO_GEAR && shift_cost + q4 < stay_cost {
+                    let j = ch.shift_j[shift_gear as usize * ch.width + s0 + i];
+                    (shift_cost + q4, Decision { j: j as u16, gear: shift_gear as u8 }, 1)
                 } else {
-                    (stay.cost, Decision { j: stay.j as u16, gear: g_i as u8 }, stay.counter.saturating_add(1).min(u32::MAX / 2))
+                    let j = if stays { all_j[t] } else { 0 };
+                    let carried = match (stay_cost < INF, g_i) {
+                        (false, _) => 0,
+                        (true, NEUTRAL) => neutral_counters[t],
+                        (true, _) => self.counter_next[g_i * stride_n + PAD + j as usize],
+                    };
+                    (stay_cost, Decision { j: j as u16, gear: g_i as u8 }, carried.saturating_add(1).min(u32::MAX / 2))
                 };
-                let v_i = here.speed(i);
-                let below = (v_ref - v_i).max(0.0);
+                let below = (v_ref - here.speed(i)).max(0.0);
                 let total = best_cost + q_speed_below * below * below;
-                let at = g_i * stride(n) + PAD + i;
-                self.cost_cur[at] = total;
-                self.counter_cur[at] = counter;
-                self.shift_cur[at] = if counter >= k_lim { total } else { INF };
-                self.decisions[self.offsets[k] + g_i * n + i] = decision;
+                cost_cur[t] = total;
+                counter_cur[t] = counter;
+                shift_cur[t] = if counter >= k_lim { total } else { INF };
+                decisions[t] = decision;
             }
             // The rest of the gear's block (no state there) is +∞ for the min-plus pass.
             let block = g_i * stride(n)..(g_i + 1) * stride(n);
-            for part in [block.start..block.start + PAD + lo as usize, block.start + PAD + hi as usize + 1..block.end] {
+            for part in [block.start..block.start + PAD + lo, block.start + PAD + hi + 1..block.end] {
                 self.cost_cur[part.clone()].fill(INF);
                 self.shift_cur[part].fill(INF);
             }
@@ -496,26 +547,28 @@ fn neutral_arc(p: &MpcParams, vehicle: &Vehicle, v_i_mps: f64, slope_torque: f64
 }
 
 /// Join a neutral arc to the next grid by the configured rule, within the neutral states' index
-/// range. Returns (best, best shiftable).
+/// range: (cost with the cost-to-go, next-grid index, counter of the continuation); cost +∞ when
+/// the arc ends off the states.
 #[inline]
-fn neutral_join(p: &MpcParams, arc: &NeutralArc, next: StageGrid, (lo, hi): (u32, u32), cost_next: &[f64], counter_next: &[u32]) -> (Choice, Choice) {
+fn neutral_join(p: &MpcParams, arc: &NeutralArc, next: StageGrid, (lo, hi): (u32, u32), cost_next: &[f64], counter_next: &[u32]) -> (f64, u32, u32) {
+    const NONE: (f64, u32, u32) = (INF, 0, 0);
     let x = (arc.v_end_mps - next.speed(0)) / p.delta_mps();
     // Grid indices are never negative; x below −0.5 is outside the grid either way.
     if x < lo as f64 - 0.5 || x > hi as f64 + 0.5 {
-        return (NO_CHOICE, NO_CHOICE);
+        return NONE;
     }
     let (to_go, j, counter) = match p.neutral_rule {
         NeutralRule::Nearest => {
             let j = (x + 0.5) as usize; // round half up without a libm call; x + 0.5 >= 0 here
             if j < lo as usize || j > hi as usize {
-                return (NO_CHOICE, NO_CHOICE);
+                return NONE;
             }
             (cost_next[j], j, counter_next[j])
         }
         NeutralRule::Interpolate => {
             const TOL: f64 = 1e-9;
             if x < lo as f64 - TOL || x > hi as f64 + TOL {
-                return (NO_CHOICE, NO_CHOICE);
+                return NONE;
             }
             let x = x.clamp(lo as f64, hi as f64);
             let j0 = x as usize;
@@ -530,19 +583,17 @@ fn neutral_join(p: &MpcParams, arc: &NeutralArc, next: StageGrid, (lo, hi): (u32
         }
     };
     if !to_go.is_finite() {
-        return (NO_CHOICE, NO_CHOICE);
+        return NONE;
     }
-    let c = Choice { cost: arc.cost + to_go, j: j as u32, counter };
-    let shift = if counter >= p.k_lim { c } else { NO_CHOICE };
-    (c, shift)
+    (arc.cost + to_go, j as u32, counter)
 }
 
 /// The min-plus pass over one block of rows towards one forward target gear: per lane, the best
 /// of row cost + cost-to-go and the best among targets whose continuation allows a shift now.
 /// `base` is the next-grid index of lane 0 at step 0; `values` the target gear's blocks of
-/// cost_next, shift_next and counter_next (margins included, state j at PAD + j).
+/// cost_next and shift_next (margins included, state j at PAD + j).
 #[inline]
-fn block_mins(block: &Block, costs: &[f64], base: i64, (lo, hi): (u32, u32), (to_go, shiftable, _): (&[f64], &[f64], &[u32])) -> LaneMins {
+fn block_mins(block: &Block, costs: &[f64], base: i64, (lo, hi): (u32, u32), (to_go, shiftable): (&[f64], &[f64])) -> LaneMins {
     let steps = block.steps as usize;
     let at = base + PAD as i64;
     let costs = &costs[block.offset as usize..];
@@ -575,21 +626,6 @@ fn block_mins_clipped(costs: &[f64], steps: usize, base: i64, (lo, hi): (u32, u3
         }
     }
     out
-}
-
-/// Lane `l`'s choices from a block pass: (best, best shiftable), with the next-grid index and
-/// the target's counter (`counters` is the target gear's counter_next block).
-#[inline]
-fn lane_choices(block: &Block, mins: &LaneMins, l: usize, next_first: i64, counters: &[u32]) -> (Choice, Choice) {
-    let choice = |cost: f64, step: u32| {
-        if cost < INF {
-            let j = (block.first as i64 - next_first) as usize + l + step as usize;
-            Choice { cost, j: j as u32, counter: counters[PAD + j] }
-        } else {
-            NO_CHOICE
-        }
-    };
-    (choice(mins.all[l], mins.all_step[l]), choice(mins.shift[l], mins.shift_step[l]))
 }
 
 #[cfg(test)]
@@ -629,11 +665,10 @@ mod tests {
                 to_go[PAD + j as usize] = next() as f64;
                 shiftable[PAD + j as usize] = if next() < 3 { INF } else { to_go[PAD + j as usize] };
             }
-            let counters = vec![0u32; stride(count)];
             let block = Block { first: 0, steps: steps as u32, offset: 0, spans: [(0, 0); LANES] };
             // Inside the margins (packed pass) and reaching below them (clipped pass).
             for base in [-4i64, 10, -(PAD as i64) - 3, count as i64 - 5] {
-                let mins = block_mins(&block, &costs, base, (lo, hi), (&to_go, &shiftable, &counters));
+                let mins = block_mins(&block, &costs, base, (lo, hi), (&to_go, &shiftable));
                 for l in 0..LANES {
                     assert_eq!((mins.all[l], mins.all_step[l]), scalar_lane(&costs, steps, base, (lo, hi), &to_go, l), "base {base} lane {l}");
                     assert_eq!((mins.shift[l], mins.shift_step[l]), scalar_lane(&costs, steps, base, (lo, hi), &shiftable, l), "base {base} lane {l}");
