@@ -6,8 +6,9 @@
 //! reused; stages behind the vehicle are dropped. A solve without the cache (moving grid, or the
 //! first stage, whose start speed is off the grid) fills a scratch [`StageRows`] the same way.
 //!
-//! Layout: per target gear, the rows of consecutive source velocities are side by side, because
-//! the DP's first pass walks one target gear at a time over all source velocities.
+//! Layout: per target gear, blocks of `LANES` consecutive source velocities whose rows are stored
+//! transposed ([`Block`]), because the DP's first pass walks one target gear at a time over all
+//! source velocities, a block per SIMD step.
 
 use std::collections::VecDeque;
 
@@ -121,23 +122,31 @@ pub struct GearBlocks {
     pub costs: Vec<f64>,
 }
 
+/// Buffers for building blocks, kept by the solver so that filling allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub struct RowScratch {
+    /// One row, as `row` writes it.
+    row: Vec<f64>,
+    /// A block's rows end to end, before transposing.
+    rows: Vec<f64>,
+}
+
 impl GearBlocks {
     /// Make sure the blocks holding source keys `lo..=hi` exist; `row(key, out)` writes one
     /// row's costs into `out` and returns its span. Returns the rows computed.
-    pub fn fill(&mut self, lo: i64, hi: i64, scratch: &mut Vec<f64>, mut row: impl FnMut(i64, &mut Vec<f64>) -> RowSpan) -> u64 {
+    pub fn fill(&mut self, lo: i64, hi: i64, scratch: &mut RowScratch, mut row: impl FnMut(i64, &mut Vec<f64>) -> RowSpan) -> u64 {
         let costs = &mut self.costs;
         let lanes = LANES as i64;
-        let mut rows = [(RowSpan::default(), 0usize); LANES];
-        let mut row_costs: Vec<f64> = Vec::new();
+        let mut spans = [(RowSpan::default(), 0usize); LANES];
         LANES as u64
             * self.blocks.fill(lo.div_euclid(lanes), hi.div_euclid(lanes), |b| {
-                row_costs.clear();
-                for (l, slot) in rows.iter_mut().enumerate() {
-                    let span = row(b * lanes + l as i64, scratch);
-                    *slot = (span, row_costs.len());
-                    row_costs.extend_from_slice(&scratch[..span.len]);
+                scratch.rows.clear();
+                for (l, slot) in spans.iter_mut().enumerate() {
+                    let span = row(b * lanes + l as i64, &mut scratch.row);
+                    *slot = (span, scratch.rows.len());
+                    scratch.rows.extend_from_slice(&scratch.row[..span.len]);
                 }
-                transpose(&rows, &row_costs, costs)
+                transpose(&spans, &scratch.rows, costs)
             })
     }
 

@@ -15,7 +15,7 @@
 //! 1 + c ≥ k_lim, would let them come k_lim − 1 stages apart, contradicting the forward counter of
 //! (5.6).) Stages reached before the vehicle's own counter allows a shift keep the current gear.
 
-use super::cache::{Block, NeutralArc, RowCache, StageRows, LANES, PAD};
+use super::cache::{Block, NeutralArc, RowCache, RowScratch, StageRows, LANES, PAD};
 use super::params::{GridAnchor, MpcParams, NeutralRule};
 use super::rows::{forward_row, inputs, GridIndex};
 use super::simd::{self, LaneMins};
@@ -179,7 +179,7 @@ pub struct Solver {
     decisions: Vec<Decision>,
     offsets: Vec<usize>,
     choices: Choices,
-    scratch: Vec<f64>,
+    scratch: RowScratch,
     /// Rows of the stage being solved when they do not come from the cache.
     scratch_rows: StageRows,
     cache: RowCache,
@@ -207,7 +207,7 @@ impl Solver {
             decisions: Vec::new(),
             offsets: Vec::new(),
             choices: Choices::default(),
-            scratch: Vec::new(),
+            scratch: RowScratch::default(),
             scratch_rows: StageRows::default(),
             cache: RowCache::default(),
         }
