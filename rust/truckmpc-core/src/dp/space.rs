@@ -92,8 +92,17 @@ pub struct Intervals {
 }
 
 /// Forward reachability from `v0_mps` cut to [v_min, v_max] (5.4.2), then the final stage's lower
-/// bound raised to v_ref and the backward pass removing speeds that cannot reach it.
+/// bound raised to v_ref and the backward pass removing speeds that cannot reach it. On a fixed
+/// grid the bounds are grid speeds found from grid speeds ([`grid_intervals`]).
 pub fn intervals(vehicle: &Vehicle, params: &MpcParams, v0_mps: f64, slopes: &[f64], out: &mut Intervals) {
+    match params.grid {
+        GridAnchor::Moving => continuous_intervals(vehicle, params, v0_mps, slopes, out),
+        GridAnchor::Fixed => grid_intervals(vehicle, params, v0_mps, slopes, out),
+    }
+}
+
+/// The thesis's intervals (5.4.2), bounds as continuous speeds [m/s].
+fn continuous_intervals(vehicle: &Vehicle, params: &MpcParams, v0_mps: f64, slopes: &[f64], out: &mut Intervals) {
     let (v_min, v_max) = (params.v_min_mps(), params.v_max_mps());
     out.lo.clear();
     out.hi.clear();
@@ -112,6 +121,72 @@ pub fn intervals(vehicle: &Vehicle, params: &MpcParams, v0_mps: f64, slopes: &[f
     for k in (1..n).rev() {
         let needed = min_speed_reaching(vehicle, params, out.lo[k], out.hi[k], slopes[k], out.lo[k + 1]);
         out.lo[k] = out.lo[k].max(needed);
+    }
+}
+
+/// Index of the highest multiple of δ at or below `v_mps` (to rounding).
+fn floor_index(v_mps: f64, delta_mps: f64) -> i64 {
+    (v_mps / delta_mps + 1e-9).floor() as i64
+}
+
+/// Index of the lowest multiple of δ at or above `v_mps` (to rounding).
+fn ceil_index(v_mps: f64, delta_mps: f64) -> i64 {
+    (v_mps / delta_mps - 1e-9).ceil() as i64
+}
+
+/// The intervals of 5.4.2 on a fixed grid: every bound is a multiple of δ, and each stage's bounds
+/// are found from the previous stage's grid bounds, not from continuous speeds. The top of stage
+/// k + 1 is the highest grid speed that full pedal reaches from the top of stage k, and the backward
+/// pass keeps the lowest grid speed from which full pedal reaches the next stage's lowest one.
+/// Rounding continuous bounds instead breaks the chain on long climbs: the last stage's bound (the
+/// end of the continuous full-pedal chain) then lies above what any grid path can reach.
+fn grid_intervals(vehicle: &Vehicle, params: &MpcParams, v0_mps: f64, slopes: &[f64], out: &mut Intervals) {
+    let (v_min, v_max, delta) = (params.v_min_mps(), params.v_max_mps(), params.delta_mps());
+    let speed = |index: i64| index as f64 * delta;
+    let top = floor_index(v_max, delta);
+    out.lo.clear();
+    out.hi.clear();
+    out.lo.push(v0_mps);
+    out.hi.push(v0_mps);
+    let mut lo_hi = Vec::with_capacity(slopes.len() + 1);
+    lo_hi.push((0, 0)); // stage 0 is the start speed itself, off the grid
+    for (k, &slope) in slopes.iter().enumerate() {
+        let (v_plus, v_plus_low) = full_pedal_speeds(vehicle, params, out.hi[k], slope);
+        let v_minus = lowest_speed(vehicle, params, out.lo[k], slope);
+        let hi = floor_index(v_plus, delta).min(top);
+        let lo = if v_plus >= v_min { ceil_index(v_minus.max(v_min), delta) } else { floor_index(v_plus_low, delta) };
+        let lo = lo.min(hi);
+        lo_hi.push((lo, hi));
+        out.lo.push(speed(lo));
+        out.hi.push(speed(hi));
+    }
+    let n = slopes.len();
+    let last = &mut lo_hi[n];
+    last.0 = ceil_index(params.v_ref_mps(), delta).min(last.1);
+    out.lo[n] = speed(last.0);
+    for k in (1..n).rev() {
+        let (lo, hi) = lo_hi[k];
+        let target = lo_hi[k + 1].0;
+        let reaches = |index: i64| floor_index(full_pedal_speeds(vehicle, params, speed(index), slopes[k]).0, delta) >= target;
+        // Full-pedal end speed grows with the start speed: bisect for the lowest index that reaches.
+        let needed = if reaches(lo) {
+            lo
+        } else if !reaches(hi) {
+            hi
+        } else {
+            let (mut a, mut b) = (lo, hi);
+            while b - a > 1 {
+                let mid = a + (b - a) / 2;
+                if reaches(mid) {
+                    b = mid;
+                } else {
+                    a = mid;
+                }
+            }
+            b
+        };
+        lo_hi[k].0 = needed;
+        out.lo[k] = speed(needed);
     }
 }
 
@@ -146,19 +221,10 @@ pub fn grid(params: &MpcParams, lo: f64, hi: f64) -> Grid {
     match params.grid {
         GridAnchor::Moving => Grid { first_mps: lo, count: ((hi - lo) / delta + SLACK).floor() as usize + 1 },
         GridAnchor::Fixed => {
-            let first = (lo / delta - SLACK).ceil();
-            let last = (hi / delta + SLACK).floor();
-            if last >= first {
-                Grid { first_mps: first * delta, count: (last - first) as usize + 1 }
-            } else {
-                // An interval narrower than δ between two grid points (a climb at full pedal below
-                // v_min, say): keep both neighbours, but never one above v_max. Each transition's
-                // admissibility is still checked, so a neighbour out of reach costs nothing.
-                let below = (lo / delta).floor();
-                let above = below + 1.0;
-                let count = if above * delta <= params.v_max_mps() + SLACK { 2 } else { 1 };
-                Grid { first_mps: below * delta, count }
-            }
+            // The bounds are multiples of δ already ([`grid_intervals`]).
+            let first = (lo / delta).round();
+            let last = (hi / delta).round().max(first);
+            Grid { first_mps: first * delta, count: (last - first) as usize + 1 }
         }
     }
 }

@@ -1,0 +1,56 @@
+//! The fixed grid's search space: when a horizon ends on a long climb, the considered speeds of the
+//! last stages shrink to the full-pedal chain. On a fixed grid that chain must be followed on grid
+//! speeds, or its end lies above what any grid path reaches and every solve there is infeasible.
+
+use truckmpc_core::dp::space::{intervals, Intervals};
+use truckmpc_core::dp::{GridAnchor, InitialState, MpcParams, Solver};
+use truckmpc_core::{Vehicle, VehicleParams};
+
+/// Slopes of a horizon of `stages` stages: flat, then a climb of `grade` from stage `climb_from`.
+fn climb(stages: usize, climb_from: usize, grade: f64) -> Vec<f64> {
+    (0..stages).map(|k| if k >= climb_from { grade } else { 0.0 }).collect()
+}
+
+fn params(delta_kmh: f64) -> MpcParams {
+    MpcParams { grid: GridAnchor::Fixed, delta_kmh, horizon_m: 3000.0, stage_m: 25.0, ..MpcParams::default() }
+}
+
+#[test]
+fn horizons_ending_on_a_climb_are_feasible_on_the_fixed_grid() {
+    let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
+    let mut checked = 0;
+    for delta_kmh in [0.1, 0.2, 0.5] {
+        let p = params(delta_kmh);
+        let mut solver = Solver::new(p.clone());
+        for grade in [0.015, 0.025, 0.032, 0.045] {
+            for climb_from in [20, 60, 100, 115] {
+                for v0_kmh in [80.3, 84.17, 85.0, 88.91] {
+                    let slopes = climb(p.stages(), climb_from, grade);
+                    let start = InitialState { v_mps: v0_kmh / 3.6, gear: 12, stages_since_shift: p.k_lim };
+                    let sol = solver.solve(&vehicle, start, &slopes);
+                    assert!(sol.feasible, "infeasible: δ {delta_kmh} km/h, {grade} grade from stage {climb_from}, start {v0_kmh} km/h");
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(checked, 3 * 4 * 4 * 4);
+}
+
+#[test]
+fn fixed_grid_bounds_are_grid_speeds_below_v_max() {
+    let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
+    let p = params(0.2);
+    let delta = p.delta_mps();
+    let slopes = climb(p.stages(), 70, 0.03);
+    let mut iv = Intervals::default();
+    intervals(&vehicle, &p, 84.17 / 3.6, &slopes, &mut iv);
+    let on_grid = |v: f64| ((v / delta) - (v / delta).round()).abs() < 1e-9;
+    for k in 1..=slopes.len() {
+        assert!(on_grid(iv.lo[k]) && on_grid(iv.hi[k]), "stage {k}: bounds off the grid");
+        assert!(iv.lo[k] <= iv.hi[k] + 1e-12, "stage {k}: empty interval");
+        assert!(iv.hi[k] <= p.v_max_mps() + 1e-9, "stage {k}: above v_max");
+    }
+    // The climb outlasts the horizon's end: the final bound falls below v_ref (the chain case).
+    assert!(iv.lo[slopes.len()] < p.v_ref_mps());
+}
