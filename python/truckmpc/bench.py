@@ -40,11 +40,13 @@ from truckmpc.road import RoadProfile, default_test_track, load_road
 
 __all__ = ["SETTINGS", "BenchError", "BenchResult", "bench_cmd", "default_road_path", "format_bench", "run_bench"]
 
-SETTINGS: tuple[dict[str, Any], ...] = (
-    {"stage_m": 25.0, "delta_kmh": 0.1, "horizon_m": 3000.0, "allow_neutral": True, "grid": "fixed"},
-    {"stage_m": 25.0, "delta_kmh": 0.1, "horizon_m": 3000.0, "allow_neutral": True, "grid": "moving"},
-    {"stage_m": 50.0, "delta_kmh": 0.2, "horizon_m": 2000.0, "allow_neutral": True, "grid": "fixed"},
-    {"stage_m": 50.0, "delta_kmh": 0.2, "horizon_m": 2000.0, "allow_neutral": True, "grid": "moving"},
+SETTINGS: tuple[dict[str, Any], ...] = tuple(
+    {**setting, "grid": grid}
+    for setting in (
+        {"stage_m": 25.0, "delta_kmh": 0.1, "horizon_m": 3000.0, "allow_neutral": True},
+        {"stage_m": 50.0, "delta_kmh": 0.2, "horizon_m": 2000.0, "allow_neutral": True},
+    )
+    for grid in ("fixed", "moving")
 )
 """The benchmark's settings, in run order: the thesis's worst case first. Each runs on the fixed grid
 (whose row cache the real-time target relies on) and on the thesis's moving grid (the default)."""

@@ -3,6 +3,7 @@
 //! the velocity grid of each stage (5.8). Speeds in m/s.
 
 use super::params::{GridAnchor, MpcParams};
+use super::rows::GridIndex;
 use crate::levels::{brake_accel, pedal_accel};
 use crate::vehicle::{Vehicle, NEUTRAL};
 
@@ -124,16 +125,6 @@ fn continuous_intervals(vehicle: &Vehicle, params: &MpcParams, v0_mps: f64, slop
     }
 }
 
-/// Index of the highest multiple of δ at or below `v_mps` (to rounding).
-fn floor_index(v_mps: f64, delta_mps: f64) -> i64 {
-    (v_mps / delta_mps + 1e-9).floor() as i64
-}
-
-/// Index of the lowest multiple of δ at or above `v_mps` (to rounding).
-fn ceil_index(v_mps: f64, delta_mps: f64) -> i64 {
-    (v_mps / delta_mps - 1e-9).ceil() as i64
-}
-
 /// The intervals of 5.4.2 on a fixed grid: every bound is a multiple of δ, and each stage's bounds
 /// are found from the previous stage's grid bounds, not from continuous speeds. The top of stage
 /// k + 1 is the highest grid speed that full pedal reaches from the top of stage k, and the backward
@@ -141,33 +132,30 @@ fn ceil_index(v_mps: f64, delta_mps: f64) -> i64 {
 /// Rounding continuous bounds instead breaks the chain on long climbs: the last stage's bound (the
 /// end of the continuous full-pedal chain) then lies above what any grid path can reach.
 fn grid_intervals(vehicle: &Vehicle, params: &MpcParams, v0_mps: f64, slopes: &[f64], out: &mut Intervals) {
-    let (v_min, v_max, delta) = (params.v_min_mps(), params.v_max_mps(), params.delta_mps());
-    let speed = |index: i64| index as f64 * delta;
-    let top = floor_index(v_max, delta);
+    let (v_min_mps, v_max_mps) = (params.v_min_mps(), params.v_max_mps());
+    // Multiples of δ: index i is the speed i·δ [m/s].
+    let grid = GridIndex { origin_mps: 0.0, delta_mps: params.delta_mps() };
+    // Index of a bound already on the grid.
+    let index_of = |v_mps: f64| (v_mps / grid.delta_mps).round() as i64;
+    let top = grid.floor(v_max_mps);
     out.lo.clear();
     out.hi.clear();
     out.lo.push(v0_mps);
     out.hi.push(v0_mps);
-    let mut lo_hi = Vec::with_capacity(slopes.len() + 1);
-    lo_hi.push((0, 0)); // stage 0 is the start speed itself, off the grid
     for (k, &slope) in slopes.iter().enumerate() {
         let (v_plus, v_plus_low) = full_pedal_speeds(vehicle, params, out.hi[k], slope);
         let v_minus = lowest_speed(vehicle, params, out.lo[k], slope);
-        let hi = floor_index(v_plus, delta).min(top);
-        let lo = if v_plus >= v_min { ceil_index(v_minus.max(v_min), delta) } else { floor_index(v_plus_low, delta) };
-        let lo = lo.min(hi);
-        lo_hi.push((lo, hi));
-        out.lo.push(speed(lo));
-        out.hi.push(speed(hi));
+        let hi = grid.floor(v_plus).min(top);
+        let lo = if v_plus >= v_min_mps { grid.ceil(v_minus.max(v_min_mps)) } else { grid.floor(v_plus_low) };
+        out.lo.push(grid.speed(lo.min(hi)));
+        out.hi.push(grid.speed(hi));
     }
     let n = slopes.len();
-    let last = &mut lo_hi[n];
-    last.0 = ceil_index(params.v_ref_mps(), delta).min(last.1);
-    out.lo[n] = speed(last.0);
+    out.lo[n] = grid.speed(grid.ceil(params.v_ref_mps()).min(index_of(out.hi[n])));
     for k in (1..n).rev() {
-        let (lo, hi) = lo_hi[k];
-        let target = lo_hi[k + 1].0;
-        let reaches = |index: i64| floor_index(full_pedal_speeds(vehicle, params, speed(index), slopes[k]).0, delta) >= target;
+        let (lo, hi) = (index_of(out.lo[k]), index_of(out.hi[k]));
+        let target = index_of(out.lo[k + 1]);
+        let reaches = |index: i64| grid.floor(full_pedal_speeds(vehicle, params, grid.speed(index), slopes[k]).0) >= target;
         // Full-pedal end speed grows with the start speed: bisect for the lowest index that reaches.
         let needed = if reaches(lo) {
             lo
@@ -185,8 +173,7 @@ fn grid_intervals(vehicle: &Vehicle, params: &MpcParams, v0_mps: f64, slopes: &[
             }
             b
         };
-        lo_hi[k].0 = needed;
-        out.lo[k] = speed(needed);
+        out.lo[k] = grid.speed(needed);
     }
 }
 
