@@ -16,9 +16,26 @@ from truckmpc.road import default_test_track, make_section, write_road
 runner = CliRunner()
 
 RUN_KEYS = (
-    "stage_m", "delta_kmh", "horizon_m", "allow_neutral", "grid", "neutral_rule", "realtime_ratio",
-    "solve_ms_mean", "solve_ms_max", "solves", "infeasible_solves", "states_per_solve", "transitions_per_solve",
-    "ns_per_transition", "compute_time_s", "time_s", "distance_m", "fuel_kg", "stalled", "peak_rss_mb",
+    "stage_m",
+    "delta_kmh",
+    "horizon_m",
+    "allow_neutral",
+    "grid",
+    "neutral_rule",
+    "realtime_ratio",
+    "solve_ms_mean",
+    "solve_ms_max",
+    "solves",
+    "infeasible_solves",
+    "states_per_solve",
+    "transitions_per_solve",
+    "ns_per_transition",
+    "compute_time_s",
+    "time_s",
+    "distance_m",
+    "fuel_kg",
+    "stalled",
+    "peak_rss_mb",
 )
 
 
@@ -29,8 +46,18 @@ def _check_runs(runs: list[dict], length_m: float) -> None:
         assert set(RUN_KEYS) <= set(run)
         assert not run["stalled"]
         assert run["distance_m"] == pytest.approx(length_m, abs=1e-3)
-        for key in ("realtime_ratio", "solve_ms_mean", "solve_ms_max", "compute_time_s", "time_s",
-                    "states_per_solve", "transitions_per_solve", "ns_per_transition", "peak_rss_mb", "fuel_kg"):
+        for key in (
+            "realtime_ratio",
+            "solve_ms_mean",
+            "solve_ms_max",
+            "compute_time_s",
+            "time_s",
+            "states_per_solve",
+            "transitions_per_solve",
+            "ns_per_transition",
+            "peak_rss_mb",
+            "fuel_kg",
+        ):
             assert run[key] > 0, key
         assert run["solve_ms_max"] >= run["solve_ms_mean"]
         assert run["transitions_per_solve"] > run["states_per_solve"]  # several ways out of each state
@@ -67,13 +94,22 @@ def test_table_on_a_given_road_names_it_and_each_setting(tmp_path):
     assert lines[0].startswith("road hill") and "0.70 km" in lines[0] and str(road) in lines[0]
     assert "S 25 m, δ 0.1 km/h, 3000 m" in lines[1] and "S 50 m, δ 0.2 km/h, 2000 m" in lines[1]
     assert lines[2].count("neutral allowed, fixed grid") == 2 and lines[2].count("neutral allowed, moving grid") == 2
-    for label in ("realtime ratio", "solve time mean [ms]", "transitions per solve", "time per transition [ns]",
-                  "peak memory [MB]"):
+    for label in (
+        "realtime ratio",
+        "solve time mean [ms]",
+        "transitions per solve",
+        "time per transition [ns]",
+        "peak memory [MB]",
+    ):
         assert any(line.startswith(label) for line in lines), label
 
 
 def test_format_bench_marks_the_fallback_road_and_missing_figures():
-    run = {key: 1.0 for key in RUN_KEYS} | dict(SETTINGS[0]) | {"grid": "moving", "solves": 3, "infeasible_solves": 0, "ns_per_transition": None}
+    run = (
+        {key: 1.0 for key in RUN_KEYS}
+        | dict(SETTINGS[0])
+        | {"grid": "moving", "solves": 3, "infeasible_solves": 0, "ns_per_transition": None}
+    )
     text = format_bench(BenchResult("test-track", None, 8500.0, True, [run]))
     lines = text.splitlines()
     assert lines[0] == "road test-track: 8.50 km, bundled; ../shared/roads/eu_vecto_longhaul_2015_108km.csv not found"

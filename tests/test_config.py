@@ -139,7 +139,12 @@ def test_overlay_then_set_override(tmp_path: Path) -> None:
 
 
 def test_set_parses_yaml_values() -> None:
-    run = load_run_config(overrides=["start_speed_kmh=70", "gear_down_rpm=[null, 1200, 1200, 1200, 1200, 1200, 1200, 1200, 1200, 1200, 1200, 1200]"])
+    run = load_run_config(
+        overrides=[
+            "start_speed_kmh=70",
+            "gear_down_rpm=[null, 1200, 1200, 1200, 1200, 1200, 1200, 1200, 1200, 1200, 1200, 1200]",
+        ]
+    )
     assert run.sim.start_speed_kmh == 70.0
     assert run.pi.gear_down_rpm[1] == 1200.0
     assert load_run_config(overrides=["start_speed_kmh=null"]).sim.start_speed_kmh is None
@@ -183,9 +188,18 @@ BAD_OVERLAYS = [
     ("mass_kg: 1\n", ["key 'mass_kg' is a vehicle parameter"]),
     ("gear_up_rpm: [1800, 1800]\n", ["key 'gear_up_rpm'", "(12), got 2"]),
     ("gear_up_rpm: 1800\n", ["key 'gear_up_rpm'", "expected a list of engine speeds"]),
-    ("gear_down_rpm: [1000, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300]\n", ["key 'gear_down_rpm'", "null for gear 1"]),
-    ("gear_down_rpm: [null, 1900, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300]\n", ["key 'gear_down_rpm'", "gear 2", "below its upshift"]),
-    ("gear_up_rpm: [1400, 1800, 1800, 1800, 1800, 1800, 1800, 1800, 1800, 1800, 1700, null]\n", ["key 'gear_up_rpm'", "hunt"]),
+    (
+        "gear_down_rpm: [1000, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300]\n",
+        ["key 'gear_down_rpm'", "null for gear 1"],
+    ),
+    (
+        "gear_down_rpm: [null, 1900, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300]\n",
+        ["key 'gear_down_rpm'", "gear 2", "below its upshift"],
+    ),
+    (
+        "gear_up_rpm: [1400, 1800, 1800, 1800, 1800, 1800, 1800, 1800, 1800, 1800, 1700, null]\n",
+        ["key 'gear_up_rpm'", "hunt"],
+    ),
     ("pedal_kp: 1\npedal_kp: 2\n", [":2:", "'pedal_kp' given twice"]),
     ("pedal_kp: [1,\n", [":2:", "invalid YAML"]),
     ("- pedal_kp\n", ["expected a mapping"]),

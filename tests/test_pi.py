@@ -147,4 +147,3 @@ def test_twenty_tonne_truck_climbs_faster(config):
     light_run = simulate(road, light).summary
     assert light_run["time_s"] < heavy_run["time_s"]
     assert light_run["fuel_kg"] < heavy_run["fuel_kg"]
-

@@ -52,8 +52,16 @@ def run_dirs(tmp_path_factory):
     return both, pi_only
 
 
-def write_sweep(directory: Path, *, stages=(25, 50), deltas=(0.1, 0.2), neutral=(True, False),
-                horizons=range(250, 3001, 250), directions=("forward", "reverse"), realtime=True) -> Path:
+def write_sweep(
+    directory: Path,
+    *,
+    stages=(25, 50),
+    deltas=(0.1, 0.2),
+    neutral=(True, False),
+    horizons=range(250, 3001, 250),
+    directions=("forward", "reverse"),
+    realtime=True,
+) -> Path:
     """A synthetic sweep.csv in the layout `truckmpc sweep` writes (road, direction, axes, results)."""
     directory.mkdir(parents=True, exist_ok=True)
     axes = ["horizon_m"] + ["stage_m"] * bool(stages) + ["delta_kmh"] * bool(deltas) + ["allow_neutral"] * bool(neutral)
@@ -63,15 +71,29 @@ def write_sweep(directory: Path, *, stages=(25, 50), deltas=(0.1, 0.2), neutral=
     with (directory / "sweep.csv").open("w", newline="") as handle:
         writer = csv.writer(handle)
         writer.writerow(["road", "direction", *axes, *results])
-        for direction, h, s, d, n in itertools.product(directions, horizons, stages or [25], deltas or [0.2], neutral or [True]):
+        for direction, h, s, d, n in itertools.product(
+            directions, horizons, stages or [25], deltas or [0.2], neutral or [True]
+        ):
             saving = -3.5 * (1 - math.exp(-h / 600)) * (1.0 if n else 0.7) + (0.1 if s == 50 else 0.0)
             dtime = 0.3 * math.exp(-h / 400) - 0.2
             q = 1e-4 * h / s * (0.2 / d) ** 2
-            cells = {"horizon_m": h, "stage_m": s, "delta_kmh": d, "allow_neutral": str(n).lower(),
-                     "pi_fuel_kg": 35.6, "pi_time_s": 4761.2, "mpc_fuel_kg": 35.6 * (1 + saving / 100),
-                     "mpc_time_s": 4761.2 * (1 + dtime / 100), "neutral_distance_m": 1200.0 * n, "realtime_ratio": q,
-                     "solve_ms_mean": q * 1e3, "solve_ms_max": q * 2e3, "infeasible_solves": 0,
-                     "delta_fuel_pct": saving, "delta_time_pct": dtime}
+            cells = {
+                "horizon_m": h,
+                "stage_m": s,
+                "delta_kmh": d,
+                "allow_neutral": str(n).lower(),
+                "pi_fuel_kg": 35.6,
+                "pi_time_s": 4761.2,
+                "mpc_fuel_kg": 35.6 * (1 + saving / 100),
+                "mpc_time_s": 4761.2 * (1 + dtime / 100),
+                "neutral_distance_m": 1200.0 * n,
+                "realtime_ratio": q,
+                "solve_ms_mean": q * 1e3,
+                "solve_ms_max": q * 2e3,
+                "infeasible_solves": 0,
+                "delta_fuel_pct": saving,
+                "delta_time_pct": dtime,
+            }
             writer.writerow(["test-track", direction, *(cells[c] for c in axes + results)])
     grid = [{"key": a, "values": []} for a in axes]
     (directory / "sweep.json").write_text(json.dumps({"version": 1, "grid": grid}))
@@ -108,18 +130,46 @@ def test_out_may_name_the_file(run_dirs, in_tmp):
 def test_a_long_stalled_run_renders_with_decimated_lines(in_tmp):
     """300 km at a 10 m trace step: 30001 samples per line, reduced to MAX_POINTS; a stall is marked."""
     d = np.arange(0.0, 300_000.0 + 1, 10.0)
-    trace = {"distance_m": d, "time_s": d / 23.6, "speed_kmh": 85 + 5 * np.sin(d / 3000), "gear": np.where(d % 40_000 < 2000, 0, 12),
-             "pedal": 0.5 + 0.5 * np.sin(d / 700), "brake": np.where(d % 20_000 < 100, 0.05, 0.0),
-             "altitude_m": 100 * np.sin(d / 20_000)}
+    trace = {
+        "distance_m": d,
+        "time_s": d / 23.6,
+        "speed_kmh": 85 + 5 * np.sin(d / 3000),
+        "gear": np.where(d % 40_000 < 2000, 0, 12),
+        "pedal": 0.5 + 0.5 * np.sin(d / 700),
+        "brake": np.where(d % 20_000 < 100, 0.05, 0.0),
+        "altitude_m": 100 * np.sin(d / 20_000),
+    }
     out = in_tmp / "long"
     out.mkdir()
     for name, cut in (("pi", len(d)), ("mpc", len(d) // 2)):
         header = ",".join(trace)
-        np.savetxt(out / f"trace-{name}.csv", np.column_stack([v[:cut] for v in trace.values()]),
-                   delimiter=",", header=header, comments="", fmt="%.6g")
-    summary = {"road": "long", "length_m": 300_000.0, "pi": {"stalled": False}, "mpc": {"stalled": True, "settings": {
-        "v_ref_kmh": 85.0, "v_inc_kmh": 5.0, "v_dec_kmh": 5.0, "stage_m": 25.0, "delta_kmh": 0.2, "horizon_m": 1500.0,
-        "allow_neutral": True}}, "delta_fuel_pct": -3.0, "delta_time_pct": 0.1}
+        np.savetxt(
+            out / f"trace-{name}.csv",
+            np.column_stack([v[:cut] for v in trace.values()]),
+            delimiter=",",
+            header=header,
+            comments="",
+            fmt="%.6g",
+        )
+    summary = {
+        "road": "long",
+        "length_m": 300_000.0,
+        "pi": {"stalled": False},
+        "mpc": {
+            "stalled": True,
+            "settings": {
+                "v_ref_kmh": 85.0,
+                "v_inc_kmh": 5.0,
+                "v_dec_kmh": 5.0,
+                "stage_m": 25.0,
+                "delta_kmh": 0.2,
+                "horizon_m": 1500.0,
+                "allow_neutral": True,
+            },
+        },
+        "delta_fuel_pct": -3.0,
+        "delta_time_pct": 0.1,
+    }
     (out / "summary.json").write_text(json.dumps(summary))
     result = run("plot", out)
     assert result.exit_code == 0, result.stderr

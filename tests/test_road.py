@@ -23,7 +23,9 @@ from truckmpc.road import (
 
 REPO = Path(__file__).resolve().parents[1]
 SHARED_ROADS = REPO / ".." / "shared" / "roads"
-needs_shared = pytest.mark.skipif(not SHARED_ROADS.is_dir(), reason="shared road profiles (../shared/roads) not present")
+needs_shared = pytest.mark.skipif(
+    not SHARED_ROADS.is_dir(), reason="shared road profiles (../shared/roads) not present"
+)
 
 
 def write(tmp_path: Path, text: str, name: str = "road.csv") -> Path:
@@ -47,7 +49,9 @@ def road_error(path: Path, *parts: str) -> str:
 
 
 def test_altitude_file_slopes_are_differenced(tmp_path: Path) -> None:
-    path = write(tmp_path, "# a comment\n\ndistance_m,altitude_m,note\n100,10,a\n# mid-file comment\n200,12,b\n\n400,11,c\n")
+    path = write(
+        tmp_path, "# a comment\n\ndistance_m,altitude_m,note\n100,10,a\n# mid-file comment\n200,12,b\n\n400,11,c\n"
+    )
     road = load_road(path)
     assert road.name == "road" and road.source == str(path)
     np.testing.assert_array_equal(road.distance_m, [100, 200, 400])  # starts where the file starts
@@ -153,7 +157,9 @@ def test_resampled_keeps_altitude_at_common_points() -> None:
     assert fine.distance_m[0] == road.distance_m[0] and fine.distance_m[-1] == road.distance_m[-1]
     common = np.intersect1d(fine.distance_m, road.distance_m)
     assert common.size == road.distance_m.size
-    np.testing.assert_allclose(np.interp(common, fine.distance_m, fine.altitude_m), np.interp(common, road.distance_m, road.altitude_m))
+    np.testing.assert_allclose(
+        np.interp(common, fine.distance_m, fine.altitude_m), np.interp(common, road.distance_m, road.altitude_m)
+    )
     coarse = road.resampled(40.0)
     assert np.all(np.diff(coarse.distance_m) <= 40.0 + 1e-9) and coarse.length_m == road.length_m
     with pytest.raises(RoadError, match="resampling step"):
@@ -168,7 +174,11 @@ def test_profile_arrays_are_read_only() -> None:
 
 @pytest.mark.parametrize(
     ("distance", "altitude", "match"),
-    [([0.0], [0.0], "at least two points"), ([0.0, 0.0], [0.0, 0.0], "strictly increasing"), ([0.0, 1.0], [0.0, 0.5], "exceeds")],
+    [
+        ([0.0], [0.0], "at least two points"),
+        ([0.0, 0.0], [0.0, 0.0], "strictly increasing"),
+        ([0.0, 1.0], [0.0, 0.5], "exceeds"),
+    ],
 )
 def test_profile_checks_its_points(distance: list[float], altitude: list[float], match: str) -> None:
     with pytest.raises(RoadError, match=match):
@@ -201,7 +211,9 @@ def test_write_refuses_points_closer_than_resolution(tmp_path: Path) -> None:
     steps=st.lists(st.floats(0.01, 500.0), min_size=1, max_size=60),
     grades=st.data(),
 )
-def test_write_then_load_round_trips(tmp_path_factory: pytest.TempPathFactory, start: float, steps: list[float], grades: st.DataObject) -> None:
+def test_write_then_load_round_trips(
+    tmp_path_factory: pytest.TempPathFactory, start: float, steps: list[float], grades: st.DataObject
+) -> None:
     slope = grades.draw(st.lists(st.floats(-0.3, 0.3), min_size=len(steps), max_size=len(steps)))
     distance = np.round(start + np.concatenate([[0.0], np.cumsum(steps)]), 3)
     altitude = np.concatenate([[0.0], np.cumsum(np.array(slope) * np.diff(distance))])
@@ -289,4 +301,10 @@ def test_shipped_roads_are_up_to_date(tmp_path: Path) -> None:
     for path in written:
         assert (REPO / "roads" / path.name).read_bytes() == path.read_bytes(), path.name
         assert load_road(path).length_m == shipped_roads()[path.name].length_m
-    assert set(shipped_roads()) >= {"hill_L500_A3.5.csv", "hill_L300_A-3.csv", "crest_L1500_A4.csv", "depression_L1500_A2.csv", "test-track.csv"}
+    assert set(shipped_roads()) >= {
+        "hill_L500_A3.5.csv",
+        "hill_L300_A-3.csv",
+        "crest_L1500_A4.csv",
+        "depression_L1500_A2.csv",
+        "test-track.csv",
+    }

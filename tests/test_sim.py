@@ -88,7 +88,9 @@ def test_trace_is_sampled_every_step_and_ends_on_the_road_end(config):
     assert set(np.unique(trace["slope"])) <= set(np.round(road.slope, 12)) | set(road.slope)
     assert result.summary["time_s"] > 0
     assert result.summary["compute_time_s"] > 0
-    assert result.summary["realtime_ratio"] == pytest.approx(result.summary["compute_time_s"] / result.summary["time_s"])
+    assert result.summary["realtime_ratio"] == pytest.approx(
+        result.summary["compute_time_s"] / result.summary["time_s"]
+    )
 
 
 class HoldStationary:

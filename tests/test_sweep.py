@@ -89,9 +89,21 @@ def test_parse_axis(text, values):
     assert [type(v) for v in axis.values] == [type(v) for v in values]
 
 
-@pytest.mark.parametrize("text", ["horizon_m", "=1,2", "horizon_m=", "horizon_m=1:2", "horizon_m=3:1:1",
-                                  "horizon_m=1:3:0", "horizon_m=a:b:c", "horizon_m=1,,2", "horizon_m=1,1",
-                                  "horizon_m=0:1e9:1"])
+@pytest.mark.parametrize(
+    "text",
+    [
+        "horizon_m",
+        "=1,2",
+        "horizon_m=",
+        "horizon_m=1:2",
+        "horizon_m=3:1:1",
+        "horizon_m=1:3:0",
+        "horizon_m=a:b:c",
+        "horizon_m=1,,2",
+        "horizon_m=1,1",
+        "horizon_m=0:1e9:1",
+    ],
+)
 def test_parse_axis_rejects(text):
     with pytest.raises(SweepError, match=r"^--grid "):
         parse_axis(text)
@@ -114,12 +126,32 @@ def test_rows_columns_and_deltas(descent, tmp_path, count_runs):
     rows = read_csv(tmp_path / "out" / "sweep.csv")
     header = list(rows[0])
     assert header == ["road", "direction", "horizon_m", "delta_kmh", *SWEEP_COLUMNS]
-    for column in ("pi_fuel_kg", "pi_time_s", "pi_end_speed_kmh", "mpc_fuel_kg", "mpc_time_s", "mpc_end_speed_kmh",
-                   "delta_fuel_pct", "delta_time_pct", "realtime_ratio", "solve_ms_mean", "solve_ms_max",
-                   "infeasible_solves", "neutral_distance_m", "pi_brake_energy_kj", "mpc_brake_energy_kj",
-                   "pi_stalled", "mpc_stalled"):
+    for column in (
+        "pi_fuel_kg",
+        "pi_time_s",
+        "pi_end_speed_kmh",
+        "mpc_fuel_kg",
+        "mpc_time_s",
+        "mpc_end_speed_kmh",
+        "delta_fuel_pct",
+        "delta_time_pct",
+        "realtime_ratio",
+        "solve_ms_mean",
+        "solve_ms_max",
+        "infeasible_solves",
+        "neutral_distance_m",
+        "pi_brake_energy_kj",
+        "mpc_brake_energy_kj",
+        "pi_stalled",
+        "mpc_stalled",
+    ):
         assert column in header
-    assert [(r["horizon_m"], r["delta_kmh"]) for r in rows] == [("250", "0.1"), ("250", "0.2"), ("500", "0.1"), ("500", "0.2")]
+    assert [(r["horizon_m"], r["delta_kmh"]) for r in rows] == [
+        ("250", "0.1"),
+        ("250", "0.2"),
+        ("500", "0.1"),
+        ("500", "0.2"),
+    ]
     assert {r["road"] for r in rows} == {"descent"} and {r["direction"] for r in rows} == {"forward"}
     for row in rows:
         pi_fuel, mpc_fuel = float(row["pi_fuel_kg"]), float(row["mpc_fuel_kg"])
@@ -207,10 +239,24 @@ def test_resume_refuses_a_different_sweep(descent, flat, tmp_path):
     out = tmp_path / "out"
     run_sweep([descent], ["horizon_m=250"], out, jobs=1)
     before = (out / "sweep.csv").read_text()
-    for roads, grid, overrides in (([descent], ["horizon_m=500"], ()), ([flat], ["horizon_m=250"], ()),
-                                   ([descent], ["horizon_m=250"], ("mass_kg=30000",))):
-        result = runner.invoke(app, ["sweep", *(f"--road={r}" for r in roads), *(f"--grid={g}" for g in grid),
-                                     *(f"--set={s}" for s in overrides), "--jobs", "1", "--out", str(out)])
+    for roads, grid, overrides in (
+        ([descent], ["horizon_m=500"], ()),
+        ([flat], ["horizon_m=250"], ()),
+        ([descent], ["horizon_m=250"], ("mass_kg=30000",)),
+    ):
+        result = runner.invoke(
+            app,
+            [
+                "sweep",
+                *(f"--road={r}" for r in roads),
+                *(f"--grid={g}" for g in grid),
+                *(f"--set={s}" for s in overrides),
+                "--jobs",
+                "1",
+                "--out",
+                str(out),
+            ],
+        )
         assert result.exit_code == 2
         assert result.stderr.startswith(f"error: {out} holds a different sweep") and result.stderr.count("\n") == 1
     assert (out / "sweep.csv").read_text() == before
@@ -227,10 +273,14 @@ def test_ctrl_c_keeps_finished_rows_and_says_how_to_resume(descent, tmp_path, mo
 
     monkeypatch.setattr(sweep_mod, "simulate", interrupted)
     out = tmp_path / "out"
-    result = runner.invoke(app, ["sweep", "--road", str(descent), "--grid", "horizon_m=250,500,750",
-                                 "--jobs", "1", "--out", str(out)])
+    result = runner.invoke(
+        app, ["sweep", "--road", str(descent), "--grid", "horizon_m=250,500,750", "--jobs", "1", "--out", str(out)]
+    )
     assert result.exit_code == 130
-    assert result.stderr == f"interrupted: 2 of 3 rows kept in {out / PARTIAL_NAME}; run the same command again to resume\n"
+    assert (
+        result.stderr
+        == f"interrupted: 2 of 3 rows kept in {out / PARTIAL_NAME}; run the same command again to resume\n"
+    )
     assert len(read_csv(out / PARTIAL_NAME)) == 2 and not (out / "sweep.csv").exists()
 
 
@@ -255,8 +305,14 @@ def test_cli_parallel_matches_in_process(descent, tmp_path):
         (["--grid", "horizonm=250"], "error: --grid horizonm: unknown key (did you mean 'horizon_m'?)"),
         (["--grid", "allow_neutral=true,maybe"], "error: --grid allow_neutral: expected true or false, got 'maybe'"),
         (["--grid", "horizon_m=250:1000"], "error: --grid horizon_m: expected start:stop:step numbers"),
-        (["--grid", "horizon_m=25,250", "--grid", "stage_m=25,50"], "error: --grid horizon_m: expected at least one stage"),
-        (["--grid", "horizon_m=250", "--set", "horizon_m=500"], "error: --grid horizon_m: also set with --set horizon_m"),
+        (
+            ["--grid", "horizon_m=25,250", "--grid", "stage_m=25,50"],
+            "error: --grid horizon_m: expected at least one stage",
+        ),
+        (
+            ["--grid", "horizon_m=250", "--set", "horizon_m=500"],
+            "error: --grid horizon_m: also set with --set horizon_m",
+        ),
         (["--grid", "horizon_m=250", "--grid", "horizon_m=500"], "error: --grid horizon_m: axis given twice"),
         (["--grid", "mass_kg=40000,-1"], "error: --grid mass_kg: expected a number > 0, got -1"),
     ],

@@ -58,7 +58,6 @@ QUICK_M = 10_000.0
 """``--quick`` drives the first this many metres of the road [m]."""
 
 
-
 class BenchError(TruckmpcError):
     """A benchmark run failed (its process ended with an error)."""
 
@@ -94,7 +93,9 @@ def _road(path: str | None, quick: bool) -> RoadProfile:
 
 
 def _overrides(setting: dict[str, Any], extra: tuple[str, ...]) -> list[str]:
-    fixed = [f"{key}={'true' if value is True else 'false' if value is False else value}" for key, value in setting.items()]
+    fixed = [
+        f"{key}={'true' if value is True else 'false' if value is False else value}" for key, value in setting.items()
+    ]
     return [*extra, *fixed]
 
 
@@ -136,7 +137,9 @@ def run_one(road_path: str | None, quick: bool, setting: dict[str, Any], extra: 
 def _spawn(road_path: str | None, quick: bool, setting: dict[str, Any], extra: tuple[str, ...]) -> dict[str, Any]:
     """:func:`run_one` in a fresh interpreter (``python -m truckmpc.bench --one SPEC``)."""
     spec = json.dumps({"road": road_path, "quick": quick, "setting": setting, "set": list(extra)})
-    done = subprocess.run([sys.executable, "-m", "truckmpc.bench", "--one", spec], capture_output=True, text=True, check=False)
+    done = subprocess.run(
+        [sys.executable, "-m", "truckmpc.bench", "--one", spec], capture_output=True, text=True, check=False
+    )
     if done.returncode != 0:
         lines = [line for line in done.stderr.splitlines() if line.strip()]
         why = lines[-1].removeprefix("error: ") if lines else f"exit code {done.returncode}"
@@ -228,14 +231,28 @@ def format_bench(result: BenchResult) -> str:
         lines.append(f"{head:<{width}}" + "".join(f"{_fmt(r.get(key), spec):>{cell}}" for r in runs))
     for r in runs:
         if r.get("stalled"):
-            lines.append(f"S {r['stage_m']:g} m, δ {r['delta_kmh']:g} km/h: the truck stalled; figures cover the road up to there")
+            lines.append(
+                f"S {r['stage_m']:g} m, δ {r['delta_kmh']:g} km/h: the truck stalled; figures cover the road up to there"
+            )
     return "\n".join(lines)
 
 
 def bench_cmd(
-    road: Annotated[Path | None, typer.Option("--road", help="Road profile CSV (default: the 108 km VECTO long-haul road of ../shared/roads, else the bundled test track).")] = None,
+    road: Annotated[
+        Path | None,
+        typer.Option(
+            "--road",
+            help="Road profile CSV (default: the 108 km VECTO long-haul road of ../shared/roads, else the bundled test track).",
+        ),
+    ] = None,
     quick: Annotated[bool, typer.Option("--quick", help="Only the first 10 km of the road (for CI).")] = False,
-    set_: Annotated[list[str] | None, typer.Option("--set", help="Any other key=value (e.g. neutral_rule=interpolate); stage_m, delta_kmh, horizon_m, allow_neutral and grid are fixed.")] = None,
+    set_: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--set",
+            help="Any other key=value (e.g. neutral_rule=interpolate); stage_m, delta_kmh, horizon_m, allow_neutral and grid are fixed.",
+        ),
+    ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")] = False,
 ) -> None:
     """Time closed-loop MPC runs at (S 25 m, δ 0.1 km/h, 3000 m) and (S 50 m, δ 0.2 km/h, 2000 m), on the fixed and the moving grid, each in its own process.

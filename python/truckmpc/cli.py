@@ -72,11 +72,16 @@ class _OneLineErrors(TyperGroup):
     as the installed command.
     """
 
-    def main(self, args: Any = None, prog_name: str | None = None, complete_var: str | None = None,
-             standalone_mode: bool = True, **extra: Any) -> Any:
+    def main(
+        self,
+        args: Any = None,
+        prog_name: str | None = None,
+        complete_var: str | None = None,
+        standalone_mode: bool = True,
+        **extra: Any,
+    ) -> Any:
         try:
-            rv = super().main(args=args, prog_name=prog_name, complete_var=complete_var,
-                              standalone_mode=False, **extra)
+            rv = super().main(args=args, prog_name=prog_name, complete_var=complete_var, standalone_mode=False, **extra)
         except _USAGE_ERRORS as err:  # usage errors, bad parameter values
             message = err.format_message() if hasattr(err, "format_message") else str(err)
             _fail(message or "missing command or arguments (usage above; --help for more)")
@@ -119,15 +124,26 @@ class SectionKind(str, enum.Enum):
     depression = "depression"
 
 
-VehicleOpt = Annotated[Path | None, typer.Option("--vehicle", help="Vehicle YAML file (default: packaged truck-40t.yaml).")]
-ConfigOpt = Annotated[list[Path] | None, typer.Option("--config", help="Controller/simulation YAML overlay; repeatable.")]
-SetOpt = Annotated[list[str] | None, typer.Option("--set", help="Override any vehicle, controller or simulation key: key=value; repeatable.")]
+VehicleOpt = Annotated[
+    Path | None, typer.Option("--vehicle", help="Vehicle YAML file (default: packaged truck-40t.yaml).")
+]
+ConfigOpt = Annotated[
+    list[Path] | None, typer.Option("--config", help="Controller/simulation YAML overlay; repeatable.")
+]
+SetOpt = Annotated[
+    list[str] | None,
+    typer.Option("--set", help="Override any vehicle, controller or simulation key: key=value; repeatable."),
+]
 
 
 @app.command("simulate")
 def simulate_cmd(
-    road: Annotated[Path | None, typer.Option("--road", help="Road profile CSV (default: the bundled test track).")] = None,
-    controller: Annotated[ControllerChoice, typer.Option("--controller", help="Controller to run; both = PI and MPC compared.")] = ControllerChoice(BOTH),  # type: ignore[valid-type]
+    road: Annotated[
+        Path | None, typer.Option("--road", help="Road profile CSV (default: the bundled test track).")
+    ] = None,
+    controller: Annotated[
+        ControllerChoice, typer.Option("--controller", help="Controller to run; both = PI and MPC compared.")
+    ] = ControllerChoice(BOTH),  # type: ignore[valid-type]
     vehicle: VehicleOpt = None,
     config: ConfigOpt = None,
     set_: SetOpt = None,
@@ -153,10 +169,18 @@ def simulate_cmd(
 @app.command("sweep")
 def sweep_cmd(
     road: Annotated[list[Path], typer.Option("--road", help="Road profile CSV; repeatable.")],
-    out: Annotated[Path, typer.Option("--out", help="Output directory: sweep.csv, sweep.json (and sweep.partial.csv while running).")],
-    grid: Annotated[list[str] | None, typer.Option("--grid", help="Axis KEY=start:stop:step or KEY=v1,v2,...; any config key; repeatable.")] = None,
+    out: Annotated[
+        Path,
+        typer.Option("--out", help="Output directory: sweep.csv, sweep.json (and sweep.partial.csv while running)."),
+    ],
+    grid: Annotated[
+        list[str] | None,
+        typer.Option("--grid", help="Axis KEY=start:stop:step or KEY=v1,v2,...; any config key; repeatable."),
+    ] = None,
     reverse: Annotated[bool, typer.Option("--reverse", help="Drive every road in the opposite direction.")] = False,
-    jobs: Annotated[int | None, typer.Option("--jobs", min=1, help="Parallel processes (default: all cores); 1 runs in-process.")] = None,
+    jobs: Annotated[
+        int | None, typer.Option("--jobs", min=1, help="Parallel processes (default: all cores); 1 runs in-process.")
+    ] = None,
     vehicle: VehicleOpt = None,
     config: ConfigOpt = None,
     set_: SetOpt = None,
@@ -169,13 +193,22 @@ def sweep_cmd(
     from truckmpc.sweep import SweepInterrupted, SweepWorkerDied, plan_sweep, progress_bar, run_plan
 
     try:
-        plan = plan_sweep(road, tuple(grid or ()), reverse=reverse, vehicle_path=vehicle,
-                          config_paths=tuple(config or ()), overrides=tuple(set_ or ()))
+        plan = plan_sweep(
+            road,
+            tuple(grid or ()),
+            reverse=reverse,
+            vehicle_path=vehicle,
+            config_paths=tuple(config or ()),
+            overrides=tuple(set_ or ()),
+        )
         with progress_bar(not quiet) as hook:
             result = run_plan(plan, out, jobs=jobs, progress=hook)
     except SweepInterrupted as stop:
-        typer.echo(f"interrupted: {stop.done} of {stop.total} rows kept in {stop.partial_path}; "
-                   "run the same command again to resume", err=True)
+        typer.echo(
+            f"interrupted: {stop.done} of {stop.total} rows kept in {stop.partial_path}; "
+            "run the same command again to resume",
+            err=True,
+        )
         raise typer.Exit(130) from None
     except KeyboardInterrupt:
         typer.echo("interrupted before any run started", err=True)
@@ -187,8 +220,10 @@ def sweep_cmd(
         figures = " ".join(f"{key}={row[key]}" for key in axes)
         deltas = [f"{float(row[k]):+.2f}" if row[k] else "-" for k in ("delta_fuel_pct", "delta_time_pct")]
         typer.echo(f"{row['road']} {row['direction']} {figures}: delta fuel {deltas[0]} %, delta time {deltas[1]} %")
-    typer.echo(f"wrote {result.csv_path} ({len(result.rows)} rows: {result.mpc_runs} MPC and {result.pi_runs} PI runs, "
-               f"{result.resumed_rows} rows resumed)")
+    typer.echo(
+        f"wrote {result.csv_path} ({len(result.rows)} rows: {result.mpc_runs} MPC and {result.pi_runs} PI runs, "
+        f"{result.resumed_rows} rows resumed)"
+    )
 
 
 def _parse_gear(text: str | None, forward_gears: int) -> int | None:
@@ -209,7 +244,10 @@ def _parse_gear(text: str | None, forward_gears: int) -> int | None:
 def stationary_cmd(
     speed_kmh: Annotated[float, typer.Option("--speed-kmh", help="Speed to hold [km/h].")],
     slope_pct: Annotated[float, typer.Option("--slope-pct", help="Road grade [%], negative downhill.")],
-    gear: Annotated[str | None, typer.Option("--gear", help="Gear 1..12 or 'neutral' (default: the PI gear logic's gear at this speed).")] = None,
+    gear: Annotated[
+        str | None,
+        typer.Option("--gear", help="Gear 1..12 or 'neutral' (default: the PI gear logic's gear at this speed)."),
+    ] = None,
     vehicle: VehicleOpt = None,
     config: ConfigOpt = None,
     set_: SetOpt = None,
@@ -250,7 +288,9 @@ def road_make_cmd(
     kind: Annotated[SectionKind, typer.Argument(help="Section shape.")],
     length_m: Annotated[float, typer.Option("--length-m", help="Length of the hill (or crest/depression) [m].")],
     output: Annotated[Path, typer.Option("-o", "--output", help="CSV file to write.")],
-    slope_pct: Annotated[float | None, typer.Option("--slope-pct", help="Grade [%] (negative for a descent); not for flat.")] = None,
+    slope_pct: Annotated[
+        float | None, typer.Option("--slope-pct", help="Grade [%] (negative for a descent); not for flat.")
+    ] = None,
     lead_m: Annotated[float | None, typer.Option("--lead-m", help="Flat lead-in [m] (default: the thesis's).")] = None,
     tail_m: Annotated[float | None, typer.Option("--tail-m", help="Flat run-out [m] (default: the thesis's).")] = None,
 ) -> None:
@@ -274,9 +314,16 @@ def road_regenerate_cmd(
 
 @app.command("plot")
 def plot_cmd(
-    directory: Annotated[Path, typer.Argument(metavar="DIR", help="A run directory (summary.json, trace-*.csv) or a sweep directory (sweep.csv).")],
+    directory: Annotated[
+        Path,
+        typer.Argument(
+            metavar="DIR", help="A run directory (summary.json, trace-*.csv) or a sweep directory (sweep.csv)."
+        ),
+    ],
     svg: Annotated[bool, typer.Option("--svg", help="Also write an SVG beside every PNG.")] = False,
-    out: Annotated[Path | None, typer.Option("--out", help="Output directory, or a .png/.svg file name (default: DIR).")] = None,
+    out: Annotated[
+        Path | None, typer.Option("--out", help="Output directory, or a .png/.svg file name (default: DIR).")
+    ] = None,
 ) -> None:
     """Plot a run (DIR/run.png: altitude, speed, gear, pedal, brake over distance) or a sweep
     (DIR/sweep.png: delta fuel and delta time against the horizon; DIR/realtime.png). Needs matplotlib."""

@@ -102,7 +102,9 @@ def _to_float(value: Any, what: str = "a number") -> float:
     return number
 
 
-def _number(minimum: float | None = None, *, above: bool = False, maximum: float | None = None, why: str = "") -> Parser:
+def _number(
+    minimum: float | None = None, *, above: bool = False, maximum: float | None = None, why: str = ""
+) -> Parser:
     """Parser of a finite number, optionally bounded: > or >= `minimum`, <= `maximum`."""
     if minimum is not None and maximum is not None:
         expected = f"a number in {'(' if above else '['}{minimum:g}, {maximum:g}]"
@@ -386,12 +388,18 @@ _PI_PARSERS: dict[str, Parser] = {
 def _build_pi(values: dict[str, Any], source: str) -> PiConfig:
     down, up = values["gear_down_rpm"], values["gear_up_rpm"]
     if len(up) != len(down):
-        raise _Invalid(f"one threshold per gear, as many as gear_down_rpm ({len(down)}), got {len(up)}", key="gear_up_rpm", show_got=False)
+        raise _Invalid(
+            f"one threshold per gear, as many as gear_down_rpm ({len(down)}), got {len(up)}",
+            key="gear_up_rpm",
+            show_got=False,
+        )
     _check_thresholds("gear_down_rpm", down, none_at=0, what="gear 1 (there is no lower gear)")
     _check_thresholds("gear_up_rpm", up, none_at=len(up) - 1, what=f"gear {len(up)} (there is no higher gear)")
     for gear, (low, high) in enumerate(zip(down, up, strict=True), start=1):
         if low is not None and high is not None and not low < high:
-            raise _Invalid(f"gear {gear}'s downshift speed below its upshift speed {high:g} rpm", low, key="gear_down_rpm")
+            raise _Invalid(
+                f"gear {gear}'s downshift speed below its upshift speed {high:g} rpm", low, key="gear_down_rpm"
+            )
     return PiConfig(**values, source=source)
 
 
@@ -410,7 +418,9 @@ def _check_pi_gears(pi: PiConfig, vehicle: VehicleConfig) -> None:
     for key in ("gear_down_rpm", "gear_up_rpm"):
         count = len(getattr(pi, key))
         if count != len(ratios):
-            raise _Invalid(f"{len(ratios)} thresholds (one per gear of the vehicle), got {count}", key=key, show_got=False)
+            raise _Invalid(
+                f"{len(ratios)} thresholds (one per gear of the vehicle), got {count}", key=key, show_got=False
+            )
     for gear in range(1, len(ratios)):
         up, next_down = pi.gear_up_rpm[gear - 1], pi.gear_down_rpm[gear]
         landing = up * ratios[gear] / ratios[gear - 1]
@@ -610,7 +620,9 @@ def _apply_overlay(state: dict[str, dict[str, _Value]], path: PathLike) -> None:
     for key, raw in data.items():
         owners = [name for name, section in SECTIONS.items() if key in section.parsers]
         if not owners and key in VEHICLE_KEYS:
-            raise ConfigError(f"{where}: key {key!r} is a vehicle parameter: set it in the vehicle file or with --set {key}=...")
+            raise ConfigError(
+                f"{where}: key {key!r} is a vehicle parameter: set it in the vehicle file or with --set {key}=..."
+            )
         if not owners:
             raise _unknown_key(where, key, [*_section_keys(), *VEHICLE_KEYS])
         for name in owners:
@@ -648,7 +660,10 @@ def load_sections(
     Returns the vehicle config and a dict from section name (a key of `SECTIONS`) to its config.
     """
     vehicle_values, vehicle_where = _read_vehicle_file(vehicle_path)
-    state = {name: _read_section_file(section, default_config_path(section.default_file)) for name, section in SECTIONS.items()}
+    state = {
+        name: _read_section_file(section, default_config_path(section.default_file))
+        for name, section in SECTIONS.items()
+    }
     for path in config_paths:
         _apply_overlay(state, path)
     for text in overrides:

@@ -23,6 +23,7 @@ if TYPE_CHECKING:
     from truckmpc.config import MpcConfig, PiConfig
     from truckmpc.road import RoadProfile
 
+
 class MpcController:
     """The DP-MPC as a :class:`truckmpc.controller.Controller`: decides once per stage."""
 

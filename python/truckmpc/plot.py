@@ -41,10 +41,22 @@ MISSING_MATPLOTLIB = "plotting needs matplotlib: pip install 'truckmpc[plot]'"
 CONTROLLER_STYLE = {"pi": ("PI", "tab:blue"), "mpc": ("MPC", "tab:red")}
 """Label and colour per controller, the same in every panel."""
 
-RESULT_COLUMNS = frozenset({
-    "road", "direction", "pi_fuel_kg", "pi_time_s", "mpc_fuel_kg", "mpc_time_s", "delta_fuel_pct",
-    "delta_time_pct", "realtime_ratio", "solve_ms_mean", "solve_ms_max", "infeasible_solves",
-})
+RESULT_COLUMNS = frozenset(
+    {
+        "road",
+        "direction",
+        "pi_fuel_kg",
+        "pi_time_s",
+        "mpc_fuel_kg",
+        "mpc_time_s",
+        "delta_fuel_pct",
+        "delta_time_pct",
+        "realtime_ratio",
+        "solve_ms_mean",
+        "solve_ms_max",
+        "infeasible_solves",
+    }
+)
 CONFIG_KEYS = frozenset(VEHICLE_KEYS) | {key for section in SECTIONS.values() for key in section.parsers}
 """Column names of sweep.csv that can be grid axes: any vehicle, controller or simulation key."""
 
@@ -67,8 +79,9 @@ def _figure_class() -> Any:
 # Entry point: run or sweep directory.
 
 
-def plot_dir(directory: str | os.PathLike[str], *, out: str | os.PathLike[str] | None = None,
-             svg: bool = False) -> list[Path]:
+def plot_dir(
+    directory: str | os.PathLike[str], *, out: str | os.PathLike[str] | None = None, svg: bool = False
+) -> list[Path]:
     """Plot a run or a sweep directory; return the files written.
 
     ``out`` is a directory (default: ``directory``) or, for one kind of input, a file name whose
@@ -84,7 +97,9 @@ def plot_dir(directory: str | os.PathLike[str], *, out: str | os.PathLike[str] |
     is_run = (source / "summary.json").is_file()
     is_sweep = (source / "sweep.csv").is_file()
     if not (is_run or is_sweep):
-        raise PlotError(f"{source}: neither a run directory (summary.json, trace-*.csv) nor a sweep directory (sweep.csv)")
+        raise PlotError(
+            f"{source}: neither a run directory (summary.json, trace-*.csv) nor a sweep directory (sweep.csv)"
+        )
     target = source if out is None else Path(out)
     as_file = target.suffix.lower() in (".png", ".svg")
     if as_file and is_run and is_sweep:
@@ -190,7 +205,9 @@ def _title(summary: Mapping[str, Any], names: Sequence[str]) -> str:
     length = summary.get("length_m")
     head = f"{road}" + (f", {length / 1000:.1f} km" if isinstance(length, (int, float)) else "")
     if "delta_fuel_pct" in summary:
-        head += f" — MPC vs PI: Δfuel {_fmt_pct(summary['delta_fuel_pct'])}, Δtime {_fmt_pct(summary['delta_time_pct'])}"
+        head += (
+            f" — MPC vs PI: Δfuel {_fmt_pct(summary['delta_fuel_pct'])}, Δtime {_fmt_pct(summary['delta_time_pct'])}"
+        )
         if any(isinstance(summary.get(n), dict) and summary[n].get("stalled") for n in names):
             head += " (a run stalled: not comparable)"
     else:
@@ -213,7 +230,7 @@ def _title(summary: Mapping[str, Any], names: Sequence[str]) -> str:
 def _run_traces(directory: Path) -> dict[str, dict[str, np.ndarray]]:
     traces: dict[str, dict[str, np.ndarray]] = {}
     known = [n for n in CONTROLLER_STYLE if (directory / f"trace-{n}.csv").is_file()]
-    others = sorted(p.name[len("trace-"):-len(".csv")] for p in directory.glob("trace-*.csv"))
+    others = sorted(p.name[len("trace-") : -len(".csv")] for p in directory.glob("trace-*.csv"))
     for name in known + [n for n in others if n not in known]:
         traces[name] = _read_trace(directory / f"trace-{name}.csv")
     if not traces:
@@ -253,8 +270,7 @@ def _run_figure(Figure: Any, summary: Mapping[str, Any], traces: Mapping[str, Ma
         v_ref = float(s["v_ref_kmh"])
         lo, hi = v_ref - float(s.get("v_dec_kmh", 0.0)), v_ref + float(s.get("v_inc_kmh", 0.0))
         references.append(ax_v.axhline(v_ref, color="k", ls="--", lw=1.0, label=f"v_ref {v_ref:g} km/h"))
-        references.append(ax_v.axhspan(lo, hi, color="0.6", alpha=0.2, lw=0,
-                                       label=f"allowed band {lo:g}–{hi:g} km/h"))
+        references.append(ax_v.axhspan(lo, hi, color="0.6", alpha=0.2, lw=0, label=f"allowed band {lo:g}–{hi:g} km/h"))
 
     gears = [t["gear"] for t in traces.values() if "gear" in t]
     neutral_spans = any(np.any(g == 0) for g in gears)
@@ -272,8 +288,17 @@ def _run_figure(Figure: Any, summary: Mapping[str, Any], traces: Mapping[str, Ma
             gear = np.where(t["gear"] == 0, neutral_y, t["gear"])
             ax_gear.plot(*decimate(km, gear), color=color, lw=lw, drawstyle="steps-post")
             if np.any(t["gear"] == 0):
-                ax_gear.fill_between(km, 0, 1, where=t["gear"] == 0, step="post", color=color, alpha=0.18, lw=0,
-                                     transform=ax_gear.get_xaxis_transform())
+                ax_gear.fill_between(
+                    km,
+                    0,
+                    1,
+                    where=t["gear"] == 0,
+                    step="post",
+                    color=color,
+                    alpha=0.18,
+                    lw=0,
+                    transform=ax_gear.get_xaxis_transform(),
+                )
         if "pedal" in t:
             ax_pedal.plot(*decimate(km, t["pedal"]), color=color, lw=lw)
         if "brake" in t:
@@ -374,7 +399,9 @@ def _grid_axes(directory: Path, header: Sequence[str]) -> list[str]:
         if isinstance(grid, dict):
             named = set(grid)
         elif isinstance(grid, list):
-            named = {g if isinstance(g, str) else g.get("key", g.get("name")) for g in grid if isinstance(g, (str, dict))}
+            named = {
+                g if isinstance(g, str) else g.get("key", g.get("name")) for g in grid if isinstance(g, (str, dict))
+            }
     return [c for c in header if c not in RESULT_COLUMNS and (c in CONFIG_KEYS or c in named)]
 
 
@@ -441,20 +468,50 @@ def plot_sweep(directory: str | os.PathLike[str], out: str | os.PathLike[str], *
     x_axis = _x_axis(rows, axes, directory / "sweep.csv")
     line_axes = [a for a in axes if a != x_axis and a != "allow_neutral" and len(_varying(rows, a)) > 1]
     neutral_axis = "allow_neutral" in axes and len(_varying(rows, "allow_neutral")) > 1
-    panels = [(r, d) for r in _varying(rows, "road") for d in _varying(rows, "direction")] if "direction" in header \
-        else [(r, None) for r in _varying(rows, "road")] if "road" in header else [(None, None)]
+    panels = (
+        [(r, d) for r in _varying(rows, "road") for d in _varying(rows, "direction")]
+        if "direction" in header
+        else [(r, None) for r in _varying(rows, "road")]
+        if "road" in header
+        else [(None, None)]
+    )
     panels = [p for p in panels if any(_in_panel(row, p) for row in rows)]
     fixed = [_line_label(a, _varying(rows, a)[0]) for a in axes if len(_varying(rows, a)) == 1]
     note = f" ({', '.join(fixed)})" if fixed else ""
     Figure = _figure_class()
-    figures = [(_sweep_figure(Figure, rows, panels, x_axis, line_axes, neutral_axis,
-                              [("delta_fuel_pct", "Δfuel [%]"), ("delta_time_pct", "Δtime [%]")], log=False,
-                              title=f"MPC against PI: (MPC − PI) / PI{note}"), out)]
+    figures = [
+        (
+            _sweep_figure(
+                Figure,
+                rows,
+                panels,
+                x_axis,
+                line_axes,
+                neutral_axis,
+                [("delta_fuel_pct", "Δfuel [%]"), ("delta_time_pct", "Δtime [%]")],
+                log=False,
+                title=f"MPC against PI: (MPC − PI) / PI{note}",
+            ),
+            out,
+        )
+    ]
     if "realtime_ratio" in header:
-        figures.append((_sweep_figure(Figure, rows, panels, x_axis, line_axes, neutral_axis,
-                                      [("realtime_ratio", "real-time ratio q [-]\n(compute time / driven time)")],
-                                      log=True, title=f"MPC closed-loop real-time ratio{note}"),
-                        out.with_name(f"{out.stem}-realtime{out.suffix}" if out.name != "sweep.png" else "realtime.png")))
+        figures.append(
+            (
+                _sweep_figure(
+                    Figure,
+                    rows,
+                    panels,
+                    x_axis,
+                    line_axes,
+                    neutral_axis,
+                    [("realtime_ratio", "real-time ratio q [-]\n(compute time / driven time)")],
+                    log=True,
+                    title=f"MPC closed-loop real-time ratio{note}",
+                ),
+                out.with_name(f"{out.stem}-realtime{out.suffix}" if out.name != "sweep.png" else "realtime.png"),
+            )
+        )
     return _save(figures, svg)
 
 
@@ -471,9 +528,18 @@ def _panel_title(panel: tuple[Any, Any]) -> str:
     return text
 
 
-def _sweep_figure(Figure: Any, rows: Sequence[Mapping[str, Any]], panels: Sequence[tuple[Any, Any]], x_axis: str,
-                  line_axes: Sequence[str], neutral_axis: bool, metrics: Sequence[tuple[str, str]], *, log: bool,
-                  title: str) -> Any:
+def _sweep_figure(
+    Figure: Any,
+    rows: Sequence[Mapping[str, Any]],
+    panels: Sequence[tuple[Any, Any]],
+    x_axis: str,
+    line_axes: Sequence[str],
+    neutral_axis: bool,
+    metrics: Sequence[tuple[str, str]],
+    *,
+    log: bool,
+    title: str,
+) -> Any:
     from matplotlib.lines import Line2D
 
     ncols = len(panels)
@@ -490,18 +556,22 @@ def _sweep_figure(Figure: Any, rows: Sequence[Mapping[str, Any]], panels: Sequen
             for combo, color in zip(combos, colors, strict=True):
                 for neutral in neutral_values:
                     points = sorted(
-                        (r[x_axis], r[metric]) for r in in_panel
+                        (r[x_axis], r[metric])
+                        for r in in_panel
                         if all(r.get(a) == v for a, v in combo)
                         and (neutral is None or r.get("allow_neutral") == neutral)
-                        and isinstance(r.get(x_axis), float) and isinstance(r.get(metric), float)
-                        and math.isfinite(r[metric]) and (r[metric] > 0 or not log)
+                        and isinstance(r.get(x_axis), float)
+                        and isinstance(r.get(metric), float)
+                        and math.isfinite(r[metric])
+                        and (r[metric] > 0 or not log)
                     )
                     if not points:
                         continue
                     xs, ys = zip(*points, strict=True)
                     label = ", ".join(_line_label(a, v) for a, v in combo) or "MPC"
-                    (line,) = ax.plot(xs, ys, color=color, ls="-" if neutral in (None, True) else "--",
-                                      marker="o", ms=3, lw=1.2)
+                    (line,) = ax.plot(
+                        xs, ys, color=color, ls="-" if neutral in (None, True) else "--", marker="o", ms=3, lw=1.2
+                    )
                     handles.setdefault(label, Line2D([], [], color=color, marker="o", ms=3, lw=1.2, label=label))
             if log:
                 ax.set_yscale("log")
@@ -519,17 +589,21 @@ def _sweep_figure(Figure: Any, rows: Sequence[Mapping[str, Any]], panels: Sequen
             lo, hi = ax.get_ylim()
             if lo <= 1.0 <= hi:
                 ax.axhline(1.0, color="k", ls=":", lw=1.0)
-                ax.annotate("real time (q = 1)", (0.01, 1.0), xycoords=("axes fraction", "data"),
-                            va="bottom", fontsize="small")
+                ax.annotate(
+                    "real time (q = 1)", (0.01, 1.0), xycoords=("axes fraction", "data"), va="bottom", fontsize="small"
+                )
     fig.suptitle(title, fontsize="medium")
     entries = list(handles.values())
     if neutral_axis:  # colour says (S, δ), the line style says whether neutral was allowed
-        entries += [Line2D([], [], color="0.2", lw=1.2, label="neutral allowed"),
-                    Line2D([], [], color="0.2", lw=1.2, ls="--", label="no neutral")]
+        entries += [
+            Line2D([], [], color="0.2", lw=1.2, label="neutral allowed"),
+            Line2D([], [], color="0.2", lw=1.2, ls="--", label="no neutral"),
+        ]
     if entries:
         fits = max(1, int(fig.get_figwidth() / 2.1))
-        fig.legend(handles=entries, loc="outside lower center", fontsize="small", frameon=False,
-                   ncol=min(len(entries), fits))
+        fig.legend(
+            handles=entries, loc="outside lower center", fontsize="small", frameon=False, ncol=min(len(entries), fits)
+        )
     return fig
 
 

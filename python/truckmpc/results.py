@@ -70,8 +70,14 @@ def trace_csv(result: RunResult) -> str:
     columns = [c for c in TRACE_COLUMNS if c in result.trace] + [c for c in result.trace if c not in TRACE_COLUMNS]
     table = np.column_stack([np.asarray(result.trace[c], dtype=float) for c in columns])
     buffer = io.StringIO()
-    np.savetxt(buffer, table, fmt=[_CSV_FORMATS.get(c, "%.6g") for c in columns], delimiter=",",
-               header=",".join(columns), comments="")
+    np.savetxt(
+        buffer,
+        table,
+        fmt=[_CSV_FORMATS.get(c, "%.6g") for c in columns],
+        delimiter=",",
+        header=",".join(columns),
+        comments="",
+    )
     return buffer.getvalue()
 
 

@@ -154,7 +154,9 @@ def _header(where: str, number: int, line: str) -> list[str]:
     return columns
 
 
-def _rows(where: str, columns: list[str], lines: list[tuple[int, str]]) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
+def _rows(
+    where: str, columns: list[str], lines: list[tuple[int, str]]
+) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
     """Distances, altitudes (None without that column) and grades (zeros without that column)."""
     wanted = [name for name in ("distance_m", "altitude_m", "grade") if name in columns]
     index = {name: columns.index(name) for name in wanted}
@@ -190,7 +192,9 @@ def _check_row(where: str, number: int, data: dict[str, list[float]]) -> None:
     distance = data["distance_m"]
     uses_grade = "altitude_m" not in data
     if uses_grade and abs(data["grade"][-1]) > _GRADE_CHECK:
-        raise RoadError(f"{where}:{number}: column 'grade': expected |grade| <= {MAX_GRADE:g}, got {data['grade'][-1]:g}")
+        raise RoadError(
+            f"{where}:{number}: column 'grade': expected |grade| <= {MAX_GRADE:g}, got {data['grade'][-1]:g}"
+        )
     if len(distance) < 2:
         return
     if not distance[-1] > distance[-2]:

@@ -71,8 +71,15 @@ MAX_AXIS_VALUES = 10_000
 # Result columns after road, direction and the axes: PI figures, MPC figures (the solver's without
 # a prefix), then the comparison (blank when either run stalled: its fuel is not that of the road).
 _PI_FIELDS = ("fuel_kg", "time_s", "end_speed_kmh", "brake_energy_kj", "gear_shifts", "stalled")
-_MPC_FIELDS = (*_PI_FIELDS, "neutral_distance_m", "realtime_ratio", "solve_ms_mean", "solve_ms_max",
-               "infeasible_solves", "transitions_per_solve")
+_MPC_FIELDS = (
+    *_PI_FIELDS,
+    "neutral_distance_m",
+    "realtime_ratio",
+    "solve_ms_mean",
+    "solve_ms_max",
+    "infeasible_solves",
+    "transitions_per_solve",
+)
 _MPC_ONLY = frozenset(_MPC_FIELDS) - frozenset(_PI_FIELDS)
 _RESULT_SOURCES: tuple[tuple[str, str, str], ...] = (
     *(("pi", name, f"pi_{name}") for name in _PI_FIELDS),
@@ -229,7 +236,9 @@ class SweepPlan:
 def _pi_key(road: int, config: RunConfig) -> str:
     """Everything the PI run depends on: road, vehicle, PI and simulation values (not the MPC's)."""
     parts = [road, config.vehicle.params]
-    parts += [{k: v for k, v in dataclasses.asdict(section).items() if k != "source"} for section in (config.pi, config.sim)]
+    parts += [
+        {k: v for k, v in dataclasses.asdict(section).items() if k != "source"} for section in (config.pi, config.sim)
+    ]
     return json.dumps(parts, sort_keys=True)
 
 
@@ -279,22 +288,29 @@ def plan_sweep(
     if reverse:
         profiles = [p.reversed() for p in profiles]
         profiles = [dataclasses.replace(p, name=n) for p, n in zip(profiles, names, strict=True)]
-    base = dict(vehicle_path=None if vehicle_path is None else str(vehicle_path),
-                config_paths=tuple(str(p) for p in config_paths), overrides=tuple(overrides))
+    base = dict(
+        vehicle_path=None if vehicle_path is None else str(vehicle_path),
+        config_paths=tuple(str(p) for p in config_paths),
+        overrides=tuple(overrides),
+    )
     base_config = load_run_config(**base)  # errors in the base name their file or --set
     combos = []
     for values in expand_grid(axes):
         texts = tuple(f"{key}={_yaml_text(v)}" for key, v in zip(keys, values, strict=True))
         combos.append((values, texts, _combination_config(base, axes, values, texts)))
-    rows = [Row(len(combos) * r + i, r, values, texts, _pi_key(r, config), _mpc_cost(profile, config))
-            for r, profile in enumerate(profiles) for i, (values, texts, config) in enumerate(combos)]
+    rows = [
+        Row(len(combos) * r + i, r, values, texts, _pi_key(r, config), _mpc_cost(profile, config))
+        for r, profile in enumerate(profiles)
+        for i, (values, texts, config) in enumerate(combos)
+    ]
     direction = "reverse" if reverse else "forward"
     config_doc = base_config.as_dict()
     config_doc.pop("sources")
     settings = {
         "version": 1,
-        "roads": [{"name": p.name, "direction": direction, "sha256": _road_digest(p), "path": p.source}
-                  for p in profiles],
+        "roads": [
+            {"name": p.name, "direction": direction, "sha256": _road_digest(p), "path": p.source} for p in profiles
+        ],
         "grid": [{"key": a.key, "spec": a.spec, "values": list(a.values)} for a in axes],
         "base_config": config_doc,
         "vehicle": base["vehicle_path"],
@@ -302,11 +318,21 @@ def plan_sweep(
         "overrides": list(base["overrides"]),
         "columns": ["road", "direction", *keys, *SWEEP_COLUMNS],
     }
-    return SweepPlan(tuple(profiles), direction, axes, base["vehicle_path"], base["config_paths"],
-                     base["overrides"], tuple(rows), json.loads(json.dumps(settings)))
+    return SweepPlan(
+        tuple(profiles),
+        direction,
+        axes,
+        base["vehicle_path"],
+        base["config_paths"],
+        base["overrides"],
+        tuple(rows),
+        json.loads(json.dumps(settings)),
+    )
 
 
-def _combination_config(base: dict[str, Any], axes: Sequence[Axis], values: tuple[Any, ...], texts: tuple[str, ...]) -> RunConfig:
+def _combination_config(
+    base: dict[str, Any], axes: Sequence[Axis], values: tuple[Any, ...], texts: tuple[str, ...]
+) -> RunConfig:
     try:
         return load_run_config(base["vehicle_path"], base["config_paths"], (*base["overrides"], *texts))
     except ConfigError as err:
@@ -387,8 +413,9 @@ class _Runner:
         # inherit an ignored SIGINT through exec, so Ctrl-C reaches only this process.
         previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
         try:
-            self._pool = ProcessPoolExecutor(min(self.jobs, len(tasks)), multiprocessing.get_context("spawn"),
-                                             _init_worker, (*args, True))
+            self._pool = ProcessPoolExecutor(
+                min(self.jobs, len(tasks)), multiprocessing.get_context("spawn"), _init_worker, (*args, True)
+            )
             futures = {self._pool.submit(run_one, *task): task_id for task_id, *task in tasks}
         finally:
             signal.signal(signal.SIGINT, previous)
@@ -396,7 +423,9 @@ class _Runner:
             for future in as_completed(futures):
                 yield futures[future], future.result()
         except BrokenProcessPool:
-            raise SweepWorkerDied("a sweep worker process died (killed? out of memory?); run the same command again to resume") from None
+            raise SweepWorkerDied(
+                "a sweep worker process died (killed? out of memory?); run the same command again to resume"
+            ) from None
 
 
 # ---------------------------------------------------------------------------------------------
@@ -446,14 +475,18 @@ def _check_out_dir(out: Path, plan: SweepPlan) -> None:
         old = json.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
         if (out / PARTIAL_NAME).exists() or (out / CSV_NAME).exists():
-            raise SweepError(f"{out}: holds sweep results without {SETTINGS_NAME}; use another --out or remove them") from None
+            raise SweepError(
+                f"{out}: holds sweep results without {SETTINGS_NAME}; use another --out or remove them"
+            ) from None
         return
     except (json.JSONDecodeError, UnicodeDecodeError):
         raise SweepError(f"{path}: not a sweep settings file; use another --out or remove it") from None
     mine, theirs = _identity(plan.settings), _identity(old if isinstance(old, dict) else {})
     differ = [key for key in _IDENTITY if mine[key] != theirs[key]]
     if differ:
-        raise SweepError(f"{out} holds a different sweep (not the same: {', '.join(differ)}); use another --out or remove it")
+        raise SweepError(
+            f"{out} holds a different sweep (not the same: {', '.join(differ)}); use another --out or remove it"
+        )
 
 
 class _PartialFile:
@@ -466,7 +499,7 @@ class _PartialFile:
     def append(self, line: str) -> None:
         data = line.encode("utf-8")
         while data:
-            data = data[os.write(self._fd, data):]
+            data = data[os.write(self._fd, data) :]
 
     def close(self) -> None:
         os.close(self._fd)
@@ -506,8 +539,9 @@ def run_sweep(
 
     Every combination is validated before anything runs or ``out`` is created.
     """
-    plan = plan_sweep(roads, grid, reverse=reverse, vehicle_path=vehicle_path, config_paths=config_paths,
-                      overrides=overrides)
+    plan = plan_sweep(
+        roads, grid, reverse=reverse, vehicle_path=vehicle_path, config_paths=config_paths, overrides=overrides
+    )
     return run_plan(plan, out, jobs=jobs, progress=progress)
 
 
@@ -541,7 +575,9 @@ def run_plan(
     pi_cache: dict[str, dict[str, Any]] = {}
     first_pi = len(plan.axes) + 2
     for index, cells in done.items():  # reuse the PI figures of finished rows
-        pi_cache.setdefault(plan.rows[index].pi_key, {k: _parse_cell(c) for k, c in zip(_PI_FIELDS, cells[first_pi:], strict=False)})
+        pi_cache.setdefault(
+            plan.rows[index].pi_key, {k: _parse_cell(c) for k, c in zip(_PI_FIELDS, cells[first_pi:], strict=False)}
+        )
     out.mkdir(parents=True, exist_ok=True)
     atomic_write_text(out / SETTINGS_NAME, json.dumps({**plan.settings, "jobs": jobs}, indent=2) + "\n")
     pi_tasks = {row.pi_key: row for row in pending if row.pi_key not in pi_cache}
@@ -577,8 +613,14 @@ def run_plan(
     atomic_write_text(out / CSV_NAME, header + "".join(_csv_line(cells) for cells in ordered))
     with contextlib.suppress(FileNotFoundError):
         os.unlink(out / PARTIAL_NAME)
-    return SweepResult(out / CSV_NAME, columns, [dict(zip(columns, cells, strict=True)) for cells in ordered],
-                       pi_runs=len(pi_tasks), mpc_runs=len(pending), resumed_rows=resumed)
+    return SweepResult(
+        out / CSV_NAME,
+        columns,
+        [dict(zip(columns, cells, strict=True)) for cells in ordered],
+        pi_runs=len(pi_tasks),
+        mpc_runs=len(pending),
+        resumed_rows=resumed,
+    )
 
 
 @contextlib.contextmanager
@@ -588,7 +630,14 @@ def progress_bar(enabled: bool = True) -> Iterator[ProgressHook | None]:
     missing."""
     try:
         from rich.console import Console
-        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+        from rich.progress import (
+            BarColumn,
+            MofNCompleteColumn,
+            Progress,
+            TextColumn,
+            TimeElapsedColumn,
+            TimeRemainingColumn,
+        )
     except ImportError:
         enabled = False
     if not enabled:
@@ -598,8 +647,15 @@ def progress_bar(enabled: bool = True) -> Iterator[ProgressHook | None]:
     if not console.is_terminal:
         yield None
         return
-    columns = (TextColumn("sweep"), BarColumn(), MofNCompleteColumn(), TextColumn("rows"), TimeElapsedColumn(),
-               TextColumn("ETA"), TimeRemainingColumn())
+    columns = (
+        TextColumn("sweep"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TextColumn("rows"),
+        TimeElapsedColumn(),
+        TextColumn("ETA"),
+        TimeRemainingColumn(),
+    )
     with Progress(*columns, console=console, transient=False) as bar:
         task = bar.add_task("sweep", total=None)
         started = False

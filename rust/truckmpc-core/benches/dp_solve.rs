@@ -36,7 +36,9 @@ fn hilly_road() -> Road {
     let points = (ROAD_M / POINT_M) as usize + 1;
     let distance: Vec<f64> = (0..points).map(|i| i as f64 * POINT_M).collect();
     let tau = std::f64::consts::TAU;
-    let raw = |s: f64| 0.6 * (tau * s / 3100.0).sin() + 0.3 * (tau * s / 1300.0 + 1.0).sin() + 0.1 * (tau * s / 700.0 + 2.0).sin();
+    let raw = |s: f64| {
+        0.6 * (tau * s / 3100.0).sin() + 0.3 * (tau * s / 1300.0 + 1.0).sin() + 0.1 * (tau * s / 700.0 + 2.0).sin()
+    };
     let slope: Vec<f64> = distance[..points - 1].iter().map(|&s| 0.03 * raw(s + 0.5 * POINT_M)).collect();
     Road::new(distance, slope).expect("synthetic road is valid")
 }

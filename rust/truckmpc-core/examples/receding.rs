@@ -20,7 +20,14 @@ fn main() {
     let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
     let grid = if args.get(2).map(|s| s.as_str()) == Some("fixed") { GridAnchor::Fixed } else { GridAnchor::Moving };
     let num = |i: usize, dflt: f64| args.get(i).map(|s| s.parse().unwrap()).unwrap_or(dflt);
-    let p = MpcParams { grid, delta_kmh: num(3, 0.1), horizon_m: num(4, 3000.0), stage_m: num(5, 25.0), q_speed_below: 5.0, ..MpcParams::default() };
+    let p = MpcParams {
+        grid,
+        delta_kmh: num(3, 0.1),
+        horizon_m: num(4, 3000.0),
+        stage_m: num(5, 25.0),
+        q_speed_below: 5.0,
+        ..MpcParams::default()
+    };
     let mut solver = Solver::new(p.clone());
     let mut scratch = Vec::new();
     let (mut v, mut gear, mut since) = (85.0 / 3.6, 12usize, 8u32);
@@ -31,7 +38,14 @@ fn main() {
     let t0 = Instant::now();
     let mut s = road.start_m();
     while s + p.stage_m <= road.end_m() {
-        let sol = horizon::solve_at(&mut solver, &vehicle, &road, s, InitialState { v_mps: v, gear, stages_since_shift: since }, &mut scratch);
+        let sol = horizon::solve_at(
+            &mut solver,
+            &vehicle,
+            &road,
+            s,
+            InitialState { v_mps: v, gear, stages_since_shift: since },
+            &mut scratch,
+        );
         solves += 1;
         transitions += sol.transitions as u64;
         states += sol.states as u64;

@@ -65,10 +65,7 @@ pub fn brake_accel_on(vehicle: &Vehicle, v0_mps: f64, gear: usize, slope_torque_
     let g = vehicle.gear(gear);
     let drag = if gear == NEUTRAL { 0.0 } else { vehicle.drag_torque_nm(g.c4 * v0_mps) };
     let load = vehicle.c2() * v0_mps * v0_mps + slope_torque_nm;
-    AffineAccel {
-        accel_at_zero: g.c1 * (g.c3 * drag - load),
-        gain: -g.c1 * vehicle.params().brake_torque_max_nm,
-    }
+    AffineAccel { accel_at_zero: g.c1 * (g.c3 * drag - load), gain: -g.c1 * vehicle.params().brake_torque_max_nm }
 }
 
 /// Pedal level (B.5) that joins v0 to v1 in one Euler stage of length h in a forward gear,

@@ -53,7 +53,8 @@ impl Plant {
     /// A truck at `s_m` with speed `v_mps`, nothing used yet.
     pub fn new(vehicle: Arc<Vehicle>, road: Arc<Road>, s_m: f64, v_mps: f64) -> Self {
         let stall_speed_mps = vehicle.stall_speed_mps();
-        let state = PlantState { s_m, v_mps, t_s: 0.0, fuel_g: 0.0, brake_energy_j: 0.0, stalled: v_mps < stall_speed_mps };
+        let state =
+            PlantState { s_m, v_mps, t_s: 0.0, fuel_g: 0.0, brake_energy_j: 0.0, stalled: v_mps < stall_speed_mps };
         Plant { vehicle, road, state, segment_hint: 0, stall_speed_mps }
     }
 
@@ -66,7 +67,6 @@ impl Plant {
     pub fn vehicle(&self) -> &Vehicle {
         &self.vehicle
     }
-
 
     /// Time derivatives at speed `v_mps` on a slope given by its wheel torque [Nm].
     #[inline]

@@ -26,7 +26,10 @@ impl Road {
             ));
         }
         if let Some(i) = distance_m.windows(2).position(|w| !(w[1] > w[0]) || !w[1].is_finite()) {
-            return Err(CoreError::invalid("distance_m", format!("expected strictly increasing distances at point {}", i + 1)));
+            return Err(CoreError::invalid(
+                "distance_m",
+                format!("expected strictly increasing distances at point {}", i + 1),
+            ));
         }
         if let Some(i) = slope.iter().position(|s| !s.is_finite()) {
             return Err(CoreError::invalid("slope", format!("expected a finite slope on segment {i}")));

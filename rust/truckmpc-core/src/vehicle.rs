@@ -96,9 +96,7 @@ impl Default for VehicleParams {
             wheel_radius_m: 0.52,
             brake_torque_max_nm: 1.0e5,
             gear_ratios: vec![11.27, 9.14, 7.17, 5.81, 4.62, 3.75, 3.01, 2.44, 1.91, 1.55, 1.23, 1.0],
-            gear_efficiencies: vec![
-                0.88, 0.89, 0.90, 0.91, 0.92, 0.93, 0.94, 0.95, 0.96, 0.97, 0.98, 0.99,
-            ],
+            gear_efficiencies: vec![0.88, 0.89, 0.90, 0.91, 0.92, 0.93, 0.94, 0.95, 0.96, 0.97, 0.98, 0.99],
         }
     }
 }
@@ -279,8 +277,7 @@ impl Vehicle {
     #[inline]
     pub fn fueling_max_mg(&self, n_rpm: f64) -> f64 {
         let p = &self.params;
-        (p.fueling_max_a_mg_per_rpm2 * n_rpm * n_rpm + p.fueling_max_b_mg_per_rpm * n_rpm + p.fueling_max_c_mg)
-            .max(0.0)
+        (p.fueling_max_a_mg_per_rpm2 * n_rpm * n_rpm + p.fueling_max_b_mg_per_rpm * n_rpm + p.fueling_max_c_mg).max(0.0)
     }
 
     /// d δ_max / dN [mg/(stroke·rpm)], zero where the bound is clamped.
@@ -364,8 +361,7 @@ impl Vehicle {
         let dtorque_dn = if gear == NEUTRAL {
             0.0
         } else if pedal > 0.0 {
-            p.torque_map_a_nm_per_rpm
-                + p.torque_map_b_nm_stroke_per_mg * pedal * self.fueling_max_slope(g.c4 * v_mps)
+            p.torque_map_a_nm_per_rpm + p.torque_map_b_nm_stroke_per_mg * pedal * self.fueling_max_slope(g.c4 * v_mps)
         } else {
             p.drag_torque_a_nm_per_rpm
         };

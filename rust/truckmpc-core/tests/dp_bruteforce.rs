@@ -6,12 +6,12 @@
 //! exactly; with one, the DP's path must be admissible and can only cost more or the same (the
 //! counter rule of 5.6 is a heuristic, NOTES.md).
 
-use truckmpc_core::dp::rows::BRAKE_WINDOW;
-use truckmpc_core::dp::space::{grid, intervals, usable_gears, Grid, Intervals};
-use truckmpc_core::dp::{InitialState, MpcParams, NeutralRule, Solver, GridAnchor};
-use truckmpc_core::levels::{brake_accel, brake_for_step, pedal_for_step, stage_fuel_g};
 use std::cell::RefCell;
 use std::collections::HashMap;
+use truckmpc_core::dp::rows::BRAKE_WINDOW;
+use truckmpc_core::dp::space::{grid, intervals, usable_gears, Grid, Intervals};
+use truckmpc_core::dp::{GridAnchor, InitialState, MpcParams, NeutralRule, Solver};
+use truckmpc_core::levels::{brake_accel, brake_for_step, pedal_for_step, stage_fuel_g};
 
 use truckmpc_core::{Vehicle, VehicleParams, NEUTRAL};
 
@@ -122,7 +122,12 @@ impl Problem<'_> {
     }
 }
 
-fn random_case(rng: &mut Rng, vehicle: &Vehicle, k_lim: u32, anchor: GridAnchor) -> (MpcParams, InitialState, Vec<f64>) {
+fn random_case(
+    rng: &mut Rng,
+    vehicle: &Vehicle,
+    k_lim: u32,
+    anchor: GridAnchor,
+) -> (MpcParams, InitialState, Vec<f64>) {
     let stages = 3 + (rng.next() * 4.0) as usize;
     let p = MpcParams {
         stage_m: 100.0,
@@ -157,7 +162,8 @@ fn check(k_lim: u32, anchor: GridAnchor, cases: usize, seed: u64) -> (usize, usi
     for case in 0..cases {
         let (p, start, slopes) = random_case(&mut rng, &vehicle, k_lim, anchor);
         let grids = grids_of(&vehicle, &p, start, &slopes);
-        let problem = Problem { vehicle: &vehicle, p: &p, slopes: slopes.clone(), grids, start, memo: RefCell::default() };
+        let problem =
+            Problem { vehicle: &vehicle, p: &p, slopes: slopes.clone(), grids, start, memo: RefCell::default() };
         let brute = problem.best(0, start.v_mps, start.gear, start.stages_since_shift);
         let mut solver = Solver::new(p.clone());
         let dp = solver.solve(&vehicle, start, &slopes);
@@ -178,12 +184,14 @@ fn check(k_lim: u32, anchor: GridAnchor, cases: usize, seed: u64) -> (usize, usi
         if k_lim <= 1 {
             assert!((dp.cost - brute).abs() <= tolerance, "case {case}: dp {} vs enumerated {brute}", dp.cost);
             let via_first = p.q_speed_below * below * below + step + rest;
-            assert!((via_first - brute).abs() <= tolerance, "case {case}: first control is not optimal ({via_first} vs {brute})");
+            assert!(
+                (via_first - brute).abs() <= tolerance,
+                "case {case}: first control is not optimal ({via_first} vs {brute})"
+            );
         }
         if (dp.cost - brute).abs() <= tolerance {
             equal += 1;
         }
-
     }
     (feasible, equal)
 }

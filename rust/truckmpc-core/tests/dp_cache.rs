@@ -22,7 +22,14 @@ fn run(params: &MpcParams, caching: bool, road: &Road, vehicle: &Vehicle) -> Vec
         let s = road.start_m() + stage as f64 * params.stage_m;
         let start = InitialState { v_mps: v, gear, stages_since_shift: since };
         let sol = horizon::solve_at(&mut solver, vehicle, road, s, start, &mut scratch);
-        out.push((sol.feasible, sol.cost.to_bits(), sol.pedal.to_bits(), sol.brake.to_bits(), sol.gear, sol.transitions));
+        out.push((
+            sol.feasible,
+            sol.cost.to_bits(),
+            sol.pedal.to_bits(),
+            sol.brake.to_bits(),
+            sol.gear,
+            sol.transitions,
+        ));
         if sol.feasible {
             since = if sol.gear != gear { 1 } else { (since + 1).min(params.k_lim) };
             gear = sol.gear;
@@ -37,7 +44,13 @@ fn cached_and_uncached_solves_are_bit_identical() {
     let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
     let road = hilly_road();
     for rule in [NeutralRule::Nearest, NeutralRule::Interpolate] {
-        let params = MpcParams { grid: GridAnchor::Fixed, neutral_rule: rule, horizon_m: 1500.0, delta_kmh: 0.2, ..MpcParams::default() };
+        let params = MpcParams {
+            grid: GridAnchor::Fixed,
+            neutral_rule: rule,
+            horizon_m: 1500.0,
+            delta_kmh: 0.2,
+            ..MpcParams::default()
+        };
         let with = run(&params, true, &road, &vehicle);
         let without = run(&params, false, &road, &vehicle);
         let feasible = with.iter().filter(|s| s.0).count();

@@ -28,7 +28,10 @@ fn horizons_ending_on_a_climb_are_feasible_on_the_fixed_grid() {
                     let slopes = climb(p.stages(), climb_from, grade);
                     let start = InitialState { v_mps: v0_kmh / 3.6, gear: 12, stages_since_shift: p.k_lim };
                     let sol = solver.solve(&vehicle, start, &slopes);
-                    assert!(sol.feasible, "infeasible: δ {delta_kmh} km/h, {grade} grade from stage {climb_from}, start {v0_kmh} km/h");
+                    assert!(
+                        sol.feasible,
+                        "infeasible: δ {delta_kmh} km/h, {grade} grade from stage {climb_from}, start {v0_kmh} km/h"
+                    );
                     checked += 1;
                 }
             }

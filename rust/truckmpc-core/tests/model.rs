@@ -92,7 +92,8 @@ fn plant_energy_balance_on_a_hill() {
     // potential energy goes into motion or the brake.
     assert!(s.brake_energy_j > 0.0 && s.fuel_g > 0.0);
     let frictionless = Arc::new(
-        Vehicle::new(VehicleParams { rolling_resistance: 0.0, air_drag_coefficient: 0.0, ..VehicleParams::default() }).unwrap(),
+        Vehicle::new(VehicleParams { rolling_resistance: 0.0, air_drag_coefficient: 0.0, ..VehicleParams::default() })
+            .unwrap(),
     );
     let mut ideal = Plant::new(frictionless, road, 0.0, V85);
     ideal.advance_to(u, 0.05, 1000.0);

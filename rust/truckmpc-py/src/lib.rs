@@ -25,9 +25,9 @@ fn get_f64(dict: &Bound<'_, PyDict>, key: &str, default: f64) -> PyResult<f64> {
 
 fn get_vec(dict: &Bound<'_, PyDict>, key: &str, default: &[f64]) -> PyResult<Vec<f64>> {
     match dict.get_item(key)? {
-        Some(v) => v
-            .extract::<Vec<f64>>()
-            .map_err(|_| PyValueError::new_err(format!("{key}: expected a list of numbers"))),
+        Some(v) => {
+            v.extract::<Vec<f64>>().map_err(|_| PyValueError::new_err(format!("{key}: expected a list of numbers")))
+        }
         None => Ok(default.to_vec()),
     }
 }
@@ -79,12 +79,32 @@ fn params_from_dict(dict: &Bound<'_, PyDict>) -> PyResult<core::VehicleParams> {
 
 /// The vehicle parameter names the core accepts, in declaration order.
 const PARAM_NAMES: [&str; 26] = [
-    "mass_kg", "engine_inertia_kgm2", "cylinders", "revolutions_per_stroke", "torque_map_a_nm_per_rpm",
-    "torque_map_b_nm_stroke_per_mg", "torque_map_c_nm", "fueling_max_a_mg_per_rpm2", "fueling_max_b_mg_per_rpm",
-    "fueling_max_c_mg", "drag_torque_a_nm_per_rpm", "drag_torque_b_nm", "idle_speed_rpm",
-    "idle_fueling_mg_per_stroke", "final_drive_ratio", "final_drive_efficiency", "wheel_inertia_kgm2",
-    "rolling_resistance", "gravity_mps2", "air_drag_coefficient", "frontal_area_m2", "air_density_kgpm3",
-    "wheel_radius_m", "brake_torque_max_nm", "gear_ratios", "gear_efficiencies",
+    "mass_kg",
+    "engine_inertia_kgm2",
+    "cylinders",
+    "revolutions_per_stroke",
+    "torque_map_a_nm_per_rpm",
+    "torque_map_b_nm_stroke_per_mg",
+    "torque_map_c_nm",
+    "fueling_max_a_mg_per_rpm2",
+    "fueling_max_b_mg_per_rpm",
+    "fueling_max_c_mg",
+    "drag_torque_a_nm_per_rpm",
+    "drag_torque_b_nm",
+    "idle_speed_rpm",
+    "idle_fueling_mg_per_stroke",
+    "final_drive_ratio",
+    "final_drive_efficiency",
+    "wheel_inertia_kgm2",
+    "rolling_resistance",
+    "gravity_mps2",
+    "air_drag_coefficient",
+    "frontal_area_m2",
+    "air_density_kgpm3",
+    "wheel_radius_m",
+    "brake_torque_max_nm",
+    "gear_ratios",
+    "gear_efficiencies",
 ];
 
 /// A validated truck model (thesis chapter 2, appendix B.1).
@@ -298,7 +318,10 @@ impl PyPlant {
 impl PyPlant {
     fn control(&self, pedal: f64, brake: f64, gear: usize) -> PyResult<core::Control> {
         if gear > self.inner.vehicle().forward_gears() {
-            return Err(PyValueError::new_err(format!("gear: expected 0..={}, got {gear}", self.inner.vehicle().forward_gears())));
+            return Err(PyValueError::new_err(format!(
+                "gear: expected 0..={}, got {gear}",
+                self.inner.vehicle().forward_gears()
+            )));
         }
         Ok(core::Control { pedal: pedal.clamp(0.0, 1.0), brake: brake.clamp(0.0, 1.0), gear })
     }
@@ -306,9 +329,24 @@ impl PyPlant {
 
 /// The MPC parameter names the core accepts (table 5.2 / 6.1 / 6.2).
 const MPC_NAMES: [&str; 18] = [
-    "stage_m", "horizon_m", "delta_kmh", "epsilon", "v_ref_kmh", "v_inc_kmh", "v_dec_kmh", "k_lim", "n_min_rpm",
-    "n_max_rpm", "allow_neutral", "q_fuel", "q_speed_below", "q_speed_change", "q_gear_shift", "q_brake",
-    "neutral_rule", "grid",
+    "stage_m",
+    "horizon_m",
+    "delta_kmh",
+    "epsilon",
+    "v_ref_kmh",
+    "v_inc_kmh",
+    "v_dec_kmh",
+    "k_lim",
+    "n_min_rpm",
+    "n_max_rpm",
+    "allow_neutral",
+    "q_fuel",
+    "q_speed_below",
+    "q_speed_change",
+    "q_gear_shift",
+    "q_brake",
+    "neutral_rule",
+    "grid",
 ];
 
 fn mpc_params_from_dict(dict: &Bound<'_, PyDict>) -> PyResult<dp::MpcParams> {
@@ -327,8 +365,14 @@ fn mpc_params_from_dict(dict: &Bound<'_, PyDict>) -> PyResult<dp::MpcParams> {
         Some(v) => v.extract::<bool>().map_err(|_| PyValueError::new_err("allow_neutral: expected true or false"))?,
         None => d.allow_neutral,
     };
-    let neutral_rule = get_choice(dict, "neutral_rule", &[("nearest", dp::NeutralRule::Nearest), ("interpolate", dp::NeutralRule::Interpolate)], d.neutral_rule)?;
-    let grid = get_choice(dict, "grid", &[("moving", dp::GridAnchor::Moving), ("fixed", dp::GridAnchor::Fixed)], d.grid)?;
+    let neutral_rule = get_choice(
+        dict,
+        "neutral_rule",
+        &[("nearest", dp::NeutralRule::Nearest), ("interpolate", dp::NeutralRule::Interpolate)],
+        d.neutral_rule,
+    )?;
+    let grid =
+        get_choice(dict, "grid", &[("moving", dp::GridAnchor::Moving), ("fixed", dp::GridAnchor::Fixed)], d.grid)?;
     let params = dp::MpcParams {
         stage_m: get_f64(dict, "stage_m", d.stage_m)?,
         horizon_m: get_f64(dict, "horizon_m", d.horizon_m)?,
@@ -412,7 +456,10 @@ impl PyMpcSolver {
     /// Speed [m/s] one stage ahead of `s_m` under the inputs being applied, by the controller's model.
     fn predict_speed(&self, s_m: f64, v_mps: f64, pedal: f64, brake: f64, gear: usize) -> PyResult<f64> {
         if gear > self.vehicle.forward_gears() {
-            return Err(PyValueError::new_err(format!("gear: expected 0..={}, got {gear}", self.vehicle.forward_gears())));
+            return Err(PyValueError::new_err(format!(
+                "gear: expected 0..={}, got {gear}",
+                self.vehicle.forward_gears()
+            )));
         }
         let u = core::Control { pedal, brake, gear };
         Ok(dp::horizon::predict_speed(&self.vehicle, &self.road, s_m, v_mps, u, self.solver.params().stage_m))
@@ -423,9 +470,19 @@ impl PyMpcSolver {
     ///
     /// Returns:
     ///     (feasible, pedal, brake, gear, cost, states, transitions) for the first stage.
-    fn solve(&mut self, py: Python<'_>, s_m: f64, v_mps: f64, gear: usize, stages_since_shift: u32) -> PyResult<SolveTuple> {
+    fn solve(
+        &mut self,
+        py: Python<'_>,
+        s_m: f64,
+        v_mps: f64,
+        gear: usize,
+        stages_since_shift: u32,
+    ) -> PyResult<SolveTuple> {
         if gear > self.vehicle.forward_gears() {
-            return Err(PyValueError::new_err(format!("gear: expected 0..={}, got {gear}", self.vehicle.forward_gears())));
+            return Err(PyValueError::new_err(format!(
+                "gear: expected 0..={}, got {gear}",
+                self.vehicle.forward_gears()
+            )));
         }
         if !(v_mps.is_finite() && v_mps > 0.0) {
             return Err(PyValueError::new_err(format!("speed: expected > 0 m/s, got {v_mps}")));
@@ -433,7 +490,15 @@ impl PyMpcSolver {
         let start = dp::InitialState { v_mps, gear, stages_since_shift };
         let (solver, slopes, vehicle, road) = (&mut self.solver, &mut self.slopes, &self.vehicle, &self.road);
         let solution = py.detach(|| dp::horizon::solve_at(solver, vehicle, road, s_m, start, slopes));
-        let out = (solution.feasible, solution.pedal, solution.brake, solution.gear, solution.cost, solution.states, solution.transitions);
+        let out = (
+            solution.feasible,
+            solution.pedal,
+            solution.brake,
+            solution.gear,
+            solution.cost,
+            solution.states,
+            solution.transitions,
+        );
         self.last = solution;
         Ok(out)
     }

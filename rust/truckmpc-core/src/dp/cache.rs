@@ -134,7 +134,13 @@ pub struct RowScratch {
 impl GearBlocks {
     /// Make sure the blocks holding source keys `lo..=hi` exist; `row(key, out)` writes one
     /// row's costs into `out` and returns its span. Returns the rows computed.
-    pub fn fill(&mut self, lo: i64, hi: i64, scratch: &mut RowScratch, mut row: impl FnMut(i64, &mut Vec<f64>) -> RowSpan) -> u64 {
+    pub fn fill(
+        &mut self,
+        lo: i64,
+        hi: i64,
+        scratch: &mut RowScratch,
+        mut row: impl FnMut(i64, &mut Vec<f64>) -> RowSpan,
+    ) -> u64 {
         let costs = &mut self.costs;
         let lanes = LANES as i64;
         let mut spans = [(RowSpan::default(), 0usize); LANES];

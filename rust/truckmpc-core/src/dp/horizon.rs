@@ -27,7 +27,14 @@ pub fn predict_speed(vehicle: &Vehicle, road: &Road, s_m: f64, v_mps: f64, u: Co
 /// Solve the DP for the horizon starting at `s_m` from `start`, reusing `slopes` as scratch. A
 /// horizon that starts on a stage boundary counted from the road's start gets its absolute stage
 /// index, so a fixed-grid solver can reuse transition costs from the solves before.
-pub fn solve_at(solver: &mut Solver, vehicle: &Vehicle, road: &Road, s_m: f64, start: InitialState, slopes: &mut Vec<f64>) -> Solution {
+pub fn solve_at(
+    solver: &mut Solver,
+    vehicle: &Vehicle,
+    road: &Road,
+    s_m: f64,
+    start: InitialState,
+    slopes: &mut Vec<f64>,
+) -> Solution {
     let stage_m = solver.params().stage_m;
     stage_slopes(road, s_m, stage_m, solver.params().stages(), slopes);
     let stages_in = (s_m - road.start_m()) / stage_m;

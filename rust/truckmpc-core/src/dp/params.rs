@@ -116,7 +116,10 @@ impl MpcParams {
         if self.horizon_m < self.stage_m {
             return Err(CoreError::invalid(
                 "horizon_m",
-                format!("expected at least one stage (horizon_m >= stage_m = {}), got {}", self.stage_m, self.horizon_m),
+                format!(
+                    "expected at least one stage (horizon_m >= stage_m = {}), got {}",
+                    self.stage_m, self.horizon_m
+                ),
             ));
         }
         if self.n_min_rpm >= self.n_max_rpm {
@@ -126,12 +129,19 @@ impl MpcParams {
             ));
         }
         if self.v_dec_kmh >= self.v_ref_kmh {
-            return Err(CoreError::invalid("v_dec_kmh", format!("expected < v_ref_kmh ({}), got {}", self.v_ref_kmh, self.v_dec_kmh)));
+            return Err(CoreError::invalid(
+                "v_dec_kmh",
+                format!("expected < v_ref_kmh ({}), got {}", self.v_ref_kmh, self.v_dec_kmh),
+            ));
         }
         if self.delta_kmh > self.v_inc_kmh + self.v_dec_kmh && self.v_inc_kmh + self.v_dec_kmh > 0.0 {
             return Err(CoreError::invalid(
                 "delta_kmh",
-                format!("expected at most the speed band v_inc + v_dec = {} km/h, got {}", self.v_inc_kmh + self.v_dec_kmh, self.delta_kmh),
+                format!(
+                    "expected at most the speed band v_inc + v_dec = {} km/h, got {}",
+                    self.v_inc_kmh + self.v_dec_kmh,
+                    self.delta_kmh
+                ),
             ));
         }
         if self.stages() > 100_000 {
@@ -139,7 +149,10 @@ impl MpcParams {
         }
         // Grid indices are stored in 16 bits.
         if (self.v_inc_kmh + self.v_dec_kmh) / self.delta_kmh > 30_000.0 {
-            return Err(CoreError::invalid("delta_kmh", "expected at most 30000 grid points in the speed band v_inc + v_dec"));
+            return Err(CoreError::invalid(
+                "delta_kmh",
+                "expected at most 30000 grid points in the speed band v_inc + v_dec",
+            ));
         }
         Ok(())
     }

@@ -106,7 +106,15 @@ fn pair(p: &MpcParams, m: &RowMaps, v_i: f64, v_j: f64) -> Option<(Inputs, f64)>
 
 /// Fill `out` with the costs of joining `v_i` in forward `gear` to the grid indices of the next
 /// stage, and return their span. Indices no input reaches inside the span hold +∞.
-pub fn forward_row(vehicle: &Vehicle, p: &MpcParams, v_i: f64, gear: usize, slope_torque: f64, grid: GridIndex, out: &mut Vec<f64>) -> RowSpan {
+pub fn forward_row(
+    vehicle: &Vehicle,
+    p: &MpcParams,
+    v_i: f64,
+    gear: usize,
+    slope_torque: f64,
+    grid: GridIndex,
+    out: &mut Vec<f64>,
+) -> RowSpan {
     out.clear();
     let m = maps(vehicle, p, v_i, gear, slope_torque);
     let h = p.stage_m;

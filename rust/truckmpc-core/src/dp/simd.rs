@@ -142,15 +142,32 @@ mod tests {
         for steps in 0..40 {
             for _ in 0..20 {
                 let costs = costs(&mut seed, steps * LANES);
-                let (to_go, shiftable) = (costs_of(&mut seed, steps + LANES - 1), costs_of(&mut seed, steps + LANES - 1));
+                let (to_go, shiftable) =
+                    (costs_of(&mut seed, steps + LANES - 1), costs_of(&mut seed, steps + LANES - 1));
                 let got = block_mins(&costs, steps, &to_go, &shiftable);
-                assert_eq!(got, block_mins_portable(&costs[..steps * LANES], steps, &to_go[..steps + LANES - 1], &shiftable[..steps + LANES - 1]));
+                assert_eq!(
+                    got,
+                    block_mins_portable(
+                        &costs[..steps * LANES],
+                        steps,
+                        &to_go[..steps + LANES - 1],
+                        &shiftable[..steps + LANES - 1]
+                    )
+                );
                 for l in 0..LANES {
                     let row: Vec<f64> = (0..steps).map(|d| costs[d * LANES + l]).collect();
                     let (a, t) = argmin_sum_scalar(&row, &to_go[l..]);
                     let (b, u) = argmin_sum_scalar(&row, &shiftable[l..]);
-                    assert_eq!((got.all[l].to_bits(), got.all_step[l] as usize), (a.to_bits(), t), "steps {steps} lane {l}");
-                    assert_eq!((got.shift[l].to_bits(), got.shift_step[l] as usize), (b.to_bits(), u), "steps {steps} lane {l}");
+                    assert_eq!(
+                        (got.all[l].to_bits(), got.all_step[l] as usize),
+                        (a.to_bits(), t),
+                        "steps {steps} lane {l}"
+                    );
+                    assert_eq!(
+                        (got.shift[l].to_bits(), got.shift_step[l] as usize),
+                        (b.to_bits(), u),
+                        "steps {steps} lane {l}"
+                    );
                 }
             }
         }
@@ -164,6 +181,9 @@ mod tests {
     #[test]
     fn all_infinite_lanes_give_infinity_at_step_zero() {
         let got = block_mins(&[INF; 3 * LANES], 3, &[1.0; 3 + LANES - 1], &[INF; 3 + LANES - 1]);
-        assert_eq!(got, LaneMins { all: [INF; LANES], all_step: [0; LANES], shift: [INF; LANES], shift_step: [0; LANES] });
+        assert_eq!(
+            got,
+            LaneMins { all: [INF; LANES], all_step: [0; LANES], shift: [INF; LANES], shift_step: [0; LANES] }
+        );
     }
 }

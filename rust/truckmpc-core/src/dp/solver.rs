@@ -235,7 +235,13 @@ impl Solver {
 
     /// As [`Solver::solve`], with the absolute index of the first stage on the road, which lets a
     /// fixed-grid solver reuse the transition costs of earlier solves.
-    pub fn solve_from_stage(&mut self, vehicle: &Vehicle, start: InitialState, slopes: &[f64], first_stage: Option<u64>) -> Solution {
+    pub fn solve_from_stage(
+        &mut self,
+        vehicle: &Vehicle,
+        start: InitialState,
+        slopes: &[f64],
+        first_stage: Option<u64>,
+    ) -> Solution {
         let n_stages = slopes.len();
         let gears = vehicle.forward_gears() + 1;
         self.slope_torques.clear();
@@ -283,11 +289,17 @@ impl Solver {
         space::intervals(vehicle, p, start.v_mps, slopes, &mut self.intervals);
         let delta = p.delta_mps();
         self.grids.clear();
-        self.grids.push(StageGrid { index: GridIndex { origin_mps: start.v_mps, delta_mps: delta }, first: 0, count: 1 });
+        self.grids.push(StageGrid {
+            index: GridIndex { origin_mps: start.v_mps, delta_mps: delta },
+            first: 0,
+            count: 1,
+        });
         for k in 1..=slopes.len() {
             let Grid { first_mps, count } = space::grid(p, self.intervals.lo[k], self.intervals.hi[k]);
             self.grids.push(match p.grid {
-                GridAnchor::Moving => StageGrid { index: GridIndex { origin_mps: first_mps, delta_mps: delta }, first: 0, count },
+                GridAnchor::Moving => {
+                    StageGrid { index: GridIndex { origin_mps: first_mps, delta_mps: delta }, first: 0, count }
+                }
                 GridAnchor::Fixed => StageGrid {
                     index: GridIndex { origin_mps: 0.0, delta_mps: delta },
                     first: (first_mps / delta).round() as i64,
@@ -305,15 +317,27 @@ impl Solver {
             self.active[k].clear();
             for g in 0..gears {
                 let range = if k == 0 || k <= forced {
-                    if g == start.gear { full } else { (1, 0) }
+                    if g == start.gear {
+                        full
+                    } else {
+                        (1, 0)
+                    }
                 } else if g == NEUTRAL {
-                    if p.allow_neutral { full } else { (1, 0) }
+                    if p.allow_neutral {
+                        full
+                    } else {
+                        (1, 0)
+                    }
                 } else {
                     // Engine speed in [n_min, n_max]: an interval of speeds, so of grid indices.
                     let c4 = vehicle.gear(g).c4;
                     let lo = (grid.index.ceil(p.n_min_rpm / c4) - grid.first).max(0);
                     let hi = (grid.index.floor(p.n_max_rpm / c4) - grid.first).min(full.1 as i64);
-                    if hi >= lo { (lo as u32, hi as u32) } else { (1, 0) }
+                    if hi >= lo {
+                        (lo as u32, hi as u32)
+                    } else {
+                        (1, 0)
+                    }
                 };
                 if range.1 >= range.0 {
                     self.active[k].push(g);
@@ -372,7 +396,14 @@ impl Solver {
     /// First pass of a stage: for every source velocity in `sources` and every target gear, the
     /// best next state and the best one that allows a shift now, into `choices`. Returns the
     /// transitions evaluated.
-    fn best_per_target_gear(&mut self, vehicle: &Vehicle, k: usize, abs_stage: Option<u64>, (i_lo, i_hi): (usize, usize), active_next: &[usize]) -> usize {
+    fn best_per_target_gear(
+        &mut self,
+        vehicle: &Vehicle,
+        k: usize,
+        abs_stage: Option<u64>,
+        (i_lo, i_hi): (usize, usize),
+        active_next: &[usize],
+    ) -> usize {
         let gears = vehicle.forward_gears() + 1;
         let (here, next) = (self.grids[k], self.grids[k + 1]);
         let p = &self.params;
@@ -395,7 +426,8 @@ impl Solver {
                 stage.neutral.fill(key_lo, key_hi, |key| neutral_arc(p, vehicle, here.index.speed(key), slope_torque));
                 let slot0 = (key_lo - ch.base_key) as usize;
                 for (s, arc) in stage.neutral.get(key_lo, key_hi).iter().enumerate() {
-                    let (cost, j, counter) = neutral_join(p, arc, next, (lo, hi), &self.cost_next[PAD..], &self.counter_next[PAD..]);
+                    let (cost, j, counter) =
+                        neutral_join(p, arc, next, (lo, hi), &self.cost_next[PAD..], &self.counter_next[PAD..]);
                     let at = out + slot0 + s;
                     (ch.all_cost[at], ch.all_j[at], ch.neutral_counter[slot0 + s]) = (cost, j, counter);
                     (ch.shift_cost[at], ch.shift_j[at]) = (if counter >= p.k_lim { cost } else { INF }, j);
@@ -404,7 +436,9 @@ impl Solver {
                 continue;
             }
             let rows = stage.gear(g);
-            *computed += rows.fill(key_lo, key_hi, &mut self.scratch, |key, buf| forward_row(vehicle, p, here.index.speed(key), g, slope_torque, next.index, buf));
+            *computed += rows.fill(key_lo, key_hi, &mut self.scratch, |key, buf| {
+                forward_row(vehicle, p, here.index.speed(key), g, slope_torque, next.index, buf)
+            });
             let values = g * stride(next.count)..(g + 1) * stride(next.count);
             let values = (&self.cost_next[values.clone()], &self.shift_next[values]);
             let (blocks, first_key) = rows.get(key_lo, key_hi);
@@ -434,7 +468,15 @@ impl Solver {
 
     /// Second pass of a stage: for every state, stay in its gear or take the best shift, plus the
     /// speed-deviation cost; writes J_k, the counters and the decisions.
-    fn stay_or_shift(&mut self, k: usize, (i_lo, i_hi): (usize, usize), active_here: &[usize], active_next: &[usize], start_gear: usize, gears: usize) {
+    fn stay_or_shift(
+        &mut self,
+        k: usize,
+        (i_lo, i_hi): (usize, usize),
+        active_here: &[usize],
+        active_next: &[usize],
+        start_gear: usize,
+        gears: usize,
+    ) {
         let (here, next) = (self.grids[k], self.grids[k + 1]);
         let n = here.count;
         let v_ref = self.params.v_ref_mps();
@@ -469,12 +511,19 @@ impl Solver {
             let values = g_i * stride(n) + PAD + lo..g_i * stride(n) + PAD + hi + 1;
             let decisions = self.offsets[k] + g_i * n + lo..self.offsets[k] + g_i * n + hi + 1;
             let (all_cost, all_j) = (&ch.all_cost[out.clone()], &ch.all_j[out]);
-            let (firsts, seconds, neutral_counters) = (&ch.shift_first[slots.clone()], &ch.shift_second[slots.clone()], &ch.neutral_counter[slots]);
+            let (firsts, seconds, neutral_counters) =
+                (&ch.shift_first[slots.clone()], &ch.shift_second[slots.clone()], &ch.neutral_counter[slots]);
             let (cost_cur, counter_cur) = (&mut self.cost_cur[values.clone()], &mut self.counter_cur[values.clone()]);
             let (shift_cur, decisions) = (&mut self.shift_cur[values], &mut self.decisions[decisions]);
             let m = hi - lo + 1;
             // Equal lengths, stated once: the loop below then needs no bounds checks on them.
-            assert!(all_cost.len() == m && all_j.len() == m && firsts.len() == m && seconds.len() == m && neutral_counters.len() == m);
+            assert!(
+                all_cost.len() == m
+                    && all_j.len() == m
+                    && firsts.len() == m
+                    && seconds.len() == m
+                    && neutral_counters.len() == m
+            );
             assert!(cost_cur.len() == m && counter_cur.len() == m && shift_cur.len() == m && decisions.len() == m);
             for t in 0..m {
                 let i = lo + t;
@@ -521,7 +570,8 @@ impl Solver {
             let (pedal, brake) = if next_g == NEUTRAL {
                 (0.0, 0.0)
             } else {
-                let u = inputs(vehicle, &self.params, v, v_next, next_g, self.slope_torques[k]).unwrap_or(super::rows::Inputs { pedal: 0.0, brake: 0.0 });
+                let u = inputs(vehicle, &self.params, v, v_next, next_g, self.slope_torques[k])
+                    .unwrap_or(super::rows::Inputs { pedal: 0.0, brake: 0.0 });
                 (u.pedal, u.brake)
             };
             out.trajectory.push(TrajectoryPoint { v_mps: v, gear: next_g, pedal, brake });
@@ -550,7 +600,14 @@ fn neutral_arc(p: &MpcParams, vehicle: &Vehicle, v_i_mps: f64, slope_torque: f64
 /// range: (cost with the cost-to-go, next-grid index, counter of the continuation); cost +∞ when
 /// the arc ends off the states.
 #[inline]
-fn neutral_join(p: &MpcParams, arc: &NeutralArc, next: StageGrid, (lo, hi): (u32, u32), cost_next: &[f64], counter_next: &[u32]) -> (f64, u32, u32) {
+fn neutral_join(
+    p: &MpcParams,
+    arc: &NeutralArc,
+    next: StageGrid,
+    (lo, hi): (u32, u32),
+    cost_next: &[f64],
+    counter_next: &[u32],
+) -> (f64, u32, u32) {
     const NONE: (f64, u32, u32) = (INF, 0, 0);
     let x = (arc.v_end_mps - next.speed(0)) / p.delta_mps();
     // Grid indices are never negative; x below −0.5 is outside the grid either way.
@@ -593,7 +650,13 @@ fn neutral_join(p: &MpcParams, arc: &NeutralArc, next: StageGrid, (lo, hi): (u32
 /// `base` is the next-grid index of lane 0 at step 0; `values` the target gear's blocks of
 /// cost_next and shift_next (margins included, state j at PAD + j).
 #[inline]
-fn block_mins(block: &Block, costs: &[f64], base: i64, (lo, hi): (u32, u32), (to_go, shiftable): (&[f64], &[f64])) -> LaneMins {
+fn block_mins(
+    block: &Block,
+    costs: &[f64],
+    base: i64,
+    (lo, hi): (u32, u32),
+    (to_go, shiftable): (&[f64], &[f64]),
+) -> LaneMins {
     let steps = block.steps as usize;
     let at = base + PAD as i64;
     let costs = &costs[block.offset as usize..];
@@ -607,7 +670,14 @@ fn block_mins(block: &Block, costs: &[f64], base: i64, (lo, hi): (u32, u32), (to
 
 /// [`block_mins`] for a block reaching beyond the margins: only targets that are states count.
 #[cold]
-fn block_mins_clipped(costs: &[f64], steps: usize, base: i64, (lo, hi): (u32, u32), to_go: &[f64], shiftable: &[f64]) -> LaneMins {
+fn block_mins_clipped(
+    costs: &[f64],
+    steps: usize,
+    base: i64,
+    (lo, hi): (u32, u32),
+    to_go: &[f64],
+    shiftable: &[f64],
+) -> LaneMins {
     let mut out = LaneMins { all: [INF; LANES], all_step: [0; LANES], shift: [INF; LANES], shift_step: [0; LANES] };
     for d in 0..steps {
         for l in 0..LANES {
@@ -633,7 +703,14 @@ mod tests {
     use super::*;
 
     /// Per lane, the first strict improvement over the targets that are states (`lo..=hi`).
-    fn scalar_lane(costs: &[f64], steps: usize, base: i64, (lo, hi): (u32, u32), values: &[f64], l: usize) -> (f64, u32) {
+    fn scalar_lane(
+        costs: &[f64],
+        steps: usize,
+        base: i64,
+        (lo, hi): (u32, u32),
+        values: &[f64],
+        l: usize,
+    ) -> (f64, u32) {
         let mut best = (INF, 0);
         for d in 0..steps {
             let j = base + (l + d) as i64;
@@ -657,7 +734,8 @@ mod tests {
             (seed >> 35) % 9
         };
         for _ in 0..50 {
-            let costs: Vec<f64> = (0..steps * LANES).map(|_| if next() == 0 { INF } else { next() as f64 * 0.5 }).collect();
+            let costs: Vec<f64> =
+                (0..steps * LANES).map(|_| if next() == 0 { INF } else { next() as f64 * 0.5 }).collect();
             // Values as the solver keeps them: +∞ outside the states and in the margins.
             let mut to_go = vec![INF; stride(count)];
             let mut shiftable = vec![INF; stride(count)];
@@ -670,8 +748,16 @@ mod tests {
             for base in [-4i64, 10, -(PAD as i64) - 3, count as i64 - 5] {
                 let mins = block_mins(&block, &costs, base, (lo, hi), (&to_go, &shiftable));
                 for l in 0..LANES {
-                    assert_eq!((mins.all[l], mins.all_step[l]), scalar_lane(&costs, steps, base, (lo, hi), &to_go, l), "base {base} lane {l}");
-                    assert_eq!((mins.shift[l], mins.shift_step[l]), scalar_lane(&costs, steps, base, (lo, hi), &shiftable, l), "base {base} lane {l}");
+                    assert_eq!(
+                        (mins.all[l], mins.all_step[l]),
+                        scalar_lane(&costs, steps, base, (lo, hi), &to_go, l),
+                        "base {base} lane {l}"
+                    );
+                    assert_eq!(
+                        (mins.shift[l], mins.shift_step[l]),
+                        scalar_lane(&costs, steps, base, (lo, hi), &shiftable, l),
+                        "base {base} lane {l}"
+                    );
                 }
             }
         }

@@ -155,7 +155,8 @@ fn grid_intervals(vehicle: &Vehicle, params: &MpcParams, v0_mps: f64, slopes: &[
     for k in (1..n).rev() {
         let (lo, hi) = (index_of(out.lo[k]), index_of(out.hi[k]));
         let target = index_of(out.lo[k + 1]);
-        let reaches = |index: i64| grid.floor(full_pedal_speeds(vehicle, params, grid.speed(index), slopes[k]).0) >= target;
+        let reaches =
+            |index: i64| grid.floor(full_pedal_speeds(vehicle, params, grid.speed(index), slopes[k]).0) >= target;
         // Full-pedal end speed grows with the start speed: bisect for the lowest index that reaches.
         let needed = if reaches(lo) {
             lo
