@@ -67,10 +67,9 @@ def test_output_dir_replaces_same_names_and_keeps_others(tmp_path: Path) -> None
 
 def test_output_dir_discards_everything_on_exception(tmp_path: Path) -> None:
     out = tmp_path / "run"
-    with pytest.raises(RuntimeError, match="boom"):
-        with OutputDir(out) as staging:
-            (staging / "summary.json").write_text("partial")
-            raise RuntimeError("boom")
+    with pytest.raises(RuntimeError, match="boom"), OutputDir(out) as staging:
+        (staging / "summary.json").write_text("partial")
+        raise RuntimeError("boom")
     assert not out.exists()
     assert not staging.exists()
     assert list(tmp_path.iterdir()) == []
@@ -80,9 +79,8 @@ def test_output_dir_exception_leaves_existing_results_untouched(tmp_path: Path) 
     out = tmp_path / "run"
     out.mkdir()
     (out / "summary.json").write_text("previous")
-    with pytest.raises(KeyboardInterrupt):
-        with OutputDir(out) as staging:
-            (staging / "summary.json").write_text("partial")
-            raise KeyboardInterrupt
+    with pytest.raises(KeyboardInterrupt), OutputDir(out) as staging:
+        (staging / "summary.json").write_text("partial")
+        raise KeyboardInterrupt
     assert (out / "summary.json").read_text() == "previous"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]

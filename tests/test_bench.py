@@ -106,7 +106,7 @@ def test_table_on_a_given_road_names_it_and_each_setting(tmp_path):
 
 def test_format_bench_marks_the_fallback_road_and_missing_figures():
     run = (
-        {key: 1.0 for key in RUN_KEYS}
+        dict.fromkeys(RUN_KEYS, 1.0)
         | dict(SETTINGS[0])
         | {"grid": "moving", "solves": 3, "infeasible_solves": 0, "ns_per_transition": None}
     )

@@ -6,9 +6,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+import truckmpc._core as core
 import yaml
 
-import truckmpc._core as core
 from truckmpc import config
 from truckmpc.config import (
     ConfigError,

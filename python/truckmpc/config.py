@@ -189,7 +189,7 @@ def _read_mapping(path: PathLike) -> tuple[dict[str, Any], str]:
     where = _display(path)
     text = read_user_text(path, where, "a YAML file", ConfigError)
     try:
-        data = yaml.load(text, Loader=_StrictLoader)  # noqa: S506 (a SafeLoader subclass)
+        data = yaml.load(text, Loader=_StrictLoader)
     except yaml.MarkedYAMLError as err:
         line = f":{err.problem_mark.line + 1}" if err.problem_mark is not None else ""
         raise ConfigError(f"{where}{line}: invalid YAML: {err.problem or err.context}") from None
