@@ -20,7 +20,8 @@ use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use truckmpc_core::dp::horizon::{solve_at, stage_slopes};
-use truckmpc_core::dp::{GridAnchor, InitialState, MpcParams, Solver};
+use truckmpc_core::dp::{DpSettings, GridAnchor, InitialState, Solver};
+use truckmpc_core::{CruiseParams, MpcParams};
 use truckmpc_core::{Road, Vehicle, VehicleParams};
 
 /// Length of the synthetic road [m]; the rolling benchmark wraps around before its end.
@@ -43,23 +44,13 @@ fn hilly_road() -> Road {
     Road::new(distance, slope).expect("synthetic road is valid")
 }
 
-/// Table 6.1/6.2 parameters at one setting: k_lim = 200 m / S, Q2 = 5 at δ 0.1 km/h, else 7.
-fn params(stage_m: f64, delta_kmh: f64, horizon_m: f64, grid: GridAnchor) -> MpcParams {
-    let p = MpcParams {
-        stage_m,
-        horizon_m,
-        delta_kmh,
-        allow_neutral: true,
-        k_lim: (200.0 / stage_m).round().max(1.0) as u32,
-        q_speed_below: if delta_kmh < 0.15 { 5.0 } else { 7.0 },
-        grid,
-        ..MpcParams::default()
-    };
-    p.validate().expect("benchmark parameters are valid");
-    p
+/// The declared defaults at one setting (k_lim and Q2 resolved by their table 6.1/6.2 rules).
+fn params(stage_m: f64, delta_kmh: f64, horizon_m: f64, grid: GridAnchor) -> DpSettings {
+    let mpc = MpcParams { stage_m, horizon_m, delta_kmh, allow_neutral: true, grid, ..MpcParams::default() };
+    DpSettings::new(&mpc, &CruiseParams::default()).expect("benchmark parameters are valid")
 }
 
-fn start(p: &MpcParams) -> InitialState {
+fn start(p: &DpSettings) -> InitialState {
     InitialState { v_mps: 85.0 / 3.6, gear: 12, stages_since_shift: p.k_lim }
 }
 

@@ -3,7 +3,7 @@
 //! Usage: receding ROAD.csv [moving|fixed] [delta_kmh] [horizon_m] [stage_m]
 use std::sync::Arc;
 use std::time::Instant;
-use truckmpc_core::dp::{horizon, GridAnchor, InitialState, MpcParams, Solver};
+use truckmpc_core::dp::{horizon, DpSettings, GridAnchor, InitialState, Solver};
 use truckmpc_core::{Road, Vehicle, VehicleParams};
 
 fn main() {
@@ -20,13 +20,13 @@ fn main() {
     let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
     let grid = if args.get(2).map(|s| s.as_str()) == Some("fixed") { GridAnchor::Fixed } else { GridAnchor::Moving };
     let num = |i: usize, dflt: f64| args.get(i).map(|s| s.parse().unwrap()).unwrap_or(dflt);
-    let p = MpcParams {
+    let p = DpSettings {
         grid,
         delta_kmh: num(3, 0.1),
         horizon_m: num(4, 3000.0),
         stage_m: num(5, 25.0),
         q_speed_below: 5.0,
-        ..MpcParams::default()
+        ..DpSettings::default()
     };
     let mut solver = Solver::new(p.clone());
     let mut scratch = Vec::new();

@@ -1,5 +1,6 @@
 //! truckmpc-core: the physics and optimisation kernel of truckmpc, free of any Python dependency.
 //!
+//! - [`params`]: every parameter of a run, declared once (name with unit, type, default, range, doc);
 //! - [`vehicle`]: the truck model (thesis chapter 2, appendix B.1), the one source of the equations;
 //! - [`levels`]: pedal and brake levels joining two speeds (B.5, B.7) and stationary points (B.3);
 //! - [`road`]: a road profile with piecewise-constant slope;
@@ -9,11 +10,13 @@
 pub mod dp;
 pub mod error;
 pub mod levels;
+pub mod params;
 pub mod plant;
 pub mod road;
 pub mod vehicle;
 
 pub use error::{CoreError, CoreResult};
+pub use params::{CruiseParams, MpcParams, PiParams, RunSettings, SimParams};
 pub use plant::{Control, Plant, PlantState};
 pub use road::Road;
 pub use vehicle::{Vehicle, VehicleParams, NEUTRAL};

@@ -17,22 +17,18 @@ impl Road {
     /// segment [i, i+1) (`slope.len() == distance_m.len() - 1`). Altitude starts at 0 m.
     pub fn new(distance_m: Vec<f64>, slope: Vec<f64>) -> CoreResult<Self> {
         if distance_m.len() < 2 {
-            return Err(CoreError::invalid("distance_m", "expected at least two profile points"));
+            return Err(CoreError::invalid("distance_m", "at least two profile points"));
         }
         if slope.len() + 1 != distance_m.len() {
-            return Err(CoreError::invalid(
-                "slope",
-                format!("expected {} segment slopes, got {}", distance_m.len() - 1, slope.len()),
-            ));
+            return Err(
+                CoreError::invalid("slope", format!("{} segment slopes", distance_m.len() - 1)).got(slope.len())
+            );
         }
         if let Some(i) = distance_m.windows(2).position(|w| !(w[1] > w[0]) || !w[1].is_finite()) {
-            return Err(CoreError::invalid(
-                "distance_m",
-                format!("expected strictly increasing distances at point {}", i + 1),
-            ));
+            return Err(CoreError::invalid("distance_m", format!("strictly increasing distances at point {}", i + 1)));
         }
         if let Some(i) = slope.iter().position(|s| !s.is_finite()) {
-            return Err(CoreError::invalid("slope", format!("expected a finite slope on segment {i}")));
+            return Err(CoreError::invalid("slope", format!("a finite slope on segment {i}")));
         }
         let mut altitude_m = Vec::with_capacity(distance_m.len());
         altitude_m.push(0.0);

@@ -6,177 +6,12 @@
 //! Units: speeds in m/s, engine speed in rpm, torque in Nm, fuel in g, fueling in mg/stroke,
 //! slope as a grade (Δh/ΔL, dimensionless) used directly as the angle α.
 
-use crate::error::{check_each, CoreError, CoreResult};
+use crate::error::CoreResult;
+use crate::params::ParamSet;
+pub use crate::params::VehicleParams;
 
 /// Gear number of neutral. Forward gears are numbered 1..=n.
 pub const NEUTRAL: usize = 0;
-
-/// Every parameter of the vehicle, with its unit in its name. Defaults are table A.1 / A.2 (40 t).
-#[derive(Debug, Clone, PartialEq)]
-pub struct VehicleParams {
-    /// Total vehicle mass [kg].
-    pub mass_kg: f64,
-    /// Engine (flywheel) inertia J_e [kg m²].
-    pub engine_inertia_kgm2: f64,
-    /// Number of cylinders n_cyl [-].
-    pub cylinders: f64,
-    /// Crankshaft revolutions per stroke n_r [-].
-    pub revolutions_per_stroke: f64,
-    /// Engine map slope in engine speed a_e [Nm/rpm], (2.3).
-    pub torque_map_a_nm_per_rpm: f64,
-    /// Engine map slope in fueling b_e [Nm·stroke/mg], (2.3).
-    pub torque_map_b_nm_stroke_per_mg: f64,
-    /// Engine map offset c_e [Nm], (2.3).
-    pub torque_map_c_nm: f64,
-    /// Fueling bound quadratic coefficient a_δ [mg/(rpm²·stroke)], (2.6).
-    pub fueling_max_a_mg_per_rpm2: f64,
-    /// Fueling bound linear coefficient b_δ [mg/(rpm·stroke)], (2.6).
-    pub fueling_max_b_mg_per_rpm: f64,
-    /// Fueling bound offset c_δ [mg/stroke], (2.6).
-    pub fueling_max_c_mg: f64,
-    /// Drag torque slope a_d [Nm/rpm], (2.4).
-    pub drag_torque_a_nm_per_rpm: f64,
-    /// Drag torque offset b_d [Nm], (2.4).
-    pub drag_torque_b_nm: f64,
-    /// Engine idle speed N_idle [rpm].
-    pub idle_speed_rpm: f64,
-    /// Idle fueling δ_idle [mg/stroke].
-    pub idle_fueling_mg_per_stroke: f64,
-    /// Final drive ratio i_f [-].
-    pub final_drive_ratio: f64,
-    /// Final drive efficiency η_f [-].
-    pub final_drive_efficiency: f64,
-    /// Wheel inertia J_w [kg m²].
-    pub wheel_inertia_kgm2: f64,
-    /// Rolling resistance coefficient c_r [-].
-    pub rolling_resistance: f64,
-    /// Gravitational acceleration g [m/s²].
-    pub gravity_mps2: f64,
-    /// Air drag coefficient c_w [-].
-    pub air_drag_coefficient: f64,
-    /// Maximum cross-section area A_a [m²].
-    pub frontal_area_m2: f64,
-    /// Air density ρ_a [kg/m³].
-    pub air_density_kgpm3: f64,
-    /// Wheel radius r_w [m].
-    pub wheel_radius_m: f64,
-    /// Brake torque at full brake k_b [Nm]. Table A.1 prints 20e3; tables B.1/B.2 need 1e5.
-    pub brake_torque_max_nm: f64,
-    /// Gearbox ratios i_t of gears 1..=n [-], table A.2.
-    pub gear_ratios: Vec<f64>,
-    /// Gearbox efficiencies η_t of gears 1..=n [-], table A.2.
-    pub gear_efficiencies: Vec<f64>,
-}
-
-impl Default for VehicleParams {
-    fn default() -> Self {
-        VehicleParams {
-            mass_kg: 40_000.0,
-            engine_inertia_kgm2: 3.5,
-            cylinders: 6.0,
-            revolutions_per_stroke: 2.0,
-            torque_map_a_nm_per_rpm: -3.30e-3,
-            torque_map_b_nm_stroke_per_mg: 9.16,
-            torque_map_c_nm: -82.53,
-            fueling_max_a_mg_per_rpm2: -1.59e-4,
-            fueling_max_b_mg_per_rpm: 0.42,
-            fueling_max_c_mg: -57.05,
-            drag_torque_a_nm_per_rpm: -8.80e-2,
-            drag_torque_b_nm: -51.51,
-            idle_speed_rpm: 600.0,
-            idle_fueling_mg_per_stroke: 10.44,
-            final_drive_ratio: 3.27,
-            final_drive_efficiency: 0.97,
-            wheel_inertia_kgm2: 32.9,
-            rolling_resistance: 7e-3,
-            gravity_mps2: 9.81,
-            air_drag_coefficient: 0.6,
-            frontal_area_m2: 10.0,
-            air_density_kgpm3: 1.29,
-            wheel_radius_m: 0.52,
-            brake_torque_max_nm: 1.0e5,
-            gear_ratios: vec![11.27, 9.14, 7.17, 5.81, 4.62, 3.75, 3.01, 2.44, 1.91, 1.55, 1.23, 1.0],
-            gear_efficiencies: vec![0.88, 0.89, 0.90, 0.91, 0.92, 0.93, 0.94, 0.95, 0.96, 0.97, 0.98, 0.99],
-        }
-    }
-}
-
-impl VehicleParams {
-    /// Check every parameter's range; the error names the first parameter that is out of range.
-    pub fn validate(&self) -> CoreResult<()> {
-        let positive = [
-            ("mass_kg", self.mass_kg),
-            ("engine_inertia_kgm2", self.engine_inertia_kgm2),
-            ("cylinders", self.cylinders),
-            ("revolutions_per_stroke", self.revolutions_per_stroke),
-            ("torque_map_b_nm_stroke_per_mg", self.torque_map_b_nm_stroke_per_mg),
-            ("idle_speed_rpm", self.idle_speed_rpm),
-            ("final_drive_ratio", self.final_drive_ratio),
-            ("wheel_radius_m", self.wheel_radius_m),
-            ("gravity_mps2", self.gravity_mps2),
-            ("brake_torque_max_nm", self.brake_torque_max_nm),
-        ];
-        check_each(&positive, |v| v > 0.0, "a number > 0")?;
-        let non_negative = [
-            ("idle_fueling_mg_per_stroke", self.idle_fueling_mg_per_stroke),
-            ("wheel_inertia_kgm2", self.wheel_inertia_kgm2),
-            ("rolling_resistance", self.rolling_resistance),
-            ("air_drag_coefficient", self.air_drag_coefficient),
-            ("frontal_area_m2", self.frontal_area_m2),
-            ("air_density_kgpm3", self.air_density_kgpm3),
-        ];
-        check_each(&non_negative, |v| v >= 0.0, "a number >= 0")?;
-        let finite = [
-            ("torque_map_a_nm_per_rpm", self.torque_map_a_nm_per_rpm),
-            ("torque_map_c_nm", self.torque_map_c_nm),
-            ("fueling_max_a_mg_per_rpm2", self.fueling_max_a_mg_per_rpm2),
-            ("fueling_max_b_mg_per_rpm", self.fueling_max_b_mg_per_rpm),
-            ("fueling_max_c_mg", self.fueling_max_c_mg),
-            ("drag_torque_a_nm_per_rpm", self.drag_torque_a_nm_per_rpm),
-            ("drag_torque_b_nm", self.drag_torque_b_nm),
-        ];
-        check_each(&finite, |_| true, "a finite number")?;
-        check_fraction("final_drive_efficiency", self.final_drive_efficiency)?;
-        if self.gear_ratios.is_empty() {
-            return Err(CoreError::invalid("gear_ratios", "expected at least one forward gear"));
-        }
-        if self.gear_ratios.len() != self.gear_efficiencies.len() {
-            return Err(CoreError::invalid(
-                "gear_efficiencies",
-                format!(
-                    "expected one efficiency per gear ratio ({}), got {}",
-                    self.gear_ratios.len(),
-                    self.gear_efficiencies.len()
-                ),
-            ));
-        }
-        for (i, pair) in self.gear_ratios.windows(2).enumerate() {
-            if !(pair[1] < pair[0]) {
-                return Err(CoreError::invalid(
-                    "gear_ratios",
-                    format!("expected strictly decreasing ratios, gear {} is not below gear {}", i + 2, i + 1),
-                ));
-            }
-        }
-        for &r in &self.gear_ratios {
-            if !(r.is_finite() && r > 0.0) {
-                return Err(CoreError::invalid("gear_ratios", format!("expected ratios > 0, got {r}")));
-            }
-        }
-        for &e in &self.gear_efficiencies {
-            check_fraction("gear_efficiencies", e)?;
-        }
-        Ok(())
-    }
-}
-
-fn check_fraction(name: &str, value: f64) -> CoreResult<()> {
-    if value.is_finite() && value > 0.0 && value <= 1.0 {
-        Ok(())
-    } else {
-        Err(CoreError::invalid(name, format!("expected a value in (0, 1], got {value}")))
-    }
-}
 
 /// The gear-dependent constants of (B.1): c1 [m/(kg m²)·...] so that dv/dt = c1·(torque sum) in m/s²,
 /// c3 = η_t i_t η_f i_f [-] and c4 = 30 i_t i_f / (π r_w) [rpm per m/s]. Neutral has c3 = c4 = 0.
@@ -208,7 +43,8 @@ pub struct Vehicle {
 impl Vehicle {
     /// Validate the parameters and precompute the model constants.
     pub fn new(params: VehicleParams) -> CoreResult<Self> {
-        params.validate()?;
+        params.check_ranges()?;
+        params.check_gearbox()?;
         let p = &params;
         let base_inertia = p.wheel_inertia_kgm2 + p.mass_kg * p.wheel_radius_m.powi(2);
         let mut gears = vec![GearConstants { c1: p.wheel_radius_m / base_inertia, c3: 0.0, c4: 0.0 }];

@@ -10,7 +10,7 @@ use std::cell::RefCell;
 use std::collections::HashMap;
 use truckmpc_core::dp::rows::BRAKE_WINDOW;
 use truckmpc_core::dp::space::{grid, intervals, usable_gears, Grid, Intervals};
-use truckmpc_core::dp::{GridAnchor, InitialState, MpcParams, NeutralRule, Solver};
+use truckmpc_core::dp::{DpSettings, GridAnchor, InitialState, NeutralRule, Solver};
 use truckmpc_core::levels::{brake_accel, brake_for_step, pedal_for_step, stage_fuel_g};
 
 use truckmpc_core::{Vehicle, VehicleParams, NEUTRAL};
@@ -31,7 +31,7 @@ impl Rng {
 
 struct Problem<'a> {
     vehicle: &'a Vehicle,
-    p: &'a MpcParams,
+    p: &'a DpSettings,
     slopes: Vec<f64>,
     grids: Vec<Grid>,
     start: InitialState,
@@ -127,16 +127,16 @@ fn random_case(
     vehicle: &Vehicle,
     k_lim: u32,
     anchor: GridAnchor,
-) -> (MpcParams, InitialState, Vec<f64>) {
+) -> (DpSettings, InitialState, Vec<f64>) {
     let stages = 3 + (rng.next() * 4.0) as usize;
-    let p = MpcParams {
+    let p = DpSettings {
         stage_m: 100.0,
         horizon_m: 100.0 * stages as f64,
         delta_kmh: 0.5,
         k_lim,
         neutral_rule: NeutralRule::Nearest,
         grid: anchor,
-        ..MpcParams::default()
+        ..DpSettings::default()
     };
     let slopes: Vec<f64> = (0..stages).map(|_| rng.range(-0.04, 0.04)).collect();
     let v0 = rng.range(80.0, 90.0) / 3.6;
@@ -146,7 +146,7 @@ fn random_case(
     (p, InitialState { v_mps: v0, gear, stages_since_shift: since }, slopes)
 }
 
-fn grids_of(vehicle: &Vehicle, p: &MpcParams, start: InitialState, slopes: &[f64]) -> Vec<Grid> {
+fn grids_of(vehicle: &Vehicle, p: &DpSettings, start: InitialState, slopes: &[f64]) -> Vec<Grid> {
     let mut iv = Intervals::default();
     intervals(vehicle, p, start.v_mps, slopes, &mut iv);
     let mut grids = vec![Grid { first_mps: start.v_mps, count: 1 }];

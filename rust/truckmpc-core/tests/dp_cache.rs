@@ -1,7 +1,7 @@
 //! The row cache changes nothing but speed: along a receding sequence of solves on a road, a
 //! fixed-grid solver with the cache returns bit-identical solutions to one without it.
 
-use truckmpc_core::dp::{horizon, GridAnchor, InitialState, MpcParams, NeutralRule, Solver};
+use truckmpc_core::dp::{horizon, DpSettings, GridAnchor, InitialState, NeutralRule, Solver};
 use truckmpc_core::{Road, Vehicle, VehicleParams};
 
 fn hilly_road() -> Road {
@@ -12,7 +12,7 @@ fn hilly_road() -> Road {
     Road::new(distance, slopes).unwrap()
 }
 
-fn run(params: &MpcParams, caching: bool, road: &Road, vehicle: &Vehicle) -> Vec<(bool, u64, u64, u64, usize, usize)> {
+fn run(params: &DpSettings, caching: bool, road: &Road, vehicle: &Vehicle) -> Vec<(bool, u64, u64, u64, usize, usize)> {
     let mut solver = Solver::new(params.clone());
     solver.set_caching(caching);
     let mut scratch = Vec::new();
@@ -44,12 +44,12 @@ fn cached_and_uncached_solves_are_bit_identical() {
     let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
     let road = hilly_road();
     for rule in [NeutralRule::Nearest, NeutralRule::Interpolate] {
-        let params = MpcParams {
+        let params = DpSettings {
             grid: GridAnchor::Fixed,
             neutral_rule: rule,
             horizon_m: 1500.0,
             delta_kmh: 0.2,
-            ..MpcParams::default()
+            ..DpSettings::default()
         };
         let with = run(&params, true, &road, &vehicle);
         let without = run(&params, false, &road, &vehicle);

@@ -3,7 +3,7 @@
 //! speeds, or its end lies above what any grid path reaches and every solve there is infeasible.
 
 use truckmpc_core::dp::space::{intervals, Intervals};
-use truckmpc_core::dp::{GridAnchor, InitialState, MpcParams, Solver};
+use truckmpc_core::dp::{DpSettings, GridAnchor, InitialState, Solver};
 use truckmpc_core::{Vehicle, VehicleParams};
 
 /// Slopes of a horizon of `stages` stages: flat, then a climb of `grade` from stage `climb_from`.
@@ -11,8 +11,8 @@ fn climb(stages: usize, climb_from: usize, grade: f64) -> Vec<f64> {
     (0..stages).map(|k| if k >= climb_from { grade } else { 0.0 }).collect()
 }
 
-fn params(delta_kmh: f64) -> MpcParams {
-    MpcParams { grid: GridAnchor::Fixed, delta_kmh, horizon_m: 3000.0, stage_m: 25.0, ..MpcParams::default() }
+fn params(delta_kmh: f64) -> DpSettings {
+    DpSettings { grid: GridAnchor::Fixed, delta_kmh, horizon_m: 3000.0, stage_m: 25.0, ..DpSettings::default() }
 }
 
 #[test]

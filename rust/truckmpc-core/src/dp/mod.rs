@@ -9,5 +9,5 @@ pub mod simd;
 pub mod solver;
 pub mod space;
 
-pub use params::{GridAnchor, MpcParams, NeutralRule};
+pub use params::{DpSettings, GridAnchor, NeutralRule};
 pub use solver::{InitialState, Solution, Solver, TrajectoryPoint};

@@ -1,160 +1,91 @@
-//! Parameters of the look-ahead controller (tables 5.2, 6.1, 6.2), in the units a user types.
-//! Internally the solver works in m/s; conversions happen in [`MpcParams::validate`] users.
+//! The settings the DP works with: the look-ahead controller's declared parameters
+//! ([`MpcParams`]) with their defaults resolved, and the cruise band ([`CruiseParams`]). Units and
+//! meanings are those of the declarations; the solver converts speeds to m/s through the methods
+//! below.
 
-use crate::error::{check_each, CoreError, CoreResult};
+use crate::params::{CruiseParams, MpcParams, ParamSet};
+pub use crate::params::{GridAnchor, NeutralRule};
 
-/// How a neutral-gear arc, whose end speed is fixed by the physics and generally falls between
-/// two grid points, is joined to the next stage's grid (NOTES.md: the thesis gives no rule).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum NeutralRule {
-    /// Snap to the nearest grid point (thesis-faithful reading; biased with a moving grid).
-    Nearest,
-    /// Interpolate the cost-to-go linearly between the two neighbouring grid points (unbiased).
-    Interpolate,
-}
+use crate::error::CoreResult;
 
-/// How each stage's velocity grid is anchored.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum GridAnchor {
-    /// The thesis's grid (5.8): v_low, v_low + δ, ..., anchored at each stage's own lower bound.
-    Moving,
-    /// Multiples of δ (an absolute grid shared by every stage and every solve).
-    Fixed,
-}
-
-/// Controller parameters. Speeds in km/h as the user gives them; cost weights act on fuel in
-/// grams and on speeds in m/s (NOTES.md: that is what makes table 6.2's weights behave).
+/// Resolved DP settings; build them with [`DpSettings::new`], which validates.
 #[derive(Debug, Clone, PartialEq)]
-pub struct MpcParams {
-    /// Stage length S [m]; the controller solves once per stage and holds its control over it.
+pub struct DpSettings {
+    /// S [m].
     pub stage_m: f64,
-    /// Prediction horizon [m]; the number of stages is round(horizon / S).
+    /// Horizon [m].
     pub horizon_m: f64,
-    /// Velocity discretisation δ [km/h].
+    /// δ [km/h].
     pub delta_kmh: f64,
-    /// Pedal tolerance ε: computed pedal levels in [−ε, 1 + ε] are accepted and clipped to [0, 1].
+    /// ε [-].
     pub epsilon: f64,
-    /// Reference speed v_ref [km/h].
+    /// v_ref [km/h].
     pub v_ref_kmh: f64,
-    /// Allowed increase above v_ref [km/h]; v_max = v_ref + v_inc is a hard limit.
+    /// v_inc [km/h].
     pub v_inc_kmh: f64,
-    /// Allowed decrease below v_ref [km/h]; v_min = v_ref − v_dec is a soft limit.
+    /// v_dec [km/h].
     pub v_dec_kmh: f64,
-    /// Minimum number of stages between two gear shifts.
+    /// k_lim [stages], resolved.
     pub k_lim: u32,
-    /// Lowest engine speed of a usable gear [rpm] (5.7).
+    /// N_min [rpm].
     pub n_min_rpm: f64,
-    /// Highest engine speed of a usable gear [rpm] (5.7).
+    /// N_max [rpm].
     pub n_max_rpm: f64,
-    /// Whether neutral gear may be chosen.
+    /// Neutral allowed.
     pub allow_neutral: bool,
-    /// Q1: weight per gram of fuel.
+    /// Q1 [1/g].
     pub q_fuel: f64,
-    /// Q2: weight per (m/s)² of speed below v_ref.
+    /// Q2 [1/(m/s)²], resolved.
     pub q_speed_below: f64,
-    /// Q3: weight per m/s of speed change over a stage.
+    /// Q3 [1/(m/s)].
     pub q_speed_change: f64,
-    /// Q4: weight per gear shift.
+    /// Q4 [1/shift].
     pub q_gear_shift: f64,
-    /// Q5: weight per unit brake level held over a stage.
+    /// Q5 [-].
     pub q_brake: f64,
-    /// Rule joining neutral arcs to the grid.
+    /// Neutral arcs' rule.
     pub neutral_rule: NeutralRule,
-    /// Anchoring of the velocity grid.
+    /// Grid anchoring.
     pub grid: GridAnchor,
 }
 
-impl Default for MpcParams {
-    /// Tables 6.1 and 6.2 at S = 25 m, δ = 0.2 km/h, 1000 m horizon.
+impl Default for DpSettings {
+    /// The declared defaults (tables 6.1 and 6.2 at S = 25 m, δ = 0.2 km/h).
     fn default() -> Self {
-        MpcParams {
-            stage_m: 25.0,
-            horizon_m: 1000.0,
-            delta_kmh: 0.2,
-            epsilon: 0.1,
-            v_ref_kmh: 85.0,
-            v_inc_kmh: 5.0,
-            v_dec_kmh: 5.0,
-            k_lim: 8,
-            n_min_rpm: 1000.0,
-            n_max_rpm: 2000.0,
-            allow_neutral: true,
-            q_fuel: 2.0,
-            q_speed_below: 7.0,
-            q_speed_change: 15.0,
-            q_gear_shift: 15.0,
-            q_brake: 100.0,
-            neutral_rule: NeutralRule::Nearest,
-            grid: GridAnchor::Moving,
-        }
+        Self::resolve(&MpcParams::default(), &CruiseParams::default())
     }
 }
 
-impl MpcParams {
-    /// Check ranges; the error names the first offending key.
-    pub fn validate(&self) -> CoreResult<()> {
-        let positive = [
-            ("stage_m", self.stage_m),
-            ("horizon_m", self.horizon_m),
-            ("delta_kmh", self.delta_kmh),
-            ("v_ref_kmh", self.v_ref_kmh),
-            ("n_max_rpm", self.n_max_rpm),
-        ];
-        check_each(&positive, |v| v > 0.0, "a number > 0")?;
-        let non_negative = [
-            ("epsilon", self.epsilon),
-            ("v_inc_kmh", self.v_inc_kmh),
-            ("v_dec_kmh", self.v_dec_kmh),
-            ("n_min_rpm", self.n_min_rpm),
-            ("q_fuel", self.q_fuel),
-            ("q_speed_below", self.q_speed_below),
-            ("q_speed_change", self.q_speed_change),
-            ("q_gear_shift", self.q_gear_shift),
-            ("q_brake", self.q_brake),
-        ];
-        check_each(&non_negative, |v| v >= 0.0, "a number >= 0")?;
-        if self.horizon_m < self.stage_m {
-            return Err(CoreError::invalid(
-                "horizon_m",
-                format!(
-                    "expected at least one stage (horizon_m >= stage_m = {}), got {}",
-                    self.stage_m, self.horizon_m
-                ),
-            ));
+impl DpSettings {
+    /// Validate `mpc` and `cruise` (ranges and checks between keys) and resolve the defaults.
+    pub fn new(mpc: &MpcParams, cruise: &CruiseParams) -> CoreResult<Self> {
+        mpc.check_ranges()?;
+        cruise.check_ranges()?;
+        mpc.check_with(cruise)?;
+        Ok(Self::resolve(mpc, cruise))
+    }
+
+    fn resolve(mpc: &MpcParams, cruise: &CruiseParams) -> Self {
+        DpSettings {
+            stage_m: mpc.stage_m,
+            horizon_m: mpc.horizon_m,
+            delta_kmh: mpc.delta_kmh,
+            epsilon: mpc.epsilon,
+            v_ref_kmh: cruise.v_ref_kmh,
+            v_inc_kmh: cruise.v_inc_kmh,
+            v_dec_kmh: cruise.v_dec_kmh,
+            k_lim: mpc.k_lim_stages(),
+            n_min_rpm: mpc.n_min_rpm,
+            n_max_rpm: mpc.n_max_rpm,
+            allow_neutral: mpc.allow_neutral,
+            q_fuel: mpc.q_fuel,
+            q_speed_below: mpc.q_speed_below_weight(),
+            q_speed_change: mpc.q_speed_change,
+            q_gear_shift: mpc.q_gear_shift,
+            q_brake: mpc.q_brake,
+            neutral_rule: mpc.neutral_rule,
+            grid: mpc.grid,
         }
-        if self.n_min_rpm >= self.n_max_rpm {
-            return Err(CoreError::invalid(
-                "n_min_rpm",
-                format!("expected n_min_rpm < n_max_rpm ({}), got {}", self.n_max_rpm, self.n_min_rpm),
-            ));
-        }
-        if self.v_dec_kmh >= self.v_ref_kmh {
-            return Err(CoreError::invalid(
-                "v_dec_kmh",
-                format!("expected < v_ref_kmh ({}), got {}", self.v_ref_kmh, self.v_dec_kmh),
-            ));
-        }
-        if self.delta_kmh > self.v_inc_kmh + self.v_dec_kmh && self.v_inc_kmh + self.v_dec_kmh > 0.0 {
-            return Err(CoreError::invalid(
-                "delta_kmh",
-                format!(
-                    "expected at most the speed band v_inc + v_dec = {} km/h, got {}",
-                    self.v_inc_kmh + self.v_dec_kmh,
-                    self.delta_kmh
-                ),
-            ));
-        }
-        if self.stages() > 100_000 {
-            return Err(CoreError::invalid("horizon_m", "expected at most 100000 stages"));
-        }
-        // Grid indices are stored in 16 bits.
-        if (self.v_inc_kmh + self.v_dec_kmh) / self.delta_kmh > 30_000.0 {
-            return Err(CoreError::invalid(
-                "delta_kmh",
-                "expected at most 30000 grid points in the speed band v_inc + v_dec",
-            ));
-        }
-        Ok(())
     }
 
     /// Number of stages N in the horizon.

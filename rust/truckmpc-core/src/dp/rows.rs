@@ -8,7 +8,7 @@
 //! reaches hold +∞. Speeds of grid indices come from [`GridIndex`], so a row computed for an
 //! absolute grid is the same whichever solve asks for it (what makes caching exact).
 
-use super::params::MpcParams;
+use super::params::DpSettings;
 use crate::levels::{brake_accel_on, pedal_accel_on, stage_fuel_g, AffineAccel};
 use crate::vehicle::Vehicle;
 
@@ -70,7 +70,7 @@ struct RowMaps {
     full_fuel_g: f64,
 }
 
-fn maps(vehicle: &Vehicle, p: &MpcParams, v_i: f64, gear: usize, slope_torque: f64) -> RowMaps {
+fn maps(vehicle: &Vehicle, p: &DpSettings, v_i: f64, gear: usize, slope_torque: f64) -> RowMaps {
     RowMaps {
         pedal: pedal_accel_on(vehicle, v_i, gear, slope_torque),
         brake: brake_accel_on(vehicle, v_i, gear, slope_torque),
@@ -80,7 +80,7 @@ fn maps(vehicle: &Vehicle, p: &MpcParams, v_i: f64, gear: usize, slope_torque: f
 
 /// Inputs and their stage cost (Q1·fuel + Q3·|Δv| + Q5·B) for one pair, None if inadmissible.
 #[inline]
-fn pair(p: &MpcParams, m: &RowMaps, v_i: f64, v_j: f64) -> Option<(Inputs, f64)> {
+fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64) -> Option<(Inputs, f64)> {
     let h = p.stage_m;
     let change = p.q_speed_change * (v_i - v_j).abs();
     if m.pedal.gain > 0.0 {
@@ -108,7 +108,7 @@ fn pair(p: &MpcParams, m: &RowMaps, v_i: f64, v_j: f64) -> Option<(Inputs, f64)>
 /// stage, and return their span. Indices no input reaches inside the span hold +∞.
 pub fn forward_row(
     vehicle: &Vehicle,
-    p: &MpcParams,
+    p: &DpSettings,
     v_i: f64,
     gear: usize,
     slope_torque: f64,
@@ -151,6 +151,6 @@ pub fn forward_row(
 }
 
 /// The inputs of one admissible pair (the solver recomputes them for the path it keeps).
-pub fn inputs(vehicle: &Vehicle, p: &MpcParams, v_i: f64, v_j: f64, gear: usize, slope_torque: f64) -> Option<Inputs> {
+pub fn inputs(vehicle: &Vehicle, p: &DpSettings, v_i: f64, v_j: f64, gear: usize, slope_torque: f64) -> Option<Inputs> {
     pair(p, &maps(vehicle, p, v_i, gear, slope_torque), v_i, v_j).map(|(inputs, _)| inputs)
 }

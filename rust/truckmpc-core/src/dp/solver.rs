@@ -16,7 +16,7 @@
 //! (5.6).) Stages reached before the vehicle's own counter allows a shift keep the current gear.
 
 use super::cache::{Block, NeutralArc, RowCache, RowScratch, StageRows, LANES, PAD};
-use super::params::{GridAnchor, MpcParams, NeutralRule};
+use super::params::{DpSettings, GridAnchor, NeutralRule};
 use super::rows::{forward_row, inputs, GridIndex};
 use super::simd::{self, LaneMins};
 use super::space::{self, Grid, Intervals};
@@ -156,7 +156,7 @@ impl StageGrid {
 /// once the buffers have grown (and, on a fixed grid, so its row cache pays).
 #[derive(Debug, Clone)]
 pub struct Solver {
-    params: MpcParams,
+    params: DpSettings,
     caching: bool,
     intervals: Intervals,
     grids: Vec<StageGrid>,
@@ -186,9 +186,9 @@ pub struct Solver {
 }
 
 impl Solver {
-    /// A solver for these parameters (validate them first with [`MpcParams::validate`]). On a fixed
+    /// A solver for these parameters (built by [`DpSettings::new`], which validates). On a fixed
     /// grid it caches transition costs across solves given their absolute stage.
-    pub fn new(params: MpcParams) -> Self {
+    pub fn new(params: DpSettings) -> Self {
         let caching = params.grid == GridAnchor::Fixed;
         Solver {
             params,
@@ -219,7 +219,7 @@ impl Solver {
     }
 
     /// The parameters.
-    pub fn params(&self) -> &MpcParams {
+    pub fn params(&self) -> &DpSettings {
         &self.params
     }
 
@@ -589,7 +589,7 @@ impl Solver {
 
 /// The single neutral arc from `v_i_mps` on a stage: where the physics ends it, and its fuel and
 /// speed-change cost.
-fn neutral_arc(p: &MpcParams, vehicle: &Vehicle, v_i_mps: f64, slope_torque: f64) -> NeutralArc {
+fn neutral_arc(p: &DpSettings, vehicle: &Vehicle, v_i_mps: f64, slope_torque: f64) -> NeutralArc {
     let h = p.stage_m;
     let v_end_mps = brake_accel_on(vehicle, v_i_mps, NEUTRAL, slope_torque).step(v_i_mps, h, 0.0);
     let fuel = stage_fuel_g(vehicle, v_i_mps, 0.0, NEUTRAL, h);
@@ -601,7 +601,7 @@ fn neutral_arc(p: &MpcParams, vehicle: &Vehicle, v_i_mps: f64, slope_torque: f64
 /// the arc ends off the states.
 #[inline]
 fn neutral_join(
-    p: &MpcParams,
+    p: &DpSettings,
     arc: &NeutralArc,
     next: StageGrid,
     (lo, hi): (u32, u32),

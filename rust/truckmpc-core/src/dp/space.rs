@@ -2,7 +2,7 @@
 //! per stage cut to the allowed band, the backward pass from the final stage's v_ref bound, and
 //! the velocity grid of each stage (5.8). Speeds in m/s.
 
-use super::params::{GridAnchor, MpcParams};
+use super::params::{DpSettings, GridAnchor};
 use super::rows::GridIndex;
 use crate::levels::{brake_accel, pedal_accel};
 use crate::vehicle::{Vehicle, NEUTRAL};
@@ -25,7 +25,7 @@ pub fn usable_gears(vehicle: &Vehicle, v_mps: f64, n_min_rpm: f64, n_max_rpm: f6
 
 /// Gears used to bound reachability from `v_mps`: the usable ones, or if none, the forward gear
 /// whose engine speed is closest to the window (so a truck outside the window still has a bound).
-fn reach_gears(vehicle: &Vehicle, params: &MpcParams, v_mps: f64) -> (usize, usize) {
+fn reach_gears(vehicle: &Vehicle, params: &DpSettings, v_mps: f64) -> (usize, usize) {
     usable_gears(vehicle, v_mps, params.n_min_rpm, params.n_max_rpm).unwrap_or_else(|| {
         let distance = |g: usize| {
             let n = vehicle.gear(g).c4 * v_mps;
@@ -38,7 +38,7 @@ fn reach_gears(vehicle: &Vehicle, params: &MpcParams, v_mps: f64) -> (usize, usi
 
 /// Speeds after one stage at full pedal, over the reachability gears: (max, min) [m/s].
 /// Neutral counts towards the maximum when allowed: on a steep descent it can beat a gear.
-fn full_pedal_speeds(vehicle: &Vehicle, params: &MpcParams, v_mps: f64, slope: f64) -> (f64, f64) {
+fn full_pedal_speeds(vehicle: &Vehicle, params: &DpSettings, v_mps: f64, slope: f64) -> (f64, f64) {
     let h = params.stage_m;
     let (lo, hi) = reach_gears(vehicle, params, v_mps);
     let mut best = f64::NEG_INFINITY;
@@ -55,7 +55,7 @@ fn full_pedal_speeds(vehicle: &Vehicle, params: &MpcParams, v_mps: f64, slope: f
 }
 
 /// Lowest speed after one stage without brakes: fuel cut in the gear with the most engine drag.
-fn lowest_speed(vehicle: &Vehicle, params: &MpcParams, v_mps: f64, slope: f64) -> f64 {
+fn lowest_speed(vehicle: &Vehicle, params: &DpSettings, v_mps: f64, slope: f64) -> f64 {
     let h = params.stage_m;
     let (lo, hi) = reach_gears(vehicle, params, v_mps);
     let mut v_min = f64::INFINITY;
@@ -95,7 +95,7 @@ pub struct Intervals {
 /// Forward reachability from `v0_mps` cut to [v_min, v_max] (5.4.2), then the final stage's lower
 /// bound raised to v_ref and the backward pass removing speeds that cannot reach it. On a fixed
 /// grid the bounds are grid speeds found from grid speeds ([`grid_intervals`]).
-pub fn intervals(vehicle: &Vehicle, params: &MpcParams, v0_mps: f64, slopes: &[f64], out: &mut Intervals) {
+pub fn intervals(vehicle: &Vehicle, params: &DpSettings, v0_mps: f64, slopes: &[f64], out: &mut Intervals) {
     match params.grid {
         GridAnchor::Moving => continuous_intervals(vehicle, params, v0_mps, slopes, out),
         GridAnchor::Fixed => grid_intervals(vehicle, params, v0_mps, slopes, out),
@@ -103,7 +103,7 @@ pub fn intervals(vehicle: &Vehicle, params: &MpcParams, v0_mps: f64, slopes: &[f
 }
 
 /// The thesis's intervals (5.4.2), bounds as continuous speeds [m/s].
-fn continuous_intervals(vehicle: &Vehicle, params: &MpcParams, v0_mps: f64, slopes: &[f64], out: &mut Intervals) {
+fn continuous_intervals(vehicle: &Vehicle, params: &DpSettings, v0_mps: f64, slopes: &[f64], out: &mut Intervals) {
     let (v_min, v_max) = (params.v_min_mps(), params.v_max_mps());
     out.lo.clear();
     out.hi.clear();
@@ -131,7 +131,7 @@ fn continuous_intervals(vehicle: &Vehicle, params: &MpcParams, v0_mps: f64, slop
 /// pass keeps the lowest grid speed from which full pedal reaches the next stage's lowest one.
 /// Rounding continuous bounds instead breaks the chain on long climbs: the last stage's bound (the
 /// end of the continuous full-pedal chain) then lies above what any grid path can reach.
-fn grid_intervals(vehicle: &Vehicle, params: &MpcParams, v0_mps: f64, slopes: &[f64], out: &mut Intervals) {
+fn grid_intervals(vehicle: &Vehicle, params: &DpSettings, v0_mps: f64, slopes: &[f64], out: &mut Intervals) {
     let (v_min_mps, v_max_mps) = (params.v_min_mps(), params.v_max_mps());
     // Multiples of δ: index i is the speed i·δ [m/s].
     let grid = GridIndex { origin_mps: 0.0, delta_mps: params.delta_mps() };
@@ -180,7 +180,7 @@ fn grid_intervals(vehicle: &Vehicle, params: &MpcParams, v0_mps: f64, slopes: &[
 
 /// Smallest speed in [lo, hi] from which full pedal reaches `target` in one stage (bisection to a
 /// hundredth of δ; full-pedal end speed grows with the start speed). Returns `hi` if none does.
-fn min_speed_reaching(vehicle: &Vehicle, params: &MpcParams, lo: f64, hi: f64, slope: f64, target: f64) -> f64 {
+fn min_speed_reaching(vehicle: &Vehicle, params: &DpSettings, lo: f64, hi: f64, slope: f64, target: f64) -> f64 {
     let reaches = |v: f64| full_pedal_speeds(vehicle, params, v, slope).0 >= target;
     if reaches(lo) {
         return lo;
@@ -202,7 +202,7 @@ fn min_speed_reaching(vehicle: &Vehicle, params: &MpcParams, lo: f64, hi: f64, s
 }
 
 /// The velocity grid of an interval (5.8), moving (anchored at lo) or fixed (multiples of δ).
-pub fn grid(params: &MpcParams, lo: f64, hi: f64) -> Grid {
+pub fn grid(params: &DpSettings, lo: f64, hi: f64) -> Grid {
     let delta = params.delta_mps();
     // Absorbs rounding so that an interval exactly k·δ wide keeps its last point.
     const SLACK: f64 = 1e-9;

@@ -1,0 +1,28 @@
+//! The set speed and the speed band every cruise controller works to.
+
+use super::Range;
+use crate::declare_params;
+
+declare_params! {
+    /// The driver's set speed and the band around it, shared by the PI and the look-ahead controller.
+    pub struct CruiseParams in "cruise" {
+        /// v_ref, the set speed.
+        v_ref_kmh: f64 = 85.0, unit "km/h", range Range::POSITIVE;
+        /// Allowed increase above v_ref: v_max = v_ref + v_inc is a hard limit (the PI brakes above it).
+        v_inc_kmh: f64 = 5.0, unit "km/h", range Range::NON_NEGATIVE;
+        /// Allowed decrease below v_ref: v_min = v_ref - v_dec, a soft limit of the look-ahead controller.
+        v_dec_kmh: f64 = 5.0, unit "km/h", range Range::NON_NEGATIVE;
+    }
+}
+
+impl CruiseParams {
+    /// v_ref [m/s].
+    pub fn v_ref_mps(&self) -> f64 {
+        self.v_ref_kmh / 3.6
+    }
+
+    /// v_max = v_ref + v_inc [km/h].
+    pub fn v_max_kmh(&self) -> f64 {
+        self.v_ref_kmh + self.v_inc_kmh
+    }
+}

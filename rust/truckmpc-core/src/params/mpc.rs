@@ -1,0 +1,120 @@
+//! The look-ahead controller's parameters (tables 5.2, 6.1 and 6.2). Its cost weighs fuel in grams
+//! and speeds in m/s: with these units table 6.2's weights give chapter 6's behaviour.
+
+use super::{CruiseParams, Range};
+use crate::error::{CoreError, CoreResult};
+use crate::{choice_enum, declare_params};
+
+choice_enum! {
+    /// How a neutral-gear arc, whose end speed is fixed by the physics and generally falls between
+    /// two grid points, is joined to the next stage's grid (the thesis gives no rule).
+    pub enum NeutralRule {
+        /// Snap to the nearest grid point (the thesis's reading; biased with a moving grid).
+        Nearest = "nearest",
+        /// Interpolate the cost-to-go linearly between the two neighbouring grid points (unbiased).
+        Interpolate = "interpolate",
+    }
+}
+
+choice_enum! {
+    /// How each stage's velocity grid is anchored.
+    pub enum GridAnchor {
+        /// The thesis's grid (5.8): v_low, v_low + δ, ..., anchored at each stage's own lower bound.
+        Moving = "moving",
+        /// Multiples of δ: one absolute grid shared by every stage and every solve.
+        Fixed = "fixed",
+    }
+}
+
+/// Table 6.1: the shift limit k_lim is chosen so that S · k_lim = 200 m.
+pub const SHIFT_SPACING_M: f64 = 200.0;
+
+declare_params! {
+    /// The look-ahead DP-MPC.
+    pub struct MpcParams in "mpc" {
+        /// S, stage length: one solve per stage, its control held over the stage.
+        stage_m: f64 = 25.0, unit "m", range Range::POSITIVE;
+        /// Prediction horizon; N = round(horizon / S) stages.
+        horizon_m: f64 = 1500.0, unit "m", range Range::POSITIVE;
+        /// δ, step of the DP's speed grid.
+        delta_kmh: f64 = 0.2, unit "km/h", range Range::POSITIVE;
+        /// ε, pedal tolerance: levels in [-ε, 1 + ε] are accepted and clipped to [0, 1].
+        epsilon: f64 = 0.1, unit "-", range Range::NON_NEGATIVE;
+        /// Least number of stages between two gear shifts; null = 200 m / S (table 6.1).
+        k_lim: Option<u32> = None, unit "stages", range Range::AT_LEAST_ONE;
+        /// Lowest engine speed of a usable gear (5.7).
+        n_min_rpm: f64 = 1000.0, unit "rpm", range Range::NON_NEGATIVE;
+        /// Highest engine speed of a usable gear (5.7).
+        n_max_rpm: f64 = 2000.0, unit "rpm", range Range::POSITIVE;
+        /// Whether the controller may coast in neutral (section 6.6).
+        allow_neutral: bool = true, unit "-", range Range::ANY;
+        /// Q1, weight per gram of fuel.
+        q_fuel: f64 = 2.0, unit "1/g", range Range::NON_NEGATIVE;
+        /// Q2, weight per (m/s)² below v_ref; null = 5 if δ < 0.15 km/h else 7 (table 6.2).
+        q_speed_below: Option<f64> = None, unit "1/(m/s)^2", range Range::NON_NEGATIVE;
+        /// Q3, weight per m/s of speed change over a stage.
+        q_speed_change: f64 = 15.0, unit "1/(m/s)", range Range::NON_NEGATIVE;
+        /// Q4, weight per gear shift.
+        q_gear_shift: f64 = 15.0, unit "1/shift", range Range::NON_NEGATIVE;
+        /// Q5, weight per unit brake level held over a stage.
+        q_brake: f64 = 100.0, unit "-", range Range::NON_NEGATIVE;
+        /// Neutral arcs end on the nearest grid point or interpolate the cost-to-go.
+        neutral_rule: NeutralRule = NeutralRule::Nearest, unit "-", range Range::ANY;
+        /// Speed grid anchored at each stage's lower bound (moving, 5.8) or on multiples of δ (fixed).
+        grid: GridAnchor = GridAnchor::Moving, unit "-", range Range::ANY;
+    }
+}
+
+impl MpcParams {
+    /// k_lim with its default resolved: round(200 m / S), at least 1 (table 6.1).
+    pub fn k_lim_stages(&self) -> u32 {
+        self.k_lim.unwrap_or_else(|| (SHIFT_SPACING_M / self.stage_m).round_ties_even().max(1.0) as u32)
+    }
+
+    /// Q2 with its default resolved: 5 below δ = 0.15 km/h, else 7 (table 6.2).
+    pub fn q_speed_below_weight(&self) -> f64 {
+        self.q_speed_below.unwrap_or(if self.delta_kmh < 0.15 { 5.0 } else { 7.0 })
+    }
+
+    /// Number of stages N in the horizon.
+    pub fn stages(&self) -> usize {
+        (self.horizon_m / self.stage_m).round().max(1.0) as usize
+    }
+
+    /// Checks between keys, and against the speed band of `cruise`; the error names the key and
+    /// the others the check involved.
+    pub fn check_with(&self, cruise: &CruiseParams) -> CoreResult<()> {
+        if self.horizon_m < self.stage_m {
+            let expected = format!("at least one stage (horizon_m >= stage_m = {})", self.stage_m);
+            return Err(CoreError::invalid("horizon_m", expected).got(self.horizon_m).related(&["stage_m"]));
+        }
+        if self.stages() > 100_000 {
+            return Err(CoreError::invalid("horizon_m", "at most 100000 stages of stage_m")
+                .got(self.horizon_m)
+                .related(&["stage_m"]));
+        }
+        if self.n_min_rpm >= self.n_max_rpm {
+            let expected = format!("n_min_rpm < n_max_rpm ({})", self.n_max_rpm);
+            return Err(CoreError::invalid("n_min_rpm", expected).got(self.n_min_rpm).related(&["n_max_rpm"]));
+        }
+        if cruise.v_dec_kmh >= cruise.v_ref_kmh {
+            let expected = format!("< v_ref_kmh ({})", cruise.v_ref_kmh);
+            return Err(CoreError::invalid("v_dec_kmh", expected).got(cruise.v_dec_kmh).related(&["v_ref_kmh"]));
+        }
+        let band_kmh = cruise.v_inc_kmh + cruise.v_dec_kmh;
+        if self.delta_kmh > band_kmh && band_kmh > 0.0 {
+            let expected = format!("at most the speed band v_inc + v_dec = {band_kmh} km/h");
+            return Err(CoreError::invalid("delta_kmh", expected)
+                .got(self.delta_kmh)
+                .related(&["v_inc_kmh", "v_dec_kmh"]));
+        }
+        // Grid indices are stored in 16 bits.
+        if band_kmh / self.delta_kmh > 30_000.0 {
+            let expected = "at most 30000 grid points in the speed band v_inc + v_dec";
+            return Err(CoreError::invalid("delta_kmh", expected)
+                .got(self.delta_kmh)
+                .related(&["v_inc_kmh", "v_dec_kmh"]));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,134 @@
+//! All the settings of a run, as one flat namespace of declared keys.
+
+use super::{CruiseParams, MpcParams, ParamSet, ParamSpec, PiParams, SimParams, Value, VehicleParams};
+use crate::error::{CoreError, CoreResult};
+
+/// The vehicle, the cruise band, both controllers and the simulation.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RunSettings {
+    /// The truck.
+    pub vehicle: VehicleParams,
+    /// Set speed and band.
+    pub cruise: CruiseParams,
+    /// The PI cruise controller.
+    pub pi: PiParams,
+    /// The look-ahead controller.
+    pub mpc: MpcParams,
+    /// The closed-loop simulation.
+    pub sim: SimParams,
+}
+
+impl RunSettings {
+    /// The names of the sections, in order.
+    pub const SECTIONS: [&'static str; 5] =
+        [VehicleParams::SECTION, CruiseParams::SECTION, PiParams::SECTION, MpcParams::SECTION, SimParams::SECTION];
+
+    /// Every declared parameter, section by section.
+    pub fn specs() -> Vec<ParamSpec> {
+        let mut specs = VehicleParams::specs();
+        specs.extend(CruiseParams::specs());
+        specs.extend(PiParams::specs());
+        specs.extend(MpcParams::specs());
+        specs.extend(SimParams::specs());
+        specs
+    }
+
+    /// Set one key from a user value (type and range checked); an unknown key is an error.
+    pub fn set(&mut self, key: &str, value: &Value) -> CoreResult<()> {
+        let known = self.vehicle.set(key, value)?
+            || self.cruise.set(key, value)?
+            || self.pi.set(key, value)?
+            || self.mpc.set(key, value)?
+            || self.sim.set(key, value)?;
+        if known {
+            Ok(())
+        } else {
+            Err(CoreError::invalid(key, "a known parameter").got("an unknown key"))
+        }
+    }
+
+    /// The value of a key as a user would write it.
+    pub fn get(&self, key: &str) -> Option<Value> {
+        self.vehicle
+            .get(key)
+            .or_else(|| self.cruise.get(key))
+            .or_else(|| self.pi.get(key))
+            .or_else(|| self.mpc.get(key))
+            .or_else(|| self.sim.get(key))
+    }
+
+    /// Defaults overridden by `values`, validated.
+    pub fn from_values<'a>(values: impl IntoIterator<Item = (&'a str, &'a Value)>) -> CoreResult<Self> {
+        let mut settings = RunSettings::default();
+        for (key, value) in values {
+            settings.set(key, value)?;
+        }
+        settings.validate()?;
+        Ok(settings)
+    }
+
+    /// Every range, then every check between keys (within and across sections).
+    pub fn validate(&self) -> CoreResult<()> {
+        self.vehicle.check_ranges()?;
+        self.cruise.check_ranges()?;
+        self.pi.check_ranges()?;
+        self.mpc.check_ranges()?;
+        self.sim.check_ranges()?;
+        self.vehicle.check_gearbox()?;
+        self.pi.check_thresholds()?;
+        self.pi.check_gearbox(&self.vehicle.gear_ratios)?;
+        self.mpc.check_with(&self.cruise)
+    }
+
+    /// The start speed [km/h]: `start_speed_kmh`, or v_ref when it is null.
+    pub fn start_speed_kmh(&self) -> f64 {
+        self.sim.start_speed_kmh.unwrap_or(self.cruise.v_ref_kmh)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashSet;
+
+    #[test]
+    fn keys_are_unique_across_sections() {
+        let specs = RunSettings::specs();
+        let names: HashSet<&str> = specs.iter().map(|s| s.name).collect();
+        assert_eq!(names.len(), specs.len());
+    }
+
+    #[test]
+    fn defaults_pass_their_own_checks_and_round_trip() {
+        let defaults = RunSettings::default();
+        defaults.validate().unwrap();
+        for spec in RunSettings::specs() {
+            assert_eq!(defaults.get(spec.name), Some(spec.default.clone()), "{}", spec.name);
+            let mut copy = defaults.clone();
+            copy.set(spec.name, &spec.default).unwrap();
+            assert_eq!(copy, defaults);
+        }
+    }
+
+    #[test]
+    fn errors_name_the_key_and_what_was_expected() {
+        let err = RunSettings::from_values([("mass_kg", &Value::Int(-1))]).unwrap_err();
+        assert_eq!(err.to_string(), "mass_kg: expected a number > 0, got -1");
+        let err = RunSettings::from_values([("plant_dt_s", &Value::Float(f64::NAN))]).unwrap_err();
+        assert_eq!(err.to_string(), "plant_dt_s: expected a finite number in (0, 1], got NaN");
+        let err = RunSettings::from_values([("grid", &Value::Text("loose".into()))]).unwrap_err();
+        assert_eq!(err.to_string(), "grid: expected 'moving' or 'fixed', got 'loose'");
+        let err = RunSettings::from_values([("k_lim", &Value::Float(2.5))]).unwrap_err();
+        assert_eq!(err.to_string(), "k_lim: expected a whole number >= 1 or null, got 2.5");
+        let err = RunSettings::from_values([("v_ref_kmh", &Value::Int(5))]).unwrap_err();
+        let CoreError::Invalid { key, related, .. } = err;
+        assert_eq!((key.as_str(), related), ("v_dec_kmh", vec!["v_ref_kmh".to_string()]));
+    }
+
+    #[test]
+    fn numeric_text_is_a_number_but_a_flag_is_not() {
+        let settings = RunSettings::from_values([("brake_torque_max_nm", &Value::Text("1e5".into()))]).unwrap();
+        assert_eq!(settings.vehicle.brake_torque_max_nm, 1e5);
+        assert!(RunSettings::from_values([("mass_kg", &Value::Bool(true))]).is_err());
+    }
+}

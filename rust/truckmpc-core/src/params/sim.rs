@@ -1,0 +1,16 @@
+//! Closed-loop simulation settings.
+
+use super::Range;
+use crate::declare_params;
+
+declare_params! {
+    /// How the closed loop is simulated and recorded.
+    pub struct SimParams in "sim" {
+        /// Time step of the plant's RK4 integration.
+        plant_dt_s: f64 = 0.05, unit "s", range Range::FRACTION;
+        /// Distance between samples of the recorded trace.
+        trace_step_m: f64 = 25.0, unit "m", range Range::POSITIVE;
+        /// Speed at the start of the road; null starts at v_ref.
+        start_speed_kmh: Option<f64> = None, unit "km/h", range Range::POSITIVE;
+    }
+}
