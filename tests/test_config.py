@@ -1,28 +1,30 @@
-"""Configuration files: packaged defaults equal the thesis's tables, layering works, and every bad
-input gives one line naming its file (or --set key) and what was expected."""
+"""Configuration: the declarations carry the thesis's tables, the packaged files and the README's
+key tables follow from them, layering works, and every bad input gives one line naming its file
+(and line) or --set key, what was expected, and the culprit the user set last."""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
-import truckmpc._core as core
 import yaml
 
-from truckmpc import config
+from truckmpc import _core
 from truckmpc.config import (
+    KEYS,
+    SPECS,
     ConfigError,
-    PiConfig,
-    Section,
     default_config_path,
-    load_pi,
+    key_table,
     load_run_config,
-    load_sections,
-    load_sim,
-    load_vehicle,
+    packaged_defaults,
+    section_keys,
 )
 
-# Tables A.1 and A.2, with k_b = 1e5 Nm (NOTES.md: the printed 20e3 is a misprint).
+README = Path(__file__).resolve().parent.parent / "README.md"
+
+# Tables A.1 and A.2, with k_b = 1e5 Nm (the printed 20e3 is a misprint: tables B.1/B.2 need 1e5).
 THESIS_40T = {
     "mass_kg": 40000.0,
     "engine_inertia_kgm2": 3.5,
@@ -74,52 +76,85 @@ def one_line_error(match: list[str], **kwargs: object) -> str:
 
 
 def test_default_vehicle_is_table_a1_a2() -> None:
-    vehicle = load_vehicle()
-    assert vehicle.params == THESIS_40T
-    assert list(vehicle.params) == core.Vehicle.parameter_names()
-    assert vehicle.source.endswith("truck-40t.yaml")
-    assert vehicle.core().forward_gears == 12
+    run = load_run_config()
+    assert dict(run.vehicle) == {k: tuple(v) if isinstance(v, list) else v for k, v in THESIS_40T.items()}
+    assert list(run.vehicle) == list(THESIS_40T) == list(section_keys("vehicle"))
+    assert run.core_vehicle.forward_gears == 12
 
 
 def test_20t_truck_differs_only_in_mass() -> None:
-    light = load_vehicle(default_config_path("truck-20t.yaml")).params
+    light = load_run_config(vehicle_path=default_config_path("truck-20t.yaml")).vehicle
+    heavy = load_run_config().vehicle
     assert light["mass_kg"] == 20000.0
-    assert {k: v for k, v in light.items() if k != "mass_kg"} == {k: v for k, v in THESIS_40T.items() if k != "mass_kg"}
+    assert {k: v for k, v in light.items() if k != "mass_kg"} == {k: v for k, v in heavy.items() if k != "mass_kg"}
 
 
-def test_default_pi_is_table_a3_a4() -> None:
-    pi = load_pi()
-    assert (pi.v_ref_kmh, pi.v_inc_kmh, pi.v_max_kmh) == (85.0, 5.0, 90.0)
+def test_default_pi_and_cruise_are_table_a3_a4() -> None:
+    run = load_run_config()
+    assert (run.cruise.v_ref_kmh, run.cruise.v_inc_kmh, run.v_max_kmh) == (85.0, 5.0, 90.0)
+    pi = run.pi
     assert (pi.pedal_kp, pi.pedal_ki, pi.pedal_integrator_limit) == (1.845, 0.2, 30.0)
     assert (pi.brake_kp, pi.brake_ki, pi.brake_integrator_limit) == (0.3, 0.02, 30.0)
     assert pi.gear_down_rpm == (None,) + (1300.0,) * 11
     assert pi.gear_up_rpm == (1800.0,) * 10 + (1700.0, None)
 
 
-def test_default_simulation() -> None:
-    sim = load_sim()
-    assert (sim.plant_dt_s, sim.trace_step_m, sim.start_speed_kmh) == (0.05, 25.0, None)
-
-
-def test_run_config_defaults_and_plain_dict() -> None:
+def test_default_mpc_is_tables_6_1_6_2_and_simulation() -> None:
     run = load_run_config()
-    assert run.pi == load_pi() and run.sim == load_sim()
-    assert run.vehicle.params == THESIS_40T
+    mpc = run.mpc
+    assert (mpc.stage_m, mpc.horizon_m, mpc.delta_kmh, mpc.epsilon) == (25.0, 1500.0, 0.2, 0.1)
+    assert (mpc.q_fuel, mpc.q_speed_change, mpc.q_gear_shift, mpc.q_brake) == (2.0, 15.0, 15.0, 100.0)
+    assert (mpc.k_lim, mpc.q_speed_below) == (None, None)
+    assert (run.settings.k_lim_stages, run.settings.q_speed_below_weight) == (8, 7.0)  # S k_lim = 200 m; delta 0.2
+    fine = load_run_config(overrides=["stage_m=50", "delta_kmh=0.1"]).settings
+    assert (fine.k_lim_stages, fine.q_speed_below_weight) == (4, 5.0)
+    assert (run.sim.plant_dt_s, run.sim.trace_step_m, run.sim.start_speed_kmh) == (0.05, 25.0, None)
+
+
+def test_run_config_plain_dict_and_sources() -> None:
+    run = load_run_config(overrides=["pedal_kp=2"])
     data = yaml.safe_load(yaml.safe_dump(run.as_dict()))
     assert data["pi"]["gear_up_rpm"][-1] is None
     assert data["vehicle"]["mass_kg"] == 40000.0
-    assert set(data["sources"]) == {"vehicle", "pi", "mpc", "sim"}
     assert data["mpc"]["k_lim"] is None  # resolved to 200 m / S only when the kernel gets it
+    assert set(data) == {"vehicle", "cruise", "pi", "mpc", "sim", "sources"}
+    assert data["sources"][0].endswith("truck-40t.yaml") and data["sources"][-1] == "--set pedal_kp"
 
 
 def test_configs_are_frozen() -> None:
     with pytest.raises(AttributeError):
-        load_pi().pedal_kp = 2.0  # type: ignore[misc]
+        load_run_config().pi.pedal_kp = 2.0
 
 
 def test_unknown_packaged_config() -> None:
-    with pytest.raises(ConfigError, match="no packaged config named 'nope.yaml'"):
+    with pytest.raises(ConfigError, match=r"no packaged config named 'nope\.yaml'"):
         default_config_path("nope.yaml")
+
+
+# --- one declaration ------------------------------------------------------------------------
+
+
+def test_packaged_files_are_the_declared_defaults() -> None:
+    """Regenerate with `truckmpc config defaults` after changing a declaration."""
+    for name, text in packaged_defaults().items():
+        assert default_config_path(name).read_text(encoding="utf-8") == text, name
+
+
+def test_readme_key_tables_are_the_declarations() -> None:
+    """Regenerate with `truckmpc config keys` after changing a declaration."""
+    readme = README.read_text(encoding="utf-8")
+    for section in ("vehicle", "cruise", "pi", "mpc", "sim"):
+        found = re.search(rf"<!-- keys:{section} -->\n(.*?)\n<!-- /keys:{section} -->", readme, re.S)
+        assert found, f"README lacks the {section} key table"
+        assert found.group(1) == key_table(section), section
+
+
+def test_every_key_has_unit_doc_and_default_within_range() -> None:
+    assert len(KEYS) == len(set(KEYS)) == len(SPECS)
+    for spec in SPECS:
+        assert spec.unit and spec.doc and spec.expected, spec.name
+        load_run_config(overrides=[f"{spec.name}={yaml.safe_dump(spec.default, default_flow_style=True).strip()}"])
+    assert _core.Settings({}).values() == {spec.name: spec.default for spec in SPECS}
 
 
 # --- layering -------------------------------------------------------------------------------
@@ -129,13 +164,13 @@ def test_overlay_then_set_override(tmp_path: Path) -> None:
     first = write(tmp_path, "a.yaml", "v_ref_kmh: 80\npedal_kp: 1.0\ntrace_step_m: 10\n")
     second = write(tmp_path, "b.yaml", "pedal_kp: 1.5\n")
     run = load_run_config(config_paths=[first, second], overrides=["pedal_kp=2.5", "mass_kg=1e4"])
-    assert run.pi.v_ref_kmh == 80.0 and run.pi.v_max_kmh == 85.0
+    assert run.cruise.v_ref_kmh == 80.0 and run.v_max_kmh == 85.0
     assert run.pi.pedal_kp == 2.5  # --set wins over both files
     assert load_run_config(config_paths=[first, second]).pi.pedal_kp == 1.5  # the later file wins
     assert run.sim.trace_step_m == 10.0
-    assert run.vehicle.params["mass_kg"] == 1e4
-    assert "--set mass_kg" in run.vehicle.source
-    assert "a.yaml" in run.pi.source and "--set pedal_kp" in run.pi.source
+    assert run.vehicle["mass_kg"] == 1e4
+    assert run.origins["mass_kg"].text == "--set mass_kg"
+    assert run.origins["v_ref_kmh"].text.endswith("a.yaml:1") and run.origins["pedal_kp"].text == "--set pedal_kp"
 
 
 def test_set_parses_yaml_values() -> None:
@@ -150,23 +185,27 @@ def test_set_parses_yaml_values() -> None:
     assert load_run_config(overrides=["start_speed_kmh=null"]).sim.start_speed_kmh is None
 
 
-@pytest.fixture
-def demo_section(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
-    """A third section sharing v_ref_kmh with the PI controller, as the MPC section will."""
-    # An absolute default_file stands in for a packaged file (pathlib joins it as itself).
-    defaults = write(tmp_path, "demo.yaml", "v_ref_kmh: 85\nhorizon_m: 2000\n")
-    parsers = {"v_ref_kmh": config._number(0, above=True), "horizon_m": config._number(0, above=True)}
-    monkeypatch.setitem(config.SECTIONS, "demo", Section(str(defaults), parsers, lambda values, source: dict(values)))
+# --- the culprit ----------------------------------------------------------------------------
 
 
-@pytest.mark.usefixtures("demo_section")
-def test_shared_key_is_set_in_every_section(tmp_path: Path) -> None:
-    overlay = write(tmp_path, "o.yaml", "v_ref_kmh: 70\nhorizon_m: 500\n")
-    _, sections = load_sections(config_paths=[overlay])
-    assert sections["pi"].v_ref_kmh == 70.0 and sections["demo"] == {"v_ref_kmh": 70.0, "horizon_m": 500.0}
-    _, sections = load_sections(overrides=["v_ref_kmh=60"])
-    assert sections["pi"].v_ref_kmh == 60.0 and sections["demo"]["v_ref_kmh"] == 60.0
-    assert isinstance(load_run_config(overrides=["v_ref_kmh=60"]).pi, PiConfig)
+@pytest.mark.parametrize(
+    ("override", "start"),
+    [
+        ("v_ref_kmh=5", "--set v_ref_kmh: v_dec_kmh: expected < v_ref_kmh (5)"),
+        ("stage_m=0.001", "--set stage_m: horizon_m: expected at most 100000 stages"),
+        ("gear_down_rpm=[null,1300]", "--set gear_down_rpm: gear_up_rpm: expected one threshold per gear"),
+        ("gear_ratios=[3, 2, 1]", "--set gear_ratios: gear_efficiencies: expected one efficiency per gear ratio (3)"),
+        ("n_max_rpm=900", "--set n_max_rpm: n_min_rpm: expected n_min_rpm < n_max_rpm (900)"),
+    ],
+)
+def test_a_cross_key_error_blames_the_key_set_last(override: str, start: str) -> None:
+    message = one_line_error([start], overrides=[override])
+    assert message.startswith(start) and "configs/" not in message
+
+
+def test_a_file_error_names_its_line(tmp_path: Path) -> None:
+    path = write(tmp_path, "my.yaml", "# comment\npedal_kp: 1\n\nhorizon_m: 10\n")
+    one_line_error([f"{path.name}:4: key 'horizon_m': expected at least one stage"], config_paths=[path])
 
 
 # --- bad input ------------------------------------------------------------------------------
@@ -179,7 +218,7 @@ BAD_OVERLAYS = [
     ("pedal_kp: -1\n", ["key 'pedal_kp'", ">= 0"]),
     ("brake_integrator_limit: 0\n", ["key 'brake_integrator_limit'", "> 0"]),
     ("v_ref_kmh: 0\n", ["key 'v_ref_kmh'", "> 0"]),
-    ("v_inc_kmh: -1\n", ["key 'v_inc_kmh'", "expected a number >= 0 (v_max = v_ref + v_inc must not be below v_ref)"]),
+    ("v_inc_kmh: -1\n", ["key 'v_inc_kmh'", "expected a number >= 0, got -1"]),
     ("plant_dt_s: 1.5\n", ["key 'plant_dt_s'", "(0, 1]"]),
     ("plant_dt_s: 0\n", ["key 'plant_dt_s'", "(0, 1]"]),
     ("trace_step_m: 0\n", ["key 'trace_step_m'", "> 0"]),
@@ -187,7 +226,7 @@ BAD_OVERLAYS = [
     ("pedal_kpp: 1\n", ["unknown key 'pedal_kpp'", "did you mean 'pedal_kp'"]),
     ("mass_kg: 1\n", ["key 'mass_kg' is a vehicle parameter"]),
     ("gear_up_rpm: [1800, 1800]\n", ["key 'gear_up_rpm'", "(12), got 2"]),
-    ("gear_up_rpm: 1800\n", ["key 'gear_up_rpm'", "expected a list of engine speeds"]),
+    ("gear_up_rpm: 1800\n", ["key 'gear_up_rpm'", "expected a list of numbers > 0"]),
     (
         "gear_down_rpm: [1000, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300, 1300]\n",
         ["key 'gear_down_rpm'", "null for gear 1"],
@@ -217,9 +256,9 @@ BAD_SETS = [
     ("pedal_kp=abc", ["--set pedal_kp: expected a number", "got 'abc'"]),
     ("masss_kg=3", ["--set masss_kg: unknown key", "did you mean 'mass_kg'"]),
     ("mass_kg=-1", ["--set mass_kg: expected a number > 0, got -1"]),
-    ("mass_kg=yes", ["--set mass_kg: expected a number, got true"]),
-    ("gear_ratios=[3, 2, 1]", ["gear_efficiencies", "(after --set gear_ratios)"]),
-    ("v_inc_kmh=-2", ["--set v_inc_kmh", "must not be below v_ref"]),
+    ("mass_kg=yes", ["--set mass_kg: expected a number > 0, got true"]),
+    ("gear_ratios=[3, 2, 1]", ["--set gear_ratios", "gear_efficiencies"]),
+    ("v_inc_kmh=-2", ["--set v_inc_kmh: expected a number >= 0, got -2"]),
     ("pedal_kp", ["--set 'pedal_kp': expected key=value"]),
     ("=3", ["expected key=value"]),
     ("pedal_kp=[1,", ["--set pedal_kp", "not valid YAML"]),
@@ -246,8 +285,8 @@ BAD_VEHICLES = [
     (vehicle_text(final_drive_efficiency=1.5), ["key 'final_drive_efficiency'", "(0, 1]"]),
     (vehicle_text(gear_efficiencies=[0.9] * 11), ["key 'gear_efficiencies'", "12"]),
     (vehicle_text(gear_ratios=[1.0, 2.0]), ["key 'gear_"]),
-    (vehicle_text(mass_kg="heavy"), ["key 'mass_kg': expected a number, got 'heavy'"]),
-    (vehicle_text(mass_kg=True), ["key 'mass_kg': expected a number, got true"]),
+    (vehicle_text(mass_kg="heavy"), ["key 'mass_kg': expected a number > 0, got 'heavy'"]),
+    (vehicle_text(mass_kg=True), ["key 'mass_kg': expected a number > 0, got true"]),
     (vehicle_text(mass_kg=float("nan")), ["key 'mass_kg'", "finite"]),
     (vehicle_text(gear_ratios="fast"), ["key 'gear_ratios': expected a list of numbers"]),
     (vehicle_text(wheel_radius_m=None), ["missing key 'wheel_radius_m'", "every parameter"]),
@@ -261,16 +300,6 @@ def test_bad_vehicle_file(tmp_path: Path, text: str, match: list[str]) -> None:
     path = write(tmp_path, "truck.yaml", text)
     message = one_line_error(match, vehicle_path=path)
     assert message.split(":")[0].endswith(path.name)  # names the file first
-    with pytest.raises(ConfigError):
-        load_vehicle(path)
-
-
-def test_controller_file_must_be_complete(tmp_path: Path) -> None:
-    path = write(tmp_path, "pi.yaml", "pedal_kp: 1\n")
-    with pytest.raises(ConfigError, match=r"pi\.yaml: missing 9 keys"):
-        load_pi(path)
-    with pytest.raises(ConfigError, match="unknown key 'pedal_kp'"):
-        load_sim(path)
 
 
 def test_config_error_is_value_error() -> None:

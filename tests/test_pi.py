@@ -42,7 +42,7 @@ def test_flat_road_settles_on_85_after_a_start_below_it():
 def test_long_descent_brakes_and_holds_v_max(config):
     # 500 m flat, 3000 m at -4 %, 1500 m flat.
     trace = simulate(make_section("hill", 3000, -4.0), config).trace
-    v_max = config.pi.v_max_kmh
+    v_max = config.v_max_kmh
     s = trace["distance_m"]
     on_descent = (s >= 500) & (s <= 3500)
     assert trace["brake"][on_descent].max() > 0.0
@@ -59,7 +59,7 @@ def test_long_descent_brakes_and_holds_v_max(config):
 def test_no_braking_below_v_max(config):
     # A -1 % descent speeds the truck up less than 5 km/h: brake error v - v_max stays negative.
     result = simulate(make_section("hill", 2000, -1.0), config)
-    assert result.trace["speed_kmh"].max() < config.pi.v_max_kmh
+    assert result.trace["speed_kmh"].max() < config.v_max_kmh
     assert result.summary["brake_energy_kj"] == 0.0
 
 
@@ -74,8 +74,8 @@ def test_ascent_downshifts_and_upshifts_after(config):
 
 
 def test_pedal_integrator_saturates_on_a_steep_climb(config):
-    vehicle = config.vehicle.core()
-    pi = PiController(vehicle, config.pi)
+    vehicle = config.core_vehicle
+    pi = PiController(vehicle, config)
     pi.reset(85 / KMH, 0.0)
     for k in range(1, 2000):
         control, until = pi.decide(state(60.0, 0.05 * k))
@@ -85,8 +85,8 @@ def test_pedal_integrator_saturates_on_a_steep_climb(config):
 
 
 def test_start_holds_v_ref_without_transient(config):
-    vehicle = config.vehicle.core()
-    pi = PiController(vehicle, config.pi)
+    vehicle = config.core_vehicle
+    pi = PiController(vehicle, config)
     for slope in (0.0, 0.01, -0.005):
         pi.reset(85 / KMH, slope)
         control, _ = pi.decide(state(85.0, 0.0))
@@ -96,16 +96,16 @@ def test_start_holds_v_ref_without_transient(config):
 
 
 def test_brake_acts_on_speed_above_v_max(config):
-    pi = PiController(config.vehicle.core(), config.pi)
+    pi = PiController(config.core_vehicle, config)
     pi.reset(85 / KMH, 0.0)
-    below, _ = pi.decide(state(config.pi.v_max_kmh - 0.5, 0.05))
+    below, _ = pi.decide(state(config.v_max_kmh - 0.5, 0.05))
     assert below.brake == 0.0
-    above, _ = pi.decide(state(config.pi.v_max_kmh + 3.0, 0.10))  # K_B * 3 - I_B * 30 > 0
+    above, _ = pi.decide(state(config.v_max_kmh + 3.0, 0.10))  # K_B * 3 - I_B * 30 > 0
     assert above.brake > 0.0 and above.pedal == 0.0
 
 
 def test_steady_gear_follows_table_a3(config):
-    vehicle = config.vehicle.core()
+    vehicle = config.core_vehicle
     assert steady_gear(vehicle, 85 / KMH, config.pi) == 12
     for v_kmh in np.arange(5.0, 120.0, 2.5):
         gear = steady_gear(vehicle, v_kmh / KMH, config.pi)
@@ -115,7 +115,7 @@ def test_steady_gear_follows_table_a3(config):
 
 
 def test_gear_logic_hysteresis(config):
-    vehicle = config.vehicle.core()
+    vehicle = config.core_vehicle
     logic = GearLogic(vehicle, config.pi.gear_down_rpm, config.pi.gear_up_rpm)
     rpm_per_mps = vehicle.engine_speed_rpm(1.0, 12)
     assert logic.next_gear(12, 1299 / rpm_per_mps) == 11
@@ -131,7 +131,7 @@ def test_gear_logic_hysteresis(config):
 
 
 def test_gear_logic_rejects_hunting_thresholds(config):
-    vehicle = config.vehicle.core()
+    vehicle = config.core_vehicle
     up = list(config.pi.gear_up_rpm)
     up[10] = 1400.0  # 11 -> 12 at 1400 rpm lands at 1138 rpm, below 12's 1300 rpm downshift
     with pytest.raises(ConfigError, match="hunt"):

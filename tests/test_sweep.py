@@ -307,7 +307,7 @@ def test_cli_parallel_matches_in_process(descent, tmp_path):
         (["--grid", "horizon_m=250:1000"], "error: --grid horizon_m: expected start:stop:step numbers"),
         (
             ["--grid", "horizon_m=25,250", "--grid", "stage_m=25,50"],
-            "error: --grid horizon_m: expected at least one stage",
+            "error: --grid stage_m: horizon_m: expected at least one stage",
         ),
         (
             ["--grid", "horizon_m=250", "--set", "horizon_m=500"],

@@ -7,7 +7,7 @@ Public API::
     result.summary["fuel_kg"], result.trace["speed_kmh"]
 """
 
-from truckmpc.config import PiConfig, RunConfig, SimConfig, VehicleConfig, load_run_config, load_vehicle
+from truckmpc.config import RunConfig, load_run_config
 from truckmpc.controller import Control, Controller, PlantState
 from truckmpc.errors import ConfigError, RoadError, TruckmpcError
 from truckmpc.pi import GearLogic, PiController, steady_gear
@@ -23,23 +23,19 @@ __all__ = [
     "Control",
     "Controller",
     "GearLogic",
-    "PiConfig",
     "PiController",
     "PlantState",
     "RoadError",
     "RoadProfile",
     "RunConfig",
     "RunResult",
-    "SimConfig",
     "SweepError",
     "SweepResult",
     "TruckmpcError",
-    "VehicleConfig",
     "default_test_track",
     "format_table",
     "load_road",
     "load_run_config",
-    "load_vehicle",
     "make_section",
     "run_sweep",
     "shipped_roads",

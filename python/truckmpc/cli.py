@@ -106,8 +106,10 @@ app = typer.Typer(
 )
 model_app = typer.Typer(help="Query the vehicle model.", no_args_is_help=True)
 road_app = typer.Typer(help="Make and regenerate road profiles.", no_args_is_help=True)
+config_app = typer.Typer(help="The parameters: key tables and the packaged default files.", no_args_is_help=True)
 app.add_typer(model_app, name="model")
 app.add_typer(road_app, name="road")
+app.add_typer(config_app, name="config")
 app.command("bench")(bench_cmd)
 
 BOTH = "both"
@@ -257,7 +259,7 @@ def stationary_cmd(
     if not speed_kmh > 0:
         raise typer.BadParameter(f"expected a speed > 0 km/h, got {speed_kmh:g}", param_hint="'--speed-kmh'")
     run_config = load_run_config(vehicle_path=vehicle, config_paths=tuple(config or ()), overrides=tuple(set_ or ()))
-    core = run_config.vehicle.core()
+    core = run_config.core_vehicle
     v_mps = speed_kmh / 3.6
     chosen = _parse_gear(gear, core.forward_gears)
     if chosen is None:
@@ -331,6 +333,39 @@ def plot_cmd(
 
     written = plot_dir(directory, out=out, svg=svg)
     typer.echo("wrote " + ", ".join(str(p) for p in written))
+
+
+@config_app.command("keys")
+def config_keys_cmd(
+    section: Annotated[
+        str | None, typer.Option("--section", help="vehicle, cruise, pi, mpc or sim (default: all).")
+    ] = None,
+) -> None:
+    """Print the Markdown table of every key (unit, default, allowed values, meaning), per section."""
+    from truckmpc.config import SECTION_NAMES, key_table
+
+    if section is not None and section not in SECTION_NAMES:
+        raise typer.BadParameter(
+            f"expected one of {', '.join(SECTION_NAMES)}, got {section!r}", param_hint="'--section'"
+        )
+    for name in SECTION_NAMES if section is None else (section,):
+        typer.echo(f"<!-- keys:{name} -->\n{key_table(name)}\n<!-- /keys:{name} -->")
+
+
+@config_app.command("defaults")
+def config_defaults_cmd(
+    directory: Annotated[
+        Path | None, typer.Option("--dir", help="Directory to write (default: the packaged configs).")
+    ] = None,
+) -> None:
+    """Write the default YAML files (trucks, cruise, pi, mpc, simulation) from the parameter declarations."""
+    from truckmpc.config import write_packaged_defaults
+    from truckmpc.config.keys import CONFIG_DIR
+
+    target = CONFIG_DIR if directory is None else directory
+    target.mkdir(parents=True, exist_ok=True)
+    written = write_packaged_defaults(target)
+    typer.echo(f"wrote {len(written)} files to {target}")
 
 
 def main(argv: list[str] | None = None) -> None:

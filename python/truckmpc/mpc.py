@@ -20,7 +20,7 @@ from truckmpc.controller import Control, Decision, PlantState
 from truckmpc.pi import steady_gear
 
 if TYPE_CHECKING:
-    from truckmpc.config import MpcConfig, PiConfig
+    from truckmpc.config import RunConfig
     from truckmpc.road import RoadProfile
 
 
@@ -29,16 +29,21 @@ class MpcController:
 
     name = "mpc"
 
-    def __init__(self, vehicle: _core.Vehicle, config: MpcConfig, pi: PiConfig):
+    def __init__(self, vehicle: _core.Vehicle, config: RunConfig):
         self._vehicle = vehicle
         self._config = config
-        self._params = config.core_params()
-        self._pi = pi  # only its gear thresholds: the gear the truck starts in
-        self._stage_m = float(config.stage_m)
+        self._params = {
+            **config.mpc,
+            **config.cruise,
+            "k_lim": config.settings.k_lim_stages,
+            "q_speed_below": config.settings.q_speed_below_weight,
+        }
+        self._pi = config.pi  # only its gear thresholds: the gear the truck starts in
+        self._stage_m = float(config.mpc.stage_m)
 
     def start(self, road: RoadProfile, state: PlantState) -> None:
         """Build the solver for ``road`` and solve the first stage from the starting state."""
-        self._solver = _core.MpcSolver(self._vehicle, road.core(), self._params)
+        self._solver = _core.MpcSolver(self._config.settings, road.core())
         self._origin_m = state.s_m
         self._k_lim = int(self._params["k_lim"])
         self._since_shift = self._k_lim
@@ -76,15 +81,11 @@ class MpcController:
             "settings": dict(self._params),
         }
 
-    def last_trajectory(self) -> dict[str, Any]:
-        """Predicted optimal trajectory of the latest solve (arrays per stage boundary)."""
-        return self._solver.last_trajectory()
-
     def _solve(self, s_m: float, v_mps: float, gear: int) -> Control | None:
         began = time.perf_counter()
-        feasible, pedal, brake, next_gear, _cost, states, transitions = self._solver.solve(
-            s_m, v_mps, gear, self._since_shift
-        )
+        solution = self._solver.solve(s_m, v_mps, gear, self._since_shift)
+        feasible, pedal, brake, next_gear = solution.feasible, solution.pedal, solution.brake, solution.gear
+        states, transitions = solution.states, solution.transitions
         self._solve_times_s.append(time.perf_counter() - began)
         self._states += states
         self._transitions += transitions

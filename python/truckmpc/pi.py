@@ -39,7 +39,7 @@ from truckmpc.errors import ConfigError
 
 if TYPE_CHECKING:
     from truckmpc._core import Vehicle
-    from truckmpc.config import PiConfig
+    from truckmpc.config import RunConfig, Section
     from truckmpc.road import RoadProfile
 
 KMH_PER_MPS = 3.6
@@ -107,7 +107,7 @@ class GearLogic:
         return gear  # unreachable with validated thresholds; kept as a bound on the loop
 
 
-def steady_gear(vehicle: Vehicle, v_mps: float, pi_config: PiConfig) -> int:
+def steady_gear(vehicle: Vehicle, v_mps: float, pi_config: Section) -> int:
     """The gear the PI gear logic (table A.3) settles in at a constant speed ``v_mps`` [m/s].
 
     Used as the starting gear of a run and as the default gear of ``truckmpc model stationary``.
@@ -132,12 +132,13 @@ class PiController:
 
     name = "pi"
 
-    def __init__(self, vehicle: Vehicle, config: PiConfig):
+    def __init__(self, vehicle: Vehicle, run_config: RunConfig):
+        config = run_config.pi
         self._vehicle = vehicle
         self._config = config
         self._gears = GearLogic(vehicle, config.gear_down_rpm, config.gear_up_rpm)
-        self._v_ref_kmh = float(config.v_ref_kmh)
-        self._v_max_kmh = float(config.v_max_kmh)
+        self._v_ref_kmh = float(run_config.cruise.v_ref_kmh)
+        self._v_max_kmh = float(run_config.v_max_kmh)
         self._kp, self._ki = float(config.pedal_kp), float(config.pedal_ki)
         self._kb, self._ib = float(config.brake_kp), float(config.brake_ki)
         self._p_lim = float(config.pedal_integrator_limit)

@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 
 from truckmpc.atomic import OutputDir
-from truckmpc.config import SECTIONS, VEHICLE_KEYS
+from truckmpc.config import KEYS
 from truckmpc.errors import TruckmpcError
 
 __all__ = ["MAX_POINTS", "PlotError", "decimate", "plot_dir", "plot_run", "plot_sweep"]
@@ -57,7 +57,7 @@ RESULT_COLUMNS = frozenset(
         "infeasible_solves",
     }
 )
-CONFIG_KEYS = frozenset(VEHICLE_KEYS) | {key for section in SECTIONS.values() for key in section.parsers}
+CONFIG_KEYS = frozenset(KEYS)
 """Column names of sweep.csv that can be grid axes: any vehicle, controller or simulation key."""
 
 _DPI = 150

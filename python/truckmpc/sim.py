@@ -57,8 +57,8 @@ TRACE_COLUMNS = (
 ControllerFactory = Callable[[_core.Vehicle, "RunConfig"], Controller]
 
 CONTROLLERS: dict[str, ControllerFactory] = {
-    "pi": lambda vehicle, config: PiController(vehicle, config.pi),
-    "mpc": lambda vehicle, config: MpcController(vehicle, config.mpc, config.pi),
+    "pi": lambda vehicle, config: PiController(vehicle, config),
+    "mpc": lambda vehicle, config: MpcController(vehicle, config),
 }
 """Controllers selectable by name (``truckmpc simulate --controller``)."""
 
@@ -165,11 +165,11 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
     """
     wall_start = time.perf_counter()
     sim = config.sim
-    vehicle = config.vehicle.core()
+    vehicle = config.core_vehicle
     ctrl = _controller_for(controller, vehicle, config)
     core_road = road.core()
     start_m, end_m = core_road.start_m, core_road.end_m
-    v0_kmh = config.pi.v_ref_kmh if sim.start_speed_kmh is None else sim.start_speed_kmh
+    v0_kmh = config.cruise.v_ref_kmh if sim.start_speed_kmh is None else sim.start_speed_kmh
     plant = _core.Plant(vehicle, core_road, start_m, v0_kmh / KMH_PER_MPS)
     dt = float(sim.plant_dt_s)
 

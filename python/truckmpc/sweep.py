@@ -235,10 +235,7 @@ class SweepPlan:
 
 def _pi_key(road: int, config: RunConfig) -> str:
     """Everything the PI run depends on: road, vehicle, PI and simulation values (not the MPC's)."""
-    parts = [road, config.vehicle.params]
-    parts += [
-        {k: v for k, v in dataclasses.asdict(section).items() if k != "source"} for section in (config.pi, config.sim)
-    ]
+    parts = [road, *(dict(config.section(name)) for name in ("vehicle", "cruise", "pi", "sim"))]
     return json.dumps(parts, sort_keys=True)
 
 

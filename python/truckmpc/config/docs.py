@@ -1,0 +1,87 @@
+"""Text that follows from the declarations: the packaged YAML defaults and the key tables of the
+README. Both are checked against the declarations by the tests; `truckmpc config defaults --dir`
+and `truckmpc config keys` rewrite and print them."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from truckmpc import _core
+from truckmpc.config.keys import CONFIG_DIR, SECTION_FILES, SPECS, VEHICLE_FILES
+
+SECTION_TITLES = {
+    "vehicle": "The truck: tables A.1 (vehicle, engine) and A.2 (gearbox) of Hellström's thesis.",
+    "cruise": "The set speed and the speed band both cruise controllers work to.",
+    "pi": "The PI cruise controller (section 2.5; gains table A.4, gear thresholds table A.3). Its error\n"
+    "# signals are in km/h, so each integrator state is in km/h s, clamped to +-limit (the anti-windup).",
+    "mpc": "The look-ahead DP-MPC (chapter 5; tables 5.2, 6.1, 6.2). The cost weighs fuel in grams and\n"
+    "# speeds in m/s: with these units table 6.2's weights give chapter 6's behaviour.",
+    "sim": "How the closed loop is simulated and recorded.",
+}
+
+
+_COMMENT_COLUMN = 32
+"""Comments start here, or two spaces after a longer line."""
+
+
+def yaml_value(value: Any) -> str:
+    """A value in YAML that reads back as the same value (floats keep a decimal point)."""
+    if value is None:
+        return "null"
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        text = repr(value)
+        return text if any(c in text for c in ".en") else text + ".0"
+    if isinstance(value, list):
+        return "[" + ", ".join(yaml_value(item) for item in value) + "]"
+    return str(value)
+
+
+def _specs_of(section: str) -> list[_core.ParamSpec]:
+    return [spec for spec in SPECS if spec.section == section]
+
+
+def defaults_yaml(section: str, changes: dict[str, Any] | None = None) -> str:
+    """A complete YAML file of one section's declared defaults (with `changes`), one commented key a line."""
+    lines = [
+        f"# {SECTION_TITLES[section]}",
+        "# Generated from the parameter declarations: truckmpc config defaults.",
+        "",
+    ]
+    rows = [
+        (f"{spec.name}: {yaml_value((changes or {}).get(spec.name, spec.default))}", spec)
+        for spec in _specs_of(section)
+    ]
+    width = min(max(len(text) for text, _ in rows), _COMMENT_COLUMN) + 2
+    for text, spec in rows:
+        unit = "" if spec.unit == "-" else f" [{spec.unit}]"
+        lines.append(f"{text}{' ' * max(2, width - len(text))}# {spec.doc.rstrip('.')}{unit}")
+    return "\n".join(lines) + "\n"
+
+
+def packaged_defaults() -> dict[str, str]:
+    """The text of every packaged default file, by file name."""
+    files = {name: defaults_yaml("vehicle", changes) for name, changes in VEHICLE_FILES.items()}
+    files.update({name: defaults_yaml(section) for section, name in SECTION_FILES.items()})
+    return files
+
+
+def write_packaged_defaults(directory: Path = CONFIG_DIR) -> list[Path]:
+    """Rewrite the packaged default files in `directory`; returns the paths written."""
+    written = []
+    for name, text in packaged_defaults().items():
+        path = directory / name
+        path.write_text(text, encoding="utf-8")
+        written.append(path)
+    return written
+
+
+def key_table(section: str) -> str:
+    """A Markdown table of one section's keys: key, unit, default, allowed values, meaning."""
+    lines = ["| key | unit | default | allowed | meaning |", "|---|---|---|---|---|"]
+    for spec in _specs_of(section):
+        default = yaml_value(spec.default)
+        lines.append(f"| `{spec.name}` | {spec.unit} | `{default}` | {spec.expected} | {spec.doc} |")
+    return "\n".join(lines)

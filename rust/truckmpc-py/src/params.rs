@@ -1,0 +1,163 @@
+//! The declared parameters as Python sees them: their specs, and `Settings`, a validated set of
+//! every section built from a flat mapping of user values.
+
+use std::sync::Arc;
+
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use truckmpc_core::params::{Kind, ParamSpec, Value};
+use truckmpc_core::{RunSettings, Vehicle};
+
+use crate::errors::to_py;
+use crate::vehicle::PyVehicle;
+
+/// A Python object as a user value. Other types become their repr, which no parameter accepts.
+pub fn to_value(obj: &Bound<'_, PyAny>) -> PyResult<Value> {
+    if obj.is_none() {
+        Ok(Value::Null)
+    } else if obj.is_instance_of::<PyBool>() {
+        Ok(Value::Bool(obj.extract()?))
+    } else if obj.is_instance_of::<PyInt>() {
+        Ok(obj.extract::<i64>().map(Value::Int).unwrap_or(Value::Float(obj.extract::<f64>().unwrap_or(f64::INFINITY))))
+    } else if obj.is_instance_of::<PyFloat>() {
+        Ok(Value::Float(obj.extract()?))
+    } else if obj.is_instance_of::<PyString>() {
+        Ok(Value::Text(obj.extract()?))
+    } else if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+        obj.try_iter()?.map(|item| to_value(&item?)).collect::<PyResult<Vec<_>>>().map(Value::List)
+    } else {
+        Ok(Value::Text(obj.repr()?.to_string()))
+    }
+}
+
+/// A user value as a Python object (None, bool, int, float, str or list).
+pub fn from_value<'py>(py: Python<'py>, value: &Value) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match value {
+        Value::Null => py.None().into_bound(py),
+        Value::Bool(b) => PyBool::new(py, *b).to_owned().into_any(),
+        Value::Int(i) => i.into_pyobject(py)?.into_any(),
+        Value::Float(x) => x.into_pyobject(py)?.into_any(),
+        Value::Text(t) => t.into_pyobject(py)?.into_any(),
+        Value::List(items) => {
+            PyList::new(py, items.iter().map(|v| from_value(py, v)).collect::<PyResult<Vec<_>>>()?)?.into_any()
+        }
+    })
+}
+
+/// One declared parameter: name (unit in the name), section, kind, unit, doc, default, range.
+#[pyclass(name = "ParamSpec", module = "truckmpc._core", frozen, get_all)]
+pub struct PyParamSpec {
+    /// Key as typed in YAML, `--set` and `--grid`.
+    name: String,
+    /// Section: vehicle, cruise, pi, mpc or sim.
+    section: String,
+    /// number, number_or_null, count, count_or_null, flag, choice, numbers or numbers_or_nulls.
+    kind: String,
+    /// Unit in words.
+    unit: String,
+    /// One-line description.
+    doc: String,
+    /// Default value.
+    default: Py<PyAny>,
+    /// Names a choice accepts; None for other kinds.
+    choices: Option<Vec<String>>,
+    /// What a value must be, in words (`"a number > 0"`).
+    expected: String,
+}
+
+impl PyParamSpec {
+    fn new(py: Python<'_>, spec: &ParamSpec) -> PyResult<Self> {
+        let choices = match spec.kind {
+            Kind::Choice(names) => Some(names.iter().map(|n| n.to_string()).collect()),
+            _ => None,
+        };
+        Ok(PyParamSpec {
+            name: spec.name.to_string(),
+            section: spec.section.to_string(),
+            kind: spec.kind.name().to_string(),
+            unit: spec.unit.to_string(),
+            doc: spec.doc.clone(),
+            default: from_value(py, &spec.default)?.unbind(),
+            choices,
+            expected: spec.expected(),
+        })
+    }
+}
+
+#[pymethods]
+impl PyParamSpec {
+    fn __repr__(&self) -> String {
+        format!("ParamSpec({} [{}], {})", self.name, self.unit, self.section)
+    }
+}
+
+/// Every declared parameter, section by section (vehicle, cruise, pi, mpc, sim).
+#[pyfunction]
+pub fn parameter_specs(py: Python<'_>) -> PyResult<Vec<PyParamSpec>> {
+    RunSettings::specs().iter().map(|spec| PyParamSpec::new(py, spec)).collect()
+}
+
+/// A validated set of every parameter of a run.
+///
+/// Args:
+///     values: mapping of declared keys to user values (YAML-like: numbers, numeric text, bools,
+///         None, names, lists); keys not given take their declared defaults.
+///
+/// Raises:
+///     ParamError: a key is unknown, or a value is of the wrong type, out of its range, or
+///         inconsistent with another (the error's `related` names the others).
+#[pyclass(name = "Settings", module = "truckmpc._core", frozen)]
+pub struct PySettings {
+    pub inner: Arc<RunSettings>,
+    pub vehicle: Arc<Vehicle>,
+}
+
+#[pymethods]
+impl PySettings {
+    #[new]
+    fn new(values: &Bound<'_, PyDict>) -> PyResult<Self> {
+        let mut pairs = Vec::with_capacity(values.len());
+        for (key, value) in values.iter() {
+            pairs.push((key.extract::<String>()?, to_value(&value)?));
+        }
+        let settings = RunSettings::from_values(pairs.iter().map(|(k, v)| (k.as_str(), v))).map_err(to_py)?;
+        let vehicle = Vehicle::new(settings.vehicle.clone()).map_err(to_py)?;
+        Ok(PySettings { inner: Arc::new(settings), vehicle: Arc::new(vehicle) })
+    }
+
+    /// Every key's value, in declaration order.
+    fn values<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let out = PyDict::new(py);
+        for spec in RunSettings::specs() {
+            let value = self.inner.get(spec.name).expect("a declared key has a value");
+            out.set_item(spec.name, from_value(py, &value)?)?;
+        }
+        Ok(out)
+    }
+
+    /// The value of one key.
+    fn get<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        match self.inner.get(key) {
+            Some(value) => from_value(py, &value),
+            None => Err(pyo3::exceptions::PyKeyError::new_err(key.to_string())),
+        }
+    }
+
+    /// The validated vehicle model.
+    #[getter]
+    fn vehicle(&self) -> PyVehicle {
+        PyVehicle { inner: self.vehicle.clone() }
+    }
+
+    /// k_lim [stages] with its default resolved (round(200 m / S), table 6.1).
+    #[getter]
+    fn k_lim_stages(&self) -> u32 {
+        self.inner.mpc.k_lim_stages()
+    }
+
+    /// Q2 with its default resolved (5 below δ = 0.15 km/h, else 7; table 6.2).
+    #[getter]
+    fn q_speed_below_weight(&self) -> f64 {
+        self.inner.mpc.q_speed_below_weight()
+    }
+}

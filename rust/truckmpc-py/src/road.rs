@@ -1,0 +1,47 @@
+//! A road profile as Python sees it.
+
+use std::sync::Arc;
+
+use numpy::PyReadonlyArray1;
+use pyo3::prelude::*;
+use truckmpc_core::Road;
+
+use crate::errors::to_py;
+
+/// A road profile: points `distance_m` [m] (strictly increasing) and the grade of each segment
+/// between consecutive points (`len(slope) == len(distance_m) - 1`). Flat beyond its end.
+#[pyclass(name = "Road", module = "truckmpc._core", frozen)]
+pub struct PyRoad {
+    pub inner: Arc<Road>,
+}
+
+#[pymethods]
+impl PyRoad {
+    #[new]
+    fn new(distance_m: PyReadonlyArray1<'_, f64>, slope: PyReadonlyArray1<'_, f64>) -> PyResult<Self> {
+        let road = Road::new(distance_m.as_array().to_vec(), slope.as_array().to_vec()).map_err(to_py)?;
+        Ok(PyRoad { inner: Arc::new(road) })
+    }
+
+    /// Distance of the first point [m].
+    #[getter]
+    fn start_m(&self) -> f64 {
+        self.inner.start_m()
+    }
+
+    /// Distance of the last point [m].
+    #[getter]
+    fn end_m(&self) -> f64 {
+        self.inner.end_m()
+    }
+
+    /// Altitude at `s_m` relative to the first point [m].
+    fn altitude_at(&self, s_m: f64) -> f64 {
+        self.inner.altitude_at(s_m)
+    }
+
+    /// Mean grade over [s0_m, s1_m] [-].
+    fn mean_slope(&self, s0_m: f64, s1_m: f64) -> f64 {
+        self.inner.mean_slope(s0_m, s1_m)
+    }
+}
