@@ -37,6 +37,7 @@ import typer
 from truckmpc.config import load_run_config
 from truckmpc.errors import TruckmpcError
 from truckmpc.road import RoadProfile, default_test_track, load_road
+from truckmpc.units import M_PER_KM
 
 __all__ = ["SETTINGS", "BenchError", "BenchResult", "bench_cmd", "default_road_path", "format_bench", "run_bench"]
 
@@ -84,7 +85,7 @@ def _first(profile: RoadProfile, length_m: float) -> RoadProfile:
     keep = profile.distance_m < end
     distance = np.append(profile.distance_m[keep], end)
     altitude = np.append(profile.altitude_m[keep], np.interp(end, profile.distance_m, profile.altitude_m))
-    return RoadProfile(f"{profile.name}-first{length_m / 1000:g}km", distance, altitude, profile.source)
+    return RoadProfile(f"{profile.name}-first{length_m / M_PER_KM:g}km", distance, altitude, profile.source)
 
 
 def _road(path: str | None, quick: bool) -> RoadProfile:
@@ -218,7 +219,7 @@ def format_bench(result: BenchResult) -> str:
     where = result.path or "bundled"
     if result.fallback:
         where += f"; {DEFAULT_ROAD} not found"
-    lines = [f"road {result.road}: {result.length_m / 1000:.2f} km, {where}"]
+    lines = [f"road {result.road}: {result.length_m / M_PER_KM:.2f} km, {where}"]
     runs = result.runs
     heads = [f"S {r['stage_m']:g} m, δ {r['delta_kmh']:g} km/h, {r['horizon_m']:g} m" for r in runs]
     extra = [f"neutral {'allowed' if r['allow_neutral'] else 'off'}, {r['grid']} grid" for r in runs]

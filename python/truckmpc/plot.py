@@ -30,6 +30,7 @@ import numpy as np
 from truckmpc.atomic import OutputDir
 from truckmpc.config import SECTIONS, VEHICLE_KEYS
 from truckmpc.errors import TruckmpcError
+from truckmpc.units import M_PER_KM
 
 __all__ = ["MAX_POINTS", "PlotError", "decimate", "plot_dir", "plot_run", "plot_sweep"]
 
@@ -203,7 +204,7 @@ def _fmt_pct(value: Any) -> str:
 def _title(summary: Mapping[str, Any], names: Sequence[str]) -> str:
     road = summary.get("road", "?")
     length = summary.get("length_m")
-    head = f"{road}" + (f", {length / 1000:.1f} km" if isinstance(length, (int, float)) else "")
+    head = f"{road}" + (f", {length / M_PER_KM:.1f} km" if isinstance(length, (int, float)) else "")
     if "delta_fuel_pct" in summary:
         head += (
             f" — MPC vs PI: Δfuel {_fmt_pct(summary['delta_fuel_pct'])}, Δtime {_fmt_pct(summary['delta_time_pct'])}"
@@ -258,7 +259,7 @@ def _run_figure(Figure: Any, summary: Mapping[str, Any], traces: Mapping[str, Ma
     references: list[Any] = []
 
     if "altitude_m" in longest:
-        x, alt = decimate(longest["distance_m"] / 1000, longest["altitude_m"])
+        x, alt = decimate(longest["distance_m"] / M_PER_KM, longest["altitude_m"])
         ax_alt.fill_between(x, alt, alt.min(), color="0.85", lw=0)
         ax_alt.plot(x, alt, color="0.3", lw=lw)
         pad = max(1.0, 0.05 * (alt.max() - alt.min()))
@@ -279,8 +280,8 @@ def _run_figure(Figure: Any, summary: Mapping[str, Any], traces: Mapping[str, Ma
         label, color = CONTROLLER_STYLE.get(name, (name, None))
         block = summary.get(name) if isinstance(summary.get(name), dict) else {}
         if block.get("stalled"):
-            label += f" (stalled at km {t['distance_m'][-1] / 1000:.2f})"
-        km = t["distance_m"] / 1000
+            label += f" (stalled at km {t['distance_m'][-1] / M_PER_KM:.2f})"
+        km = t["distance_m"] / M_PER_KM
         lines += ax_v.plot(*decimate(km, t["speed_kmh"]), color=color, lw=lw, label=label)
         if block.get("stalled"):
             ax_v.plot(km[-1], t["speed_kmh"][-1], "x", color=color, ms=8, mew=2)
@@ -313,7 +314,7 @@ def _run_figure(Figure: Any, summary: Mapping[str, Any], traces: Mapping[str, Ma
     ax_brake.set_xlabel("distance [km]")
     length_m = summary.get("length_m")
     end_m = length_m if isinstance(length_m, (int, float)) and length_m > 0 else longest["distance_m"][-1]
-    ax_brake.set_xlim(0, max(end_m, longest["distance_m"][-1]) / 1000)  # a stalled run still shows the whole road
+    ax_brake.set_xlim(0, max(end_m, longest["distance_m"][-1]) / M_PER_KM)  # a stalled run still shows the whole road
     for ax in axes:
         ax.grid(True, color="0.9", lw=0.6)
         ax.label_outer()

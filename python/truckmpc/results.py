@@ -24,6 +24,7 @@ import numpy as np
 
 from truckmpc.atomic import OutputDir
 from truckmpc.sim import TRACE_COLUMNS, RunResult
+from truckmpc.units import M_PER_KM
 
 if TYPE_CHECKING:
     from truckmpc.road import RoadProfile
@@ -132,7 +133,7 @@ def format_table(road: RoadProfile, results: Mapping[str, RunResult]) -> str:
     """A short plain-text table of the runs' main figures, one column per controller."""
     names = list(results)
     doc = summary_document(road, results)
-    lines = [f"road {road.name}: {road.length_m / 1000:.2f} km"]
+    lines = [f"road {road.name}: {road.length_m / M_PER_KM:.2f} km"]
     width = max(len(label) + len(unit) + 3 for label, _, unit, _ in _ROWS)
     lines.append(" " * width + "".join(f"{name:>14}" for name in names))
     for label, key, unit, fmt in _ROWS:

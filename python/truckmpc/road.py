@@ -23,6 +23,7 @@ import numpy as np
 from . import _core
 from .atomic import atomic_write_text
 from .errors import RoadError, read_user_text
+from .units import PCT_PER_FRACTION
 
 __all__ = [
     "MAX_GRADE",
@@ -292,10 +293,10 @@ def _slope_law(where: str, kind: str, slope_pct: float | None) -> tuple[float, f
         if slope_pct not in (None, 0, 0.0):
             raise RoadError(f"{where}: slope_pct: expected none for a flat section, got {slope_pct!r}")
         return 0.0, 0.0
-    limit_pct = 100 * MAX_GRADE
+    limit_pct = PCT_PER_FRACTION * MAX_GRADE
     if slope_pct is None or not math.isfinite(slope_pct) or not 0 < abs(slope_pct) <= limit_pct:
         raise RoadError(f"{where}: slope_pct: expected a non-zero slope within +-{limit_pct:g} %, got {slope_pct!r}")
-    grade = slope_pct / 100.0
+    grade = slope_pct / PCT_PER_FRACTION
     return {"hill": (grade, grade), "crest": (abs(grade), -abs(grade)), "depression": (-abs(grade), abs(grade))}[kind]
 
 
