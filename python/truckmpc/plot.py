@@ -205,12 +205,15 @@ def _title(summary: Mapping[str, Any], names: Sequence[str]) -> str:
     road = summary.get("road", "?")
     length = summary.get("length_m")
     head = f"{road}" + (f", {length / M_PER_KM:.1f} km" if isinstance(length, (int, float)) else "")
-    if "delta_fuel_pct" in summary:
+    reason = summary.get("not_comparable")
+    if reason is None and any(isinstance(summary.get(n), dict) and summary[n].get("stalled") for n in names):
+        reason = "not comparable: a run stalled"  # a summary written before not_comparable existed
+    if "delta_fuel_pct" in summary and reason is not None:
+        head += f" — MPC vs PI: {reason}"
+    elif "delta_fuel_pct" in summary:
         head += (
             f" — MPC vs PI: Δfuel {_fmt_pct(summary['delta_fuel_pct'])}, Δtime {_fmt_pct(summary['delta_time_pct'])}"
         )
-        if any(isinstance(summary.get(n), dict) and summary[n].get("stalled") for n in names):
-            head += " (a run stalled: not comparable)"
     else:
         head += " — " + " and ".join(CONTROLLER_STYLE.get(n, (n,))[0] for n in names) + " only"
     s = _settings(summary)

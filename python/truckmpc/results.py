@@ -4,9 +4,11 @@
 
     {"road": <name>, "length_m": <m>,
      "pi": {<summary of the PI run>},
-     "mpc": {...}, "delta_fuel_pct": ..., "delta_time_pct": ...}   # when both ran
+     "mpc": {...}, "delta_fuel_pct": ..., "delta_time_pct": ...,   # when both ran
+     "not_comparable": "not comparable: mpc stalled at km 0.98"}   # only when a delta is null
 
-The deltas follow the thesis (section 6.1): (x_mpc − x_pi) / x_pi in percent. All files of a run are
+The deltas follow the thesis (section 6.1): (x_mpc − x_pi) / x_pi in percent; they are null when a
+run stalled or the baseline is zero (:func:`truckmpc.compare.compare`). All files of a run are
 written through :class:`truckmpc.atomic.OutputDir`, so a failed run leaves nothing half-written.
 """
 
@@ -23,6 +25,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from truckmpc.atomic import OutputDir
+from truckmpc.compare import compare
 from truckmpc.sim import TRACE_COLUMNS, RunResult
 from truckmpc.units import M_PER_KM
 
@@ -47,10 +50,6 @@ _CSV_FORMATS = {
 }
 
 
-def _pct(new: float, base: float) -> float | None:
-    return 100.0 * (new - base) / base if base else None
-
-
 def summary_document(road: RoadProfile, results: Mapping[str, RunResult]) -> dict[str, Any]:
     """The ``summary.json`` content for runs of several controllers over ``road``."""
     doc: dict[str, Any] = {"road": road.name, "length_m": float(road.length_m)}
@@ -61,8 +60,11 @@ def summary_document(road: RoadProfile, results: Mapping[str, RunResult]) -> dic
         if base is None or name == BASELINE:
             continue
         suffix = "" if len(results) == 2 else f"_{name}"
-        doc[f"delta_fuel_pct{suffix}"] = _pct(result.summary["fuel_kg"], base.summary["fuel_kg"])
-        doc[f"delta_time_pct{suffix}"] = _pct(result.summary["time_s"], base.summary["time_s"])
+        comparison = compare(base.summary, result.summary, BASELINE, name)
+        doc[f"delta_fuel_pct{suffix}"] = comparison.delta_fuel_pct
+        doc[f"delta_time_pct{suffix}"] = comparison.delta_time_pct
+        if comparison.not_comparable is not None:
+            doc[f"not_comparable{suffix}"] = comparison.not_comparable
     return doc
 
 
@@ -146,6 +148,7 @@ def format_table(road: RoadProfile, results: Mapping[str, RunResult]) -> str:
     for key in ("delta_fuel_pct", "delta_time_pct"):
         if doc.get(key) is not None:
             lines.append(f"{key.replace('_pct', ' [%]').replace('_', ' '):<{width}}{doc[key]:>+14.2f}")
+    lines += [text for key, text in doc.items() if key.startswith("not_comparable")]
     for name in names:
         if results[name].message:
             lines.append(f"{name}: {results[name].message}")

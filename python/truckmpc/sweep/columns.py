@@ -1,8 +1,8 @@
 """The result columns of ``sweep.csv`` and the text of its cells.
 
 After ``road``, ``direction`` and one column per axis come the PI figures, the MPC figures (the
-solver's without a prefix), then the comparison (blank when either run stalled: its fuel is not that
-of the road).
+solver's without a prefix), then the comparison: blank when either run stalled or the baseline is
+zero (:func:`truckmpc.compare.compare`).
 """
 
 from __future__ import annotations
@@ -11,6 +11,8 @@ import json
 import math
 from collections.abc import Mapping
 from typing import Any
+
+from truckmpc.compare import compare
 
 PI_FIELDS = ("fuel_kg", "time_s", "end_speed_kmh", "brake_energy_kj", "gear_shifts", "stalled")
 """Figures of a run's summary that go to the CSV for both controllers."""
@@ -56,9 +58,8 @@ def result_cells(pi: Mapping[str, Any], mpc: Mapping[str, Any]) -> list[str]:
     """The result cells of one row (:data:`SWEEP_COLUMNS`) from the two runs' figures."""
     runs = {"pi": pi, "mpc": mpc}
     values = {column: runs[run][name] for run, name, column in _RESULT_SOURCES}
-    ok = not (pi["stalled"] or mpc["stalled"])
-    for name, field in (("delta_fuel_pct", "fuel_kg"), ("delta_time_pct", "time_s")):
-        values[name] = 100.0 * (mpc[field] - pi[field]) / pi[field] if ok and pi[field] else None
+    comparison = compare(pi, mpc)
+    values["delta_fuel_pct"], values["delta_time_pct"] = comparison.delta_fuel_pct, comparison.delta_time_pct
     return [cell(values[c]) for c in SWEEP_COLUMNS]
 
 
