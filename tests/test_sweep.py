@@ -21,7 +21,7 @@ from truckmpc.sweep import (
     parse_axis,
     plan_sweep,
 )
-from truckmpc.sweep.columns import MPC_FIELDS, PI_FIELDS, result_cells
+from truckmpc.sweep.columns import MPC_FIELDS, PI_FIELDS, cell, parse_cell, result_cells
 
 runner = CliRunner()
 # Columns that are measured wall times: they differ between two runs of the same row.
@@ -329,3 +329,14 @@ def test_longer_mpc_runs_are_scheduled_first(descent):
     plan = plan_sweep([descent], ["horizon_m=250,500", "delta_kmh=0.1,0.2"])
     costs = {(row.values): row.cost for row in plan.rows}
     assert costs[(500, 0.1)] > costs[(250, 0.1)] and costs[(500, 0.1)] > costs[(500, 0.2)]
+
+
+@pytest.mark.parametrize("value", [None, True, False, 0, 250, -3, 0.1, 0.30000000000000004, 1e-300, "nearest"])
+def test_a_cell_reads_back_as_the_value_written(value):
+    text = cell(value)
+    back = parse_cell(text)
+    assert back == value and type(back) is type(value)
+
+
+def test_cells_read_by_the_plot_too_tolerate_spaces_and_case():
+    assert [parse_cell(t) for t in (" 12 ", "TRUE", "False", "  ", "road-1")] == [12, True, False, None, "road-1"]

@@ -7,6 +7,7 @@ zero (:func:`truckmpc.compare.compare`).
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 from collections.abc import Mapping
@@ -64,13 +65,15 @@ def result_cells(pi: Mapping[str, Any], mpc: Mapping[str, Any]) -> list[str]:
 
 
 def parse_cell(text: str) -> Any:
-    """The value a cell's text stands for (the inverse of :func:`cell`): None for blank, a bool, an
-    int, else a float."""
+    """The value a cell's text stands for (the inverse of :func:`cell`, also for ``truckmpc plot``):
+    None for blank, a bool for true/false (any case), an int, a float, else the text itself (road
+    names, string axis values)."""
+    text = text.strip()
     if text == "":
         return None
-    if text in ("true", "false"):
-        return text == "true"
-    try:
-        return int(text)
-    except ValueError:
-        return float(text)
+    if text.lower() in ("true", "false"):
+        return text.lower() == "true"
+    for number in (int, float):
+        with contextlib.suppress(ValueError):
+            return number(text)
+    return text
