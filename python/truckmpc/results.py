@@ -27,6 +27,7 @@ import numpy as np
 from truckmpc.atomic import OutputDir
 from truckmpc.compare import compare
 from truckmpc.sim import TRACE_COLUMNS, RunResult
+from truckmpc.table import figure_lines, label_width
 from truckmpc.units import M_PER_KM
 
 if TYPE_CHECKING:
@@ -114,20 +115,20 @@ def write_outputs(out_dir: str | os.PathLike[str], road: RoadProfile, results: M
     return [out / name for name in names]
 
 
-_ROWS = (
-    ("fuel", "fuel_kg", "kg", "{:.3f}"),
-    ("fuel per 100 km", "fuel_kg_per_100km", "kg", "{:.2f}"),
-    ("trip time", "time_s", "s", "{:.1f}"),
-    ("mean speed", "mean_speed_kmh", "km/h", "{:.2f}"),
-    ("end speed", "end_speed_kmh", "km/h", "{:.2f}"),
-    ("gear shifts", "gear_shifts", "", "{:d}"),
-    ("brake energy", "brake_energy_kj", "kJ", "{:.1f}"),
-    ("neutral distance", "neutral_distance_m", "m", "{:.0f}"),
-    ("compute time", "compute_time_s", "s", "{:.2f}"),
-    ("realtime ratio", "realtime_ratio", "", "{:.2e}"),
-    ("infeasible solves", "infeasible_solves", "", "{:d}"),
-    ("solve time mean", "solve_ms_mean", "ms", "{:.3f}"),
-    ("solve time max", "solve_ms_max", "ms", "{:.3f}"),
+_FIGURES = (
+    ("fuel", "fuel_kg", "kg", ".3f"),
+    ("fuel per 100 km", "fuel_kg_per_100km", "kg", ".2f"),
+    ("trip time", "time_s", "s", ".1f"),
+    ("mean speed", "mean_speed_kmh", "km/h", ".2f"),
+    ("end speed", "end_speed_kmh", "km/h", ".2f"),
+    ("gear shifts", "gear_shifts", "", "d"),
+    ("brake energy", "brake_energy_kj", "kJ", ".1f"),
+    ("neutral distance", "neutral_distance_m", "m", ".0f"),
+    ("compute time", "compute_time_s", "s", ".2f"),
+    ("realtime ratio", "realtime_ratio", "", ".2e"),
+    ("infeasible solves", "infeasible_solves", "", "d"),
+    ("solve time mean", "solve_ms_mean", "ms", ".3f"),
+    ("solve time max", "solve_ms_max", "ms", ".3f"),
 )
 
 
@@ -136,15 +137,9 @@ def format_table(road: RoadProfile, results: Mapping[str, RunResult]) -> str:
     names = list(results)
     doc = summary_document(road, results)
     lines = [f"road {road.name}: {road.length_m / M_PER_KM:.2f} km"]
-    width = max(len(label) + len(unit) + 3 for label, _, unit, _ in _ROWS)
+    width = label_width(_FIGURES)
     lines.append(" " * width + "".join(f"{name:>14}" for name in names))
-    for label, key, unit, fmt in _ROWS:
-        head = f"{label} [{unit}]" if unit else label
-        cells = []
-        for name in names:
-            value = results[name].summary.get(key)
-            cells.append(f"{'-' if value is None else fmt.format(value):>14}")
-        lines.append(f"{head:<{width}}" + "".join(cells))
+    lines += figure_lines(_FIGURES, [results[name].summary for name in names], 14)
     for key in ("delta_fuel_pct", "delta_time_pct"):
         if doc.get(key) is not None:
             lines.append(f"{key.replace('_pct', ' [%]').replace('_', ' '):<{width}}{doc[key]:>+14.2f}")

@@ -11,7 +11,6 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import json
-import os
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -19,12 +18,10 @@ from typing import Any
 
 from truckmpc.config import RunConfig, load_run_config
 from truckmpc.errors import ConfigError
-from truckmpc.road import RoadProfile, load_road
+from truckmpc.road import PathLike, RoadProfile, load_road
 from truckmpc.sweep.columns import SWEEP_COLUMNS, cell, yaml_text
 from truckmpc.sweep.errors import SweepError
 from truckmpc.sweep.grid import Axis, expand_grid, parse_axis
-
-PathLike = str | os.PathLike[str]
 
 
 @dataclass(frozen=True)
