@@ -105,6 +105,19 @@ def test_simulate_reports_a_stall(in_tmp):
     assert json.loads((in_tmp / "res" / "summary.json").read_text())["pi"]["stalled"] is True
 
 
+def test_simulate_gives_no_delta_when_the_mpc_stalls(in_tmp):
+    assert run("road", "make", "hill", "--length-m", "1000", "--slope-pct", "20", "-o", "steep.csv").exit_code == 0
+    result = run("simulate", "--road", "steep.csv", "--out", "res")
+    assert result.exit_code == 0, result.stderr
+    summary = json.loads((in_tmp / "res" / "summary.json").read_text())
+    assert summary["mpc"]["stalled"] is True and summary["pi"]["stalled"] is False
+    assert summary["delta_fuel_pct"] is None and summary["delta_time_pct"] is None
+    km = summary["mpc"]["stall_distance_m"] / 1000
+    assert summary["not_comparable"] == f"not comparable: mpc stalled at km {km:.2f}"
+    assert summary["not_comparable"] in result.stdout.splitlines()
+    assert "delta fuel" not in result.stdout
+
+
 # ---------------------------------------------------------------------------------------------
 # model stationary: tables B.1 (40 t) and B.2 (20 t) of the thesis, within 2 %.
 

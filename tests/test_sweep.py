@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-import truckmpc.sweep as sweep_mod
-from truckmpc import load_run_config, make_section, run_sweep, simulate, write_road
+import truckmpc.sweep.pool as sweep_pool
+from truckmpc import load_road, load_run_config, make_section, run_sweep, simulate, write_road
 from truckmpc.cli import app
 from truckmpc.sweep import (
     PARTIAL_NAME,
@@ -21,6 +21,7 @@ from truckmpc.sweep import (
     parse_axis,
     plan_sweep,
 )
+from truckmpc.sweep.columns import MPC_FIELDS, PI_FIELDS, cell, parse_cell, result_cells
 
 runner = CliRunner()
 # Columns that are measured wall times: they differ between two runs of the same row.
@@ -51,7 +52,7 @@ def count_runs(monkeypatch):
         counts[controller] += 1
         return simulate(road, config, controller)
 
-    monkeypatch.setattr(sweep_mod, "simulate", counted)
+    monkeypatch.setattr(sweep_pool, "simulate", counted)
     return counts
 
 
@@ -164,7 +165,7 @@ def test_rows_columns_and_deltas(descent, tmp_path, count_runs):
     assert count_runs == {"pi": 1, "mpc": 4} and (result.pi_runs, result.mpc_runs) == (1, 4)
     # The same figures as simulate itself gives for one of the rows.
     config = load_run_config(overrides=("horizon_m=500", "delta_kmh=0.2"))
-    road = sweep_mod.load_road(descent)
+    road = load_road(descent)
     assert float(rows[3]["mpc_fuel_kg"]) == simulate(road, config, "mpc").summary["fuel_kg"]
     assert float(rows[3]["pi_fuel_kg"]) == simulate(road, config, "pi").summary["fuel_kg"]
     settings = json.loads((tmp_path / "out" / "sweep.json").read_text())
@@ -174,10 +175,9 @@ def test_rows_columns_and_deltas(descent, tmp_path, count_runs):
 
 
 def test_deltas_blank_when_a_run_stalled():
-    plan = plan_sweep([make_section("flat", 100)], [])
-    pi = dict.fromkeys(sweep_mod._PI_FIELDS, 1.0) | {"stalled": False}
-    mpc = dict.fromkeys(sweep_mod._MPC_FIELDS, 1.0) | {"stalled": True}
-    cells = dict(zip(plan.columns, sweep_mod._row_cells(plan, plan.rows[0], pi, mpc), strict=True))
+    pi = dict.fromkeys(PI_FIELDS, 1.0) | {"stalled": False}
+    mpc = dict.fromkeys(MPC_FIELDS, 1.0) | {"stalled": True}
+    cells = dict(zip(SWEEP_COLUMNS, result_cells(pi, mpc), strict=True))
     assert cells["mpc_stalled"] == "true" and cells["delta_fuel_pct"] == cells["delta_time_pct"] == ""
 
 
@@ -205,7 +205,7 @@ def test_reverse_drives_the_road_the_other_way(descent, tmp_path):
     result = run_sweep([descent], ["horizon_m=250"], tmp_path / "out", reverse=True, jobs=1)
     (row,) = result.rows
     assert (row["road"], row["direction"]) == ("descent", "reverse")
-    reversed_road = sweep_mod.load_road(descent).reversed()
+    reversed_road = load_road(descent).reversed()
     config = load_run_config(overrides=("horizon_m=250",))
     assert float(row["pi_fuel_kg"]) == simulate(reversed_road, config, "pi").summary["fuel_kg"]
     forward = run_sweep([descent], ["horizon_m=250"], tmp_path / "fwd", jobs=1).rows[0]
@@ -271,7 +271,7 @@ def test_ctrl_c_keeps_finished_rows_and_says_how_to_resume(descent, tmp_path, mo
             raise KeyboardInterrupt
         return simulate(road, config, controller)
 
-    monkeypatch.setattr(sweep_mod, "simulate", interrupted)
+    monkeypatch.setattr(sweep_pool, "simulate", interrupted)
     out = tmp_path / "out"
     result = runner.invoke(
         app, ["sweep", "--road", str(descent), "--grid", "horizon_m=250,500,750", "--jobs", "1", "--out", str(out)]
@@ -329,3 +329,14 @@ def test_longer_mpc_runs_are_scheduled_first(descent):
     plan = plan_sweep([descent], ["horizon_m=250,500", "delta_kmh=0.1,0.2"])
     costs = {(row.values): row.cost for row in plan.rows}
     assert costs[(500, 0.1)] > costs[(250, 0.1)] and costs[(500, 0.1)] > costs[(500, 0.2)]
+
+
+@pytest.mark.parametrize("value", [None, True, False, 0, 250, -3, 0.1, 0.30000000000000004, 1e-300, "nearest"])
+def test_a_cell_reads_back_as_the_value_written(value):
+    text = cell(value)
+    back = parse_cell(text)
+    assert back == value and type(back) is type(value)
+
+
+def test_cells_read_by_the_plot_too_tolerate_spaces_and_case():
+    assert [parse_cell(t) for t in (" 12 ", "TRUE", "False", "  ", "road-1")] == [12, True, False, None, "road-1"]

@@ -23,7 +23,6 @@ Usage: ``truckmpc bench [--json] [--road FILE] [--quick] [--set key=value ...]``
 from __future__ import annotations
 
 import json
-import math
 import resource
 import subprocess
 import sys
@@ -37,6 +36,8 @@ import typer
 from truckmpc.config import load_run_config
 from truckmpc.errors import TruckmpcError
 from truckmpc.road import RoadProfile, default_test_track, load_road
+from truckmpc.table import figure_lines, label_width
+from truckmpc.units import M_PER_KM
 
 __all__ = ["SETTINGS", "BenchError", "BenchResult", "bench_cmd", "default_road_path", "format_bench", "run_bench"]
 
@@ -84,7 +85,7 @@ def _first(profile: RoadProfile, length_m: float) -> RoadProfile:
     keep = profile.distance_m < end
     distance = np.append(profile.distance_m[keep], end)
     altitude = np.append(profile.altitude_m[keep], np.interp(end, profile.distance_m, profile.altitude_m))
-    return RoadProfile(f"{profile.name}-first{length_m / 1000:g}km", distance, altitude, profile.source)
+    return RoadProfile(f"{profile.name}-first{length_m / M_PER_KM:g}km", distance, altitude, profile.source)
 
 
 def _road(path: str | None, quick: bool) -> RoadProfile:
@@ -191,13 +192,7 @@ def run_bench(road: str | Path | None = None, quick: bool = False, overrides: tu
     return BenchResult(profile.name, path, profile.length_m, road is None and found is None, runs)
 
 
-def _fmt(value: Any, spec: str) -> str:
-    if value is None or (isinstance(value, float) and not math.isfinite(value)):
-        return "-"
-    return format(value, spec)
-
-
-_ROWS = (
+_FIGURES = (
     ("realtime ratio", "realtime_ratio", "", ".2e"),
     ("solve time mean", "solve_ms_mean", "ms", ".3f"),
     ("solve time max", "solve_ms_max", "ms", ".3f"),
@@ -218,17 +213,15 @@ def format_bench(result: BenchResult) -> str:
     where = result.path or "bundled"
     if result.fallback:
         where += f"; {DEFAULT_ROAD} not found"
-    lines = [f"road {result.road}: {result.length_m / 1000:.2f} km, {where}"]
+    lines = [f"road {result.road}: {result.length_m / M_PER_KM:.2f} km, {where}"]
     runs = result.runs
     heads = [f"S {r['stage_m']:g} m, δ {r['delta_kmh']:g} km/h, {r['horizon_m']:g} m" for r in runs]
     extra = [f"neutral {'allowed' if r['allow_neutral'] else 'off'}, {r['grid']} grid" for r in runs]
     cell = max(len(h) for h in [*heads, *extra]) + 3
-    width = max(len(label) + len(unit) + 3 for label, _, unit, _ in _ROWS)
+    width = label_width(_FIGURES)
     for row in (heads, extra):
         lines.append(" " * width + "".join(f"{h:>{cell}}" for h in row))
-    for label, key, unit, spec in _ROWS:
-        head = f"{label} [{unit}]" if unit else label
-        lines.append(f"{head:<{width}}" + "".join(f"{_fmt(r.get(key), spec):>{cell}}" for r in runs))
+    lines += figure_lines(_FIGURES, runs, cell)
     for r in runs:
         if r.get("stalled"):
             lines.append(

@@ -4,9 +4,11 @@
 
     {"road": <name>, "length_m": <m>,
      "pi": {<summary of the PI run>},
-     "mpc": {...}, "delta_fuel_pct": ..., "delta_time_pct": ...}   # when both ran
+     "mpc": {...}, "delta_fuel_pct": ..., "delta_time_pct": ...,   # when both ran
+     "not_comparable": "not comparable: mpc stalled at km 0.98"}   # only when a delta is null
 
-The deltas follow the thesis (section 6.1): (x_mpc − x_pi) / x_pi in percent. All files of a run are
+The deltas follow the thesis (section 6.1): (x_mpc − x_pi) / x_pi in percent; they are null when a
+run stalled or the baseline is zero (:func:`truckmpc.compare.compare`). All files of a run are
 written through :class:`truckmpc.atomic.OutputDir`, so a failed run leaves nothing half-written.
 """
 
@@ -23,7 +25,10 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from truckmpc.atomic import OutputDir
+from truckmpc.compare import compare
 from truckmpc.sim import TRACE_COLUMNS, RunResult
+from truckmpc.table import figure_lines, label_width
+from truckmpc.units import M_PER_KM
 
 if TYPE_CHECKING:
     from truckmpc.road import RoadProfile
@@ -46,10 +51,6 @@ _CSV_FORMATS = {
 }
 
 
-def _pct(new: float, base: float) -> float | None:
-    return 100.0 * (new - base) / base if base else None
-
-
 def summary_document(road: RoadProfile, results: Mapping[str, RunResult]) -> dict[str, Any]:
     """The ``summary.json`` content for runs of several controllers over ``road``."""
     doc: dict[str, Any] = {"road": road.name, "length_m": float(road.length_m)}
@@ -60,8 +61,11 @@ def summary_document(road: RoadProfile, results: Mapping[str, RunResult]) -> dic
         if base is None or name == BASELINE:
             continue
         suffix = "" if len(results) == 2 else f"_{name}"
-        doc[f"delta_fuel_pct{suffix}"] = _pct(result.summary["fuel_kg"], base.summary["fuel_kg"])
-        doc[f"delta_time_pct{suffix}"] = _pct(result.summary["time_s"], base.summary["time_s"])
+        comparison = compare(base.summary, result.summary, BASELINE, name)
+        doc[f"delta_fuel_pct{suffix}"] = comparison.delta_fuel_pct
+        doc[f"delta_time_pct{suffix}"] = comparison.delta_time_pct
+        if comparison.not_comparable is not None:
+            doc[f"not_comparable{suffix}"] = comparison.not_comparable
     return doc
 
 
@@ -111,20 +115,20 @@ def write_outputs(out_dir: str | os.PathLike[str], road: RoadProfile, results: M
     return [out / name for name in names]
 
 
-_ROWS = (
-    ("fuel", "fuel_kg", "kg", "{:.3f}"),
-    ("fuel per 100 km", "fuel_kg_per_100km", "kg", "{:.2f}"),
-    ("trip time", "time_s", "s", "{:.1f}"),
-    ("mean speed", "mean_speed_kmh", "km/h", "{:.2f}"),
-    ("end speed", "end_speed_kmh", "km/h", "{:.2f}"),
-    ("gear shifts", "gear_shifts", "", "{:d}"),
-    ("brake energy", "brake_energy_kj", "kJ", "{:.1f}"),
-    ("neutral distance", "neutral_distance_m", "m", "{:.0f}"),
-    ("compute time", "compute_time_s", "s", "{:.2f}"),
-    ("realtime ratio", "realtime_ratio", "", "{:.2e}"),
-    ("infeasible solves", "infeasible_solves", "", "{:d}"),
-    ("solve time mean", "solve_ms_mean", "ms", "{:.3f}"),
-    ("solve time max", "solve_ms_max", "ms", "{:.3f}"),
+_FIGURES = (
+    ("fuel", "fuel_kg", "kg", ".3f"),
+    ("fuel per 100 km", "fuel_kg_per_100km", "kg", ".2f"),
+    ("trip time", "time_s", "s", ".1f"),
+    ("mean speed", "mean_speed_kmh", "km/h", ".2f"),
+    ("end speed", "end_speed_kmh", "km/h", ".2f"),
+    ("gear shifts", "gear_shifts", "", "d"),
+    ("brake energy", "brake_energy_kj", "kJ", ".1f"),
+    ("neutral distance", "neutral_distance_m", "m", ".0f"),
+    ("compute time", "compute_time_s", "s", ".2f"),
+    ("realtime ratio", "realtime_ratio", "", ".2e"),
+    ("infeasible solves", "infeasible_solves", "", "d"),
+    ("solve time mean", "solve_ms_mean", "ms", ".3f"),
+    ("solve time max", "solve_ms_max", "ms", ".3f"),
 )
 
 
@@ -132,19 +136,14 @@ def format_table(road: RoadProfile, results: Mapping[str, RunResult]) -> str:
     """A short plain-text table of the runs' main figures, one column per controller."""
     names = list(results)
     doc = summary_document(road, results)
-    lines = [f"road {road.name}: {road.length_m / 1000:.2f} km"]
-    width = max(len(label) + len(unit) + 3 for label, _, unit, _ in _ROWS)
+    lines = [f"road {road.name}: {road.length_m / M_PER_KM:.2f} km"]
+    width = label_width(_FIGURES)
     lines.append(" " * width + "".join(f"{name:>14}" for name in names))
-    for label, key, unit, fmt in _ROWS:
-        head = f"{label} [{unit}]" if unit else label
-        cells = []
-        for name in names:
-            value = results[name].summary.get(key)
-            cells.append(f"{'-' if value is None else fmt.format(value):>14}")
-        lines.append(f"{head:<{width}}" + "".join(cells))
+    lines += figure_lines(_FIGURES, [results[name].summary for name in names], 14)
     for key in ("delta_fuel_pct", "delta_time_pct"):
         if doc.get(key) is not None:
             lines.append(f"{key.replace('_pct', ' [%]').replace('_', ' '):<{width}}{doc[key]:>+14.2f}")
+    lines += [text for key, text in doc.items() if key.startswith("not_comparable")]
     for name in names:
         if results[name].message:
             lines.append(f"{name}: {results[name].message}")

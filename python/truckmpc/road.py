@@ -23,8 +23,10 @@ import numpy as np
 from . import _core
 from .atomic import atomic_write_text
 from .errors import RoadError, read_user_text
+from .units import PCT_PER_FRACTION
 
 __all__ = [
+    "COLUMNS_COMMENT",
     "MAX_GRADE",
     "SECTION_KINDS",
     "RoadProfile",
@@ -292,10 +294,10 @@ def _slope_law(where: str, kind: str, slope_pct: float | None) -> tuple[float, f
         if slope_pct not in (None, 0, 0.0):
             raise RoadError(f"{where}: slope_pct: expected none for a flat section, got {slope_pct!r}")
         return 0.0, 0.0
-    limit_pct = 100 * MAX_GRADE
+    limit_pct = PCT_PER_FRACTION * MAX_GRADE
     if slope_pct is None or not math.isfinite(slope_pct) or not 0 < abs(slope_pct) <= limit_pct:
         raise RoadError(f"{where}: slope_pct: expected a non-zero slope within +-{limit_pct:g} %, got {slope_pct!r}")
-    grade = slope_pct / 100.0
+    grade = slope_pct / PCT_PER_FRACTION
     return {"hill": (grade, grade), "crest": (abs(grade), -abs(grade)), "depression": (-abs(grade), abs(grade))}[kind]
 
 
@@ -354,7 +356,8 @@ _THESIS_SECTIONS = (
     ("crest", 1500, 4.0, "section 6.3, fig. 6.11: 1500 m crest, slope +4 % to -4 %"),
     ("depression", 1500, 4.0, "section 6.3, fig. 6.12: 1500 m depression, slope -4 % to +4 %"),
 )
-_COLUMNS_COMMENT = "distance_m [m]; altitude_m [m], relative; grade [-] of the segment starting at the row (0.01 = 1 %)"
+COLUMNS_COMMENT = "distance_m [m]; altitude_m [m], relative; grade [-] of the segment starting at the row (0.01 = 1 %)"
+"""The comment line naming the columns of a written road CSV, with their units."""
 
 
 def _shipped() -> dict[str, tuple[RoadProfile, list[str]]]:
@@ -366,10 +369,10 @@ def _shipped() -> dict[str, tuple[RoadProfile, list[str]]]:
         lead_m, tail_m = SECTION_KINDS[kind]
         call = f"make_section({kind!r}, {length_m}, {slope_pct:g})"
         detail = f"Thesis {what}; {lead_m:g} m flat before, {tail_m:g} m flat after."
-        roads[f"{profile.name}.csv"] = (profile, [generated, f"{call}: {detail}", _COLUMNS_COMMENT])
+        roads[f"{profile.name}.csv"] = (profile, [generated, f"{call}: {detail}", COLUMNS_COMMENT])
     track = default_test_track()
     detail = "default_test_track(): " + " ".join((default_test_track.__doc__ or "").split())
-    roads[f"{track.name}.csv"] = (track, [generated, detail, _COLUMNS_COMMENT])
+    roads[f"{track.name}.csv"] = (track, [generated, detail, COLUMNS_COMMENT])
     return roads
 
 

@@ -1,0 +1,54 @@
+"""A run against the baseline: Δ = (x − x_base) / x_base × 100 [%] (thesis section 6.1).
+
+A stalled run did not drive the whole road, so its fuel and time are not those of the road: when
+either run stalled there is no delta, and the reason says which run stalled and where. A baseline of
+zero (no fuel used on a descent, say) gives no delta either.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from truckmpc.units import M_PER_KM, PCT_PER_FRACTION
+
+COMPARED = (("fuel", "fuel_kg"), ("time", "time_s"))
+"""What is compared: (name, summary field)."""
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """Δfuel and Δtime [%] of a run against the baseline; None where not comparable, with the reason
+    in ``not_comparable`` (``"not comparable: mpc stalled at km 0.98"``)."""
+
+    delta_fuel_pct: float | None
+    delta_time_pct: float | None
+    not_comparable: str | None = None
+
+
+def compare(
+    base: Mapping[str, Any], run: Mapping[str, Any], base_name: str = "pi", run_name: str = "mpc"
+) -> Comparison:
+    """Compare two run summaries (``fuel_kg``, ``time_s``, ``stalled`` and, if known,
+    ``stall_distance_m`` [m])."""
+    stalls = [_stall(name, summary) for name, summary in ((base_name, base), (run_name, run)) if summary["stalled"]]
+    if stalls:
+        return Comparison(None, None, "not comparable: " + " and ".join(stalls))
+    deltas = {name: delta_pct(run[field], base[field]) for name, field in COMPARED}
+    zero = [f"{base_name} {field} is 0" for name, field in COMPARED if deltas[name] is None]
+    reason = "not comparable: " + ", ".join(zero) if zero else None
+    return Comparison(deltas["fuel"], deltas["time"], reason)
+
+
+def delta_pct(value: float, base: float) -> float | None:
+    """(value − base) / base [%]; None for a zero or non-finite base."""
+    if not base or not math.isfinite(base):
+        return None
+    return PCT_PER_FRACTION * (value - base) / base
+
+
+def _stall(name: str, summary: Mapping[str, Any]) -> str:
+    where_m = summary.get("stall_distance_m")
+    return f"{name} stalled" + (f" at km {where_m / M_PER_KM:.2f}" if isinstance(where_m, (int, float)) else "")

@@ -1,0 +1,63 @@
+"""Pictures of runs and sweeps (``truckmpc plot``), in the look of the thesis's chapter 6.
+
+- A **run directory** (``summary.json`` and ``trace-pi.csv`` and/or ``trace-mpc.csv``, as written by
+  ``truckmpc simulate``) gives ``run.png``: stacked panels over distance [km] — altitude, speed of
+  PI and MPC with v_ref and the allowed band v_ref − v_dec … v_ref + v_inc, gear (neutral, gear 0 in
+  the trace, ticked "N" just below the lowest gear used and shaded), pedal and brake levels — as
+  figures 6.3–6.14. Lines longer than :data:`MAX_POINTS` are reduced by :func:`decimate`.
+- A **sweep directory** (``sweep.csv``, as written by ``truckmpc sweep``) gives ``sweep.png``: Δfuel
+  and Δtime [%] against the prediction horizon, one line per (S, δ), one column per road and
+  direction (figures 6.16–6.18; ``allow_neutral = false`` dashed), and ``realtime.png``: the real-time
+  ratio q against the horizon on a log scale (figure 6.19).
+
+Modules: :mod:`~truckmpc.plot.run` (run pictures), :mod:`~truckmpc.plot.sweep` (sweep pictures),
+:mod:`~truckmpc.plot.figures` (matplotlib and saving).
+
+matplotlib is an optional dependency (``pip install 'truckmpc[plot]'``). It is imported only when a
+picture is drawn, and only through its object-oriented API (``matplotlib.figure.Figure``), so no GUI
+backend is ever selected and the global pyplot state is left alone.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from truckmpc.plot.figures import MISSING_MATPLOTLIB, PlotError
+from truckmpc.plot.run import MAX_POINTS, decimate, plot_run
+from truckmpc.plot.sweep import plot_sweep
+
+__all__ = ["MAX_POINTS", "MISSING_MATPLOTLIB", "PlotError", "decimate", "plot_dir", "plot_run", "plot_sweep"]
+
+
+def plot_dir(
+    directory: str | os.PathLike[str], *, out: str | os.PathLike[str] | None = None, svg: bool = False
+) -> list[Path]:
+    """Plot a run or a sweep directory; return the files written.
+
+    ``out`` is a directory (default: ``directory``) or, for one kind of input, a file name whose
+    suffix (``.png`` or ``.svg``) sets the format; a sweep's second picture then goes to
+    ``<stem>-realtime<suffix>``. ``svg`` also writes an SVG beside every PNG. ``directory`` may
+    also name the ``summary.json`` or ``sweep.csv`` itself.
+    """
+    source = Path(directory)
+    if source.is_file() and source.name in ("summary.json", "sweep.csv"):
+        source = source.parent
+    if not source.is_dir():
+        raise PlotError(f"{source}: not a directory (expected a run directory or a sweep directory)")
+    is_run = (source / "summary.json").is_file()
+    is_sweep = (source / "sweep.csv").is_file()
+    if not (is_run or is_sweep):
+        raise PlotError(
+            f"{source}: neither a run directory (summary.json, trace-*.csv) nor a sweep directory (sweep.csv)"
+        )
+    target = source if out is None else Path(out)
+    as_file = target.suffix.lower() in (".png", ".svg")
+    if as_file and is_run and is_sweep:
+        raise PlotError(f"--out {target}: {source} holds both a run and a sweep; give a directory")
+    written: list[Path] = []
+    if is_run:
+        written += plot_run(source, target if as_file else target / "run.png", svg=svg)
+    if is_sweep:
+        written += plot_sweep(source, target if as_file else target / "sweep.png", svg=svg)
+    return written

@@ -1,0 +1,282 @@
+"""The pictures of a sweep: ``sweep.png``, Δfuel and Δtime [%] against the prediction horizon, one
+line per (S, δ), one column per road and direction (figures 6.16–6.18 of the thesis;
+``allow_neutral = false`` dashed), and ``realtime.png``, the real-time ratio q against the horizon on
+a log scale (figure 6.19). Without a horizon axis the numeric axis that varies most is used.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import json
+import math
+import os
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from truckmpc.config import KEYS
+from truckmpc.plot.figures import PlotError, figure_class, save
+from truckmpc.sweep.columns import SWEEP_COLUMNS, parse_cell
+
+RESULT_COLUMNS = frozenset({"road", "direction", *SWEEP_COLUMNS})
+"""Column names of sweep.csv that are not grid axes."""
+
+CONFIG_KEYS = frozenset(KEYS)
+"""Column names of sweep.csv that can be grid axes: any vehicle, controller or simulation key."""
+
+Row = Mapping[str, Any]
+Panel = tuple[Any, Any]
+"""(road, direction) of one column of panels; None where the CSV has no such column."""
+
+_DELTAS = (("delta_fuel_pct", "Δfuel [%]"), ("delta_time_pct", "Δtime [%]"))
+_REALTIME = (("realtime_ratio", "real-time ratio q [-]\n(compute time / driven time)"),)
+_AXIS_LABELS = {"horizon_m": "prediction horizon [m]", "stage_m": "S", "delta_kmh": "δ"}
+_UNITS = (("_kmh", "km/h"), ("_rpm", "rpm"), ("_kg", "kg"), ("_pct", "%"), ("_m", "m"), ("_s", "s"))
+
+
+@dataclass(frozen=True)
+class _Layout:
+    """How a sweep is drawn: its rows, one column of panels per (road, direction), the x axis, the
+    axes that make one line each, and whether ``allow_neutral`` varies (dashed lines)."""
+
+    rows: Sequence[Row]
+    panels: Sequence[Panel]
+    x_axis: str
+    line_axes: Sequence[str]
+    neutral_axis: bool
+
+
+def plot_sweep(directory: str | os.PathLike[str], out: str | os.PathLike[str], *, svg: bool = False) -> list[Path]:
+    """Draw a sweep: Δfuel and Δtime against the horizon to ``out``, q against the horizon beside it."""
+    directory = Path(directory)
+    out = Path(out)
+    header, rows = _read_sweep(directory)
+    axes = _grid_axes(directory, header)
+    x_axis = _x_axis(rows, axes, directory / "sweep.csv")
+    layout = _Layout(
+        rows,
+        _panels(rows, header),
+        x_axis,
+        [a for a in axes if a != x_axis and a != "allow_neutral" and len(_varying(rows, a)) > 1],
+        "allow_neutral" in axes and len(_varying(rows, "allow_neutral")) > 1,
+    )
+    fixed = [_line_label(a, _varying(rows, a)[0]) for a in axes if len(_varying(rows, a)) == 1]
+    note = f" ({', '.join(fixed)})" if fixed else ""
+    pictures: list[tuple[Sequence[tuple[str, str]], bool, str, Path]] = [
+        (_DELTAS, False, f"MPC against PI: (MPC − PI) / PI{note}", out)
+    ]
+    if "realtime_ratio" in header:
+        realtime = out.with_name(f"{out.stem}-realtime{out.suffix}" if out.name != "sweep.png" else "realtime.png")
+        pictures.append((_REALTIME, True, f"MPC closed-loop real-time ratio{note}", realtime))
+    Figure = figure_class()
+    return save([(_sweep_figure(Figure, layout, m, log=log, title=t), path) for m, log, t, path in pictures], svg)
+
+
+def _read_sweep(directory: Path) -> tuple[list[str], list[dict[str, Any]]]:
+    """The header and the rows (column -> value) of ``sweep.csv``."""
+    path = directory / "sweep.csv"
+    try:
+        with path.open(newline="", encoding="utf-8") as handle:
+            reader = csv.DictReader(handle)
+            header = list(reader.fieldnames or [])
+            rows = [{k: parse_cell(v or "") for k, v in row.items() if k is not None} for row in reader]
+    except OSError as err:
+        raise PlotError(f"{path}: {err.strerror or err}") from err
+    for needed in ("delta_fuel_pct", "delta_time_pct"):
+        if needed not in header:
+            raise PlotError(f"{path}: no '{needed}' column")
+    if not rows:
+        raise PlotError(f"{path}: no rows to plot")
+    return header, rows
+
+
+def _grid_axes(directory: Path, header: Sequence[str]) -> list[str]:
+    """The grid-axis columns: config keys, and whatever ``sweep.json`` names as its grid."""
+    named: set[str] = set()
+    meta = directory / "sweep.json"
+    if meta.is_file():
+        try:
+            doc = json.loads(meta.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            doc = {}
+        grid = doc.get("grid") if isinstance(doc, dict) else None
+        if isinstance(grid, dict):
+            named = set(grid)
+        elif isinstance(grid, list):
+            named = {_axis_name(g) for g in grid if isinstance(g, (str, dict))}
+    return [c for c in header if c not in RESULT_COLUMNS and (c in CONFIG_KEYS or c in named)]
+
+
+def _axis_name(entry: str | Mapping[str, Any]) -> str:
+    """The key of one ``grid`` entry of ``sweep.json`` (``{"key": ...}``, older ``{"name": ...}``)."""
+    return entry if isinstance(entry, str) else str(entry.get("key", entry.get("name")))
+
+
+def _is_number(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _varying(rows: Sequence[Row], column: str) -> list[Any]:
+    """The distinct non-blank values of ``column``, in first-seen order."""
+    values: list[Any] = []
+    for row in rows:
+        v = row.get(column)
+        if v not in values and v is not None:
+            values.append(v)
+    return values
+
+
+def _panels(rows: Sequence[Row], header: Sequence[str]) -> list[Panel]:
+    """One panel per (road, direction) that has rows."""
+    if "direction" in header:
+        panels = [(r, d) for r in _varying(rows, "road") for d in _varying(rows, "direction")]
+    elif "road" in header:
+        panels = [(r, None) for r in _varying(rows, "road")]
+    else:
+        panels = [(None, None)]
+    return [p for p in panels if any(_in_panel(row, p) for row in rows)]
+
+
+def _unit(column: str) -> str:
+    for suffix, unit in _UNITS:
+        if column.endswith(suffix):
+            return unit
+    return ""
+
+
+def _axis_label(column: str) -> str:
+    if column == "horizon_m":
+        return _AXIS_LABELS[column]
+    unit = _unit(column)
+    return f"{column} [{unit}]" if unit else column
+
+
+def _line_label(column: str, value: Any) -> str:
+    if isinstance(value, float) and value.is_integer():
+        shown = f"{value:.0f}"
+    else:
+        shown = f"{value:g}" if isinstance(value, float) else str(value)
+    name = _AXIS_LABELS.get(column)
+    if name is not None:
+        return f"{name} {shown} {_unit(column)}"
+    if column == "allow_neutral":
+        return "neutral allowed" if value else "no neutral"
+    unit = _unit(column)
+    return f"{column} {shown}" + (f" {unit}" if unit else "")
+
+
+def _x_axis(rows: Sequence[Row], axes: Sequence[str], path: Path) -> str:
+    """``horizon_m`` if it varies, else the numeric axis with the most values."""
+    numeric = [a for a in axes if all(_is_number(v) for v in _varying(rows, a)) and len(_varying(rows, a)) > 1]
+    if "horizon_m" in numeric:
+        return "horizon_m"
+    if numeric:
+        return max(numeric, key=lambda a: len(_varying(rows, a)))
+    raise PlotError(f"{path}: no numeric grid axis varies (expected e.g. a horizon_m column); nothing to plot against")
+
+
+def _in_panel(row: Row, panel: Panel) -> bool:
+    road, direction = panel
+    return (road is None or row.get("road") == road) and (direction is None or row.get("direction") == direction)
+
+
+def _panel_title(panel: Panel) -> str:
+    road, direction = panel
+    text = "" if road is None else str(road)
+    if direction not in (None, ""):
+        text += f" ({direction})"
+    return text
+
+
+def _sweep_figure(Figure: Any, layout: _Layout, metrics: Sequence[tuple[str, str]], *, log: bool, title: str) -> Any:
+    """One row of panels per metric, one column per (road, direction), one line per combination."""
+    from matplotlib.lines import Line2D
+
+    ncols = len(layout.panels)
+    fig = Figure(figsize=(max(6.5, 4.6 * ncols), 1.0 + 3.0 * len(metrics)), layout="constrained")
+    grid = fig.subplots(len(metrics), ncols, sharex="col", sharey="row", squeeze=False)
+    handles: dict[str, Any] = {}
+    for col, panel in enumerate(layout.panels):
+        in_panel = [r for r in layout.rows if _in_panel(r, panel)]
+        for row_i, (metric, ylabel) in enumerate(metrics):
+            ax = grid[row_i][col]
+            _draw_lines(ax, layout, in_panel, metric, log, handles)
+            if log:
+                ax.set_yscale("log")
+            else:
+                ax.axhline(0.0, color="0.4", lw=0.8)
+            ax.grid(True, which="major", color="0.88", lw=0.6)
+            if col == 0:
+                ax.set_ylabel(ylabel)
+            if row_i == 0:
+                ax.set_title(_panel_title(panel), fontsize="medium")
+            if row_i == len(metrics) - 1:
+                ax.set_xlabel(_axis_label(layout.x_axis))
+    if log:
+        _mark_real_time(grid[0])
+    fig.suptitle(title, fontsize="medium")
+    entries = list(handles.values())
+    if layout.neutral_axis:  # colour says (S, δ), the line style says whether neutral was allowed
+        entries += [
+            Line2D([], [], color="0.2", lw=1.2, label="neutral allowed"),
+            Line2D([], [], color="0.2", lw=1.2, ls="--", label="no neutral"),
+        ]
+    if entries:
+        fits = max(1, int(fig.get_figwidth() / 2.1))
+        fig.legend(
+            handles=entries, loc="outside lower center", fontsize="small", frameon=False, ncol=min(len(entries), fits)
+        )
+    return fig
+
+
+def _draw_lines(ax: Any, layout: _Layout, rows: Sequence[Row], metric: str, log: bool, handles: dict[str, Any]) -> None:
+    """One line of ``metric`` against the x axis per combination (and per ``allow_neutral``); adds a
+    legend handle per combination to ``handles``."""
+    from matplotlib.lines import Line2D
+
+    combos = _combos(layout.rows, layout.line_axes)
+    colors = [f"C{i % 10}" for i in range(len(combos))]
+    neutral_values = _varying(layout.rows, "allow_neutral") if layout.neutral_axis else [None]
+    for combo, color in zip(combos, colors, strict=True):
+        for neutral in neutral_values:
+            points = sorted(
+                (r[layout.x_axis], r[metric])
+                for r in rows
+                if all(r.get(a) == v for a, v in combo)
+                and (neutral is None or r.get("allow_neutral") == neutral)
+                and _is_number(r.get(layout.x_axis))
+                and _is_number(r.get(metric))
+                and math.isfinite(r[metric])
+                and (r[metric] > 0 or not log)
+            )
+            if not points:
+                continue
+            xs, ys = zip(*points, strict=True)
+            label = ", ".join(_line_label(a, v) for a, v in combo) or "MPC"
+            ax.plot(xs, ys, color=color, ls="-" if neutral in (None, True) else "--", marker="o", ms=3, lw=1.2)
+            handles.setdefault(label, Line2D([], [], color=color, marker="o", ms=3, lw=1.2, label=label))
+
+
+def _mark_real_time(axes: Sequence[Any]) -> None:
+    """A dotted line at q = 1 on the panels whose range includes it."""
+    for ax in axes:
+        lo, hi = ax.get_ylim()
+        if lo <= 1.0 <= hi:
+            ax.axhline(1.0, color="k", ls=":", lw=1.0)
+            ax.annotate(
+                "real time (q = 1)", (0.01, 1.0), xycoords=("axes fraction", "data"), va="bottom", fontsize="small"
+            )
+
+
+def _combos(rows: Sequence[Row], line_axes: Sequence[str]) -> list[tuple[tuple[str, Any], ...]]:
+    """Every combination of the line axes' values present in the rows, in first-seen order, sorted."""
+    seen: list[tuple[tuple[str, Any], ...]] = []
+    for row in rows:
+        combo = tuple((a, row.get(a)) for a in line_axes)
+        if combo not in seen:
+            seen.append(combo)
+    with contextlib.suppress(TypeError):  # values that do not compare stay in first-seen order
+        seen.sort(key=lambda c: tuple(v for _, v in c))
+    return seen

@@ -1,0 +1,79 @@
+"""The result columns of ``sweep.csv`` and the text of its cells.
+
+After ``road``, ``direction`` and one column per axis come the PI figures, the MPC figures (the
+solver's without a prefix), then the comparison: blank when either run stalled or the baseline is
+zero (:func:`truckmpc.compare.compare`).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import math
+from collections.abc import Mapping
+from typing import Any
+
+from truckmpc.compare import compare
+
+PI_FIELDS = ("fuel_kg", "time_s", "end_speed_kmh", "brake_energy_kj", "gear_shifts", "stalled")
+"""Figures of a run's summary that go to the CSV for both controllers."""
+
+MPC_FIELDS = (
+    *PI_FIELDS,
+    "neutral_distance_m",
+    "realtime_ratio",
+    "solve_ms_mean",
+    "solve_ms_max",
+    "infeasible_solves",
+    "transitions_per_solve",
+)
+"""Figures of the MPC run's summary that go to the CSV."""
+
+_MPC_ONLY = frozenset(MPC_FIELDS) - frozenset(PI_FIELDS)
+_RESULT_SOURCES: tuple[tuple[str, str, str], ...] = (
+    *(("pi", name, f"pi_{name}") for name in PI_FIELDS),
+    *(("mpc", name, name if name in _MPC_ONLY else f"mpc_{name}") for name in MPC_FIELDS),
+)
+SWEEP_COLUMNS: tuple[str, ...] = (*(column for _, _, column in _RESULT_SOURCES), "delta_fuel_pct", "delta_time_pct")
+"""Columns of ``sweep.csv`` after ``road``, ``direction`` and one column per axis."""
+
+
+def cell(value: Any) -> str:
+    """A value as written in the CSV (and as a YAML ``--set`` value): true/false, repr of floats
+    (exact round trip), blank for None."""
+    if value is None:
+        return ""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return repr(value) if math.isfinite(value) else ""
+    return str(value)
+
+
+def yaml_text(value: Any) -> str:
+    """A value as the YAML text of a ``key=value`` override (strings quoted)."""
+    return json.dumps(value) if isinstance(value, str) else ("null" if value is None else cell(value))
+
+
+def result_cells(pi: Mapping[str, Any], mpc: Mapping[str, Any]) -> list[str]:
+    """The result cells of one row (:data:`SWEEP_COLUMNS`) from the two runs' figures."""
+    runs = {"pi": pi, "mpc": mpc}
+    values = {column: runs[run][name] for run, name, column in _RESULT_SOURCES}
+    comparison = compare(pi, mpc)
+    values["delta_fuel_pct"], values["delta_time_pct"] = comparison.delta_fuel_pct, comparison.delta_time_pct
+    return [cell(values[c]) for c in SWEEP_COLUMNS]
+
+
+def parse_cell(text: str) -> Any:
+    """The value a cell's text stands for (the inverse of :func:`cell`, also for ``truckmpc plot``):
+    None for blank, a bool for true/false (any case), an int, a float, else the text itself (road
+    names, string axis values)."""
+    text = text.strip()
+    if text == "":
+        return None
+    if text.lower() in ("true", "false"):
+        return text.lower() == "true"
+    for number in (int, float):
+        with contextlib.suppress(ValueError):
+            return number(text)
+    return text

@@ -1,0 +1,115 @@
+"""The files of a sweep directory: ``sweep.json`` (which sweep it holds), ``sweep.partial.csv``
+(rows appended as they finish) and ``sweep.csv`` (all rows in grid order, written at the end).
+
+``sweep.json`` identifies the sweep by its roads (name, content hash, direction), its axes, its
+resolved base configuration and its columns; a directory holding another sweep is not resumed into.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import io
+import json
+import os
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+from truckmpc.atomic import atomic_write_text
+from truckmpc.sweep.errors import SweepError
+
+CSV_NAME, PARTIAL_NAME, SETTINGS_NAME = "sweep.csv", "sweep.partial.csv", "sweep.json"
+
+_IDENTITY = ("version", "roads", "grid", "base_config", "columns")
+"""Settings that identify a sweep."""
+
+
+def _identity(settings: Mapping[str, Any]) -> dict[str, Any]:
+    doc = {k: settings.get(k) for k in _IDENTITY}
+    doc["roads"] = [{k: r.get(k) for k in ("name", "direction", "sha256")} for r in doc["roads"] or []]
+    return doc
+
+
+def check_out_dir(out: Path, settings: Mapping[str, Any]) -> None:
+    """Refuse to mix sweeps: an existing ``sweep.json`` in ``out`` must describe this one."""
+    path = out / SETTINGS_NAME
+    try:
+        old = json.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        if (out / PARTIAL_NAME).exists() or (out / CSV_NAME).exists():
+            raise SweepError(
+                f"{out}: holds sweep results without {SETTINGS_NAME}; use another --out or remove them"
+            ) from None
+        return
+    except (json.JSONDecodeError, UnicodeDecodeError):
+        raise SweepError(f"{path}: not a sweep settings file; use another --out or remove it") from None
+    mine, theirs = _identity(settings), _identity(old if isinstance(old, dict) else {})
+    differ = [key for key in _IDENTITY if mine[key] != theirs[key]]
+    if differ:
+        raise SweepError(
+            f"{out} holds a different sweep (not the same: {', '.join(differ)}); use another --out or remove it"
+        )
+
+
+def write_settings(out: Path, settings: Mapping[str, Any], jobs: int) -> None:
+    """Write ``sweep.json``: the plan's settings and the number of processes of this run."""
+    atomic_write_text(out / SETTINGS_NAME, json.dumps({**settings, "jobs": jobs}, indent=2) + "\n")
+
+
+def csv_line(cells: Sequence[str]) -> str:
+    """One CSV line, ending in a newline."""
+    buffer = io.StringIO()
+    csv.writer(buffer, lineterminator="\n").writerow(cells)
+    return buffer.getvalue()
+
+
+def read_rows(path: Path, columns: Sequence[str]) -> list[list[str]]:
+    """Complete rows of a sweep CSV (a last line cut short by an interruption is ignored)."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        return []
+    lines = text.splitlines(keepends=True)
+    if not lines:
+        return []
+    if next(csv.reader([lines[0]])) != list(columns):
+        raise SweepError(f"{path}: its columns are not this sweep's; remove it or use another --out")
+    rows = []
+    for line in lines[1:]:
+        if not line.endswith("\n"):
+            break
+        cells = next(csv.reader([line]), [])
+        if len(cells) == len(columns):
+            rows.append(cells)
+    return rows
+
+
+def finished_rows(out: Path, columns: Sequence[str]) -> list[list[str]]:
+    """The rows already in ``sweep.csv`` and ``sweep.partial.csv`` (possibly repeated)."""
+    return [*read_rows(out / CSV_NAME, columns), *read_rows(out / PARTIAL_NAME, columns)]
+
+
+class PartialFile:
+    """``sweep.partial.csv``: rows appended one complete line per write(2), flushed to the OS as
+    they finish."""
+
+    def __init__(self, path: Path, header: str, rows: Sequence[str]) -> None:
+        atomic_write_text(path, header + "".join(rows))  # drop a cut-short line before appending
+        self._fd = os.open(path, os.O_WRONLY | os.O_APPEND)
+
+    def append(self, line: str) -> None:
+        data = line.encode("utf-8")
+        while data:
+            data = data[os.write(self._fd, data) :]
+
+    def close(self) -> None:
+        os.close(self._fd)
+
+
+def write_final(out: Path, header: str, rows: Sequence[Sequence[str]]) -> Path:
+    """Write ``sweep.csv`` in one step and remove the partial file; return the CSV's path."""
+    atomic_write_text(out / CSV_NAME, header + "".join(csv_line(cells) for cells in rows))
+    with contextlib.suppress(FileNotFoundError):
+        os.unlink(out / PARTIAL_NAME)
+    return out / CSV_NAME

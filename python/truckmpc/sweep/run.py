@@ -1,0 +1,165 @@
+"""Running (or resuming) a sweep into a directory: the rows already there are kept, the missing
+ones run, and ``sweep.csv`` is written when all are done."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from truckmpc.road import RoadProfile
+from truckmpc.sweep.columns import PI_FIELDS, parse_cell, result_cells
+from truckmpc.sweep.errors import SweepInterrupted
+from truckmpc.sweep.files import (
+    PARTIAL_NAME,
+    PartialFile,
+    check_out_dir,
+    csv_line,
+    finished_rows,
+    write_final,
+    write_settings,
+)
+from truckmpc.sweep.grid import Axis
+from truckmpc.sweep.plan import PathLike, Row, SweepPlan, plan_sweep
+from truckmpc.sweep.pool import Runner, Task
+
+
+@dataclass(frozen=True)
+class SweepResult:
+    """A finished sweep: its CSV, its rows (column -> cell text, grid order) and what ran."""
+
+    csv_path: Path
+    columns: tuple[str, ...]
+    rows: list[dict[str, str]]
+    pi_runs: int
+    mpc_runs: int
+    resumed_rows: int
+
+
+ProgressHook = Callable[[int, int], None]
+"""``hook(done_rows, total_rows)``, called at the start and after each row."""
+
+
+def run_sweep(
+    roads: Sequence[RoadProfile | PathLike],
+    grid: Sequence[Axis | str] | Mapping[str, Sequence[Any]],
+    out: PathLike,
+    *,
+    reverse: bool = False,
+    vehicle_path: PathLike | None = None,
+    config_paths: Sequence[PathLike] = (),
+    overrides: Sequence[str] = (),
+    jobs: int | None = None,
+    progress: ProgressHook | None = None,
+) -> SweepResult:
+    """Run (or resume) a sweep into directory ``out``: PI and MPC on every road for every
+    combination of ``grid`` (``["horizon_m=250:3000:250", "delta_kmh=0.1,0.2"]`` or
+    ``{"horizon_m": [250, 500]}``); see :mod:`truckmpc.sweep` and :func:`run_plan`.
+
+    Every combination is validated before anything runs or ``out`` is created.
+    """
+    plan = plan_sweep(
+        roads, grid, reverse=reverse, vehicle_path=vehicle_path, config_paths=config_paths, overrides=overrides
+    )
+    return run_plan(plan, out, jobs=jobs, progress=progress)
+
+
+def run_plan(
+    plan: SweepPlan,
+    out: PathLike,
+    *,
+    jobs: int | None = None,
+    progress: ProgressHook | None = None,
+) -> SweepResult:
+    """Run (or resume) a planned sweep into directory ``out``; see :mod:`truckmpc.sweep`.
+
+    ``jobs``: processes (default ``os.cpu_count()``); 1 runs in this process. ``realtime_ratio`` of
+    each row is measured under whatever load the other jobs make.
+    Raises :class:`SweepError` if ``out`` holds a different sweep; on ``KeyboardInterrupt`` the
+    workers are stopped, the finished rows stay in ``sweep.partial.csv`` and
+    :class:`SweepInterrupted` (a ``KeyboardInterrupt``) says how many.
+    """
+    out = Path(out)
+    jobs = max(1, jobs or os.cpu_count() or 1)
+    check_out_dir(out, plan.settings)
+    done = _resumed_rows(plan, out)
+    resumed = len(done)
+    pending = [row for row in plan.rows if row.index not in done]
+    pi_cache = _resumed_pi_figures(plan, done)
+    out.mkdir(parents=True, exist_ok=True)
+    write_settings(out, plan.settings, jobs)
+    tasks = _tasks(pending, pi_cache)
+    header = csv_line(plan.columns)
+    partial = PartialFile(out / PARTIAL_NAME, header, [csv_line(cells) for _, cells in sorted(done.items())])
+    if progress:
+        progress(len(done), len(plan.rows))
+    try:
+        with Runner(plan.roads, (plan.vehicle_path, plan.config_paths), jobs) as runner:
+            for index, cells in _rows_as_they_finish(plan, runner.results(tasks), pi_cache):
+                done[index] = cells
+                partial.append(csv_line(cells))
+                if progress:
+                    progress(len(done), len(plan.rows))
+    except KeyboardInterrupt:
+        raise SweepInterrupted(len(done), len(plan.rows), out / PARTIAL_NAME) from None
+    finally:
+        partial.close()
+    ordered = [done[row.index] for row in plan.rows]
+    return SweepResult(
+        write_final(out, header, ordered),
+        plan.columns,
+        [dict(zip(plan.columns, cells, strict=True)) for cells in ordered],
+        pi_runs=sum(task.controller == "pi" for task in tasks),
+        mpc_runs=len(pending),
+        resumed_rows=resumed,
+    )
+
+
+def _resumed_rows(plan: SweepPlan, out: Path) -> dict[int, list[str]]:
+    """Row index -> cells of the plan's rows already in ``out`` (the first copy of each)."""
+    by_key = {plan.row_key(row): row for row in plan.rows}
+    done: dict[int, list[str]] = {}
+    for cells in finished_rows(out, plan.columns):
+        row = by_key.get(tuple(cells[: 2 + len(plan.axes)]))
+        if row is not None:
+            done.setdefault(row.index, cells)
+    return done
+
+
+def _resumed_pi_figures(plan: SweepPlan, done: Mapping[int, Sequence[str]]) -> dict[str, dict[str, Any]]:
+    """PI key -> the PI figures read back from finished rows, so their PI runs are not repeated."""
+    first_pi = len(plan.axes) + 2
+    pi_cache: dict[str, dict[str, Any]] = {}
+    for index, cells in done.items():
+        figures = {k: parse_cell(c) for k, c in zip(PI_FIELDS, cells[first_pi:], strict=False)}
+        pi_cache.setdefault(plan.rows[index].pi_key, figures)
+    return pi_cache
+
+
+def _tasks(pending: Sequence[Row], pi_cache: Mapping[str, Any]) -> list[Task]:
+    """The PI runs first (every row needs one), once per PI key not known yet, then the MPC runs
+    longest first, so that a pool does not end on one long run while the other workers idle."""
+    pi_rows = {row.pi_key: row for row in pending if row.pi_key not in pi_cache}
+    tasks = [Task("pi", row.road, row.overrides, row.index, key) for key, row in pi_rows.items()]
+    by_cost = sorted(pending, key=lambda r: -r.cost)
+    tasks += [Task("mpc", row.road, row.overrides, row.index, row.pi_key) for row in by_cost]
+    return tasks
+
+
+def _rows_as_they_finish(
+    plan: SweepPlan, results: Iterable[tuple[Task, dict[str, Any]]], pi_cache: dict[str, dict[str, Any]]
+) -> Iterator[tuple[int, list[str]]]:
+    """``(row index, cells)`` of each row as soon as both its MPC run and its PI run are done."""
+    waiting: dict[int, dict[str, Any]] = {}
+    for task, figures in results:
+        if task.controller == "pi":
+            pi_cache[task.pi_key] = figures
+            ready = [i for i in waiting if plan.rows[i].pi_key == task.pi_key]
+        else:
+            waiting[task.row] = figures
+            ready = [task.row] if task.pi_key in pi_cache else []
+        for index in ready:
+            row = plan.rows[index]
+            yield index, [*plan.row_key(row), *result_cells(pi_cache[row.pi_key], waiting.pop(index))]

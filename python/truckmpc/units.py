@@ -1,0 +1,16 @@
+"""Unit conversions the package repeats: SI inside, km/h, km and % at the interfaces.
+
+Multiply by a factor to go from the unit after ``PER`` to the one before it:
+``v_kmh = v_mps * KMH_PER_MPS``, ``grade_pct = grade * PCT_PER_FRACTION``.
+"""
+
+from __future__ import annotations
+
+KMH_PER_MPS = 3.6
+"""km/h per m/s."""
+
+M_PER_KM = 1000.0
+"""Metres per kilometre."""
+
+PCT_PER_FRACTION = 100.0
+"""Percent per unit fraction: grades (0.01 = 1 %) and relative differences."""
