@@ -60,7 +60,9 @@ pub trait ParamValue: Sized {
     /// The value as a user would write it.
     fn to_value(&self) -> Value;
     /// Range-check a value built in Rust (e.g. a struct literal in a test).
-    fn check(&self, key: &str, range: &Range) -> CoreResult<()>;
+    fn check(&self, key: &str, range: &Range) -> CoreResult<()> {
+        Self::from_value(key, &self.to_value(), range).map(|_| ())
+    }
 }
 
 fn type_error(key: &str, kind: Kind, range: &Range, value: &Value) -> CoreError {
@@ -90,9 +92,6 @@ impl ParamValue for f64 {
     fn to_value(&self) -> Value {
         Value::Float(*self)
     }
-    fn check(&self, key: &str, range: &Range) -> CoreResult<()> {
-        Self::from_value(key, &self.to_value(), range).map(|_| ())
-    }
 }
 
 impl ParamValue for Option<f64> {
@@ -105,9 +104,6 @@ impl ParamValue for Option<f64> {
     }
     fn to_value(&self) -> Value {
         self.map_or(Value::Null, Value::Float)
-    }
-    fn check(&self, key: &str, range: &Range) -> CoreResult<()> {
-        Self::from_value(key, &self.to_value(), range).map(|_| ())
     }
 }
 
@@ -126,9 +122,6 @@ impl ParamValue for u32 {
     fn to_value(&self) -> Value {
         Value::Int(i64::from(*self))
     }
-    fn check(&self, key: &str, range: &Range) -> CoreResult<()> {
-        Self::from_value(key, &self.to_value(), range).map(|_| ())
-    }
 }
 
 impl ParamValue for Option<u32> {
@@ -142,9 +135,6 @@ impl ParamValue for Option<u32> {
     fn to_value(&self) -> Value {
         self.map_or(Value::Null, |n| Value::Int(i64::from(n)))
     }
-    fn check(&self, key: &str, range: &Range) -> CoreResult<()> {
-        Self::from_value(key, &self.to_value(), range).map(|_| ())
-    }
 }
 
 impl ParamValue for bool {
@@ -157,9 +147,6 @@ impl ParamValue for bool {
     }
     fn to_value(&self) -> Value {
         Value::Bool(*self)
-    }
-    fn check(&self, _key: &str, _range: &Range) -> CoreResult<()> {
-        Ok(())
     }
 }
 
@@ -176,9 +163,6 @@ impl ParamValue for Vec<f64> {
     }
     fn to_value(&self) -> Value {
         Value::List(self.iter().map(|x| Value::Float(*x)).collect())
-    }
-    fn check(&self, key: &str, range: &Range) -> CoreResult<()> {
-        Self::from_value(key, &self.to_value(), range).map(|_| ())
     }
 }
 
@@ -205,9 +189,6 @@ impl ParamValue for Vec<Option<f64>> {
     }
     fn to_value(&self) -> Value {
         Value::List(self.iter().map(|x| x.map_or(Value::Null, Value::Float)).collect())
-    }
-    fn check(&self, key: &str, range: &Range) -> CoreResult<()> {
-        Self::from_value(key, &self.to_value(), range).map(|_| ())
     }
 }
 
@@ -241,9 +222,6 @@ macro_rules! choice_enum {
             }
             fn to_value(&self) -> $crate::params::Value {
                 $crate::params::Value::Text(self.as_str().to_string())
-            }
-            fn check(&self, _key: &str, _range: &$crate::params::Range) -> $crate::error::CoreResult<()> {
-                Ok(())
             }
         }
     };
