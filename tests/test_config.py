@@ -118,7 +118,7 @@ def test_configs_are_frozen() -> None:
 
 
 def test_unknown_packaged_config() -> None:
-    with pytest.raises(ConfigError, match="no packaged config named 'nope.yaml'"):
+    with pytest.raises(ConfigError, match=r"no packaged config named 'nope\.yaml'"):
         default_config_path("nope.yaml")
 
 
