@@ -109,7 +109,8 @@ class _OneLineErrors(TyperGroup):
 
 app = typer.Typer(
     cls=_OneLineErrors,
-    help="Look-ahead cruise control for heavy trucks: simulate a PI baseline (and, next, a DP-MPC) over road profiles.",
+    help="Look-ahead cruise control for heavy trucks: simulate a PI cruise controller and a look-ahead DP-MPC "
+    "over road profiles and compare their fuel and trip time.",
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
