@@ -22,7 +22,8 @@ from truckmpc.config import (
     load_vehicle,
 )
 
-# Tables A.1 and A.2, with k_b = 1e5 Nm (NOTES.md: the printed 20e3 is a misprint).
+# Tables A.1 and A.2, with k_b = 1e5 Nm, not the printed 20e3: table B.1's brake level holding 90 km/h
+# on -4 % (B = 0.0490) needs 1e5; 20e3 would need B = 0.245.
 THESIS_40T = {
     "mass_kg": 40000.0,
     "engine_inertia_kgm2": 3.5,
