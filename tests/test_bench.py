@@ -40,8 +40,8 @@ RUN_KEYS = (
 
 
 def _check_runs(runs: list[dict], length_m: float) -> None:
-    assert [{key: run[key] for key in setting} for run, setting in zip(runs, SETTINGS)] == list(SETTINGS)
     assert len(runs) == len(SETTINGS)
+    assert [{key: run[key] for key in setting} for run, setting in zip(runs, SETTINGS, strict=True)] == list(SETTINGS)
     for run in runs:
         assert set(RUN_KEYS) <= set(run)
         assert not run["stalled"]

@@ -39,7 +39,16 @@ from truckmpc.road import RoadProfile, default_test_track, load_road
 from truckmpc.table import figure_lines, label_width
 from truckmpc.units import M_PER_KM
 
-__all__ = ["SETTINGS", "BenchError", "BenchResult", "bench_cmd", "default_road_path", "format_bench", "run_bench"]
+__all__ = [
+    "BENCH_HELP",
+    "SETTINGS",
+    "BenchError",
+    "BenchResult",
+    "bench_cmd",
+    "default_road_path",
+    "format_bench",
+    "run_bench",
+]
 
 SETTINGS: tuple[dict[str, Any], ...] = tuple(
     {**setting, "grid": grid}
@@ -145,7 +154,8 @@ def _spawn(road_path: str | None, quick: bool, setting: dict[str, Any], extra: t
         lines = [line for line in done.stderr.splitlines() if line.strip()]
         why = lines[-1].removeprefix("error: ") if lines else f"exit code {done.returncode}"
         raise BenchError(f"benchmark run {setting}: {why}")
-    return json.loads(done.stdout.splitlines()[-1])
+    figures: dict[str, Any] = json.loads(done.stdout.splitlines()[-1])
+    return figures
 
 
 @dataclass(frozen=True)
@@ -224,10 +234,18 @@ def format_bench(result: BenchResult) -> str:
     lines += figure_lines(_FIGURES, runs, cell)
     for r in runs:
         if r.get("stalled"):
-            lines.append(
-                f"S {r['stage_m']:g} m, δ {r['delta_kmh']:g} km/h: the truck stalled; figures cover the road up to there"
-            )
+            setting = f"S {r['stage_m']:g} m, δ {r['delta_kmh']:g} km/h"
+            lines.append(f"{setting}: the truck stalled; figures cover the road up to there")
     return "\n".join(lines)
+
+
+BENCH_HELP = (
+    "Time closed-loop MPC runs at (S 25 m, δ 0.1 km/h, 3000 m) and (S 50 m, δ 0.2 km/h, 2000 m), "
+    "on the fixed and the moving grid, each in its own process.\n\n"
+    "Reports the realtime ratio (compute time / simulated time), the time per DP solve, the states and "
+    "transitions per solve, the time per transition and the peak memory of each run."
+)
+"""The help text of ``truckmpc bench``."""
 
 
 def bench_cmd(
@@ -235,7 +253,8 @@ def bench_cmd(
         Path | None,
         typer.Option(
             "--road",
-            help="Road profile CSV (default: the 108 km VECTO long-haul road of ../shared/roads, else the bundled test track).",
+            help="Road profile CSV (default: the 108 km VECTO long-haul road of ../shared/roads, "
+            "else the bundled test track).",
         ),
     ] = None,
     quick: Annotated[bool, typer.Option("--quick", help="Only the first 10 km of the road (for CI).")] = False,
@@ -243,15 +262,13 @@ def bench_cmd(
         list[str] | None,
         typer.Option(
             "--set",
-            help="Any other key=value (e.g. neutral_rule=interpolate); stage_m, delta_kmh, horizon_m, allow_neutral and grid are fixed.",
+            help="Any other key=value (e.g. neutral_rule=interpolate); "
+            "stage_m, delta_kmh, horizon_m, allow_neutral and grid are fixed.",
         ),
     ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")] = False,
 ) -> None:
-    """Time closed-loop MPC runs at (S 25 m, δ 0.1 km/h, 3000 m) and (S 50 m, δ 0.2 km/h, 2000 m), on the fixed and the moving grid, each in its own process.
-
-    Reports the realtime ratio (compute time / simulated time), the time per DP solve, the states and transitions per solve, the time per transition and the peak memory of each run.
-    """
+    """``truckmpc bench``: :func:`run_bench`, printed as a table or JSON (its help: :data:`BENCH_HELP`)."""
     result = run_bench(road, quick=quick, overrides=tuple(set_ or ()))
     typer.echo(json.dumps(result.document()) if as_json else format_bench(result))
 

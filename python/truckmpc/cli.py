@@ -21,15 +21,17 @@ traceback and no output files.
 from __future__ import annotations
 
 import enum
+import importlib
 import json
 import sys
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Annotated, Any, NoReturn
 
 import typer
 from typer.core import TyperGroup
 
-from truckmpc.bench import bench_cmd
+from truckmpc.bench import BENCH_HELP, bench_cmd
 from truckmpc.config import RunConfig, load_run_config
 from truckmpc.errors import TruckmpcError
 from truckmpc.pi import steady_gear
@@ -48,7 +50,7 @@ def _usage_error_types() -> tuple[type[Exception], ...]:
     if hasattr(typer, "TyperException"):
         types.append(typer.TyperException)
     try:
-        import click
+        click = importlib.import_module("click")  # not a static import: typer >= 0.20 does not install it
     except ImportError:
         pass
     else:
@@ -74,14 +76,22 @@ class _OneLineErrors(TyperGroup):
 
     def main(
         self,
-        args: Any = None,
+        args: Sequence[str] | None = None,
         prog_name: str | None = None,
         complete_var: str | None = None,
         standalone_mode: bool = True,
+        windows_expand_args: bool = True,
         **extra: Any,
     ) -> Any:
         try:
-            rv = super().main(args=args, prog_name=prog_name, complete_var=complete_var, standalone_mode=False, **extra)
+            rv = super().main(
+                args=args,
+                prog_name=prog_name,
+                complete_var=complete_var,
+                standalone_mode=False,
+                windows_expand_args=windows_expand_args,
+                **extra,
+            )
         except _USAGE_ERRORS as err:  # usage errors, bad parameter values
             message = err.format_message() if hasattr(err, "format_message") else str(err)
             _fail(message or "missing command or arguments (usage above; --help for more)")
@@ -99,7 +109,8 @@ class _OneLineErrors(TyperGroup):
 
 app = typer.Typer(
     cls=_OneLineErrors,
-    help="Look-ahead cruise control for heavy trucks: simulate a PI baseline (and, next, a DP-MPC) over road profiles.",
+    help="Look-ahead cruise control for heavy trucks: simulate a PI cruise controller and a look-ahead DP-MPC "
+    "over road profiles and compare their fuel and trip time.",
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
@@ -110,16 +121,17 @@ config_app = typer.Typer(help="The parameters: key tables and the packaged defau
 app.add_typer(model_app, name="model")
 app.add_typer(road_app, name="road")
 app.add_typer(config_app, name="config")
-app.command("bench")(bench_cmd)
+app.command("bench", help=BENCH_HELP)(bench_cmd)
 
 BOTH = "both"
 """``--controller both``: PI and MPC on the same road and vehicle, with Δfuel and Δtime."""
 
 ControllerChoice = enum.Enum("ControllerChoice", {name: name for name in [*CONTROLLERS, BOTH]}, type=str)  # type: ignore[misc]
 """``--controller`` values: every controller registered in :data:`truckmpc.sim.CONTROLLERS`, and ``both``."""
+_DEFAULT_CONTROLLER = ControllerChoice(BOTH)
 
 
-class SectionKind(str, enum.Enum):
+class SectionKind(enum.StrEnum):
     flat = "flat"
     hill = "hill"
     crest = "crest"
@@ -150,7 +162,7 @@ def simulate_cmd(
     ] = None,
     controller: Annotated[
         ControllerChoice, typer.Option("--controller", help="Controller to run; both = PI and MPC compared.")
-    ] = ControllerChoice(BOTH),  # type: ignore[valid-type]
+    ] = _DEFAULT_CONTROLLER,
     vehicle: VehicleOpt = None,
     config: ConfigOpt = None,
     set_: SetOpt = None,

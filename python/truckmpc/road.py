@@ -11,6 +11,7 @@ segment starting at the row, and the altitude is its integral. With both, the al
 
 from __future__ import annotations
 
+import itertools
 import math
 import os
 from collections.abc import Sequence
@@ -58,7 +59,7 @@ class RoadProfile:
     distance_m: np.ndarray
     altitude_m: np.ndarray
     source: str | None = None
-    _road: Any = field(default=None, init=False, repr=False)
+    _road: _core.Road | None = field(default=None, init=False, repr=False)
 
     def __post_init__(self) -> None:
         distance = _frozen_array(self.distance_m)
@@ -92,10 +93,11 @@ class RoadProfile:
 
     def core(self) -> _core.Road:
         """The road for the Rust core (`_core.Road(distance_m, slope)`), built once."""
-        if self._road is None:
+        road = self._road
+        if road is None:
             road = _core.Road(np.ascontiguousarray(self.distance_m), np.ascontiguousarray(self.slope))
             object.__setattr__(self, "_road", road)
-        return self._road
+        return road
 
     def reversed(self) -> RoadProfile:
         """The same road driven the other way: distances measured from the far end (over the same
@@ -121,7 +123,7 @@ def _frozen_array(values: Any) -> np.ndarray:
 
 def _grid(start_m: float, end_m: float, step_m: float) -> np.ndarray:
     """Points start, start+step, ... and end; a grid point within 1 mm of the end is dropped."""
-    count = int(math.floor((end_m - start_m) / step_m + 1e-9)) + 1
+    count = math.floor((end_m - start_m) / step_m + 1e-9) + 1
     grid = start_m + step_m * np.arange(count, dtype=np.float64)
     grid = grid[grid < end_m - 1e-3]
     return np.append(grid, end_m)
@@ -151,7 +153,8 @@ def _header(where: str, number: int, line: str) -> list[str]:
     columns = [name.strip().strip('"').strip() for name in line.split(",")]
     if "distance_m" not in columns or not {"altitude_m", "grade"} & set(columns):
         raise RoadError(
-            f"{where}:{number}: expected a header with columns distance_m and altitude_m and/or grade, got {line[:80]!r}"
+            f"{where}:{number}: expected a header with columns distance_m and altitude_m and/or grade, "
+            f"got {line[:80]!r}"
         )
     return columns
 
@@ -201,13 +204,15 @@ def _check_row(where: str, number: int, data: dict[str, list[float]]) -> None:
         return
     if not distance[-1] > distance[-2]:
         raise RoadError(
-            f"{where}:{number}: column 'distance_m': expected more than the previous row's {distance[-2]:g}, got {distance[-1]:g}"
+            f"{where}:{number}: column 'distance_m': expected more than the previous row's {distance[-2]:g}, "
+            f"got {distance[-1]:g}"
         )
     if not uses_grade:
         slope = (data["altitude_m"][-1] - data["altitude_m"][-2]) / (distance[-1] - distance[-2])
         if abs(slope) > _GRADE_CHECK:
             raise RoadError(
-                f"{where}:{number}: column 'altitude_m': slope from the previous row is {slope:.4g}, expected |slope| <= {MAX_GRADE:g}"
+                f"{where}:{number}: column 'altitude_m': slope from the previous row is {slope:.4g}, "
+                f"expected |slope| <= {MAX_GRADE:g}"
             )
 
 
@@ -216,12 +221,12 @@ def write_road(profile: RoadProfile, path: PathLike, comments: Sequence[str] = (
     rows (%.3f m, %.6f m, %.6f); a row's grade is that of the segment starting there, the last
     row repeats the previous one."""
     distance = [f"{d:.3f}" for d in profile.distance_m]
-    if any(float(b) <= float(a) for a, b in zip(distance, distance[1:])):
+    if any(float(b) <= float(a) for a, b in itertools.pairwise(distance)):
         raise RoadError(f"{path}: points closer than 1 mm cannot be written with 1 mm resolution")
     grade = np.append(profile.slope, profile.slope[-1])
     lines = [f"# {line}".rstrip() for comment in comments for line in str(comment).splitlines() or [""]]
     lines.append("distance_m,altitude_m,grade")
-    lines += [f"{d},{_fixed(h)},{_fixed(g)}" for d, h, g in zip(distance, profile.altitude_m, grade)]
+    lines += [f"{d},{_fixed(h)},{_fixed(g)}" for d, h, g in zip(distance, profile.altitude_m, grade, strict=True)]
     atomic_write_text(path, "\n".join(lines) + "\n")
 
 
@@ -305,7 +310,7 @@ def _section_name(kind: str, length_m: float, slope_pct: float | None, lead_m: f
     """E.g. `hill_L500_A3.5`, `hill_L300_A-3` (a descent), `crest_L1500_A2`, `flat_L1000`;
     a non-default lead or tail is appended as `_lead200`, `_tail800`."""
     name = f"{kind}_L{length_m:g}"
-    if kind != "flat":
+    if kind != "flat" and slope_pct is not None:
         name += f"_A{(slope_pct if kind == 'hill' else abs(slope_pct)):g}"
     default_lead, default_tail = SECTION_KINDS[kind]
     name += f"_lead{lead_m:g}" if lead_m != default_lead else ""

@@ -255,7 +255,7 @@ def _trace_arrays(rows: list[tuple[float, ...]], road: RoadProfile, vehicle: _co
     slope_seg = np.asarray(road.slope, dtype=float)
     seg = np.clip(np.searchsorted(distance, s, side="right") - 1, 0, len(slope_seg) - 1)
     slope = slope_seg[seg]  # the grade of the segment ahead; the last segment's at the end point
-    engine = np.array([vehicle.engine_speed_rpm(vi, int(g)) for vi, g in zip(v, gear)])
+    engine = np.array([vehicle.engine_speed_rpm(vi, int(g)) for vi, g in zip(v, gear, strict=True)])
     return {
         "distance_m": s,
         "time_s": t,

@@ -173,8 +173,8 @@ def _pi_key(road: int, config: RunConfig) -> str:
 def _mpc_cost(profile: RoadProfile, config: RunConfig) -> float:
     """Relative work of an MPC run: solves (length / S) times stages per solve (horizon / S) times
     grid points per stage (1 / delta)."""
-    mpc = config.mpc
-    return profile.length_m / mpc.stage_m * (mpc.horizon_m / mpc.stage_m) / mpc.delta_kmh
+    stage_m, horizon_m, delta_kmh = (float(config.mpc[key]) for key in ("stage_m", "horizon_m", "delta_kmh"))
+    return profile.length_m / stage_m * (horizon_m / stage_m) / delta_kmh
 
 
 def _road_digest(profile: RoadProfile) -> str:

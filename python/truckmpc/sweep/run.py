@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from truckmpc.road import RoadProfile
+from truckmpc.road import PathLike, RoadProfile
 from truckmpc.sweep.columns import PI_FIELDS, parse_cell, result_cells
 from truckmpc.sweep.errors import SweepInterrupted
 from truckmpc.sweep.files import (
@@ -22,7 +22,7 @@ from truckmpc.sweep.files import (
     write_settings,
 )
 from truckmpc.sweep.grid import Axis
-from truckmpc.sweep.plan import PathLike, Row, SweepPlan, plan_sweep
+from truckmpc.sweep.plan import Row, SweepPlan, plan_sweep
 from truckmpc.sweep.pool import Runner, Task
 
 
