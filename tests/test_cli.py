@@ -330,3 +330,16 @@ def test_ci_runs_exactly_the_readme_test_command():
     assert test_command in ci_lines
     # set -e: the command's failure is CI's; what runs after it (the benchmark) can only add a failure
     assert "set -euo pipefail" in ci_lines[: ci_lines.index(test_command)]
+
+
+@pytest.mark.parametrize(
+    ("command", "units"),
+    [(["model", "stationary"], ["[km/h]", "[%]"]), (["road", "make"], ["[m]", "[%]"]), (["simulate"], [])],
+)
+def test_help_keeps_units_and_shows_flags_as_flags(command: list[str], units: list[str]) -> None:
+    result = runner.invoke(app, [*command, "--help"], env={"COLUMNS": "120"})
+    assert result.exit_code == 0
+    for unit in units:
+        assert unit in result.stdout, (unit, result.stdout)
+    assert "<bool>" not in result.stdout and "list[" not in result.stdout
+    assert "next" not in runner.invoke(app, ["--help"]).stdout  # the DP-MPC is here

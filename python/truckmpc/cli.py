@@ -114,10 +114,14 @@ app = typer.Typer(
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
+    # Plain help: rich markup would take the units in brackets ([km/h], [m]) for style tags and drop them.
+    rich_markup_mode=None,
 )
-model_app = typer.Typer(help="Query the vehicle model.", no_args_is_help=True)
-road_app = typer.Typer(help="Make and regenerate road profiles.", no_args_is_help=True)
-config_app = typer.Typer(help="The parameters: key tables and the packaged default files.", no_args_is_help=True)
+model_app = typer.Typer(help="Query the vehicle model.", no_args_is_help=True, rich_markup_mode=None)
+road_app = typer.Typer(help="Make and regenerate road profiles.", no_args_is_help=True, rich_markup_mode=None)
+config_app = typer.Typer(
+    help="The parameters: key tables and the packaged default files.", no_args_is_help=True, rich_markup_mode=None
+)
 app.add_typer(model_app, name="model")
 app.add_typer(road_app, name="road")
 app.add_typer(config_app, name="config")
@@ -139,14 +143,14 @@ class SectionKind(enum.StrEnum):
 
 
 VehicleOpt = Annotated[
-    Path | None, typer.Option("--vehicle", help="Vehicle YAML file (default: packaged truck-40t.yaml).")
+    Path | None, typer.Option("--vehicle", metavar="FILE", help="Vehicle YAML file (default: packaged truck-40t.yaml).")
 ]
 ConfigOpt = Annotated[
-    list[Path] | None, typer.Option("--config", help="Controller/simulation YAML overlay; repeatable.")
+    list[Path] | None, typer.Option("--config", metavar="FILE", help="Controller/simulation YAML overlay; repeatable.")
 ]
 SetOpt = Annotated[
     list[str] | None,
-    typer.Option("--set", help="Override any vehicle, controller or simulation key: key=value; repeatable."),
+    typer.Option("--set", metavar="KEY=VALUE", help="Override any vehicle, controller or simulation key: key=value; repeatable."),
 ]
 
 
@@ -158,7 +162,7 @@ def _run_config(vehicle: Path | None, config: list[Path] | None, set_: list[str]
 @app.command("simulate")
 def simulate_cmd(
     road: Annotated[
-        Path | None, typer.Option("--road", help="Road profile CSV (default: the bundled test track).")
+        Path | None, typer.Option("--road", metavar="FILE", help="Road profile CSV (default: the bundled test track).")
     ] = None,
     controller: Annotated[
         ControllerChoice, typer.Option("--controller", help="Controller to run; both = PI and MPC compared.")
@@ -187,14 +191,14 @@ def simulate_cmd(
 
 @app.command("sweep")
 def sweep_cmd(
-    road: Annotated[list[Path], typer.Option("--road", help="Road profile CSV; repeatable.")],
+    road: Annotated[list[Path], typer.Option("--road", metavar="FILE", help="Road profile CSV; repeatable.")],
     out: Annotated[
         Path,
         typer.Option("--out", help="Output directory: sweep.csv, sweep.json (and sweep.partial.csv while running)."),
     ],
     grid: Annotated[
         list[str] | None,
-        typer.Option("--grid", help="Axis KEY=start:stop:step or KEY=v1,v2,...; any config key; repeatable."),
+        typer.Option("--grid", metavar="KEY=SPEC", help="Axis KEY=start:stop:step or KEY=v1,v2,...; any config key; repeatable."),
     ] = None,
     reverse: Annotated[bool, typer.Option("--reverse", help="Drive every road in the opposite direction.")] = False,
     jobs: Annotated[
