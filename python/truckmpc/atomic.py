@@ -29,9 +29,11 @@ def atomic_write_text(path: str | os.PathLike[str], text: str, encoding: str = "
             os.fsync(handle.fileno())
         os.chmod(tmp_name, _mode_for(path))
         os.replace(tmp_name, path)
-    except BaseException:
+    except BaseException as err:
         with contextlib.suppress(FileNotFoundError):
             os.unlink(tmp_name)
+        if isinstance(err, OSError) and err.filename == tmp_name:  # name the file, not its temporary
+            raise OSError(err.errno, err.strerror, str(path)) from None
         raise
     _fsync_dir(path.parent)
 
@@ -42,12 +44,16 @@ class OutputDir:
     `with OutputDir(out_dir) as staging:` yields a fresh temporary directory created beside
     `out_dir` (same file system, so the final moves are renames). On normal exit every file written
     under `staging` is moved into `out_dir` (created if missing; files of the same name replaced;
-    other files already there left alone). On an exception the staging directory is deleted and
-    `out_dir` is not touched. The staging directory is removed in both cases.
+    other files already there left alone), or, with `replace=True`, the staging directory takes the
+    place of `out_dir` whole, so no file of an earlier output survives beside the new one. On an
+    exception the staging directory is deleted and `out_dir` is not touched. The staging directory
+    is removed in both cases. An error while writing names the file in `out_dir`, never the
+    staging directory.
     """
 
-    def __init__(self, out_dir: str | os.PathLike[str]) -> None:
+    def __init__(self, out_dir: str | os.PathLike[str], replace: bool = False) -> None:
         self.out_dir = Path(out_dir)
+        self.replace = replace
         self._staging: Path | None = None
 
     def __enter__(self) -> Path:
@@ -66,10 +72,31 @@ class OutputDir:
         if staging is None:
             return
         try:
-            if exc_type is None:
+            if exc_type is None and self.replace:
+                _swap_in(staging, self.out_dir)
+            elif exc_type is None:
                 _publish(staging, self.out_dir)
+            elif isinstance(exc, OSError) and exc.filename and str(staging) in str(exc.filename):
+                named = self.out_dir / Path(exc.filename).relative_to(staging)
+                raise OSError(exc.errno, exc.strerror, str(named)) from None
         finally:
             shutil.rmtree(staging, ignore_errors=True)
+
+
+def _swap_in(staging: Path, out_dir: Path) -> None:
+    """Put `staging` in the place of `out_dir` (two renames; the old directory is then deleted)."""
+    for source in staging.rglob("*"):
+        if source.is_file() and not source.is_symlink():
+            _fsync_file(source)
+    old = None
+    if out_dir.exists():
+        old = Path(tempfile.mkdtemp(dir=out_dir.resolve().parent, prefix=f".{out_dir.resolve().name}.old-"))
+        os.replace(out_dir, old / "previous")
+    staging.chmod(_mode_for_dir(out_dir if old is None else old / "previous"))
+    os.replace(staging, out_dir)
+    _fsync_dir(out_dir.resolve().parent)
+    if old is not None:
+        shutil.rmtree(old, ignore_errors=True)
 
 
 def _publish(staging: Path, out_dir: Path) -> None:
@@ -95,6 +122,17 @@ def _mode_for(path: Path) -> int:
         umask = os.umask(0o022)
         os.umask(umask)
         return 0o666 & ~umask
+
+
+def _mode_for_dir(previous: Path) -> int:
+    """Permission bits for a replacement directory: those of the one it replaces, else 0o777 less
+    umask (mkdtemp creates directories for the owner only)."""
+    try:
+        return previous.stat().st_mode & 0o7777
+    except FileNotFoundError:
+        umask = os.umask(0o022)
+        os.umask(umask)
+        return 0o777 & ~umask
 
 
 def _fsync_file(path: Path) -> None:

@@ -33,9 +33,10 @@ from typer.core import TyperGroup
 
 from truckmpc.bench import BENCH_HELP, bench_cmd
 from truckmpc.config import RunConfig, load_run_config
-from truckmpc.errors import TruckmpcError
+from truckmpc.errors import ConfigError, TruckmpcError
 from truckmpc.pi import steady_gear
-from truckmpc.results import format_table, write_outputs
+from truckmpc.record import RunRequest, load_replay, run_record
+from truckmpc.results import check_run_dir, format_table, write_outputs
 from truckmpc.road import COLUMNS_COMMENT, default_test_track, load_road, make_section, write_road, write_shipped_roads
 from truckmpc.sim import CONTROLLERS, simulate
 from truckmpc.units import KMH_PER_MPS, M_PER_KM, PCT_PER_FRACTION
@@ -132,7 +133,6 @@ BOTH = "both"
 
 ControllerChoice = enum.Enum("ControllerChoice", {name: name for name in [*CONTROLLERS, BOTH]}, type=str)  # type: ignore[misc]
 """``--controller`` values: every controller registered in :data:`truckmpc.sim.CONTROLLERS`, and ``both``."""
-_DEFAULT_CONTROLLER = ControllerChoice(BOTH)
 
 
 class SectionKind(enum.StrEnum):
@@ -150,7 +150,9 @@ ConfigOpt = Annotated[
 ]
 SetOpt = Annotated[
     list[str] | None,
-    typer.Option("--set", metavar="KEY=VALUE", help="Override any vehicle, controller or simulation key: key=value; repeatable."),
+    typer.Option(
+        "--set", metavar="KEY=VALUE", help="Override any vehicle, controller or simulation key: key=value; repeatable."
+    ),
 ]
 
 
@@ -165,28 +167,63 @@ def simulate_cmd(
         Path | None, typer.Option("--road", metavar="FILE", help="Road profile CSV (default: the bundled test track).")
     ] = None,
     controller: Annotated[
-        ControllerChoice, typer.Option("--controller", help="Controller to run; both = PI and MPC compared.")
-    ] = _DEFAULT_CONTROLLER,
+        ControllerChoice | None,
+        typer.Option("--controller", help="Controller to run; both = PI and MPC compared (default: both)."),
+    ] = None,
     vehicle: VehicleOpt = None,
     config: ConfigOpt = None,
     set_: SetOpt = None,
     out: Annotated[Path | None, typer.Option("--out", help="Output directory (default: out/<road name>).")] = None,
     reverse: Annotated[bool, typer.Option("--reverse", help="Drive the road in the opposite direction.")] = False,
+    replay: Annotated[
+        Path | None,
+        typer.Option("--replay", metavar="SUMMARY", help="Rerun exactly what a summary.json records (road, settings)."),
+    ] = None,
 ) -> None:
     """Run controllers over a road; print a short table, write DIR/summary.json and DIR/trace-<controller>.csv.
 
     The default, both, runs PI and MPC and reports delta fuel and delta time, (MPC - PI) / PI in %.
+    A directory holding an earlier run is replaced whole.
     """
-    run_config = _run_config(vehicle, config, set_)
-    profile = default_test_track() if road is None else load_road(road)
-    if reverse:
-        profile = profile.reversed()
-    names = ["pi", "mpc"] if controller.value == BOTH else [controller.value]
-    results = {name: simulate(profile, run_config, name) for name in names}
+    if replay is not None:
+        given = [name for name, value in _run_options(road, controller, vehicle, config, set_, reverse) if value]
+        if given:
+            raise typer.BadParameter(
+                f"takes the whole run from {replay}; drop {', '.join(given)}", param_hint="'--replay'"
+            )
+        request, profile, run_config = load_replay(replay)
+        unknown = [name for name in request.controllers if name not in CONTROLLERS]
+        if unknown or not request.controllers:
+            raise ConfigError(f"{replay}: run.controllers: expected some of {', '.join(CONTROLLERS)}, got {unknown}")
+    else:
+        run_config = _run_config(vehicle, config, set_)
+        profile = default_test_track() if road is None else load_road(road)
+        profile = profile.reversed() if reverse else profile
+        chosen = BOTH if controller is None else controller.value
+        names = ("pi", "mpc") if chosen == BOTH else (chosen,)
+        request = RunRequest(
+            None if road is None else str(road),
+            reverse,
+            names,
+            _text(vehicle),
+            tuple(map(str, config or ())),
+            tuple(set_ or ()),
+        )
     out_dir = Path("out") / profile.name if out is None else out
-    written = write_outputs(out_dir, profile, results)
-    typer.echo(format_table(profile, results))
+    check_run_dir(out_dir)
+    results = {name: simulate(profile, run_config, name) for name in request.controllers}
+    written = write_outputs(out_dir, profile, results, run_record(request, profile, run_config))
+    typer.echo(format_table(profile, results, run_config))
     typer.echo("wrote " + ", ".join(str(p) for p in written))
+
+
+def _run_options(*values: object) -> list[tuple[str, object]]:
+    """The simulate options that --replay replaces, with the values given."""
+    return list(zip(("--road", "--controller", "--vehicle", "--config", "--set", "--reverse"), values, strict=True))
+
+
+def _text(path: Path | None) -> str | None:
+    return None if path is None else str(path)
 
 
 @app.command("sweep")
@@ -198,7 +235,9 @@ def sweep_cmd(
     ],
     grid: Annotated[
         list[str] | None,
-        typer.Option("--grid", metavar="KEY=SPEC", help="Axis KEY=start:stop:step or KEY=v1,v2,...; any config key; repeatable."),
+        typer.Option(
+            "--grid", metavar="KEY=SPEC", help="Axis KEY=start:stop:step or KEY=v1,v2,...; any config key; repeatable."
+        ),
     ] = None,
     reverse: Annotated[bool, typer.Option("--reverse", help="Drive every road in the opposite direction.")] = False,
     jobs: Annotated[

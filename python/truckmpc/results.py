@@ -26,11 +26,13 @@ import numpy as np
 
 from truckmpc.atomic import OutputDir
 from truckmpc.compare import compare
+from truckmpc.errors import ConfigError
 from truckmpc.sim import TRACE_COLUMNS, RunResult
 from truckmpc.table import figure_lines, label_width
 from truckmpc.units import M_PER_KM
 
 if TYPE_CHECKING:
+    from truckmpc.config import RunConfig
     from truckmpc.road import RoadProfile
 
 BASELINE = "pi"
@@ -51,8 +53,11 @@ _CSV_FORMATS = {
 }
 
 
-def summary_document(road: RoadProfile, results: Mapping[str, RunResult]) -> dict[str, Any]:
-    """The ``summary.json`` content for runs of several controllers over ``road``."""
+def summary_document(
+    road: RoadProfile, results: Mapping[str, RunResult], run: Mapping[str, Any] | None = None
+) -> dict[str, Any]:
+    """The ``summary.json`` content for runs of several controllers over ``road``; ``run`` is the
+    record of what was run (:func:`truckmpc.record.run_record`), kept under ``"run"``."""
     doc: dict[str, Any] = {"road": road.name, "length_m": float(road.length_m)}
     for name, result in results.items():
         doc[name] = dict(result.summary)
@@ -66,6 +71,8 @@ def summary_document(road: RoadProfile, results: Mapping[str, RunResult]) -> dic
         doc[f"delta_time_pct{suffix}"] = comparison.delta_time_pct
         if comparison.not_comparable is not None:
             doc[f"not_comparable{suffix}"] = comparison.not_comparable
+    if run is not None:
+        doc["run"] = dict(run)
     return doc
 
 
@@ -100,15 +107,40 @@ def _clean(value: Any) -> Any:
     return value
 
 
-def write_outputs(out_dir: str | os.PathLike[str], road: RoadProfile, results: Mapping[str, RunResult]) -> list[Path]:
-    """Write ``summary.json`` and one ``trace-<controller>.csv`` per run into ``out_dir``, all or nothing.
+RUN_FILES = ("summary.json", "trace-*.csv", "run.png", "run.svg")
+"""What a run directory holds (its outputs and its plots); a new run replaces them all."""
+
+
+def check_run_dir(out_dir: str | os.PathLike[str]) -> None:
+    """Refuse an output directory that holds anything but an earlier run's files (which the new run
+    replaces whole): it is someone's other data."""
+    out = Path(out_dir)
+    if out.exists() and not out.is_dir():
+        raise ConfigError(f"{out}: expected a directory for the run's outputs, got a file")
+    if not out.is_dir():
+        return
+    foreign = sorted(p.name for p in out.iterdir() if not any(p.match(pattern) for pattern in RUN_FILES))
+    if foreign:
+        shown = ", ".join(foreign[:3]) + (", ..." if len(foreign) > 3 else "")
+        raise ConfigError(f"{out}: holds files that are not a truckmpc run's ({shown}); choose another --out")
+
+
+def write_outputs(
+    out_dir: str | os.PathLike[str],
+    road: RoadProfile,
+    results: Mapping[str, RunResult],
+    run: Mapping[str, Any] | None = None,
+) -> list[Path]:
+    """Write ``summary.json`` and one ``trace-<controller>.csv`` per run into ``out_dir``, all or
+    nothing, replacing any earlier run there whole (see :func:`check_run_dir`).
 
     Returns the paths written.
     """
     out = Path(out_dir)
+    check_run_dir(out)
     names = ["summary.json"] + [f"trace-{name}.csv" for name in results]
-    with OutputDir(out) as staging:
-        text = json.dumps(_clean(summary_document(road, results)), indent=2, default=_json_default)
+    with OutputDir(out, replace=True) as staging:
+        text = json.dumps(_clean(summary_document(road, results, run)), indent=2, default=_json_default)
         (staging / "summary.json").write_text(text + "\n", encoding="utf-8")
         for name, result in results.items():
             (staging / f"trace-{name}.csv").write_text(trace_csv(result), encoding="utf-8")
@@ -132,11 +164,12 @@ _FIGURES = (
 )
 
 
-def format_table(road: RoadProfile, results: Mapping[str, RunResult]) -> str:
-    """A short plain-text table of the runs' main figures, one column per controller."""
+def format_table(road: RoadProfile, results: Mapping[str, RunResult], config: RunConfig | None = None) -> str:
+    """A short plain-text table of the runs' main figures, one column per controller; with the
+    configuration, its first line names the truck's mass, v_ref and the speed band."""
     names = list(results)
     doc = summary_document(road, results)
-    lines = [f"road {road.name}: {road.length_m / M_PER_KM:.2f} km"]
+    lines = [f"road {road.name}: {road.length_m / M_PER_KM:.2f} km" + ("" if config is None else _setup(config))]
     width = label_width(_FIGURES)
     lines.append(" " * width + "".join(f"{name:>14}" for name in names))
     lines += figure_lines(_FIGURES, [results[name].summary for name in names], 14)
@@ -148,3 +181,10 @@ def format_table(road: RoadProfile, results: Mapping[str, RunResult]) -> str:
         if results[name].message:
             lines.append(f"{name}: {results[name].message}")
     return "\n".join(lines)
+
+
+def _setup(config: RunConfig) -> str:
+    """`; truck 40000 kg; v_ref 85 km/h, band 80-90 km/h`."""
+    cruise = config.cruise
+    v_min, v_max = cruise.v_ref_kmh - cruise.v_dec_kmh, cruise.v_ref_kmh + cruise.v_inc_kmh
+    return f"; truck {config.vehicle.mass_kg:.0f} kg; v_ref {cruise.v_ref_kmh:g} km/h, band {v_min:g}-{v_max:g} km/h"

@@ -11,6 +11,7 @@ segment starting at the row, and the altitude is its integral. With both, the al
 
 from __future__ import annotations
 
+import hashlib
 import itertools
 import math
 import os
@@ -98,6 +99,13 @@ class RoadProfile:
             road = _core.Road(np.ascontiguousarray(self.distance_m), np.ascontiguousarray(self.slope))
             object.__setattr__(self, "_road", road)
         return road
+
+    def sha256(self) -> str:
+        """Hex SHA-256 of the profile's points (distances, then altitudes, as float64): the road's
+        identity in result files, whatever file or generator it came from."""
+        digest = hashlib.sha256(self.distance_m.tobytes())
+        digest.update(self.altitude_m.tobytes())
+        return digest.hexdigest()
 
     def reversed(self) -> RoadProfile:
         """The same road driven the other way: distances measured from the far end (over the same

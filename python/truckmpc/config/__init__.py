@@ -14,7 +14,7 @@ from truckmpc.config.keys import (
     default_config_path,
     section_keys,
 )
-from truckmpc.config.run_config import Origin, RunConfig, Section, load_run_config
+from truckmpc.config.run_config import Origin, RunConfig, Section, config_from_values, load_run_config
 from truckmpc.errors import ConfigError
 
 __all__ = [
@@ -27,6 +27,7 @@ __all__ = [
     "Origin",
     "RunConfig",
     "Section",
+    "config_from_values",
     "default_config_path",
     "defaults_yaml",
     "key_table",

@@ -221,3 +221,18 @@ def load_run_config(
     for text in overrides:
         layers.override(text)
     return layers.build()
+
+
+def config_from_values(values: Mapping[str, Any], where: str) -> RunConfig:
+    """A configuration from a complete flat mapping of keys to values (a recorded run's settings);
+    errors name `where` and the key."""
+    layers = _Layers()
+    layers.next_layer()
+    for key, raw in values.items():
+        if key not in KEYS:
+            raise unknown_key(where, key, KEYS)
+        layers.put(key, raw, where)
+    missing = [key for key in KEYS if key not in values]
+    if missing:
+        raise ConfigError(f"{where}: missing key {missing[0]!r} (a recorded run gives every parameter)")
+    return layers.build()

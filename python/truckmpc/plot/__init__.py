@@ -53,6 +53,8 @@ def plot_dir(
         )
     target = source if out is None else Path(out)
     as_file = target.suffix.lower() in (".png", ".svg")
+    if target.suffix and not as_file and not target.is_dir():
+        raise PlotError(f"--out {target}: expected a directory or a .png or .svg file name, got {target.suffix!r}")
     if as_file and is_run and is_sweep:
         raise PlotError(f"--out {target}: {source} holds both a run and a sweep; give a directory")
     written: list[Path] = []

@@ -9,7 +9,6 @@ an MPC key needs one PI run per road, an axis over ``v_ref_kmh`` or ``mass_kg`` 
 from __future__ import annotations
 
 import dataclasses
-import hashlib
 import json
 import re
 from collections.abc import Mapping, Sequence
@@ -177,13 +176,6 @@ def _mpc_cost(profile: RoadProfile, config: RunConfig) -> float:
     return profile.length_m / stage_m * (horizon_m / stage_m) / delta_kmh
 
 
-def _road_digest(profile: RoadProfile) -> str:
-    """SHA-256 of the profile's distances and altitudes (float64 bytes)."""
-    digest = hashlib.sha256(profile.distance_m.tobytes())
-    digest.update(profile.altitude_m.tobytes())
-    return digest.hexdigest()
-
-
 def _settings(
     profiles: Sequence[RoadProfile], direction: str, axes: Sequence[Axis], base: _Base, base_config: RunConfig
 ) -> dict[str, Any]:
@@ -192,9 +184,7 @@ def _settings(
     config_doc.pop("sources")
     settings = {
         "version": 1,
-        "roads": [
-            {"name": p.name, "direction": direction, "sha256": _road_digest(p), "path": p.source} for p in profiles
-        ],
+        "roads": [{"name": p.name, "direction": direction, "sha256": p.sha256(), "path": p.source} for p in profiles],
         "grid": [{"key": a.key, "spec": a.spec, "values": list(a.values)} for a in axes],
         "base_config": config_doc,
         "vehicle": base.vehicle_path,

@@ -1,0 +1,113 @@
+"""What was run, recorded in `summary.json` so that the run can be repeated exactly.
+
+The record names the program and its version, the road (name, file, length, SHA-256 of its points,
+direction), the controllers, the inputs as the user gave them (vehicle file, overlay files, `--set`
+overrides) and every resolved parameter. `truckmpc simulate --replay summary.json` rebuilds the run
+from the resolved parameters and the road file, checking that the road is still the one that was run.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from importlib.metadata import PackageNotFoundError, version
+from pathlib import Path
+from typing import Any
+
+from truckmpc.config import RunConfig, config_from_values
+from truckmpc.errors import ConfigError, read_user_text
+from truckmpc.road import RoadProfile, default_test_track, load_road
+
+WALL_CLOCK_FIELDS = frozenset({"compute_time_s", "realtime_ratio", "solve_ms_mean", "solve_ms_max"})
+"""Summary fields that measure the computer, not the truck: a replay reproduces every other field."""
+
+
+@dataclass(frozen=True)
+class RunRequest:
+    """A `simulate` command's inputs as the user gave them."""
+
+    road_path: str | None
+    """The road file; None for the bundled test track."""
+    reverse: bool
+    controllers: tuple[str, ...]
+    vehicle_path: str | None = None
+    config_paths: tuple[str, ...] = ()
+    overrides: tuple[str, ...] = ()
+
+
+def program_version() -> str:
+    """The installed truckmpc's version."""
+    try:
+        return version("truckmpc")
+    except PackageNotFoundError:  # running from a source tree that was never installed
+        return "unknown"
+
+
+def run_record(request: RunRequest, profile: RoadProfile, config: RunConfig) -> dict[str, Any]:
+    """The `run` object of `summary.json`."""
+    road_path = None if request.road_path is None else str(Path(request.road_path).resolve())
+    settings = config.as_dict()
+    settings.pop("sources")
+    return {
+        "program": {"name": "truckmpc", "version": program_version()},
+        "road": {
+            "name": profile.name,
+            "path": road_path,
+            "length_m": profile.length_m,
+            "sha256": profile.sha256(),
+            "reverse": request.reverse,
+        },
+        "controllers": list(request.controllers),
+        "inputs": {
+            "vehicle": request.vehicle_path,
+            "configs": list(request.config_paths),
+            "overrides": list(request.overrides),
+        },
+        "settings": settings,
+    }
+
+
+def load_replay(path: Path) -> tuple[RunRequest, RoadProfile, RunConfig]:
+    """The request, road and configuration recorded in a `summary.json`; the road must still hash
+    to the recorded SHA-256."""
+    where = str(path)
+    try:
+        doc = json.loads(read_user_text(path, where, "a summary.json file", ConfigError))
+    except json.JSONDecodeError as err:
+        raise ConfigError(f"{where}:{err.lineno}: invalid JSON: {err.msg}") from None
+    run = _field(doc, "run", dict, where)
+    road = _field(run, "road", dict, f"{where}: run")
+    settings = _field(run, "settings", dict, f"{where}: run")
+    values = {
+        key: value for section in settings.values() if isinstance(section, dict) for key, value in section.items()
+    }
+    config = config_from_values(values, f"{where}: run.settings")
+    road_path = _field(road, "path", (str, type(None)), f"{where}: run.road")
+    reverse = _field(road, "reverse", bool, f"{where}: run.road")
+    profile = default_test_track() if road_path is None else load_road(road_path)
+    profile = profile.reversed() if reverse else profile
+    recorded = _field(road, "sha256", str, f"{where}: run.road")
+    if profile.sha256() != recorded:
+        raise ConfigError(
+            f"{where}: run.road.sha256: expected the road that was run ({recorded[:12]}...), "
+            f"got {profile.sha256()[:12]}... from {road_path or 'the bundled test track'}"
+        )
+    controllers = tuple(_field(run, "controllers", list, f"{where}: run"))
+    inputs = _field(run, "inputs", dict, f"{where}: run")
+    given = (inputs.get("vehicle"), tuple(inputs.get("configs", ())), tuple(inputs.get("overrides", ())))
+    return RunRequest(road_path, reverse, controllers, *given), profile, config
+
+
+def _field(doc: Mapping[str, Any], key: str, kind: type | tuple[type, ...], where: str) -> Any:
+    if not isinstance(doc, Mapping) or key not in doc:
+        raise ConfigError(f"{where}: missing key {key!r} (not a summary.json written by truckmpc simulate)")
+    value = doc[key]
+    if not isinstance(value, kind):
+        raise ConfigError(f"{where}: key {key!r}: expected {_kind_text(kind)}, got {type(value).__name__}")
+    return value
+
+
+def _kind_text(kind: type | tuple[type, ...]) -> str:
+    kinds: Sequence[type] = kind if isinstance(kind, tuple) else (kind,)
+    return " or ".join("null" if k is type(None) else k.__name__ for k in kinds)
