@@ -10,7 +10,7 @@ Public API::
 from truckmpc.config import PiConfig, RunConfig, SimConfig, VehicleConfig, load_run_config, load_vehicle
 from truckmpc.controller import Control, Controller, PlantState
 from truckmpc.errors import ConfigError, RoadError, TruckmpcError
-from truckmpc.pi import GearLogic, PiController, steady_gear
+from truckmpc.pi import steady_gear
 from truckmpc.results import format_table, summary_document, trace_csv, write_outputs
 from truckmpc.road import RoadProfile, default_test_track, load_road, make_section, shipped_roads, write_road
 from truckmpc.sim import CONTROLLERS, TRACE_COLUMNS, RunResult, simulate
@@ -22,9 +22,7 @@ __all__ = [
     "ConfigError",
     "Control",
     "Controller",
-    "GearLogic",
     "PiConfig",
-    "PiController",
     "PlantState",
     "RoadError",
     "RoadProfile",

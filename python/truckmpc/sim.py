@@ -6,9 +6,11 @@ integrating in time keeps dv/dt finite at any speed. The last step is shortened 
 road's end. At the default step, halving it changes trip fuel and time on the bundled test track by far
 less than the 0.05 % / 0.01 % the project requires (``tests/test_sim.py`` checks it).
 
-A controller (:class:`truckmpc.controller.Controller`) is asked for a decision whenever its previous one
-runs out: after one plant step (PI, section 2.5) or on reaching a distance (a look-ahead controller that
-holds its inputs over a stage). A truck whose speed falls below the stall speed (gear 1 turning the
+The built-in controllers (``"pi"``, ``"mpc"``) run in the Rust closed loop (``truckmpc._core.run``),
+with the GIL released; a :class:`truckmpc.controller.Controller` written in Python runs in the loop
+below, which steps the same plant the same way. A controller is asked for a decision whenever its
+previous one runs out: after one plant step (PI, section 2.5) or on reaching a distance (a look-ahead
+controller that holds its inputs over a stage). A truck whose speed falls below the stall speed (gear 1 turning the
 engine slower than idle) stops the run: the result says ``stalled`` and where.
 
 The trace is sampled every ``trace_step_m`` metres of distance (and at the final point) by linear
@@ -19,7 +21,6 @@ step that crosses it.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -28,14 +29,27 @@ import numpy as np
 from truckmpc import _core
 from truckmpc.controller import Control, Controller, PlantState
 from truckmpc.errors import ConfigError
-from truckmpc.mpc import MpcController
-from truckmpc.pi import PiController
 
 if TYPE_CHECKING:
     from truckmpc.config import RunConfig
     from truckmpc.road import RoadProfile
 
 KMH_PER_MPS = 3.6
+PI_KEYS = (
+    "v_ref_kmh",
+    "v_inc_kmh",
+    "pedal_kp",
+    "pedal_ki",
+    "pedal_integrator_limit",
+    "brake_kp",
+    "brake_ki",
+    "brake_integrator_limit",
+    "gear_down_rpm",
+    "gear_up_rpm",
+)
+"""The PI settings the Rust closed loop takes (the PI's gains and gear thresholds; its v_ref is the
+start speed of every run unless ``start_speed_kmh`` is set)."""
+SIM_KEYS = ("plant_dt_s", "trace_step_m", "start_speed_kmh")
 ARRIVAL_TOLERANCE_M = 1e-6
 """A run (or a hold ``until_m``) is complete within this distance of its target [m]."""
 
@@ -54,13 +68,9 @@ TRACE_COLUMNS = (
 )
 """Trace columns, in CSV order. ``fuel_g`` and ``brake_energy_kj`` are cumulative."""
 
-ControllerFactory = Callable[[_core.Vehicle, "RunConfig"], Controller]
-
-CONTROLLERS: dict[str, ControllerFactory] = {
-    "pi": lambda vehicle, config: PiController(vehicle, config.pi),
-    "mpc": lambda vehicle, config: MpcController(vehicle, config.mpc, config.pi),
-}
-"""Controllers selectable by name (``truckmpc simulate --controller``)."""
+CONTROLLERS: tuple[str, ...] = ("pi", "mpc")
+"""Built-in controllers selectable by name (``truckmpc simulate --controller``): the PI of section 2.5
+and the DP-MPC of chapter 5, both run by the Rust closed loop."""
 
 
 @dataclass(frozen=True)
@@ -132,16 +142,6 @@ class _TraceRecorder:
             self.rows.append((last.s_m, last.t_s, last.v_mps, last.fuel_g, last.brake_energy_j, *u))
 
 
-def _controller_for(name: str | Controller, vehicle: _core.Vehicle, config: RunConfig) -> Controller:
-    if not isinstance(name, str):
-        return name
-    try:
-        factory = CONTROLLERS[name]
-    except KeyError:
-        raise ConfigError(f"controller: expected one of {', '.join(CONTROLLERS)}, got {name!r}") from None
-    return factory(vehicle, config)
-
-
 def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller = "pi") -> RunResult:
     """Drive ``road`` with ``controller`` from its start to its end (or a stall).
 
@@ -161,12 +161,36 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
         ``mean_speed_kmh``, ``start_speed_kmh``, ``end_speed_kmh``, ``gear_shifts``,
         ``brake_energy_kj``, ``neutral_distance_m``, ``compute_time_s`` (wall time of the run),
         ``realtime_ratio`` (compute time / simulated time), ``stalled``, ``stall_distance_m``
-        (None unless stalled), ``message`` (None unless stalled), ``plant_dt_s``.
+        (None unless stalled), ``message`` (None unless stalled), ``plant_dt_s``. The MPC adds
+        ``solves``, ``infeasible_solves``, ``solve_ms_mean``, ``solve_ms_max``, ``states_per_solve``,
+        ``transitions_per_solve`` and ``settings`` (its parameters as the kernel took them); a Python
+        controller with a ``summary()`` method adds its entries.
     """
+    if isinstance(controller, str):
+        return _run_built_in(road, config, controller)
+    return _run_python_loop(road, config, controller)
+
+
+def _run_built_in(road: RoadProfile, config: RunConfig, name: str) -> RunResult:
+    """Run a built-in controller in the Rust closed loop."""
+    if name not in CONTROLLERS:
+        raise ConfigError(f"controller: expected one of {', '.join(CONTROLLERS)}, got {name!r}")
+    pi = {key: getattr(config.pi, key) for key in PI_KEYS}
+    sim = {key: getattr(config.sim, key) for key in SIM_KEYS}
+    mpc = config.mpc.core_params() if name == "mpc" else None
+    altitude_m = np.ascontiguousarray(road.altitude_m, dtype=float)
+    out = _core.run(config.vehicle.core(), road.core(), altitude_m, name, pi, sim, mpc)
+    summary = dict(out.summary)
+    if mpc is not None:
+        summary["settings"] = dict(mpc)
+    return RunResult(name=out.controller, road=road.name, summary=summary, trace=dict(out.trace))
+
+
+def _run_python_loop(road: RoadProfile, config: RunConfig, ctrl: Controller) -> RunResult:
+    """Run a controller written in Python, stepping the Rust plant once per decision or trace sample."""
     wall_start = time.perf_counter()
     sim = config.sim
     vehicle = config.vehicle.core()
-    ctrl = _controller_for(controller, vehicle, config)
     core_road = road.core()
     start_m, end_m = core_road.start_m, core_road.end_m
     v0_kmh = config.pi.v_ref_kmh if sim.start_speed_kmh is None else sim.start_speed_kmh

@@ -11,6 +11,8 @@ use truckmpc_core as core;
 use truckmpc_core::dp;
 use truckmpc_core::levels;
 
+mod run;
+
 /// Turn a core error into a Python `ValueError` carrying its one-line message.
 fn to_py(err: core::CoreError) -> PyErr {
     PyValueError::new_err(err.to_string())
@@ -522,5 +524,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyMpcSolver>()?;
     m.add_class::<PyRoad>()?;
     m.add_class::<PyPlant>()?;
+    run::register(m)?;
     Ok(())
 }
