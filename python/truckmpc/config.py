@@ -530,7 +530,7 @@ def _build_mpc(values: dict[str, Any], source: str) -> MpcConfig:
     """Ranges that involve several keys are the kernel's to judge (one source of truth)."""
     config = MpcConfig(**values, source=source)
     try:
-        _core.MpcSolver.check_params(config.core_params())
+        _core.check_mpc_params(config.core_params())
     except ValueError as err:
         key, _, text = str(err).partition(": ")
         raise _Invalid(text.removeprefix("expected "), key=key if key in values else None, show_got=False) from None

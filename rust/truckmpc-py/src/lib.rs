@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use numpy::{IntoPyArray, PyReadonlyArray1};
+use numpy::PyReadonlyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -157,42 +157,6 @@ impl PyVehicle {
         Ok(self.inner.engine_speed_rpm(v_mps, gear))
     }
 
-    /// Engine torque (2.8) [Nm] at engine speed `n_rpm`, pedal and gear.
-    fn engine_torque_nm(&self, n_rpm: f64, pedal: f64, gear: usize) -> PyResult<f64> {
-        self.check_gear(gear)?;
-        Ok(self.inner.engine_torque_nm(n_rpm, pedal, gear))
-    }
-
-    /// Acceleration (B.1) [m/s²] at speed [m/s], pedal, brake, gear and grade.
-    fn accel_mps2(&self, v_mps: f64, pedal: f64, brake: f64, gear: usize, slope: f64) -> PyResult<f64> {
-        self.check_gear(gear)?;
-        Ok(self.inner.accel_mps2(v_mps, pedal, brake, gear, slope))
-    }
-
-    /// Fuel mass flow (B.2) [g/s] at speed [m/s], pedal and gear.
-    fn fuel_rate_gps(&self, v_mps: f64, pedal: f64, gear: usize) -> PyResult<f64> {
-        self.check_gear(gear)?;
-        Ok(self.inner.fuel_rate_gps(v_mps, pedal, gear))
-    }
-
-    /// Speed [m/s] after one Euler stage (5.4) of `h_m` metres with constant inputs.
-    fn euler_step(&self, v0_mps: f64, pedal: f64, brake: f64, gear: usize, slope: f64, h_m: f64) -> PyResult<f64> {
-        self.check_gear(gear)?;
-        Ok(levels::euler_step(&self.inner, v0_mps, pedal, brake, gear, slope, h_m))
-    }
-
-    /// Pedal level (B.5) joining `v0_mps` to `v1_mps` in one Euler stage of `h_m` metres (unclipped).
-    fn pedal_for_step(&self, v0_mps: f64, v1_mps: f64, gear: usize, slope: f64, h_m: f64) -> PyResult<f64> {
-        self.check_forward_gear(gear)?;
-        Ok(levels::pedal_for_step(&self.inner, v0_mps, v1_mps, gear, slope, h_m))
-    }
-
-    /// Brake level (B.7) joining `v0_mps` to `v1_mps` at fuel cut in one Euler stage (unclipped).
-    fn brake_for_step(&self, v0_mps: f64, v1_mps: f64, gear: usize, slope: f64, h_m: f64) -> PyResult<f64> {
-        self.check_forward_gear(gear)?;
-        Ok(levels::brake_for_step(&self.inner, v0_mps, v1_mps, gear, slope, h_m))
-    }
-
     /// Levels holding `v_mps` on grade `slope` in `gear`: dict with `pedal`, `brake`, `feasible`,
     /// `eigenvalue_per_m` (∂(dv/ds)/∂v [1/m], tables B.1/B.2).
     fn stationary<'py>(&self, py: Python<'py>, v_mps: f64, slope: f64, gear: usize) -> PyResult<Bound<'py, PyDict>> {
@@ -217,14 +181,6 @@ impl PyVehicle {
                 "gear: expected 0 (neutral) to {}, got {gear}",
                 self.inner.forward_gears()
             )));
-        }
-        Ok(())
-    }
-
-    fn check_forward_gear(&self, gear: usize) -> PyResult<()> {
-        self.check_gear(gear)?;
-        if gear == core::NEUTRAL {
-            return Err(PyValueError::new_err("gear: expected a forward gear, not neutral"));
         }
         Ok(())
     }
@@ -399,129 +355,17 @@ fn mpc_params_from_dict(dict: &Bound<'_, PyDict>) -> PyResult<dp::MpcParams> {
     Ok(params)
 }
 
-/// The look-ahead DP of chapter 5 on a road, with its reusable workspace.
-///
-/// Args:
-///     vehicle: the truck model the controller predicts with.
-///     road: the road whose slopes it looks ahead at.
-///     params: dict of MPC parameters (`parameter_names()`); missing keys take tables 6.1/6.2.
-#[pyclass(name = "MpcSolver", module = "truckmpc._core")]
-struct PyMpcSolver {
-    vehicle: Arc<core::Vehicle>,
-    road: Arc<core::Road>,
-    solver: dp::Solver,
-    slopes: Vec<f64>,
-    last: dp::Solution,
-}
-
-/// What `MpcSolver.solve` returns: (feasible, pedal, brake, gear, cost, states, transitions).
-type SolveTuple = (bool, f64, f64, usize, f64, usize, usize);
-
-#[pymethods]
-impl PyMpcSolver {
-    #[new]
-    fn new(vehicle: &PyVehicle, road: &PyRoad, params: &Bound<'_, PyDict>) -> PyResult<Self> {
-        let params = mpc_params_from_dict(params)?;
-        Ok(PyMpcSolver {
-            vehicle: vehicle.inner.clone(),
-            road: road.inner.clone(),
-            solver: dp::Solver::new(params),
-            slopes: Vec::new(),
-            last: dp::Solution::default(),
-        })
-    }
-
-    /// Names of the MPC parameters.
-    #[staticmethod]
-    fn parameter_names() -> Vec<&'static str> {
-        MPC_NAMES.to_vec()
-    }
-
-    /// Validate a dict of MPC parameters; raises ValueError("key: what was expected").
-    #[staticmethod]
-    fn check_params(params: &Bound<'_, PyDict>) -> PyResult<()> {
-        mpc_params_from_dict(params).map(|_| ())
-    }
-
-    /// Number of stages N of the horizon.
-    #[getter]
-    fn stages(&self) -> usize {
-        self.solver.params().stages()
-    }
-
-    /// Stage length S [m].
-    #[getter]
-    fn stage_m(&self) -> f64 {
-        self.solver.params().stage_m
-    }
-
-    /// Speed [m/s] one stage ahead of `s_m` under the inputs being applied, by the controller's model.
-    fn predict_speed(&self, s_m: f64, v_mps: f64, pedal: f64, brake: f64, gear: usize) -> PyResult<f64> {
-        if gear > self.vehicle.forward_gears() {
-            return Err(PyValueError::new_err(format!(
-                "gear: expected 0..={}, got {gear}",
-                self.vehicle.forward_gears()
-            )));
-        }
-        let u = core::Control { pedal, brake, gear };
-        Ok(dp::horizon::predict_speed(&self.vehicle, &self.road, s_m, v_mps, u, self.solver.params().stage_m))
-    }
-
-    /// Solve the horizon starting at `s_m` from speed `v_mps` [m/s] in `gear` with
-    /// `stages_since_shift` stages driven since the last shift. Releases the GIL.
-    ///
-    /// Returns:
-    ///     (feasible, pedal, brake, gear, cost, states, transitions) for the first stage.
-    fn solve(
-        &mut self,
-        py: Python<'_>,
-        s_m: f64,
-        v_mps: f64,
-        gear: usize,
-        stages_since_shift: u32,
-    ) -> PyResult<SolveTuple> {
-        if gear > self.vehicle.forward_gears() {
-            return Err(PyValueError::new_err(format!(
-                "gear: expected 0..={}, got {gear}",
-                self.vehicle.forward_gears()
-            )));
-        }
-        if !(v_mps.is_finite() && v_mps > 0.0) {
-            return Err(PyValueError::new_err(format!("speed: expected > 0 m/s, got {v_mps}")));
-        }
-        let start = dp::InitialState { v_mps, gear, stages_since_shift };
-        let (solver, slopes, vehicle, road) = (&mut self.solver, &mut self.slopes, &self.vehicle, &self.road);
-        let solution = py.detach(|| dp::horizon::solve_at(solver, vehicle, road, s_m, start, slopes));
-        let out = (
-            solution.feasible,
-            solution.pedal,
-            solution.brake,
-            solution.gear,
-            solution.cost,
-            solution.states,
-            solution.transitions,
-        );
-        self.last = solution;
-        Ok(out)
-    }
-
-    /// Predicted optimal trajectory of the last solve: dict of arrays `speed_mps`, `gear`, `pedal`,
-    /// `brake`, one entry per stage boundary (empty when infeasible).
-    fn last_trajectory<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let t = &self.last.trajectory;
-        let out = PyDict::new(py);
-        out.set_item("speed_mps", t.iter().map(|p| p.v_mps).collect::<Vec<_>>().into_pyarray(py))?;
-        out.set_item("gear", t.iter().map(|p| p.gear as i64).collect::<Vec<_>>().into_pyarray(py))?;
-        out.set_item("pedal", t.iter().map(|p| p.pedal).collect::<Vec<_>>().into_pyarray(py))?;
-        out.set_item("brake", t.iter().map(|p| p.brake).collect::<Vec<_>>().into_pyarray(py))?;
-        Ok(out)
-    }
+/// Validate a dict of MPC parameters (names as `MpcParams`'s fields, k_lim resolved); raises
+/// ValueError("key: what was expected").
+#[pyfunction]
+fn check_mpc_params(params: &Bound<'_, PyDict>) -> PyResult<()> {
+    mpc_params_from_dict(params).map(|_| ())
 }
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyVehicle>()?;
-    m.add_class::<PyMpcSolver>()?;
+    m.add_function(wrap_pyfunction!(check_mpc_params, m)?)?;
     m.add_class::<PyRoad>()?;
     m.add_class::<PyPlant>()?;
     run::register(m)?;
