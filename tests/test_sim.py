@@ -8,10 +8,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from truckmpc import _core
 from truckmpc.config import load_run_config
 from truckmpc.controller import Control, PlantState
+from truckmpc.errors import ConfigError
 from truckmpc.road import RoadProfile, default_test_track, load_road, make_section
-from truckmpc.sim import TRACE_COLUMNS, simulate
+from truckmpc.sim import PI_KEYS, SIM_KEYS, TRACE_COLUMNS, simulate
 
 SHARED_ROADS = Path(__file__).resolve().parents[1] / ".." / "shared" / "roads"
 VECTO_108 = SHARED_ROADS / "eu_vecto_longhaul_2015_108km.csv"
@@ -172,3 +174,29 @@ class StaleHold:
 def test_a_controller_that_never_moves_the_truck_ends_the_run(config):
     result = simulate(make_section("flat", 1000), config, StaleHold())
     assert "stopped at km 0.00" in result.message
+
+
+def test_the_rust_loop_rejects_what_it_cannot_run(config):
+    road = make_section("flat", 1000)
+    pi = {key: getattr(config.pi, key) for key in PI_KEYS}
+    sim = {key: getattr(config.sim, key) for key in SIM_KEYS}
+    args = (config.vehicle.core(), road.core(), np.asarray(road.altitude_m, dtype=float))
+    with pytest.raises(ValueError, match="^mpc: "):
+        _core.run(*args, "mpc", pi, sim)
+    with pytest.raises(ValueError, match="^controller: "):
+        _core.run(*args, "pid", pi, sim)
+    with pytest.raises(ValueError, match="^plant_dt_s: "):
+        _core.run(*args, "pi", pi, {**sim, "plant_dt_s": 0.0})
+    with pytest.raises(ValueError, match="^gear_up_rpm: missing"):
+        _core.run(*args, "pi", {k: v for k, v in pi.items() if k != "gear_up_rpm"}, sim)
+    with pytest.raises(ConfigError, match="^controller: "):
+        simulate(road, config, "pid")
+
+
+def test_the_rust_loop_returns_the_trace_columns_as_arrays(config):
+    result = simulate(make_section("flat", 1000), config, "mpc")
+    assert list(result.trace) == list(TRACE_COLUMNS)
+    assert result.trace["gear"].dtype == np.int64
+    assert all(result.trace[c].dtype == np.float64 for c in TRACE_COLUMNS if c != "gear")
+    assert result.summary["solves"] == 1000 / config.mpc.stage_m + 1
+    assert result.summary["settings"] == config.mpc.core_params()

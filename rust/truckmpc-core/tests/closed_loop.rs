@@ -2,7 +2,7 @@
 
 use std::sync::Arc;
 
-use truckmpc_core::control::{GearLogic, PiController, PiParams, RecedingController, SimParams};
+use truckmpc_core::control::{GearLogic, PiController, PiParams, RecedingController, ShiftCounter, SimParams};
 use truckmpc_core::dp::MpcParams;
 use truckmpc_core::sim::{run, RunOutput};
 use truckmpc_core::{Road, Vehicle, VehicleParams};
@@ -105,4 +105,18 @@ fn bad_settings_are_errors_naming_the_key() {
     assert!(err.starts_with("plant_dt_s: "), "{err}");
     let err = run(&vehicle, &road, &altitude[..2], &mut pi, &SIM, 85.0).unwrap_err().to_string();
     assert!(err.starts_with("altitude_m: "), "{err}");
+}
+
+#[test]
+fn shift_counter_restarts_on_a_shift_and_saturates_at_k_lim() {
+    let mut counter = ShiftCounter::new(3);
+    assert_eq!(counter.stages(), 3, "a shift is allowed at the start");
+    counter.record(12, 11);
+    assert_eq!(counter.stages(), 1);
+    counter.record(11, 11);
+    counter.record(11, 11);
+    counter.record(11, 11);
+    assert_eq!(counter.stages(), 3);
+    counter.record(11, 0);
+    assert_eq!(counter.stages(), 1, "neutral counts as a shift");
 }
