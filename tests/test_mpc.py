@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from truckmpc.config import load_run_config
-from truckmpc.road import make_section
+from truckmpc.road import default_test_track, make_section
 from truckmpc.sim import simulate
 
 DETAIL = ["horizon_m=1000"]
@@ -97,3 +97,19 @@ def test_interpolated_neutral_rule_runs_and_saves_fuel():
     """The unbiased neutral rule is a valid controller too (its effect is reported, not asserted)."""
     pi, mpc = run_both(make_section("crest", 1500, 2.0), "neutral_rule=interpolate")
     assert mpc.summary["fuel_kg"] < pi.summary["fuel_kg"]
+
+
+def test_mpc_on_the_test_track_keeps_the_figures_of_the_python_loop():
+    # Recorded with the Python closed loop driving the Rust solver (before the receding horizon moved
+    # to Rust): `truckmpc simulate --controller mpc` on the bundled test track, summary.json.
+    summary = simulate(default_test_track(), load_run_config(), "mpc").summary
+    assert summary["distance_m"] == 8499.999999903843
+    assert summary["fuel_kg"] == 2.5809409833255024
+    assert summary["time_s"] == 361.5022925247021
+    assert summary["end_speed_kmh"] == 84.83494177440996
+    assert summary["gear_shifts"] == 6
+    assert summary["brake_energy_kj"] == 585.8429539050907
+    assert summary["neutral_distance_m"] == 1224.9999999863294
+    assert (summary["solves"], summary["infeasible_solves"]) == (341, 0)
+    assert summary["states_per_solve"] == 7245.152492668622
+    assert summary["transitions_per_solve"] == 35284.645161290326

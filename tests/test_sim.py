@@ -8,8 +8,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from truckmpc import _core
 from truckmpc.config import load_run_config
 from truckmpc.controller import Control, PlantState
+from truckmpc.errors import ConfigError
 from truckmpc.road import RoadProfile, default_test_track, load_road, make_section
 from truckmpc.sim import TRACE_COLUMNS, simulate
 
@@ -172,3 +174,44 @@ class StaleHold:
 def test_a_controller_that_never_moves_the_truck_ends_the_run(config):
     result = simulate(make_section("flat", 1000), config, StaleHold())
     assert "stopped at km 0.00" in result.message
+
+
+def test_the_rust_loop_rejects_what_it_cannot_run(config):
+    road = make_section("flat", 1000)
+    args = (config.settings, road.core())
+    with pytest.raises(ValueError, match=r"^controller: "):
+        _core.run(*args, np.asarray(road.altitude_m, dtype=float), "pid")
+    with pytest.raises(ValueError, match=r"^altitude_m: "):
+        _core.run(*args, np.asarray(road.altitude_m[:1], dtype=float), "pi")
+    with pytest.raises(ConfigError, match=r"^controller: "):
+        simulate(road, config, "pid")
+
+
+class Failing:
+    """A Python controller whose decision raises after 100 m."""
+
+    name = "failing"
+
+    def start(self, road: object, state: PlantState) -> None:
+        pass
+
+    def decide(self, state: PlantState) -> tuple[Control, None]:
+        if state.s_m > 100.0:
+            raise RuntimeError("the controller's own bug")
+        return Control(0.5, 0.0, 12), None
+
+
+def test_an_error_in_a_python_controller_stops_the_loop_and_surfaces(config):
+    with pytest.raises(RuntimeError, match="the controller's own bug"):
+        simulate(make_section("flat", 1000), config, Failing())
+
+
+def test_the_rust_loop_returns_the_trace_columns_as_arrays(config):
+    result = simulate(make_section("flat", 1000), config, "mpc")
+    assert list(result.trace) == list(TRACE_COLUMNS)
+    assert result.trace["gear"].dtype == np.int64
+    assert all(result.trace[c].dtype == np.float64 for c in TRACE_COLUMNS if c != "gear")
+    assert result.summary["solves"] == 1000 / config.mpc.stage_m + 1
+    settings = result.summary["settings"]
+    assert (settings["k_lim"], settings["q_speed_below"]) == (8, 7.0)  # 200 m / S; table 6.2 at delta 0.2
+    assert settings["horizon_m"] == config.mpc.horizon_m and settings["v_ref_kmh"] == config.cruise.v_ref_kmh

@@ -10,7 +10,6 @@ Public API::
 from truckmpc.config import RunConfig, load_run_config
 from truckmpc.controller import Control, Controller, PlantState
 from truckmpc.errors import ConfigError, RoadError, TruckmpcError
-from truckmpc.pi import GearLogic, PiController, steady_gear
 from truckmpc.results import format_table, summary_document, trace_csv, write_outputs
 from truckmpc.road import RoadProfile, default_test_track, load_road, make_section, shipped_roads, write_road
 from truckmpc.sim import CONTROLLERS, TRACE_COLUMNS, RunResult, simulate
@@ -22,8 +21,6 @@ __all__ = [
     "ConfigError",
     "Control",
     "Controller",
-    "GearLogic",
-    "PiController",
     "PlantState",
     "RoadError",
     "RoadProfile",
@@ -40,7 +37,6 @@ __all__ = [
     "run_sweep",
     "shipped_roads",
     "simulate",
-    "steady_gear",
     "summary_document",
     "trace_csv",
     "write_outputs",

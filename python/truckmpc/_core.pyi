@@ -10,15 +10,16 @@ import numpy as np
 import numpy.typing as npt
 
 __all__ = [
-    "MpcSolver",
     "ParamError",
     "ParamSpec",
-    "Plant",
     "Road",
+    "RunOutput",
     "Settings",
-    "Solution",
     "Vehicle",
     "parameter_specs",
+    "run",
+    "run_python",
+    "steady_gear",
 ]
 
 class ParamError(ValueError):
@@ -91,40 +92,29 @@ class Road:
     def altitude_at(self, s_m: float) -> float: ...
     def mean_slope(self, s0_m: float, s1_m: float) -> float: ...
 
-_StateTuple = tuple[float, float, float, float, float, bool]
-
 @final
-class Plant:
-    """The simulated truck, stepped from Python."""
-
-    def __new__(cls, vehicle: Vehicle, road: Road, s_m: float, v_mps: float) -> Plant: ...
-    def state(self) -> _StateTuple: ...
-    def step_until(self, pedal: float, brake: float, gear: int, dt_s: float, s_limit_m: float) -> _StateTuple: ...
-    def advance_to(self, pedal: float, brake: float, gear: int, dt_s: float, s_target_m: float) -> _StateTuple: ...
-
-@final
-class Solution:
-    """What one DP solve decided for its first stage."""
+class RunOutput:
+    """What a closed-loop run returns."""
 
     @property
-    def feasible(self) -> bool: ...
+    def controller(self) -> str: ...
     @property
-    def pedal(self) -> float: ...
+    def summary(self) -> dict[str, Any]: ...
     @property
-    def brake(self) -> float: ...
-    @property
-    def gear(self) -> int: ...
-    @property
-    def cost(self) -> float: ...
-    @property
-    def states(self) -> int: ...
-    @property
-    def transitions(self) -> int: ...
+    def trace(self) -> dict[str, npt.NDArray[Any]]: ...
 
-@final
-class MpcSolver:
-    """The look-ahead DP on a road, one solve at a time."""
+def run(settings: Settings, road: Road, altitude_m: npt.NDArray[np.float64], controller: str) -> RunOutput:
+    """Drive `road` with the built-in controller "pi" or "mpc" (the GIL released)."""
 
-    def __new__(cls, settings: Settings, road: Road) -> MpcSolver: ...
-    def predict_speed(self, s_m: float, v_mps: float, pedal: float, brake: float, gear: int) -> float: ...
-    def solve(self, s_m: float, v_mps: float, gear: int, stages_since_shift: int) -> Solution: ...
+def run_python(
+    settings: Settings,
+    road: Road,
+    altitude_m: npt.NDArray[np.float64],
+    controller: Any,
+    profile: Any,
+    state_type: Any,
+) -> RunOutput:
+    """Drive `road` with a controller written in Python, in the same closed loop."""
+
+def steady_gear(settings: Settings, v_mps: float) -> int:
+    """The gear the PI gear logic settles in at constant speed `v_mps` [m/s]."""

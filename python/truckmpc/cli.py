@@ -31,10 +31,10 @@ from typing import Annotated, Any, NoReturn
 import typer
 from typer.core import TyperGroup
 
+from truckmpc import _core
 from truckmpc.bench import BENCH_HELP, bench_cmd
 from truckmpc.config import RunConfig, load_run_config
 from truckmpc.errors import ConfigError, TruckmpcError
-from truckmpc.pi import steady_gear
 from truckmpc.record import RunRequest, load_replay, run_record
 from truckmpc.results import check_run_dir, format_table, write_outputs
 from truckmpc.road import COLUMNS_COMMENT, default_test_track, load_road, make_section, write_road, write_shipped_roads
@@ -323,7 +323,7 @@ def stationary_cmd(
     v_mps = speed_kmh / KMH_PER_MPS
     chosen = _parse_gear(gear, core.forward_gears)
     if chosen is None:
-        chosen = steady_gear(core, v_mps, run_config.pi)
+        chosen = _core.steady_gear(run_config.settings, v_mps)
     point = core.stationary(v_mps, slope_pct / PCT_PER_FRACTION, chosen)
     doc = {
         "speed_kmh": speed_kmh,

@@ -9,11 +9,11 @@ and how long to hold them:
   then ask again. A look-ahead controller that decides once per stage of S metres (chapter 5) uses
   this; the plant still integrates with its fine step underneath.
 
-A controller may also offer ``summary() -> dict`` (the MPC does: solves, infeasible solves, time per
-solve); its entries join the run's summary.
+A controller may also offer ``summary() -> dict``; its entries join the run's summary.
 
-Both kinds run in the same loop (:func:`truckmpc.sim.simulate`), so their fuel and time figures are
-computed identically.
+The built-in PI and MPC implement the same contract in Rust and run in the Rust closed loop; a
+controller written in Python runs in the Python loop of :func:`truckmpc.sim.simulate`, which steps the
+same plant in the same way, so fuel and time figures are computed identically for all of them.
 """
 
 from __future__ import annotations

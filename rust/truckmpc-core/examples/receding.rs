@@ -3,6 +3,7 @@
 //! Usage: receding ROAD.csv [moving|fixed] [delta_kmh] [horizon_m] [stage_m]
 use std::sync::Arc;
 use std::time::Instant;
+use truckmpc_core::control::ShiftCounter;
 use truckmpc_core::dp::{horizon, DpSettings, GridAnchor, InitialState, Solver};
 use truckmpc_core::{Road, Vehicle, VehicleParams};
 
@@ -30,7 +31,7 @@ fn main() {
     };
     let mut solver = Solver::new(p.clone());
     let mut scratch = Vec::new();
-    let (mut v, mut gear, mut since) = (85.0 / 3.6, 12usize, 8u32);
+    let (mut v, mut gear, mut shifts) = (85.0 / 3.6, 12usize, ShiftCounter::new(p.k_lim));
     let (mut solves, mut transitions, mut infeasible, mut states) = (0u64, 0u64, 0u64, 0u64);
     // FNV-1a over every solve's first control and next speed: equal digests mean bit-identical traces.
     let mut digest = 0xcbf29ce484222325u64;
@@ -43,7 +44,7 @@ fn main() {
             &vehicle,
             &road,
             s,
-            InitialState { v_mps: v, gear, stages_since_shift: since },
+            InitialState { v_mps: v, gear, stages_since_shift: shifts.stages() },
             &mut scratch,
         );
         solves += 1;
@@ -55,7 +56,7 @@ fn main() {
             mix(sol.brake.to_bits());
             mix(sol.gear as u64);
             mix(sol.trajectory[1].v_mps.to_bits());
-            since = if sol.gear != gear { 1 } else { (since + 1).min(p.k_lim) };
+            shifts.record(gear, sol.gear);
             gear = sol.gear;
             v = sol.trajectory[1].v_mps;
         } else {

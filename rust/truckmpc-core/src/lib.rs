@@ -5,14 +5,19 @@
 //! - [`levels`]: pedal and brake levels joining two speeds (B.5, B.7) and stationary points (B.3);
 //! - [`road`]: a road profile with piecewise-constant slope;
 //! - [`plant`]: the truck integrated in time at a fine step, for closed-loop simulation;
-//! - [`dp`]: the look-ahead controller's search space and backward dynamic program (chapter 5).
+//! - [`dp`]: the look-ahead controller's search space and backward dynamic program (chapter 5);
+//! - [`control`]: the built-in cruise controllers, PI (section 2.5) and receding-horizon DP-MPC
+//!   (section 5.6);
+//! - [`sim`]: the closed loop driving the plant with a controller over a road, and its trace.
 
+pub mod control;
 pub mod dp;
 pub mod error;
 pub mod levels;
 pub mod params;
 pub mod plant;
 pub mod road;
+pub mod sim;
 pub mod vehicle;
 
 pub use error::{CoreError, CoreResult};

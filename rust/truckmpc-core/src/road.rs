@@ -48,6 +48,16 @@ impl Road {
         *self.distance_m.last().unwrap()
     }
 
+    /// The profile points [m].
+    pub fn distance_m(&self) -> &[f64] {
+        &self.distance_m
+    }
+
+    /// The grade of each segment between consecutive profile points [-].
+    pub fn slopes(&self) -> &[f64] {
+        &self.slope
+    }
+
     /// Index of the segment containing `s_m`, searching forward from `hint` (the last answer)
     /// for the common case of a vehicle moving forward; clamps outside the road.
     #[inline]

@@ -1,6 +1,7 @@
 //! The row cache changes nothing but speed: along a receding sequence of solves on a road, a
 //! fixed-grid solver with the cache returns bit-identical solutions to one without it.
 
+use truckmpc_core::control::ShiftCounter;
 use truckmpc_core::dp::{horizon, DpSettings, GridAnchor, InitialState, NeutralRule, Solver};
 use truckmpc_core::{Road, Vehicle, VehicleParams};
 
@@ -16,11 +17,11 @@ fn run(params: &DpSettings, caching: bool, road: &Road, vehicle: &Vehicle) -> Ve
     let mut solver = Solver::new(params.clone());
     solver.set_caching(caching);
     let mut scratch = Vec::new();
-    let (mut v, mut gear, mut since) = (85.0 / 3.6, 12usize, params.k_lim);
+    let (mut v, mut gear, mut shifts) = (85.0 / 3.6, 12usize, ShiftCounter::new(params.k_lim));
     let mut out = Vec::new();
     for stage in 0..400 {
         let s = road.start_m() + stage as f64 * params.stage_m;
-        let start = InitialState { v_mps: v, gear, stages_since_shift: since };
+        let start = InitialState { v_mps: v, gear, stages_since_shift: shifts.stages() };
         let sol = horizon::solve_at(&mut solver, vehicle, road, s, start, &mut scratch);
         out.push((
             sol.feasible,
@@ -31,7 +32,7 @@ fn run(params: &DpSettings, caching: bool, road: &Road, vehicle: &Vehicle) -> Ve
             sol.transitions,
         ));
         if sol.feasible {
-            since = if sol.gear != gear { 1 } else { (since + 1).min(params.k_lim) };
+            shifts.record(gear, sol.gear);
             gear = sol.gear;
             v = sol.trajectory[1].v_mps + 0.013 * ((stage as f64) * 0.7).sin(); // model error
         }

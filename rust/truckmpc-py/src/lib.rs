@@ -4,9 +4,8 @@
 
 mod errors;
 mod params;
-mod plant;
 mod road;
-mod solver;
+mod run;
 mod vehicle;
 
 use pyo3::prelude::*;
@@ -19,8 +18,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<params::PySettings>()?;
     m.add_class::<vehicle::PyVehicle>()?;
     m.add_class::<road::PyRoad>()?;
-    m.add_class::<plant::PyPlant>()?;
-    m.add_class::<solver::PyMpcSolver>()?;
-    m.add_class::<solver::PySolution>()?;
+    run::register(m)?;
     Ok(())
 }

@@ -1,31 +1,12 @@
-"""The PI cruise controller of thesis section 2.5 (table A.4) and its gear logic (table A.3).
+"""The PI cruise controller of thesis section 2.5 (table A.4) and its gear logic (table A.3), in Python.
 
-Two PI controllers share the speed measurement:
+This is the Python implementation the package shipped before the PI moved into the Rust closed loop.
+It stays here as an independent reference: driven through the Python loop of ``truckmpc.sim`` (as a
+Python-defined controller), it must give the same trace, to the bit, as the Rust PI.
 
-* the pedal controller drives the speed towards ``v_ref``:
-  ``P = sat(K_P e_P + I_P ∫e_P dt)`` with ``e_P = v_ref − v``;
-* the brake controller holds it at ``v_max = v_ref + v_inc``:
-  ``B = sat(K_B e_B + I_B ∫e_B dt)`` with ``e_B = v − v_max``.
-
-``sat`` clips to [0, 1]. Choices, with the evidence in ``spec/NOTES.md``:
-
-* **Units.** Errors are in **km/h** and the integrator states in **km/h·s**. The gains of table A.4 only
-  make sense this way: in m/s the clamped brake integrator keeps the brakes off until the truck is about
-  7 km/h above v_max; in km/h it brakes at v_max as the thesis describes.
-* **Anti-windup.** The table's "saturation value 30" clamps each integrator state to
-  [−limit, +limit] (``pedal_integrator_limit``, ``brake_integrator_limit``). This is what produces the
-  over- and undershoot after hills the thesis points out (the pedal integrator sits at +30 after a climb).
-* **Brake sign.** (2.11) as printed, K_B(v_max − v), would brake below v_max; the brake acts on v − v_max.
-* **Start.** The pedal integrator starts at the value that holds v_ref on the starting grade (from the
-  stationary pedal level), the brake integrator at its lower clamp, so a run has no start transient.
-* **Discretisation.** The controller is sampled at every plant step (``plant_dt_s``); each decision
-  integrates the current error over the time elapsed since the previous decision (backward rectangle).
-
-Gear selection (table A.3): each gear g has a downshift threshold ``down[g]`` and an upshift threshold
-``up[g]`` on the engine speed; above ``up[g]`` the next higher gear is chosen, below ``down[g]`` the
-next lower one. The gap between a gear's upshift point and the next gear's downshift point is the
-hysteresis; thresholds that would make an upshift land below the next gear's downshift threshold (the
-gearbox would hunt) are rejected. The PI never selects neutral.
+Errors in km/h, integrator states in km/h*s clamped to +-limit; the brake acts on v - v_max; the pedal
+integrator starts at the level holding v_ref on the first grade, the brake integrator at its lower
+clamp; each decision integrates the current error over the time since the previous one.
 """
 
 from __future__ import annotations
@@ -39,7 +20,7 @@ from truckmpc.errors import ConfigError
 
 if TYPE_CHECKING:
     from truckmpc._core import Vehicle
-    from truckmpc.config import RunConfig, Section
+    from truckmpc.config import RunConfig
     from truckmpc.road import RoadProfile
 
 KMH_PER_MPS = 3.6
@@ -105,14 +86,6 @@ class GearLogic:
                 return gear
             gear = nxt
         return gear  # unreachable with validated thresholds; kept as a bound on the loop
-
-
-def steady_gear(vehicle: Vehicle, v_mps: float, pi_config: Section) -> int:
-    """The gear the PI gear logic (table A.3) settles in at a constant speed ``v_mps`` [m/s].
-
-    Used as the starting gear of a run and as the default gear of ``truckmpc model stationary``.
-    """
-    return GearLogic(vehicle, pi_config.gear_down_rpm, pi_config.gear_up_rpm).steady_gear(v_mps)
 
 
 def _clamp(x: float, lo: float, hi: float) -> float:

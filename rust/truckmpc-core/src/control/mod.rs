@@ -1,0 +1,47 @@
+//! The built-in cruise controllers and the contract between them and the closed loop.
+//!
+//! A controller is asked for a decision at the current plant state and answers with the inputs to
+//! apply and how long to hold them: `until_m: None` for one plant step (the PI of section 2.5, a
+//! sampled controller running at the plant step), `Some(s)` until the truck reaches distance `s`
+//! [m] or the road's end (the look-ahead controller of chapter 5, once per stage).
+
+pub mod pi;
+pub mod receding;
+
+pub use pi::{GearLogic, PiController};
+pub use receding::{RecedingController, ShiftCounter, SolverStats};
+
+use crate::plant::{Control, PlantState};
+use crate::road::Road;
+
+/// What [`Controller::decide`] returns: the inputs and until when to hold them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Decision {
+    /// Pedal, brake and gear to apply (the plant clips the levels to [0, 1]).
+    pub control: Control,
+    /// Hold until this distance [m]; `None`: for one plant step.
+    pub until_m: Option<f64>,
+}
+
+/// A cruise controller the closed loop ([`crate::sim::run`]) can drive.
+pub trait Controller {
+    /// Short name used in outputs (`"pi"`, `"mpc"`).
+    fn name(&self) -> &'static str;
+
+    /// Prepare for a run over `road` starting at `state` (resets any internal state).
+    fn start(&mut self, road: &Road, state: &PlantState);
+
+    /// Inputs to apply from `state` on, and until when.
+    fn decide(&mut self, road: &Road, state: &PlantState) -> Decision;
+
+    /// Whether the controller has failed (a controller written in another language whose code
+    /// raised an error, say): the loop then stops and the caller reports the failure.
+    fn aborted(&self) -> bool {
+        false
+    }
+
+    /// Figures of an optimising controller's solves, for the run summary.
+    fn solver_stats(&self) -> Option<SolverStats> {
+        None
+    }
+}

@@ -1,0 +1,202 @@
+//! The PI cruise controller of thesis section 2.5 (table A.4) and its gear logic (table A.3).
+//!
+//! Two PI controllers share the speed measurement: the pedal drives the speed towards v_ref,
+//! `P = sat(K_P e_P + I_P ∫e_P dt)` with `e_P = v_ref − v`; the brake holds it at
+//! `v_max = v_ref + v_inc`, `B = sat(K_B e_B + I_B ∫e_B dt)` with `e_B = v − v_max`; `sat` clips to
+//! [0, 1]. Errors are in km/h and the integrator states in km/h·s: table A.4's gains only make sense
+//! so (in m/s the clamped brake integrator would keep the brakes off until about 7 km/h above
+//! v_max). Each integrator state is clamped to ±limit (the table's "saturation value", the
+//! anti-windup). The brake acts on v − v_max: (2.11) as printed would brake below v_max.
+//!
+//! The controller is sampled at every plant step; each decision integrates the current error over
+//! the time since the previous decision (backward rectangle). A run starts with the pedal
+//! integrator at the value that holds v_ref on the starting grade and the brake integrator at its
+//! lower clamp, so it has no start transient.
+
+use std::sync::Arc;
+
+use super::{Controller, Decision};
+use crate::error::CoreResult;
+use crate::levels::stationary;
+use crate::params::{CruiseParams, PiParams};
+use crate::plant::{Control, PlantState};
+use crate::road::Road;
+use crate::vehicle::{Vehicle, NEUTRAL};
+
+const KMH_PER_MPS: f64 = 3.6;
+
+/// Engine-speed thresholds of table A.3 for a vehicle: above gear g's upshift threshold the next
+/// higher gear is chosen, below its downshift threshold the next lower one. The PI never selects
+/// neutral.
+#[derive(Debug, Clone)]
+pub struct GearLogic {
+    forward_gears: usize,
+    /// Engine speed per unit road speed [rpm/(m/s)] per gear, index 0 (neutral) unused.
+    rpm_per_mps: Vec<f64>,
+    /// Downshift thresholds [rpm] per gear (−∞ for gear 1), index 0 unused.
+    down_rpm: Vec<f64>,
+    /// Upshift thresholds [rpm] per gear (+∞ for the top gear), index 0 unused.
+    up_rpm: Vec<f64>,
+}
+
+impl GearLogic {
+    /// The thresholds of `params` for `vehicle`: checked first (one per gear, nulls only where a
+    /// gear has no lower or higher gear, each downshift speed below its upshift speed, and every
+    /// upshift landing above the next gear's downshift speed, or the gearbox would hunt).
+    pub fn new(vehicle: &Vehicle, params: &PiParams) -> CoreResult<Self> {
+        params.check_thresholds()?;
+        params.check_gearbox(&vehicle.params().gear_ratios)?;
+        let n = vehicle.forward_gears();
+        // Engine speed is proportional to road speed in a forward gear (2.9).
+        let rpm_per_mps = std::iter::once(0.0).chain((1..=n).map(|g| vehicle.engine_speed_rpm(1.0, g))).collect();
+        let down = std::iter::once(f64::INFINITY)
+            .chain(params.gear_down_rpm.iter().map(|x| x.unwrap_or(f64::NEG_INFINITY)))
+            .collect();
+        let up = std::iter::once(f64::INFINITY)
+            .chain(params.gear_up_rpm.iter().map(|x| x.unwrap_or(f64::INFINITY)))
+            .collect();
+        Ok(GearLogic { forward_gears: n, rpm_per_mps, down_rpm: down, up_rpm: up })
+    }
+
+    /// Number of forward gears.
+    pub fn forward_gears(&self) -> usize {
+        self.forward_gears
+    }
+
+    /// Gear after one evaluation of the thresholds in `gear` at speed `v_mps` [m/s] (at most one
+    /// shift). From neutral (handed over by another controller) the settled gear.
+    pub fn next_gear(&self, gear: usize, v_mps: f64) -> usize {
+        if gear == NEUTRAL {
+            return self.steady_gear(v_mps);
+        }
+        let n_rpm = v_mps * self.rpm_per_mps[gear];
+        if n_rpm > self.up_rpm[gear] {
+            gear + 1
+        } else if n_rpm < self.down_rpm[gear] {
+            gear - 1
+        } else {
+            gear
+        }
+    }
+
+    /// The gear the logic settles in at constant speed `v_mps` [m/s] when reached by accelerating
+    /// from gear 1.
+    pub fn steady_gear(&self, v_mps: f64) -> usize {
+        let mut gear = 1;
+        // Validated thresholds settle within n shifts; the bound only guards the loop.
+        for _ in 0..2 * self.forward_gears {
+            let next = self.next_gear(gear, v_mps);
+            if next == gear {
+                return gear;
+            }
+            gear = next;
+        }
+        gear
+    }
+}
+
+/// The PI cruise controller with its gear logic, sampled at every plant step.
+#[derive(Debug, Clone)]
+pub struct PiController {
+    vehicle: Arc<Vehicle>,
+    gears: GearLogic,
+    v_ref_kmh: f64,
+    v_max_kmh: f64,
+    pedal_kp: f64,
+    pedal_ki: f64,
+    brake_kp: f64,
+    brake_ki: f64,
+    pedal_limit: f64,
+    brake_limit: f64,
+    gear: usize,
+    /// Pedal integrator state [km/h·s].
+    pedal_integrator: f64,
+    /// Brake integrator state [km/h·s].
+    brake_integrator: f64,
+    /// Time of the previous decision [s].
+    t_last_s: f64,
+}
+
+impl PiController {
+    /// A controller for `vehicle` (its gears and the starting pedal level) with `params`, working
+    /// to the set speed and band of `cruise`.
+    pub fn new(vehicle: Arc<Vehicle>, params: &PiParams, cruise: &CruiseParams) -> CoreResult<Self> {
+        let gears = GearLogic::new(&vehicle, params)?;
+        Ok(PiController {
+            vehicle,
+            gears,
+            v_ref_kmh: cruise.v_ref_kmh,
+            v_max_kmh: cruise.v_ref_kmh + cruise.v_inc_kmh,
+            pedal_kp: params.pedal_kp,
+            pedal_ki: params.pedal_ki,
+            brake_kp: params.brake_kp,
+            brake_ki: params.brake_ki,
+            pedal_limit: params.pedal_integrator_limit,
+            brake_limit: params.brake_integrator_limit,
+            gear: NEUTRAL,
+            pedal_integrator: 0.0,
+            brake_integrator: 0.0,
+            t_last_s: 0.0,
+        })
+    }
+
+    /// The gear logic (table A.3).
+    pub fn gear_logic(&self) -> &GearLogic {
+        &self.gears
+    }
+
+    /// Pedal and brake integrator states [km/h·s].
+    pub fn integrators(&self) -> (f64, f64) {
+        (self.pedal_integrator, self.brake_integrator)
+    }
+
+    /// Reset for speed `v_mps` [m/s] on grade `slope` [-] at time `t_s` [s]: the settled gear, the
+    /// pedal integrator at the level holding v_ref on that grade, the brake integrator at its
+    /// lower clamp.
+    pub fn reset(&mut self, v_mps: f64, slope: f64, t_s: f64) {
+        let v_ref_mps = self.v_ref_kmh / KMH_PER_MPS;
+        self.gear = self.gears.steady_gear(v_mps);
+        let hold = stationary(&self.vehicle, v_ref_mps, slope, self.gears.steady_gear(v_ref_mps));
+        let pedal = clamp(hold.pedal, 0.0, 1.0);
+        self.pedal_integrator =
+            if self.pedal_ki > 0.0 { clamp(pedal / self.pedal_ki, -self.pedal_limit, self.pedal_limit) } else { 0.0 };
+        self.brake_integrator = -self.brake_limit;
+        self.t_last_s = t_s;
+    }
+}
+
+/// `x` limited to [lo, hi] (NaN passes through).
+fn clamp(x: f64, lo: f64, hi: f64) -> f64 {
+    if x < lo {
+        lo
+    } else if x > hi {
+        hi
+    } else {
+        x
+    }
+}
+
+impl Controller for PiController {
+    fn name(&self) -> &'static str {
+        "pi"
+    }
+
+    fn start(&mut self, road: &Road, state: &PlantState) {
+        self.reset(state.v_mps, road.slopes()[0], state.t_s);
+    }
+
+    fn decide(&mut self, _road: &Road, state: &PlantState) -> Decision {
+        let dt_s = state.t_s - self.t_last_s;
+        self.t_last_s = state.t_s;
+        let v_kmh = state.v_mps * KMH_PER_MPS;
+        let pedal_error = self.v_ref_kmh - v_kmh;
+        let brake_error = v_kmh - self.v_max_kmh;
+        self.pedal_integrator = clamp(self.pedal_integrator + pedal_error * dt_s, -self.pedal_limit, self.pedal_limit);
+        self.brake_integrator = clamp(self.brake_integrator + brake_error * dt_s, -self.brake_limit, self.brake_limit);
+        let pedal = self.pedal_kp * pedal_error + self.pedal_ki * self.pedal_integrator;
+        let brake = self.brake_kp * brake_error + self.brake_ki * self.brake_integrator;
+        self.gear = self.gears.next_gear(self.gear, state.v_mps);
+        let control = Control { pedal: clamp(pedal, 0.0, 1.0), brake: clamp(brake, 0.0, 1.0), gear: self.gear };
+        Decision { control, until_m: None }
+    }
+}

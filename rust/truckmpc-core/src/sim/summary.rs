@@ -1,0 +1,90 @@
+//! The scalar figures of a run.
+
+use super::KMH_PER_MPS;
+use crate::control::SolverStats;
+use crate::plant::PlantState;
+
+/// Outcome of a run in figures. Fuel in kg, distances in m, times in s, speeds in km/h, energies
+/// in kJ; the wall-clock fields are measured around the run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSummary {
+    pub distance_m: f64,
+    pub fuel_kg: f64,
+    /// None when the truck did not move.
+    pub fuel_kg_per_100km: Option<f64>,
+    pub time_s: f64,
+    pub mean_speed_kmh: f64,
+    pub start_speed_kmh: f64,
+    pub end_speed_kmh: f64,
+    pub gear_shifts: u64,
+    pub brake_energy_kj: f64,
+    /// Distance driven in neutral [m].
+    pub neutral_distance_m: f64,
+    /// Wall time of the run [s].
+    pub compute_time_s: f64,
+    /// Compute time / simulated time; None when no time was simulated.
+    pub realtime_ratio: Option<f64>,
+    pub stalled: bool,
+    /// Where the truck stalled; None unless stalled.
+    pub stall_distance_m: Option<f64>,
+    /// One-line note on an abnormal end (a stall, or inputs that no longer move the truck).
+    pub message: Option<String>,
+    pub plant_dt_s: f64,
+    /// The solves of an optimising controller.
+    pub solver: Option<SolverStats>,
+}
+
+/// How the loop ended, besides the final plant state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LoopOutcome {
+    pub start_m: f64,
+    pub end_m: f64,
+    pub start_speed_kmh: f64,
+    pub gear_shifts: u64,
+    pub neutral_distance_m: f64,
+    /// The controller's inputs stopped moving the truck.
+    pub stuck: bool,
+    pub stall_speed_mps: f64,
+    pub plant_dt_s: f64,
+}
+
+impl RunSummary {
+    /// The figures of a run ending in `last` after `compute_time_s` of wall time.
+    pub fn new(last: &PlantState, outcome: &LoopOutcome, compute_time_s: f64, solver: Option<SolverStats>) -> Self {
+        let distance_m = last.s_m - outcome.start_m;
+        let moved = last.t_s > 0.0;
+        RunSummary {
+            distance_m,
+            fuel_kg: last.fuel_g / 1000.0,
+            fuel_kg_per_100km: (distance_m > 0.0).then(|| last.fuel_g / 1000.0 / (distance_m / 1e5)),
+            time_s: last.t_s,
+            mean_speed_kmh: if moved { distance_m / last.t_s * KMH_PER_MPS } else { outcome.start_speed_kmh },
+            start_speed_kmh: outcome.start_speed_kmh,
+            end_speed_kmh: last.v_mps * KMH_PER_MPS,
+            gear_shifts: outcome.gear_shifts,
+            brake_energy_kj: last.brake_energy_j / 1000.0,
+            neutral_distance_m: outcome.neutral_distance_m,
+            compute_time_s,
+            realtime_ratio: moved.then(|| compute_time_s / last.t_s),
+            stalled: last.stalled,
+            stall_distance_m: last.stalled.then_some(last.s_m),
+            message: message(last, outcome),
+            plant_dt_s: outcome.plant_dt_s,
+            solver,
+        }
+    }
+}
+
+fn message(last: &PlantState, outcome: &LoopOutcome) -> Option<String> {
+    let km = last.s_m / 1000.0;
+    if last.stalled {
+        Some(format!(
+            "stalled at km {km:.2}: the speed fell below {:.1} km/h, where gear 1 turns the engine at idle",
+            outcome.stall_speed_mps * KMH_PER_MPS
+        ))
+    } else if outcome.stuck && outcome.end_m - last.s_m > 1e-3 {
+        Some(format!("stopped at km {km:.2}: the controller's inputs no longer move the truck"))
+    } else {
+        None
+    }
+}

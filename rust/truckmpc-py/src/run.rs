@@ -1,0 +1,218 @@
+//! Binding of the Rust closed loop: `run` drives a built-in controller over a road with the GIL
+//! released, `run_python` a controller written in Python; both return a `RunOutput`.
+//! `steady_gear` is the PI gear logic's settled gear.
+
+use numpy::{IntoPyArray, PyReadonlyArray1};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use truckmpc_core::control::{Controller, Decision, GearLogic, PiController, RecedingController};
+use truckmpc_core::dp::DpSettings;
+use truckmpc_core::sim::{self, RunSummary, Trace};
+use truckmpc_core::{Control, PlantState, Road};
+
+use crate::errors::{bad_argument, to_py};
+use crate::params::PySettings;
+use crate::road::PyRoad;
+
+/// The outcome of `run`: the controller's name, the summary figures (dict, keys as
+/// `truckmpc.sim.simulate` documents, plus the solver's for the MPC) and the trace (dict of 1-D
+/// numpy arrays, float64 but `gear` int64).
+#[pyclass(name = "RunOutput", module = "truckmpc._core", frozen)]
+struct PyRunOutput {
+    #[pyo3(get)]
+    controller: String,
+    #[pyo3(get)]
+    summary: Py<PyDict>,
+    #[pyo3(get)]
+    trace: Py<PyDict>,
+}
+
+fn summary_dict<'py>(py: Python<'py>, s: &RunSummary) -> PyResult<Bound<'py, PyDict>> {
+    let out = PyDict::new(py);
+    out.set_item("distance_m", s.distance_m)?;
+    out.set_item("fuel_kg", s.fuel_kg)?;
+    out.set_item("fuel_kg_per_100km", s.fuel_kg_per_100km)?;
+    out.set_item("time_s", s.time_s)?;
+    out.set_item("mean_speed_kmh", s.mean_speed_kmh)?;
+    out.set_item("start_speed_kmh", s.start_speed_kmh)?;
+    out.set_item("end_speed_kmh", s.end_speed_kmh)?;
+    out.set_item("gear_shifts", s.gear_shifts)?;
+    out.set_item("brake_energy_kj", s.brake_energy_kj)?;
+    out.set_item("neutral_distance_m", s.neutral_distance_m)?;
+    out.set_item("compute_time_s", s.compute_time_s)?;
+    out.set_item("realtime_ratio", s.realtime_ratio)?;
+    out.set_item("stalled", s.stalled)?;
+    out.set_item("stall_distance_m", s.stall_distance_m)?;
+    out.set_item("message", s.message.as_deref())?;
+    out.set_item("plant_dt_s", s.plant_dt_s)?;
+    if let Some(solver) = &s.solver {
+        out.set_item("solves", solver.solves)?;
+        out.set_item("infeasible_solves", solver.infeasible_solves)?;
+        out.set_item("solve_ms_mean", solver.solve_ms_mean())?;
+        out.set_item("solve_ms_max", solver.solve_ms_max())?;
+        out.set_item("states_per_solve", solver.states_per_solve())?;
+        out.set_item("transitions_per_solve", solver.transitions_per_solve())?;
+    }
+    Ok(out)
+}
+
+fn trace_dict(py: Python<'_>, t: Trace) -> PyResult<Bound<'_, PyDict>> {
+    let out = PyDict::new(py);
+    out.set_item("distance_m", t.distance_m.into_pyarray(py))?;
+    out.set_item("time_s", t.time_s.into_pyarray(py))?;
+    out.set_item("speed_kmh", t.speed_kmh.into_pyarray(py))?;
+    out.set_item("gear", t.gear.into_pyarray(py))?;
+    out.set_item("pedal", t.pedal.into_pyarray(py))?;
+    out.set_item("brake", t.brake.into_pyarray(py))?;
+    out.set_item("engine_speed_rpm", t.engine_speed_rpm.into_pyarray(py))?;
+    out.set_item("slope", t.slope.into_pyarray(py))?;
+    out.set_item("altitude_m", t.altitude_m.into_pyarray(py))?;
+    out.set_item("fuel_g", t.fuel_g.into_pyarray(py))?;
+    out.set_item("brake_energy_kj", t.brake_energy_kj.into_pyarray(py))?;
+    Ok(out)
+}
+
+/// Drive `road` with the built-in controller `controller` ("pi" or "mpc") from its start to its end
+/// (or a stall), the closed loop in Rust with the GIL released.
+///
+/// Args:
+///     settings: the run's settings (vehicle, cruise band, PI, MPC, simulation).
+///     road: the road; `altitude_m` gives the trace's altitude at each of its profile points [m].
+///     controller: "pi" or "mpc".
+///
+/// Returns:
+///     RunOutput.
+#[pyfunction]
+fn run(
+    py: Python<'_>,
+    settings: &PySettings,
+    road: &PyRoad,
+    altitude_m: PyReadonlyArray1<'_, f64>,
+    controller: &str,
+) -> PyResult<PyRunOutput> {
+    let s = &settings.inner;
+    let vehicle = &settings.vehicle;
+    let mut ctrl: Box<dyn Controller + Send> = match controller {
+        "pi" => Box::new(PiController::new(vehicle.clone(), &s.pi, &s.cruise).map_err(to_py)?),
+        "mpc" => {
+            let gears = GearLogic::new(vehicle, &s.pi).map_err(to_py)?;
+            let dp = DpSettings::new(&s.mpc, &s.cruise).map_err(to_py)?;
+            Box::new(RecedingController::new(vehicle.clone(), dp, gears))
+        }
+        other => return Err(bad_argument("controller", "'pi' or 'mpc'", format!("'{other}'"))),
+    };
+    let altitude_m = altitude_m.as_array().to_vec();
+    let (road, start_kmh) = (&road.inner, s.start_speed_kmh());
+    let output = py.detach(|| sim::run(vehicle, road, &altitude_m, ctrl.as_mut(), &s.sim, start_kmh)).map_err(to_py)?;
+    Ok(PyRunOutput {
+        controller: output.controller.to_string(),
+        summary: summary_dict(py, &output.summary)?.unbind(),
+        trace: trace_dict(py, output.trace)?.unbind(),
+    })
+}
+
+/// The gear the PI gear logic (table A.3) settles in at constant speed `v_mps` [m/s].
+#[pyfunction]
+fn steady_gear(settings: &PySettings, v_mps: f64) -> PyResult<usize> {
+    let logic = GearLogic::new(&settings.vehicle, &settings.inner.pi).map_err(to_py)?;
+    Ok(logic.steady_gear(v_mps))
+}
+
+/// Add `run`, `run_python`, `steady_gear` and `RunOutput` to the module.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyRunOutput>()?;
+    m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(run_python, m)?)?;
+    m.add_function(wrap_pyfunction!(steady_gear, m)?)?;
+    Ok(())
+}
+
+/// A controller written in Python (the `truckmpc.controller.Controller` protocol) driven by the
+/// Rust closed loop: each decision calls its `decide(state)` with the GIL held. The first exception
+/// it raises stops the loop and is re-raised by `run_python`.
+struct PyController {
+    obj: Py<PyAny>,
+    profile: Py<PyAny>,
+    state_type: Py<PyAny>,
+    error: Option<PyErr>,
+}
+
+impl PyController {
+    fn state(&self, py: Python<'_>, s: &PlantState) -> PyResult<Py<PyAny>> {
+        let args = (s.s_m, s.v_mps, s.t_s, s.fuel_g, s.brake_energy_j, s.stalled);
+        Ok(self.state_type.bind(py).call1(args)?.unbind())
+    }
+
+    fn call_decide(&self, py: Python<'_>, s: &PlantState) -> PyResult<Decision> {
+        let answer = self.obj.bind(py).call_method1("decide", (self.state(py, s)?,))?;
+        let (control, until_m): (Bound<'_, PyAny>, Option<f64>) = answer.extract()?;
+        let (pedal, brake, gear): (f64, f64, usize) = control.extract()?;
+        Ok(Decision { control: Control { pedal, brake, gear }, until_m })
+    }
+}
+
+impl Controller for PyController {
+    fn name(&self) -> &'static str {
+        "python"
+    }
+
+    fn start(&mut self, _road: &Road, s: &PlantState) {
+        let result = Python::attach(|py| -> PyResult<()> {
+            self.obj.bind(py).call_method1("start", (self.profile.bind(py), self.state(py, s)?))?;
+            Ok(())
+        });
+        self.error = result.err();
+    }
+
+    fn decide(&mut self, _road: &Road, s: &PlantState) -> Decision {
+        let hold = Decision { control: Control { pedal: 0.0, brake: 0.0, gear: 1 }, until_m: None };
+        if self.error.is_some() {
+            return hold;
+        }
+        match Python::attach(|py| self.call_decide(py, s)) {
+            Ok(decision) => decision,
+            Err(err) => {
+                self.error = Some(err);
+                hold
+            }
+        }
+    }
+
+    fn aborted(&self) -> bool {
+        self.error.is_some()
+    }
+}
+
+/// Drive `road` with `controller`, an object of the `truckmpc.controller.Controller` protocol
+/// written in Python, in the same Rust closed loop as the built-in controllers.
+///
+/// Args:
+///     settings: the run's settings (vehicle, cruise band, simulation).
+///     road: the road; `altitude_m` gives the trace's altitude at each of its profile points [m].
+///     controller: the Python controller; `start(profile, state)` and `decide(state)` are called.
+///     profile: the `RoadProfile` passed to `controller.start`.
+///     state_type: the class of the states passed (`truckmpc.controller.PlantState`).
+#[pyfunction]
+fn run_python(
+    py: Python<'_>,
+    settings: &PySettings,
+    road: &PyRoad,
+    altitude_m: PyReadonlyArray1<'_, f64>,
+    controller: Py<PyAny>,
+    profile: Py<PyAny>,
+    state_type: Py<PyAny>,
+) -> PyResult<PyRunOutput> {
+    let mut ctrl = PyController { obj: controller, profile, state_type, error: None };
+    let s = &settings.inner;
+    let altitude_m = altitude_m.as_array().to_vec();
+    let output =
+        sim::run(&settings.vehicle, &road.inner, &altitude_m, &mut ctrl, &s.sim, s.start_speed_kmh()).map_err(to_py)?;
+    if let Some(err) = ctrl.error {
+        return Err(err);
+    }
+    Ok(PyRunOutput {
+        controller: output.controller.to_string(),
+        summary: summary_dict(py, &output.summary)?.unbind(),
+        trace: trace_dict(py, output.trace)?.unbind(),
+    })
+}
