@@ -400,14 +400,24 @@ def config_keys_cmd(
     section: Annotated[
         str | None, typer.Option("--section", help="vehicle, cruise, pi, mpc or sim (default: all).")
     ] = None,
+    write: Annotated[
+        Path | None,
+        typer.Option(
+            "--write", metavar="FILE", help="Rewrite the tables between <!-- keys:SECTION --> markers in FILE."
+        ),
+    ] = None,
 ) -> None:
     """Print the Markdown table of every key (unit, default, allowed values, meaning), per section."""
-    from truckmpc.config import SECTION_NAMES, key_table
+    from truckmpc.config import SECTION_NAMES, key_table, rewrite_key_tables
 
     if section is not None and section not in SECTION_NAMES:
         raise typer.BadParameter(
             f"expected one of {', '.join(SECTION_NAMES)}, got {section!r}", param_hint="'--section'"
         )
+    if write is not None:
+        rewritten = rewrite_key_tables(write)
+        typer.echo(f"rewrote {len(rewritten)} key tables in {write}: {', '.join(rewritten)}")
+        return
     for name in SECTION_NAMES if section is None else (section,):
         typer.echo(f"<!-- keys:{name} -->\n{key_table(name)}\n<!-- /keys:{name} -->")
 

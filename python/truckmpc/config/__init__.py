@@ -4,7 +4,13 @@
 See :mod:`truckmpc.config.run_config` for the layers and :mod:`truckmpc.config.keys` for the keys.
 """
 
-from truckmpc.config.docs import defaults_yaml, key_table, packaged_defaults, write_packaged_defaults
+from truckmpc.config.docs import (
+    defaults_yaml,
+    key_table,
+    packaged_defaults,
+    rewrite_key_tables,
+    write_packaged_defaults,
+)
 from truckmpc.config.keys import (
     KEYS,
     SECTION_NAMES,
@@ -33,6 +39,7 @@ __all__ = [
     "key_table",
     "load_run_config",
     "packaged_defaults",
+    "rewrite_key_tables",
     "section_keys",
     "write_packaged_defaults",
 ]

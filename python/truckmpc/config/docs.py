@@ -4,6 +4,7 @@ and `truckmpc config keys` rewrite and print them."""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 from typing import Any
 
@@ -85,3 +86,20 @@ def key_table(section: str) -> str:
         default = yaml_value(spec.default)
         lines.append(f"| `{spec.name}` | {spec.unit} | `{default}` | {spec.expected} | {spec.doc} |")
     return "\n".join(lines)
+
+
+def rewrite_key_tables(path: Path) -> list[str]:
+    """Replace every `<!-- keys:SECTION -->` ... `<!-- /keys:SECTION -->` block of the Markdown file
+    `path` by the section's current table; returns the sections rewritten."""
+    text = path.read_text(encoding="utf-8")
+    found: list[str] = []
+
+    def table(match: re.Match[str]) -> str:
+        found.append(match.group(1))
+        return f"<!-- keys:{match.group(1)} -->\n{key_table(match.group(1))}\n<!-- /keys:{match.group(1)} -->"
+
+    path.write_text(_KEY_BLOCK.sub(table, text), encoding="utf-8")
+    return found
+
+
+_KEY_BLOCK = re.compile(r"<!-- keys:(\w+) -->\n.*?\n<!-- /keys:\1 -->", re.S)

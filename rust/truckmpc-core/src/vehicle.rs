@@ -184,6 +184,18 @@ impl Vehicle {
         self.params.brake_torque_max_nm * brake / self.params.wheel_radius_m
     }
 
+    /// Highest engine speed [rpm] at which fuel can still be injected: the upper root of the fueling
+    /// bound (2.6) (about 2500 rpm for the thesis's engine); infinite if the bound never closes.
+    pub fn max_engine_speed_rpm(&self) -> f64 {
+        let p = &self.params;
+        let (a, b, c) = (p.fueling_max_a_mg_per_rpm2, p.fueling_max_b_mg_per_rpm, p.fueling_max_c_mg);
+        let discriminant = b * b - 4.0 * a * c;
+        if a >= 0.0 || discriminant < 0.0 {
+            return f64::INFINITY;
+        }
+        (-b - discriminant.sqrt()) / (2.0 * a)
+    }
+
     /// Lowest speed [m/s] at which the lowest gear still turns the engine at idle speed. Below it the
     /// model (no clutch slip) does not apply and a truck that slows down further has stalled.
     pub fn stall_speed_mps(&self) -> f64 {

@@ -52,6 +52,9 @@ fn summary_dict<'py>(py: Python<'py>, s: &RunSummary) -> PyResult<Bound<'py, PyD
         out.set_item("solve_ms_max", solver.solve_ms_max())?;
         out.set_item("states_per_solve", solver.states_per_solve())?;
         out.set_item("transitions_per_solve", solver.transitions_per_solve())?;
+        out.set_item("fallback_relaxed", solver.fallback_relaxed)?;
+        out.set_item("fallback_rescues", solver.fallback_rescues)?;
+        out.set_item("fallback_rescue_m", solver.fallback_rescue_m)?;
     }
     Ok(out)
 }

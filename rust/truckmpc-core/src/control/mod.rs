@@ -7,9 +7,11 @@
 
 pub mod pi;
 pub mod receding;
+pub mod rescue;
 
 pub use pi::{GearLogic, PiController};
 pub use receding::{RecedingController, ShiftCounter, SolverStats};
+pub use rescue::Rescue;
 
 use crate::plant::{Control, PlantState};
 use crate::road::Road;

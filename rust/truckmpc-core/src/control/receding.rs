@@ -11,12 +11,14 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use super::pi::GearLogic;
+use super::rescue::Rescue;
 use super::{Controller, Decision};
 use crate::dp::{horizon, DpSettings, InitialState, Solver};
 use crate::levels::stationary;
+use crate::params::OnInfeasible;
 use crate::plant::{Control, PlantState};
 use crate::road::Road;
-use crate::vehicle::Vehicle;
+use crate::vehicle::{Vehicle, NEUTRAL};
 
 /// Stages driven since the last gear shift, saturating at k_lim: the DP's shift constraint
 /// (at least k_lim stages between shifts) carried from one solve to the next.
@@ -58,6 +60,12 @@ pub struct SolverStats {
     pub states: u64,
     /// Transitions over all solves.
     pub transitions: u64,
+    /// Relaxed solves (lower speed bound and shift limit relaxed) whose answer was driven.
+    pub fallback_relaxed: u64,
+    /// Times the controller fell back to the rescue policy (the PI's gear logic, full pedal).
+    pub fallback_rescues: u64,
+    /// Distance driven on the rescue policy [m].
+    pub fallback_rescue_m: f64,
 }
 
 impl SolverStats {
@@ -87,62 +95,161 @@ impl SolverStats {
 }
 
 /// The DP-MPC as a [`Controller`]: decides once per stage, holding its inputs until the next stage
-/// boundary.
+/// boundary; when a solve finds no admissible path it holds its inputs (`hold`, section 5.6) or
+/// (`rescue`) solves again with the lower speed bound and the shift limit relaxed and, failing
+/// that, drives the [`Rescue`] policy at every plant step until a solve succeeds in a later stage.
 #[derive(Debug)]
 pub struct RecedingController {
     vehicle: Arc<Vehicle>,
     solver: Solver,
-    /// The PI's gear logic, only for the gear the truck starts in.
+    /// The relaxed solver, built on the first need (rescue only).
+    relaxed: Option<Solver>,
+    rescue: Rescue,
+    /// The PI's gear logic, for the gear the truck starts in.
     start_gears: GearLogic,
     slopes: Vec<f64>,
     origin_m: f64,
     shifts: ShiftCounter,
     gear: usize,
     pending: Control,
+    /// No solve gave the pending control: rescue from the next decision on.
+    rescue_next: bool,
+    /// Rescuing; the stage (counted from the road's start) of the last solve tried.
+    rescuing: Option<i64>,
+    rescue_from_m: f64,
+    /// Position of the latest rescue decision [m].
+    rescue_last_m: f64,
     stats: SolverStats,
 }
 
+/// Lowest speed [km/h] the relaxed solve may plan with.
+const RELAXED_V_MIN_KMH: f64 = 5.0;
+
 impl RecedingController {
     /// A controller predicting with `vehicle`, solving with `params` (k_lim resolved) and starting
-    /// in the gear `start_gears` settles in at the starting speed.
+    /// in the gear `start_gears` settles in at the starting speed; it rescues with that gear logic
+    /// below v_max.
     pub fn new(vehicle: Arc<Vehicle>, params: DpSettings, start_gears: GearLogic) -> Self {
         let shifts = ShiftCounter::new(params.k_lim);
+        let rescue = Rescue::new(start_gears.clone(), params.v_ref_kmh + params.v_inc_kmh);
         RecedingController {
             vehicle,
             solver: Solver::new(params),
+            relaxed: None,
+            rescue,
             start_gears,
             slopes: Vec::new(),
             origin_m: 0.0,
             shifts,
             gear: 0,
             pending: Control { pedal: 0.0, brake: 0.0, gear: 0 },
+            rescue_next: false,
+            rescuing: None,
+            rescue_from_m: 0.0,
+            rescue_last_m: 0.0,
             stats: SolverStats::default(),
         }
     }
 
-    /// Solve the horizon from `v_mps` [m/s] in `gear` at `s_m` [m]; the first control if feasible.
-    fn solve(&mut self, road: &Road, s_m: f64, v_mps: f64, gear: usize) -> Option<Control> {
-        let start = InitialState { v_mps, gear, stages_since_shift: self.shifts.stages() };
-        let began = Instant::now();
-        let solution = horizon::solve_at(&mut self.solver, &self.vehicle, road, s_m, start, &mut self.slopes);
-        let elapsed_s = began.elapsed().as_secs_f64();
-        let stats = &mut self.stats;
-        stats.solves += 1;
-        stats.solve_time_s += elapsed_s;
-        stats.solve_time_max_s = stats.solve_time_max_s.max(elapsed_s);
-        stats.states += solution.states as u64;
-        stats.transitions += solution.transitions as u64;
-        if !solution.feasible {
-            stats.infeasible_solves += 1;
-            return None;
-        }
-        Some(Control { pedal: solution.pedal, brake: solution.brake, gear: solution.gear })
+    fn rescues(&self) -> bool {
+        self.solver.params().on_infeasible == OnInfeasible::Rescue
     }
 
-    /// Fallback before any feasible solve: the levels holding `v_mps` on a flat road in `gear`.
+    /// Solve the horizon from `v_mps` [m/s] in `gear` at `s_m` [m]; the first control if feasible.
+    /// When rescuing, an infeasible solve from within the band is followed by a relaxed one; below
+    /// the band the rescue policy drives instead, since a control held over a whole stage at low
+    /// speed on a steep climb (where the one-step prediction is poor) can stall the truck.
+    fn solve(&mut self, road: &Road, s_m: f64, v_mps: f64, gear: usize) -> Option<Control> {
+        let start = InitialState { v_mps, gear, stages_since_shift: self.shifts.stages() };
+        let found = self.timed_solve(road, s_m, start, false);
+        if found.is_some() || !self.rescues() || v_mps < self.solver.params().v_min_mps() {
+            return found;
+        }
+        let relaxed = self.timed_solve(road, s_m, start, true);
+        self.stats.fallback_relaxed += u64::from(relaxed.is_some());
+        relaxed
+    }
+
+    fn timed_solve(&mut self, road: &Road, s_m: f64, start: InitialState, relaxed: bool) -> Option<Control> {
+        let began = Instant::now();
+        let solver = if relaxed {
+            let params = self.solver.params().relaxed(RELAXED_V_MIN_KMH);
+            self.relaxed.get_or_insert_with(|| Solver::new(params))
+        } else {
+            &mut self.solver
+        };
+        let solution = horizon::solve_at(solver, &self.vehicle, road, s_m, start, &mut self.slopes);
+        let elapsed_s = began.elapsed().as_secs_f64();
+        let stats = &mut self.stats;
+        stats.solve_time_s += elapsed_s;
+        stats.solve_time_max_s = stats.solve_time_max_s.max(elapsed_s);
+        if !relaxed {
+            stats.solves += 1;
+            stats.states += solution.states as u64;
+            stats.transitions += solution.transitions as u64;
+            stats.infeasible_solves += u64::from(!solution.feasible);
+        }
+        solution.feasible.then_some(Control { pedal: solution.pedal, brake: solution.brake, gear: solution.gear })
+    }
+
+    /// Fallback before any feasible solve when holding: the levels holding `v_mps` on a flat road.
     fn holding(&self, v_mps: f64, gear: usize) -> Control {
         let level = stationary(&self.vehicle, v_mps, 0.0, gear);
         Control { pedal: level.pedal, brake: level.brake, gear }
+    }
+
+    /// Whether `u` would turn the engine below idle at `v_mps` in gear.
+    fn below_idle(&self, u: Control, v_mps: f64) -> bool {
+        u.gear != NEUTRAL && self.vehicle.engine_speed_rpm(v_mps, u.gear) < self.vehicle.params().idle_speed_rpm
+    }
+
+    /// Index of the stage containing `s_m`, counted from the road's start.
+    fn stage_at(&self, s_m: f64) -> i64 {
+        ((s_m - self.origin_m) / self.solver.params().stage_m + 1e-9).floor() as i64
+    }
+
+    /// Drive `u` until `boundary_m` and solve the stage after it from the speed predicted there
+    /// over `h_m` metres.
+    fn apply_and_plan(&mut self, road: &Road, state: &PlantState, u: Control, boundary_m: f64, h_m: f64) -> Decision {
+        self.shifts.record(self.gear, u.gear);
+        self.gear = u.gear;
+        let v_next = horizon::predict_speed(&self.vehicle, road, state.s_m, state.v_mps, u, h_m);
+        let chosen = if v_next > 0.0 { self.solve(road, boundary_m, v_next, u.gear) } else { None };
+        self.rescue_next = chosen.is_none() && self.rescues();
+        self.pending = chosen.unwrap_or(u);
+        Decision { control: u, until_m: Some(boundary_m) }
+    }
+
+    /// One plant step of the rescue policy; once per new stage with the truck back in its band, a
+    /// solve from the actual state, which ends the rescue when it succeeds.
+    fn rescue_step(&mut self, road: &Road, state: &PlantState) -> Decision {
+        self.rescue_last_m = state.s_m;
+        let stage = self.stage_at(state.s_m);
+        let p = self.solver.params();
+        let in_band = state.v_mps >= p.v_min_mps() && state.v_mps <= p.v_max_mps();
+        if in_band && self.rescuing.is_some_and(|tried| stage > tried) {
+            self.rescuing = Some(stage);
+            if let Some(u) = self.solve(road, state.s_m, state.v_mps, self.gear) {
+                if !self.below_idle(u, state.v_mps) {
+                    self.stats.fallback_rescue_m += state.s_m - self.rescue_from_m;
+                    self.rescuing = None;
+                    let boundary_m = self.origin_m + (stage + 1) as f64 * self.solver.params().stage_m;
+                    return self.apply_and_plan(road, state, u, boundary_m, boundary_m - state.s_m);
+                }
+            }
+        }
+        let u = self.rescue.step(self.gear, state.v_mps);
+        self.shifts.record(self.gear, u.gear);
+        self.gear = u.gear;
+        Decision { control: u, until_m: None }
+    }
+
+    fn enter_rescue(&mut self, road: &Road, state: &PlantState) -> Decision {
+        self.rescue_next = false;
+        self.rescuing = Some(self.stage_at(state.s_m));
+        self.rescue_from_m = state.s_m;
+        self.stats.fallback_rescues += 1;
+        self.rescue_step(road, state)
     }
 }
 
@@ -157,25 +264,32 @@ impl Controller for RecedingController {
         self.shifts = ShiftCounter::new(self.solver.params().k_lim);
         self.gear = self.start_gears.steady_gear(state.v_mps);
         self.stats = SolverStats::default();
+        self.rescuing = None;
         let first = self.solve(road, state.s_m, state.v_mps, self.gear);
+        self.rescue_next = first.is_none() && self.rescues();
         self.pending = first.unwrap_or_else(|| self.holding(state.v_mps, self.gear));
     }
 
     /// Apply the control chosen for this stage; solve the next stage from the predicted speed.
     fn decide(&mut self, road: &Road, state: &PlantState) -> Decision {
+        if self.rescuing.is_some() {
+            return self.rescue_step(road, state);
+        }
+        if self.rescue_next || (self.rescues() && self.below_idle(self.pending, state.v_mps)) {
+            return self.enter_rescue(road, state);
+        }
         let u = self.pending;
-        self.shifts.record(self.gear, u.gear);
-        self.gear = u.gear;
         let stage_m = self.solver.params().stage_m;
         let stage = ((state.s_m - self.origin_m) / stage_m).round_ties_even();
         let boundary_m = self.origin_m + (stage + 1.0) * stage_m;
-        let v_next = horizon::predict_speed(&self.vehicle, road, state.s_m, state.v_mps, u, stage_m);
-        let chosen = if v_next > 0.0 { self.solve(road, boundary_m, v_next, u.gear) } else { None };
-        self.pending = chosen.unwrap_or(u);
-        Decision { control: u, until_m: Some(boundary_m) }
+        self.apply_and_plan(road, state, u, boundary_m, stage_m)
     }
 
     fn solver_stats(&self) -> Option<SolverStats> {
-        Some(self.stats)
+        let mut stats = self.stats;
+        if self.rescuing.is_some() {
+            stats.fallback_rescue_m += self.rescue_last_m - self.rescue_from_m;
+        }
+        Some(stats)
     }
 }

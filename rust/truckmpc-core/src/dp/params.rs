@@ -4,7 +4,7 @@
 //! below.
 
 use crate::params::{CruiseParams, MpcParams, ParamSet};
-pub use crate::params::{GridAnchor, NeutralRule};
+pub use crate::params::{GridAnchor, NeutralRule, OnInfeasible};
 
 use crate::error::CoreResult;
 
@@ -47,6 +47,8 @@ pub struct DpSettings {
     pub neutral_rule: NeutralRule,
     /// Grid anchoring.
     pub grid: GridAnchor,
+    /// The controller's answer to a solve without an admissible path (not used by the solver).
+    pub on_infeasible: OnInfeasible,
 }
 
 impl Default for DpSettings {
@@ -85,7 +87,14 @@ impl DpSettings {
             q_brake: mpc.q_brake,
             neutral_rule: mpc.neutral_rule,
             grid: mpc.grid,
+            on_infeasible: mpc.on_infeasible,
         }
+    }
+
+    /// The same settings with the lower speed bound at `v_min_kmh` and no shift limit: the
+    /// rescue solve when these admit no path.
+    pub fn relaxed(&self, v_min_kmh: f64) -> Self {
+        DpSettings { v_dec_kmh: (self.v_ref_kmh - v_min_kmh).max(self.v_dec_kmh), k_lim: 1, ..self.clone() }
     }
 
     /// Number of stages N in the horizon.

@@ -26,6 +26,17 @@ choice_enum! {
     }
 }
 
+choice_enum! {
+    /// What the controller does when a solve finds no admissible path.
+    pub enum OnInfeasible {
+        /// Solve again with the lower speed bound and the shift limit relaxed; failing that, drive
+        /// with the PI's gear logic and full pedal (braking above v_max) until a solve succeeds.
+        Rescue = "rescue",
+        /// Keep the inputs being applied (section 5.6; a long climb can then stall the truck).
+        Hold = "hold",
+    }
+}
+
 /// Table 6.1: the shift limit k_lim is chosen so that S · k_lim = 200 m.
 pub const SHIFT_SPACING_M: f64 = 200.0;
 
@@ -62,6 +73,8 @@ declare_params! {
         neutral_rule: NeutralRule = NeutralRule::Nearest, unit "-", range Range::ANY;
         /// Speed grid anchored at each stage's lower bound (moving, 5.8) or on multiples of δ (fixed).
         grid: GridAnchor = GridAnchor::Moving, unit "-", range Range::ANY;
+        /// No admissible path: rescue (relaxed solve, then the PI's gear logic at full pedal) or hold the inputs (5.6).
+        on_infeasible: OnInfeasible = OnInfeasible::Rescue, unit "-", range Range::ANY;
     }
 }
 

@@ -1,0 +1,41 @@
+//! What the look-ahead controller drives with while its DP finds no admissible path (a climb too
+//! long for the speed band and the shift limit, a start above v_max): the PI's gear logic, full
+//! pedal below v_max and a brake proportional to the excess above it, decided at every plant step.
+//! It is always feasible in the sense that matters: the engine stays in its speed range wherever
+//! the PI's would, and the truck climbs wherever the PI climbs.
+
+use super::pi::GearLogic;
+use crate::plant::Control;
+
+const KMH_PER_MPS: f64 = 3.6;
+
+/// Brake level per km/h above v_max, and the offset [km/h] that keeps braking just below v_max so
+/// the speed ends up inside the band rather than creeping down towards its top.
+const BRAKE_PER_KMH: f64 = 0.2;
+const BRAKE_OFFSET_KMH: f64 = 1.0;
+
+/// The rescue policy.
+#[derive(Debug, Clone)]
+pub struct Rescue {
+    gears: GearLogic,
+    v_max_kmh: f64,
+}
+
+impl Rescue {
+    /// Rescue with the PI's gear logic below `v_max_kmh` [km/h].
+    pub fn new(gears: GearLogic, v_max_kmh: f64) -> Self {
+        Rescue { gears, v_max_kmh }
+    }
+
+    /// The inputs for one plant step from `gear` at `v_mps` [m/s].
+    pub fn step(&self, gear: usize, v_mps: f64) -> Control {
+        let gear = self.gears.next_gear(gear, v_mps);
+        let over_kmh = v_mps * KMH_PER_MPS - self.v_max_kmh;
+        if over_kmh > -BRAKE_OFFSET_KMH {
+            let brake = ((over_kmh + BRAKE_OFFSET_KMH) * BRAKE_PER_KMH).clamp(0.0, 1.0);
+            Control { pedal: 0.0, brake, gear }
+        } else {
+            Control { pedal: 1.0, brake: 0.0, gear }
+        }
+    }
+}
