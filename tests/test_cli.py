@@ -106,9 +106,9 @@ def test_simulate_reports_a_stall(in_tmp):
 
 
 def test_simulate_gives_no_delta_when_the_mpc_stalls(in_tmp):
-    # Holding the inputs when no path exists (section 5.6) stalls on this climb; the default rescues.
+    # The thesis preset holds the inputs when no path exists (section 5.6): it stalls on this climb.
     assert run("road", "make", "hill", "--length-m", "1000", "--slope-pct", "20", "-o", "steep.csv").exit_code == 0
-    result = run("simulate", "--road", "steep.csv", "--set", "on_infeasible=hold", "--out", "res")
+    result = run("simulate", "--road", "steep.csv", "--config", "thesis", "--out", "res")
     assert result.exit_code == 0, result.stderr
     summary = json.loads((in_tmp / "res" / "summary.json").read_text())
     assert summary["mpc"]["stalled"] is True and summary["pi"]["stalled"] is False

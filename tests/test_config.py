@@ -305,3 +305,12 @@ def test_bad_vehicle_file(tmp_path: Path, text: str, match: list[str]) -> None:
 def test_config_error_is_value_error() -> None:
     with pytest.raises(ValueError):
         load_run_config(overrides=["pedal_kp=x"])
+
+
+def test_the_thesis_preset_is_an_overlay_by_name(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    assert load_run_config().mpc.on_infeasible == "rescue"
+    assert load_run_config(config_paths=["thesis"]).mpc.on_infeasible == "hold"
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "thesis").write_text("pedal_kp: 1.5\n")  # a file of that name wins over the preset
+    run = load_run_config(config_paths=["thesis"])
+    assert (run.pi.pedal_kp, run.mpc.on_infeasible) == (1.5, "rescue")

@@ -7,6 +7,7 @@ only reads those declarations. Keys are unique across sections, so settings are 
 from __future__ import annotations
 
 import difflib
+import os
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -47,6 +48,24 @@ def default_config_path(name: str) -> Path:
         available = ", ".join(sorted(p.name for p in CONFIG_DIR.glob("*.yaml")))
         raise ConfigError(f"no packaged config named {name!r} (available: {available})")
     return path
+
+
+PRESET_DIR = CONFIG_DIR / "presets"
+
+
+def overlay_path(path: str | os.PathLike[str]) -> Path:
+    """An overlay file, or a packaged preset named without a path (`thesis` for `presets/thesis.yaml`)
+    when no such file exists."""
+    given = Path(path)
+    preset = PRESET_DIR / f"{given.name}.yaml"
+    if not given.exists() and given.name == str(path) and given.suffix == "" and preset.is_file():
+        return preset
+    return given
+
+
+def preset_names() -> list[str]:
+    """The packaged presets' names."""
+    return sorted(p.stem for p in PRESET_DIR.glob("*.yaml"))
 
 
 def unknown_key(where: str, key: str, known: Sequence[str]) -> ConfigError:

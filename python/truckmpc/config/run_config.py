@@ -5,7 +5,8 @@ Layers, each overriding the previous:
 1. a vehicle file (default: the packaged `truck-40t.yaml`), which must give every vehicle key;
 2. the packaged defaults of the other sections (`cruise.yaml`, `pi.yaml`, `mpc.yaml`,
    `simulation.yaml`, generated from the declarations);
-3. overlay files (`config_paths`): flat YAML mappings of any non-vehicle keys;
+3. overlay files (`config_paths`): flat YAML mappings of any non-vehicle keys; a name without a
+   path that is no file names a packaged preset (`thesis`: the thesis's controller as printed);
 4. `key=value` overrides (the CLI's `--set`), for any key; the value is YAML.
 
 Every value remembers where it came from (`file:line` or `--set key`), so an error from the core,
@@ -23,7 +24,15 @@ from typing import Any
 import yaml
 
 from truckmpc import _core
-from truckmpc.config.keys import KEYS, SECTION_FILES, SPEC_BY_KEY, VEHICLE_KEYS, default_config_path, unknown_key
+from truckmpc.config.keys import (
+    KEYS,
+    SECTION_FILES,
+    SPEC_BY_KEY,
+    VEHICLE_KEYS,
+    default_config_path,
+    overlay_path,
+    unknown_key,
+)
 from truckmpc.config.yamlfile import read_mapping
 from truckmpc.errors import ConfigError
 
@@ -217,7 +226,7 @@ def load_run_config(
         allowed = [k for k in others if SPEC_BY_KEY[k].section == section]
         layers.read_file(default_config_path(name), allowed, complete=True, refuse_vehicle=False)
     for path in config_paths:
-        layers.read_file(path, others, complete=False, refuse_vehicle=True)
+        layers.read_file(overlay_path(path), others, complete=False, refuse_vehicle=True)
     for text in overrides:
         layers.override(text)
     return layers.build()
