@@ -1,10 +1,14 @@
 //! Transition costs of one stage, kept across solves on a fixed (absolute) velocity grid.
 //!
 //! Successive receding-horizon solves share all but one of their stages: a stage at absolute road
-//! position k is solved N times, from N different start positions. With a fixed grid a row of
-//! costs depends only on (absolute stage, velocity index, target gear), so it is computed once and
-//! reused; stages behind the vehicle are dropped. A solve without the cache (moving grid, or the
-//! first stage, whose start speed is off the grid) fills a scratch [`StageRows`] the same way.
+//! position k is solved N times, from N different start positions. A row of costs depends only on
+//! (absolute stage, velocity index, target gear) and the two grids it joins ([`StageKey`]), so it
+//! is computed once and reused while those stay the same; stages behind the vehicle are dropped.
+//! On a fixed grid the grids never change. On a moving grid each stage's grid starts at its lower
+//! bound, which changes with the start speed, but is most often the same from one solve to the next
+//! (clamped at v_min, or carried by the same chain of bounds): a stage whose key changed is emptied
+//! and filled again. A solve without the cache (the first stage, whose grid is the start speed, or
+//! a horizon off the stage boundaries) fills a scratch [`StageRows`] the same way.
 //!
 //! Layout: per target gear, blocks of `LANES` consecutive source velocities whose rows are stored
 //! transposed ([`Block`]), because the DP's first pass walks one target gear at a time over all
@@ -196,19 +200,39 @@ pub struct NeutralArc {
     pub cost: f64,
 }
 
-/// Everything one stage keeps: its slope, its rows per target gear and its neutral arcs.
+/// What a stage's rows depend on besides the vehicle and the parameters: the slope and the speeds
+/// of the two grids' index 0 (compared bit for bit).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct StageKey {
+    /// Slope as wheel torque [Nm].
+    pub slope_torque_nm: f64,
+    /// Speed of grid index 0 at the stage [m/s].
+    pub origin_mps: f64,
+    /// Speed of grid index 0 at the next stage [m/s].
+    pub next_origin_mps: f64,
+}
+
+impl StageKey {
+    fn same(&self, other: &StageKey) -> bool {
+        self.slope_torque_nm.to_bits() == other.slope_torque_nm.to_bits()
+            && self.origin_mps.to_bits() == other.origin_mps.to_bits()
+            && self.next_origin_mps.to_bits() == other.next_origin_mps.to_bits()
+    }
+}
+
+/// Everything one stage keeps: its key, its rows per target gear and its neutral arcs.
 #[derive(Debug, Clone, Default)]
 pub struct StageRows {
-    slope_torque_nm: f64,
+    key: StageKey,
     /// Indexed by gear; entry 0 (neutral) is unused.
     gears: Vec<GearBlocks>,
     pub neutral: Keyed<NeutralArc>,
 }
 
 impl StageRows {
-    /// Empty the stage for a slope (as wheel torque [Nm]).
-    pub fn reset(&mut self, slope_torque_nm: f64) {
-        self.slope_torque_nm = slope_torque_nm;
+    /// Empty the stage for a key.
+    pub fn reset(&mut self, key: StageKey) {
+        self.key = key;
         for rows in &mut self.gears {
             rows.blocks.clear();
             rows.costs.clear();
@@ -237,9 +261,9 @@ pub struct RowCache {
 }
 
 impl RowCache {
-    /// Drop the stages before `stage` and make sure `stage..stage + count` exist with these slopes.
-    /// A stage whose slope changed (another road) is emptied.
-    pub fn prepare(&mut self, stage: u64, slope_torques_nm: &[f64]) {
+    /// Drop the stages before `stage` and make sure `stage..stage + count` exist with these keys.
+    /// A stage whose key changed (another road, or a moving grid that moved) is emptied.
+    pub fn prepare(&mut self, stage: u64, keys: impl Iterator<Item = StageKey>) {
         while self.first_stage < stage && !self.stages.is_empty() {
             self.spare.push(self.stages.pop_front().unwrap());
             self.first_stage += 1;
@@ -248,14 +272,14 @@ impl RowCache {
             self.spare.extend(self.stages.drain(..));
             self.first_stage = stage;
         }
-        for (k, &torque) in slope_torques_nm.iter().enumerate() {
+        for (k, key) in keys.enumerate() {
             let at = (stage - self.first_stage) as usize + k;
             if at == self.stages.len() {
                 let mut rows = self.spare.pop().unwrap_or_default();
-                rows.reset(torque);
+                rows.reset(key);
                 self.stages.push_back(rows);
-            } else if self.stages[at].slope_torque_nm != torque {
-                self.stages[at].reset(torque);
+            } else if !self.stages[at].key.same(&key) {
+                self.stages[at].reset(key);
             }
         }
     }

@@ -6,8 +6,8 @@
 //! grid: each state is joined only to that band (plus the brake points next to v_max and the one
 //! neutral arc), not to every state of the next stage. The result is the same as the thesis's
 //! all-pairs search, since every pair outside the band is infeasible there. The band's costs come
-//! from [`super::rows`]; on a fixed grid they are cached across solves ([`super::cache`]), and what
-//! remains per solve is a min-plus pass over contiguous arrays.
+//! from [`super::rows`]; they are cached across solves ([`super::cache`]) while a stage's grids stay
+//! the same, and what remains per solve is a min-plus pass over contiguous arrays.
 //!
 //! Shift limit: each state carries the number of stages until the next shift on its optimal
 //! continuation (k_lim at the final stage). A shift into state j is allowed when that number is at
@@ -15,7 +15,7 @@
 //! 1 + c ≥ k_lim, would let them come k_lim − 1 stages apart, contradicting the forward counter of
 //! (5.6).) Stages reached before the vehicle's own counter allows a shift keep the current gear.
 
-use super::cache::{Block, NeutralArc, RowCache, RowScratch, StageRows, LANES, PAD};
+use super::cache::{Block, NeutralArc, RowCache, RowScratch, StageKey, StageRows, LANES, PAD};
 use super::params::{DpSettings, GridAnchor, NeutralRule};
 use super::rows::{forward_row, inputs, GridIndex};
 use super::simd::{self, LaneMins};
@@ -153,7 +153,7 @@ impl StageGrid {
 }
 
 /// A DP solver with its workspace; reuse one across solves so nothing is allocated per solve
-/// once the buffers have grown (and, on a fixed grid, so its row cache pays).
+/// once the buffers have grown (and so its row cache pays).
 #[derive(Debug, Clone)]
 pub struct Solver {
     params: DpSettings,
@@ -186,13 +186,13 @@ pub struct Solver {
 }
 
 impl Solver {
-    /// A solver for these parameters (built by [`DpSettings::new`], which validates). On a fixed
-    /// grid it caches transition costs across solves given their absolute stage.
+    /// A solver for these parameters (built by [`DpSettings::new`], which validates). It caches
+    /// transition costs across solves given their absolute stage (while the stage's grids stay the
+    /// same).
     pub fn new(params: DpSettings) -> Self {
-        let caching = params.grid == GridAnchor::Fixed;
         Solver {
             params,
-            caching,
+            caching: true,
             intervals: Intervals::default(),
             grids: Vec::new(),
             slope_torques: Vec::new(),
@@ -213,9 +213,9 @@ impl Solver {
         }
     }
 
-    /// Turn the row cache off (or back on, on a fixed grid): the results are the same, only slower.
+    /// Turn the row cache off (or back on): the results are the same, only slower.
     pub fn set_caching(&mut self, on: bool) {
-        self.caching = on && self.params.grid == GridAnchor::Fixed;
+        self.caching = on;
     }
 
     /// The parameters.
@@ -246,12 +246,17 @@ impl Solver {
         let gears = vehicle.forward_gears() + 1;
         self.slope_torques.clear();
         self.slope_torques.extend(slopes.iter().map(|&a| vehicle.slope_torque_nm(a)));
+        self.build_space(vehicle, start, slopes);
         let cached_from = if self.caching { first_stage } else { None };
         if let Some(stage) = cached_from {
             // Stage k of this solve (k ≥ 1 has grid states) is absolute stage `stage + k`.
-            self.cache.prepare(stage + 1, &self.slope_torques[1..]);
+            let keys = (1..n_stages).map(|k| StageKey {
+                slope_torque_nm: self.slope_torques[k],
+                origin_mps: self.grids[k].index.origin_mps,
+                next_origin_mps: self.grids[k + 1].index.origin_mps,
+            });
+            self.cache.prepare(stage + 1, keys);
         }
-        self.build_space(vehicle, start, slopes);
         let states = self.gear_ranges.iter().map(|&(lo, hi)| if hi >= lo { (hi - lo + 1) as usize } else { 0 }).sum();
 
         // Terminal cost 0; the counters of final states allow any shift before them.
@@ -411,7 +416,7 @@ impl Solver {
         let (stage, computed): (&mut StageRows, &mut u64) = match abs_stage {
             Some(stage) if k > 0 => self.cache.stage(stage),
             _ => {
-                self.scratch_rows.reset(self.slope_torques[k]);
+                self.scratch_rows.reset(StageKey { slope_torque_nm: self.slope_torques[k], ..StageKey::default() });
                 (&mut self.scratch_rows, &mut uncounted)
             }
         };
@@ -701,6 +706,64 @@ fn block_mins_clipped(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::road::Road;
+    use crate::vehicle::VehicleParams;
+
+    /// A receding sequence of solves on a hilly road (with a model error, so that start speeds
+    /// are off any grid), each solve's outputs as bits.
+    fn receding(params: &DpSettings, caching: bool) -> Vec<(bool, u64, u64, u64, usize, usize, u64)> {
+        let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
+        let n = 600;
+        let distance: Vec<f64> = (0..=n).map(|i| 25.0 * i as f64).collect();
+        let slopes: Vec<f64> =
+            (0..n).map(|i| 0.04 * ((i as f64) * 0.021).sin() * ((i as f64) * 0.0037).cos()).collect();
+        let road = Road::new(distance, slopes).unwrap();
+        let mut solver = Solver::new(params.clone());
+        solver.set_caching(caching);
+        let mut scratch = Vec::new();
+        let (mut v, mut gear, mut since) = (85.0 / 3.6, 12usize, params.k_lim);
+        let mut out = Vec::new();
+        for stage in 0..300 {
+            let s = road.start_m() + stage as f64 * params.stage_m;
+            let start = InitialState { v_mps: v, gear, stages_since_shift: since };
+            let sol = super::super::horizon::solve_at(&mut solver, &vehicle, &road, s, start, &mut scratch);
+            let next_v = sol.trajectory.get(1).map_or(0, |p| p.v_mps.to_bits());
+            out.push((
+                sol.feasible,
+                sol.cost.to_bits(),
+                sol.pedal.to_bits(),
+                sol.brake.to_bits(),
+                sol.gear,
+                sol.transitions,
+                next_v,
+            ));
+            if sol.feasible {
+                since = if sol.gear != gear { 1 } else { (since + 1).min(params.k_lim) };
+                gear = sol.gear;
+                v = sol.trajectory[1].v_mps + if stage % 3 == 0 { 0.013 * ((stage as f64) * 0.7).sin() } else { 0.0 };
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn moving_grid_rows_from_the_cache_give_the_same_bits() {
+        for rule in [NeutralRule::Nearest, NeutralRule::Interpolate] {
+            let params = DpSettings {
+                grid: GridAnchor::Moving,
+                neutral_rule: rule,
+                horizon_m: 1500.0,
+                delta_kmh: 0.2,
+                ..DpSettings::default()
+            };
+            let with = receding(&params, true);
+            let without = receding(&params, false);
+            assert!(with.iter().filter(|s| s.0).count() > 200);
+            for (k, (a, b)) in with.iter().zip(&without).enumerate() {
+                assert_eq!(a, b, "solve {k} differs with the cache ({rule:?})");
+            }
+        }
+    }
 
     /// Per lane, the first strict improvement over the targets that are states (`lo..=hi`).
     fn scalar_lane(
