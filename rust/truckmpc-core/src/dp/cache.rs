@@ -129,21 +129,20 @@ pub struct GearBlocks {
 /// Buffers for building blocks, kept by the solver so that filling allocates nothing.
 #[derive(Debug, Clone, Default)]
 pub struct RowScratch {
-    /// One row, as `row` writes it.
-    row: Vec<f64>,
     /// A block's rows end to end, before transposing.
     rows: Vec<f64>,
 }
 
 impl GearBlocks {
-    /// Make sure the blocks holding source keys `lo..=hi` exist; `row(key, out)` writes one
-    /// row's costs into `out` and returns its span. Returns the rows computed.
+    /// Make sure the blocks holding source keys `lo..=hi` exist; `row(key, out)` appends one
+    /// row's costs to `out` and returns its span and where its first cost is in `out`. Returns the
+    /// rows computed.
     pub fn fill(
         &mut self,
         lo: i64,
         hi: i64,
         scratch: &mut RowScratch,
-        mut row: impl FnMut(i64, &mut Vec<f64>) -> RowSpan,
+        mut row: impl FnMut(i64, &mut Vec<f64>) -> (RowSpan, usize),
     ) -> u64 {
         let costs = &mut self.costs;
         let lanes = LANES as i64;
@@ -152,9 +151,7 @@ impl GearBlocks {
             * self.blocks.fill(lo.div_euclid(lanes), hi.div_euclid(lanes), |b| {
                 scratch.rows.clear();
                 for (l, slot) in spans.iter_mut().enumerate() {
-                    let span = row(b * lanes + l as i64, &mut scratch.row);
-                    *slot = (span, scratch.rows.len());
-                    scratch.rows.extend_from_slice(&scratch.row[..span.len]);
+                    *slot = row(b * lanes + l as i64, &mut scratch.rows);
                 }
                 transpose(&spans, &scratch.rows, costs)
             })
@@ -171,20 +168,29 @@ impl GearBlocks {
 /// Append the rows of one block (spans and where each row starts in `row_costs`) to `costs`,
 /// transposed onto the block's diagonal band; returns the block.
 fn transpose(rows: &[(RowSpan, usize); LANES], row_costs: &[f64], costs: &mut Vec<f64>) -> Block {
-    let present = || rows.iter().enumerate().filter(|(_, (span, _))| span.len > 0);
-    let first = present().map(|(l, (span, _))| span.first - l as i64).min();
     let spans = std::array::from_fn(|l| (rows[l].0.first as i32, rows[l].0.len as u32));
-    let Some(first) = first else {
+    // The band: from the lowest lane start to the highest lane end, both shifted by the lane.
+    let (mut first, mut end) = (i64::MAX, i64::MIN);
+    for (l, (span, _)) in rows.iter().enumerate() {
+        if span.len > 0 {
+            first = first.min(span.first - l as i64);
+            end = end.max(span.first - l as i64 + span.len as i64);
+        }
+    }
+    if first > end {
         return Block { first: 0, steps: 0, offset: costs.len() as u32, spans };
-    };
-    let end = present().map(|(l, (span, _))| span.first - l as i64 + span.len as i64).max().unwrap();
+    }
     let steps = (end - first) as usize;
     let offset = costs.len();
     costs.resize(offset + steps * LANES, f64::INFINITY);
-    for (l, (span, start)) in present() {
-        let d0 = (span.first - l as i64 - first) as usize;
-        for (t, &cost) in row_costs[*start..*start + span.len].iter().enumerate() {
-            costs[offset + (d0 + t) * LANES + l] = cost;
+    let band = &mut costs[offset..];
+    for (l, &(span, start)) in rows.iter().enumerate() {
+        if span.len > 0 {
+            let d0 = (span.first - l as i64 - first) as usize;
+            let lane = band[d0 * LANES + l..].iter_mut().step_by(LANES);
+            for (slot, &cost) in lane.zip(&row_costs[start..start + span.len]) {
+                *slot = cost;
+            }
         }
     }
     Block { first: first as i32, steps: steps as u32, offset: offset as u32, spans }
