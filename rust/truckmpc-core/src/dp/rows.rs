@@ -32,13 +32,37 @@ impl GridIndex {
     /// Smallest index whose speed is at least `v_mps` (to rounding).
     #[inline]
     pub fn ceil(&self, v_mps: f64) -> i64 {
-        ((v_mps - self.origin_mps) / self.delta_mps - 1e-9).ceil() as i64
+        ceil_i64((v_mps - self.origin_mps) / self.delta_mps - 1e-9)
     }
 
     /// Largest index whose speed is at most `v_mps` (to rounding).
     #[inline]
     pub fn floor(&self, v_mps: f64) -> i64 {
-        ((v_mps - self.origin_mps) / self.delta_mps + 1e-9).floor() as i64
+        floor_i64((v_mps - self.origin_mps) / self.delta_mps + 1e-9)
+    }
+}
+
+/// `x.ceil() as i64` without the libm call that `ceil` is on x86-64 without SSE4.1: truncate, and
+/// step up where that lost a positive fraction. The same integer for every x (saturating at the
+/// ends of i64, 0 for NaN, as `as` does).
+#[inline]
+pub fn ceil_i64(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) < x {
+        t.saturating_add(1)
+    } else {
+        t
+    }
+}
+
+/// `x.floor() as i64` without the libm call, as [`ceil_i64`].
+#[inline]
+pub fn floor_i64(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) > x {
+        t.saturating_sub(1)
+    } else {
+        t
     }
 }
 
@@ -182,4 +206,48 @@ pub fn forward_row(
 /// The inputs of one admissible pair (the solver recomputes them for the path it keeps).
 pub fn inputs(vehicle: &Vehicle, p: &DpSettings, v_i: f64, v_j: f64, gear: usize, slope_torque: f64) -> Option<Inputs> {
     pair(p, &maps(vehicle, p, v_i, gear, slope_torque), v_i, v_j).map(|(inputs, _)| inputs)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn integer_ceil_and_floor_equal_the_libm_ones() {
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            1e-300,
+            -1e-300,
+            2.5,
+            -2.5,
+            4503599627370495.5,
+            -4503599627370495.5,
+            9007199254740993.0,
+            9.3e18,
+            -9.3e18,
+            9_223_372_036_854_775_808.0, // 2^63
+            -9_223_372_036_854_775_808.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            f64::MAX,
+            f64::MIN,
+        ];
+        let mut seed = 11u64;
+        for _ in 0..100_000 {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            let x = f64::from_bits(seed);
+            values.push(x);
+            values.push((seed >> 11) as f64 * 1e-6 - 4e6);
+        }
+        for x in values {
+            assert_eq!(ceil_i64(x), x.ceil() as i64, "ceil {x:e}");
+            assert_eq!(floor_i64(x), x.floor() as i64, "floor {x:e}");
+        }
+    }
 }
