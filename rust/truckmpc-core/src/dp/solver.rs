@@ -93,9 +93,13 @@ struct Choices {
     /// Per slot, the counter of the neutral choice (the interpolating rule takes the smaller of
     /// the two neighbours', so it is not the counter at all_j).
     neutral_counter: Vec<u32>,
-    /// Per slot, the best and second-best shift targets over all gears: (cost, gear).
-    shift_first: Vec<(f64, u32)>,
-    shift_second: Vec<(f64, u32)>,
+    /// Per slot, the best and second-best shift targets over all gears: cost and gear.
+    first_cost: Vec<f64>,
+    first_gear: Vec<u32>,
+    second_cost: Vec<f64>,
+    second_gear: Vec<u32>,
+    /// Per slot, the speed-deviation cost Q2·max(v_ref − v, 0)² of the source velocity.
+    penalty: Vec<f64>,
 }
 
 /// No gear (in the two best shifts).
@@ -118,14 +122,25 @@ impl Choices {
                 v.resize(size, 0);
             }
         }
-        for v in [&mut self.shift_first, &mut self.shift_second] {
+        for v in [&mut self.first_cost, &mut self.second_cost] {
             if v.len() < self.width {
-                v.resize(self.width, (INF, NO_GEAR));
+                v.resize(self.width, INF);
             }
-            v[..self.width].fill((INF, NO_GEAR));
+            v[..self.width].fill(INF);
         }
-        if self.neutral_counter.len() < self.width {
-            self.neutral_counter.resize(self.width, 0);
+        for v in [&mut self.first_gear, &mut self.second_gear] {
+            if v.len() < self.width {
+                v.resize(self.width, NO_GEAR);
+            }
+            v[..self.width].fill(NO_GEAR);
+        }
+        for v in [&mut self.neutral_counter] {
+            if v.len() < self.width {
+                v.resize(self.width, 0);
+            }
+        }
+        if self.penalty.len() < self.width {
+            self.penalty.resize(self.width, 0.0);
         }
     }
 }
@@ -489,20 +504,32 @@ impl Solver {
         let ch = &mut self.choices;
         // Slot of source velocity i.
         let s0 = (here.first - ch.base_key) as usize;
+        let sources = s0 + i_lo..s0 + i_hi + 1;
         // The two best shift targets per velocity, so that each state's best shift to another
         // gear is O(1). Gears are scanned in order, keeping the first of equal costs.
         for &g in active_next {
-            let costs = &ch.shift_cost[g * ch.width + s0 + i_lo..=g * ch.width + s0 + i_hi];
-            let firsts = &mut ch.shift_first[s0 + i_lo..=s0 + i_hi];
-            let seconds = &mut ch.shift_second[s0 + i_lo..=s0 + i_hi];
-            for ((&c, first), second) in costs.iter().zip(firsts).zip(seconds) {
-                if c < first.0 {
-                    *second = *first;
-                    *first = (c, g as u32);
-                } else if c < second.0 {
-                    *second = (c, g as u32);
+            let costs = &ch.shift_cost[g * ch.width + sources.start..g * ch.width + sources.end];
+            let first_cost = &mut ch.first_cost[sources.clone()];
+            let first_gear = &mut ch.first_gear[sources.clone()];
+            let second_cost = &mut ch.second_cost[sources.clone()];
+            let second_gear = &mut ch.second_gear[sources.clone()];
+            let m = costs.len();
+            assert!(first_cost.len() == m && first_gear.len() == m && second_cost.len() == m && second_gear.len() == m);
+            for t in 0..m {
+                let c = costs[t];
+                if c < first_cost[t] {
+                    (second_cost[t], second_gear[t]) = (first_cost[t], first_gear[t]);
+                    (first_cost[t], first_gear[t]) = (c, g as u32);
+                } else if c < second_cost[t] {
+                    (second_cost[t], second_gear[t]) = (c, g as u32);
                 }
             }
+        }
+        // The speed-deviation cost of each source velocity, once for all its gears (the same
+        // operations as per state, so the same bits).
+        for (slot, i) in ch.penalty[sources.clone()].iter_mut().zip(i_lo..) {
+            let below = (v_ref - here.speed(i)).max(0.0);
+            *slot = q_speed_below * below * below;
         }
         let stride_n = stride(next.count);
         for &g_i in active_here {
@@ -512,46 +539,37 @@ impl Solver {
             }
             let stays = active_next.contains(&g_i);
             let (lo, hi) = (lo as usize, hi as usize);
-            let (slots, out) = (s0 + lo..s0 + hi + 1, g_i * ch.width + s0 + lo..g_i * ch.width + s0 + hi + 1);
+            let slots = s0 + lo..s0 + hi + 1;
+            let out = g_i * ch.width + slots.start..g_i * ch.width + slots.end;
             let values = g_i * stride(n) + PAD + lo..g_i * stride(n) + PAD + hi + 1;
             let decisions = self.offsets[k] + g_i * n + lo..self.offsets[k] + g_i * n + hi + 1;
-            let (all_cost, all_j) = (&ch.all_cost[out.clone()], &ch.all_j[out]);
-            let (firsts, seconds, neutral_counters) =
-                (&ch.shift_first[slots.clone()], &ch.shift_second[slots.clone()], &ch.neutral_counter[slots]);
-            let (cost_cur, counter_cur) = (&mut self.cost_cur[values.clone()], &mut self.counter_cur[values.clone()]);
-            let (shift_cur, decisions) = (&mut self.shift_cur[values], &mut self.decisions[decisions]);
-            let m = hi - lo + 1;
-            // Equal lengths, stated once: the loop below then needs no bounds checks on them.
-            assert!(
-                all_cost.len() == m
-                    && all_j.len() == m
-                    && firsts.len() == m
-                    && seconds.len() == m
-                    && neutral_counters.len() == m
-            );
-            assert!(cost_cur.len() == m && counter_cur.len() == m && shift_cur.len() == m && decisions.len() == m);
-            for t in 0..m {
-                let i = lo + t;
-                let stay_cost = if stays { all_cost[t] } else { INF };
-                let (shift_cost, shift_gear) = if firsts[t].1 != g_i as u32 { firsts[t] } else { seconds[t] };
-                let (best_cost, decision, counter) = if shift_gear != NO_GEAR && shift_cost + q4 < stay_cost {
-                    let j = ch.shift_j[shift_gear as usize * ch.width + s0 + i];
-                    (shift_cost + q4, Decision { j: j as u16, gear: shift_gear as u8 }, 1)
-                } else {
-                    let j = if stays { all_j[t] } else { 0 };
-                    let carried = match (stay_cost < INF, g_i) {
-                        (false, _) => 0,
-                        (true, NEUTRAL) => neutral_counters[t],
-                        (true, _) => self.counter_next[g_i * stride_n + PAD + j as usize],
-                    };
-                    (stay_cost, Decision { j: j as u16, gear: g_i as u8 }, carried.saturating_add(1).min(u32::MAX / 2))
-                };
-                let below = (v_ref - here.speed(i)).max(0.0);
-                let total = best_cost + q_speed_below * below * below;
-                cost_cur[t] = total;
-                counter_cur[t] = counter;
-                shift_cur[t] = if counter >= k_lim { total } else { INF };
-                decisions[t] = decision;
+            let state = StateOut {
+                cost: &mut self.cost_cur[values.clone()],
+                counter: &mut self.counter_cur[values.clone()],
+                shift: &mut self.shift_cur[values],
+                decision: &mut self.decisions[decisions],
+            };
+            let input = StateIn {
+                gear: g_i as u32,
+                slot0: slots.start,
+                all_cost: &ch.all_cost[out.clone()],
+                all_j: &ch.all_j[out],
+                first_cost: &ch.first_cost[slots.clone()],
+                first_gear: &ch.first_gear[slots.clone()],
+                second_cost: &ch.second_cost[slots.clone()],
+                second_gear: &ch.second_gear[slots.clone()],
+                neutral_counter: &ch.neutral_counter[slots.clone()],
+                penalty: &ch.penalty[slots],
+                shift_j: &ch.shift_j,
+                width: ch.width,
+                counter_next: &self.counter_next[g_i * stride_n + PAD..(g_i + 1) * stride_n],
+                q4,
+                k_lim,
+            };
+            match (stays, g_i == NEUTRAL) {
+                (false, _) => decide_states::<false, false>(input, state),
+                (true, false) => decide_states::<true, false>(input, state),
+                (true, true) => decide_states::<true, true>(input, state),
             }
             // The rest of the gear's block (no state there) is +∞ for the min-plus pass.
             let block = g_i * stride(n)..(g_i + 1) * stride(n);
@@ -589,6 +607,81 @@ impl Solver {
         out.pedal = first.pedal;
         out.brake = first.brake;
         out.gear = first.gear;
+    }
+}
+
+/// What the second pass reads for the states of one gear at one stage (slices over its states).
+struct StateIn<'a> {
+    gear: u32,
+    /// Choice slot of the first state.
+    slot0: usize,
+    all_cost: &'a [f64],
+    all_j: &'a [u32],
+    first_cost: &'a [f64],
+    first_gear: &'a [u32],
+    second_cost: &'a [f64],
+    second_gear: &'a [u32],
+    neutral_counter: &'a [u32],
+    penalty: &'a [f64],
+    /// All gears' shift targets, [gear * width + slot].
+    shift_j: &'a [u32],
+    width: usize,
+    /// The gear's counters at the next stage, from index 0.
+    counter_next: &'a [u32],
+    q4: f64,
+    k_lim: u32,
+}
+
+/// What the second pass writes for the states of one gear at one stage.
+struct StateOut<'a> {
+    cost: &'a mut [f64],
+    counter: &'a mut [u32],
+    shift: &'a mut [f64],
+    decision: &'a mut [Decision],
+}
+
+/// Stay in the gear or take the best shift to another, per state. `STAYS`: the gear has states at
+/// the next stage; `NEUTRAL_STATE`: the gear is neutral (whose counter comes with its choice).
+#[inline(always)]
+fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(input: StateIn, out: StateOut) {
+    let m = out.cost.len();
+    // Equal lengths, stated once: the loop below then needs no bounds checks on them.
+    assert!(
+        input.all_cost.len() == m
+            && input.all_j.len() == m
+            && input.first_cost.len() == m
+            && input.first_gear.len() == m
+            && input.second_cost.len() == m
+            && input.second_gear.len() == m
+            && input.neutral_counter.len() == m
+            && input.penalty.len() == m
+    );
+    assert!(out.counter.len() == m && out.shift.len() == m && out.decision.len() == m);
+    for t in 0..m {
+        let stay_cost = if STAYS { input.all_cost[t] } else { INF };
+        // The best shift to another gear. With none, its cost is +∞ and never beats staying.
+        let own = input.first_gear[t] == input.gear;
+        let shift_cost = (if own { input.second_cost[t] } else { input.first_cost[t] }) + input.q4;
+        let (best_cost, decision, counter) = if shift_cost < stay_cost {
+            let shift_gear = if own { input.second_gear[t] } else { input.first_gear[t] };
+            let j = input.shift_j[shift_gear as usize * input.width + input.slot0 + t];
+            (shift_cost, Decision { j: j as u16, gear: shift_gear as u8 }, 1)
+        } else {
+            let j = if STAYS { input.all_j[t] } else { 0 };
+            let carried = if !STAYS || !(stay_cost < INF) {
+                0
+            } else if NEUTRAL_STATE {
+                input.neutral_counter[t]
+            } else {
+                input.counter_next[j as usize]
+            };
+            (stay_cost, Decision { j: j as u16, gear: input.gear as u8 }, carried.saturating_add(1).min(u32::MAX / 2))
+        };
+        let total = best_cost + input.penalty[t];
+        out.cost[t] = total;
+        out.counter[t] = counter;
+        out.shift[t] = if counter >= input.k_lim { total } else { INF };
+        out.decision[t] = decision;
     }
 }
 
