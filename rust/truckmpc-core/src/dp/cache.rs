@@ -117,6 +117,8 @@ pub struct Block {
     pub offset: u32,
     /// Per lane, its row's span on the next grid: (first index, length).
     pub spans: [(i32, u32); LANES],
+    /// Sum of the lanes' lengths: the block's transitions when all its targets are states.
+    pub reach: u32,
 }
 
 /// The row blocks of one stage towards one forward target gear, keyed by block index.
@@ -178,7 +180,7 @@ fn transpose(rows: &[(RowSpan, usize); LANES], row_costs: &[f64], costs: &mut Ve
         }
     }
     if first > end {
-        return Block { first: 0, steps: 0, offset: costs.len() as u32, spans };
+        return Block { first: 0, steps: 0, offset: costs.len() as u32, spans, reach: 0 };
     }
     let steps = (end - first) as usize;
     let offset = costs.len();
@@ -193,7 +195,8 @@ fn transpose(rows: &[(RowSpan, usize); LANES], row_costs: &[f64], costs: &mut Ve
             }
         }
     }
-    Block { first: first as i32, steps: steps as u32, offset: offset as u32, spans }
+    let reach = rows.iter().map(|(span, _)| span.len as u32).sum();
+    Block { first: first as i32, steps: steps as u32, offset: offset as u32, spans, reach }
 }
 
 /// A neutral arc from one source speed: where it ends and the part of its cost that does not

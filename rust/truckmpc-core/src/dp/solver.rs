@@ -445,9 +445,10 @@ impl Solver {
             if g == NEUTRAL {
                 stage.neutral.fill(key_lo, key_hi, |key| neutral_arc(p, vehicle, here.index.speed(key), slope_torque));
                 let slot0 = (key_lo - ch.base_key) as usize;
+                let join = NeutralJoin::new(p, next, (lo, hi));
+                let (cost_next, counter_next) = (&self.cost_next[PAD..], &self.counter_next[PAD..]);
                 for (s, arc) in stage.neutral.get(key_lo, key_hi).iter().enumerate() {
-                    let (cost, j, counter) =
-                        neutral_join(p, arc, next, (lo, hi), &self.cost_next[PAD..], &self.counter_next[PAD..]);
+                    let (cost, j, counter) = join.join(arc, cost_next, counter_next);
                     let at = out + slot0 + s;
                     (ch.all_cost[at], ch.all_j[at], ch.neutral_counter[slot0 + s]) = (cost, j, counter);
                     (ch.shift_cost[at], ch.shift_j[at]) = (if counter >= p.k_lim { cost } else { INF }, j);
@@ -470,11 +471,21 @@ impl Solver {
                 ch.all_cost[at.clone()].copy_from_slice(&mins.all);
                 ch.shift_cost[at.clone()].copy_from_slice(&mins.shift);
                 let (all_j, shift_j) = (&mut ch.all_j[at.clone()], &mut ch.shift_j[at]);
-                let key0 = first_key + (b * LANES) as i64;
+                // Next-grid index of a lane's step (base + lane + step, as u32 like the i64 sum
+                // truncated); meaningless where the cost is +∞.
+                let base32 = base as u32;
                 for l in 0..LANES {
-                    // Next-grid index of a lane's step; meaningless where the cost is +∞.
-                    let j = |step: u32| (base + (l as u32 + step) as i64) as u32;
-                    (all_j[l], shift_j[l]) = (j(mins.all_step[l]), j(mins.shift_step[l]));
+                    all_j[l] = base32.wrapping_add(l as u32).wrapping_add(mins.all_step[l]);
+                    shift_j[l] = base32.wrapping_add(l as u32).wrapping_add(mins.shift_step[l]);
+                }
+                let key0 = first_key + (b * LANES) as i64;
+                let inside = base >= lo as i64 && base + block.steps as i64 + LANES as i64 - 2 <= hi as i64;
+                if inside && key0 >= key_lo && key0 + LANES as i64 - 1 <= key_hi {
+                    // Every lane's targets are states and every lane a source: no clipping.
+                    transitions += block.reach as usize;
+                    continue;
+                }
+                for l in 0..LANES {
                     let key = key0 + l as i64;
                     let (first, len) = block.spans[l];
                     let first = first as i64 - next.first;
@@ -694,53 +705,63 @@ fn neutral_arc(p: &DpSettings, vehicle: &Vehicle, v_i_mps: f64, slope_torque: f6
     NeutralArc { v_end_mps, cost: p.q_fuel * fuel + p.q_speed_change * (v_i_mps - v_end_mps).abs() }
 }
 
-/// Join a neutral arc to the next grid by the configured rule, within the neutral states' index
-/// range: (cost with the cost-to-go, next-grid index, counter of the continuation); cost +∞ when
-/// the arc ends off the states.
-#[inline]
-fn neutral_join(
-    p: &DpSettings,
-    arc: &NeutralArc,
-    next: StageGrid,
-    (lo, hi): (u32, u32),
-    cost_next: &[f64],
-    counter_next: &[u32],
-) -> (f64, u32, u32) {
-    const NONE: (f64, u32, u32) = (INF, 0, 0);
-    let x = (arc.v_end_mps - next.speed(0)) / p.delta_mps();
-    // Grid indices are never negative; x below −0.5 is outside the grid either way.
-    if x < lo as f64 - 0.5 || x > hi as f64 + 0.5 {
-        return NONE;
+/// Joins neutral arcs to the next grid by the configured rule, within the neutral states' index
+/// range, with the stage's constants computed once.
+struct NeutralJoin {
+    rule: NeutralRule,
+    /// Speed of next-grid index 0 [m/s].
+    origin_mps: f64,
+    delta_mps: f64,
+    lo: u32,
+    hi: u32,
+}
+
+impl NeutralJoin {
+    fn new(p: &DpSettings, next: StageGrid, (lo, hi): (u32, u32)) -> Self {
+        NeutralJoin { rule: p.neutral_rule, origin_mps: next.speed(0), delta_mps: p.delta_mps(), lo, hi }
     }
-    let (to_go, j, counter) = match p.neutral_rule {
-        NeutralRule::Nearest => {
-            let j = (x + 0.5) as usize; // round half up without a libm call; x + 0.5 >= 0 here
-            if j < lo as usize || j > hi as usize {
-                return NONE;
-            }
-            (cost_next[j], j, counter_next[j])
+
+    /// (cost with the cost-to-go, next-grid index, counter of the continuation); cost +∞ when
+    /// the arc ends off the states.
+    #[inline]
+    fn join(&self, arc: &NeutralArc, cost_next: &[f64], counter_next: &[u32]) -> (f64, u32, u32) {
+        const NONE: (f64, u32, u32) = (INF, 0, 0);
+        let (lo, hi) = (self.lo, self.hi);
+        let x = (arc.v_end_mps - self.origin_mps) / self.delta_mps;
+        // Grid indices are never negative; x below −0.5 is outside the grid either way.
+        if x < lo as f64 - 0.5 || x > hi as f64 + 0.5 {
+            return NONE;
         }
-        NeutralRule::Interpolate => {
-            const TOL: f64 = 1e-9;
-            if x < lo as f64 - TOL || x > hi as f64 + TOL {
-                return NONE;
+        let (to_go, j, counter) = match self.rule {
+            NeutralRule::Nearest => {
+                let j = (x + 0.5) as usize; // round half up without a libm call; x + 0.5 >= 0 here
+                if j < lo as usize || j > hi as usize {
+                    return NONE;
+                }
+                (cost_next[j], j, counter_next[j])
             }
-            let x = x.clamp(lo as f64, hi as f64);
-            let j0 = x as usize;
-            let w = x - j0 as f64;
-            if w == 0.0 {
-                (cost_next[j0], j0, counter_next[j0])
-            } else {
-                let to_go = (1.0 - w) * cost_next[j0] + w * cost_next[j0 + 1];
-                let nearest = if w < 0.5 { j0 } else { j0 + 1 };
-                (to_go, nearest, counter_next[j0].min(counter_next[j0 + 1]))
+            NeutralRule::Interpolate => {
+                const TOL: f64 = 1e-9;
+                if x < lo as f64 - TOL || x > hi as f64 + TOL {
+                    return NONE;
+                }
+                let x = x.clamp(lo as f64, hi as f64);
+                let j0 = x as usize;
+                let w = x - j0 as f64;
+                if w == 0.0 {
+                    (cost_next[j0], j0, counter_next[j0])
+                } else {
+                    let to_go = (1.0 - w) * cost_next[j0] + w * cost_next[j0 + 1];
+                    let nearest = if w < 0.5 { j0 } else { j0 + 1 };
+                    (to_go, nearest, counter_next[j0].min(counter_next[j0 + 1]))
+                }
             }
+        };
+        if !to_go.is_finite() {
+            return NONE;
         }
-    };
-    if !to_go.is_finite() {
-        return NONE;
+        (arc.cost + to_go, j as u32, counter)
     }
-    (arc.cost + to_go, j as u32, counter)
 }
 
 /// The min-plus pass over one block of rows towards one forward target gear: per lane, the best
@@ -899,7 +920,7 @@ mod tests {
                 to_go[PAD + j as usize] = next() as f64;
                 shiftable[PAD + j as usize] = if next() < 3 { INF } else { to_go[PAD + j as usize] };
             }
-            let block = Block { first: 0, steps: steps as u32, offset: 0, spans: [(0, 0); LANES] };
+            let block = Block { first: 0, steps: steps as u32, offset: 0, spans: [(0, 0); LANES], reach: 0 };
             // Inside the margins (packed pass) and reaching below them (clipped pass).
             for base in [-4i64, 10, -(PAD as i64) - 3, count as i64 - 5] {
                 let mins = block_mins(&block, &costs, base, (lo, hi), (&to_go, &shiftable));
