@@ -186,9 +186,13 @@ pub struct Solver {
     cost_next: Vec<f64>,
     /// cost_next where the state's continuation allows a shift into it, +∞ elsewhere.
     shift_next: Vec<f64>,
+    /// Per gear, whether its block of shift_next equals cost_next bit for bit (every state's
+    /// continuation allows a shift, or has no finite cost): one minimum then serves for both.
+    shift_same_next: Vec<bool>,
     counter_next: Vec<u32>,
     cost_cur: Vec<f64>,
     shift_cur: Vec<f64>,
+    shift_same_cur: Vec<bool>,
     counter_cur: Vec<u32>,
     /// Decisions per stage, flat; offsets[k] is the start of stage k, indexed [gear * count + i].
     decisions: Vec<Decision>,
@@ -215,9 +219,11 @@ impl Solver {
             active: Vec::new(),
             cost_next: Vec::new(),
             shift_next: Vec::new(),
+            shift_same_next: Vec::new(),
             counter_next: Vec::new(),
             cost_cur: Vec::new(),
             shift_cur: Vec::new(),
+            shift_same_cur: Vec::new(),
             counter_cur: Vec::new(),
             decisions: Vec::new(),
             offsets: Vec::new(),
@@ -287,12 +293,17 @@ impl Solver {
             }
         }
         self.shift_next.clone_from(&self.cost_next);
+        self.shift_same_next.clear();
+        self.shift_same_next.resize(gears, true);
+        self.shift_same_cur.clear();
+        self.shift_same_cur.resize(gears, true);
 
         let mut transitions = 0usize;
         for k in (0..n_stages).rev() {
             transitions += self.backward_stage(vehicle, k, cached_from.map(|s| s + k as u64), start.gear);
             std::mem::swap(&mut self.cost_cur, &mut self.cost_next);
             std::mem::swap(&mut self.shift_cur, &mut self.shift_next);
+            std::mem::swap(&mut self.shift_same_cur, &mut self.shift_same_next);
             std::mem::swap(&mut self.counter_cur, &mut self.counter_next);
         }
         let cost = self.cost_next[start.gear * stride(1) + PAD];
@@ -462,11 +473,12 @@ impl Solver {
             });
             let values = g * stride(next.count)..(g + 1) * stride(next.count);
             let values = (&self.cost_next[values.clone()], &self.shift_next[values]);
+            let same = self.shift_same_next[g];
             let (blocks, first_key) = rows.get(key_lo, key_hi);
             debug_assert_eq!(first_key, ch.base_key);
             for (b, block) in blocks.iter().enumerate() {
                 let base = block.first as i64 - next.first;
-                let mins = block_mins(block, &rows.costs, base, (lo, hi), values);
+                let mins = block_mins(block, &rows.costs, base, (lo, hi), values, same);
                 let at = out + b * LANES..out + (b + 1) * LANES;
                 ch.all_cost[at.clone()].copy_from_slice(&mins.all);
                 ch.shift_cost[at.clone()].copy_from_slice(&mins.shift);
@@ -577,11 +589,11 @@ impl Solver {
                 q4,
                 k_lim,
             };
-            match (stays, g_i == NEUTRAL) {
+            self.shift_same_cur[g_i] = match (stays, g_i == NEUTRAL) {
                 (false, _) => decide_states::<false, false>(input, state),
                 (true, false) => decide_states::<true, false>(input, state),
                 (true, true) => decide_states::<true, true>(input, state),
-            }
+            };
             // The rest of the gear's block (no state there) is +∞ for the min-plus pass.
             let block = g_i * stride(n)..(g_i + 1) * stride(n);
             for part in [block.start..block.start + PAD + lo, block.start + PAD + hi + 1..block.end] {
@@ -653,8 +665,9 @@ struct StateOut<'a> {
 
 /// Stay in the gear or take the best shift to another, per state. `STAYS`: the gear has states at
 /// the next stage; `NEUTRAL_STATE`: the gear is neutral (whose counter comes with its choice).
+/// Returns whether every state's shiftable cost equals its cost bit for bit.
 #[inline(always)]
-fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(input: StateIn, out: StateOut) {
+fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(input: StateIn, out: StateOut) -> bool {
     let m = out.cost.len();
     // Equal lengths, stated once: the loop below then needs no bounds checks on them.
     assert!(
@@ -668,6 +681,7 @@ fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(input: StateIn, o
             && input.penalty.len() == m
     );
     assert!(out.counter.len() == m && out.shift.len() == m && out.decision.len() == m);
+    let mut blocked = false;
     for t in 0..m {
         let stay_cost = if STAYS { input.all_cost[t] } else { INF };
         // The best shift to another gear. With none, its cost is +∞ and never beats staying.
@@ -691,9 +705,14 @@ fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(input: StateIn, o
         let total = best_cost + input.penalty[t];
         out.cost[t] = total;
         out.counter[t] = counter;
-        out.shift[t] = if counter >= input.k_lim { total } else { INF };
+        let shiftable = counter >= input.k_lim;
+        // Not shiftable and not +∞: the shiftable cost (+∞) differs from the cost.
+        blocked |= !shiftable & (total != INF);
+        out.shift[t] = if shiftable { total } else { INF };
         out.decision[t] = decision;
     }
+    // Otherwise each shiftable cost is its cost (or both are +∞): the same bits.
+    !blocked
 }
 
 /// The single neutral arc from `v_i_mps` on a stage: where the physics ends it, and its fuel and
@@ -767,7 +786,8 @@ impl NeutralJoin {
 /// The min-plus pass over one block of rows towards one forward target gear: per lane, the best
 /// of row cost + cost-to-go and the best among targets whose continuation allows a shift now.
 /// `base` is the next-grid index of lane 0 at step 0; `values` the target gear's blocks of
-/// cost_next and shift_next (margins included, state j at PAD + j).
+/// cost_next and shift_next (margins included, state j at PAD + j); `same` when they are equal
+/// bit for bit.
 #[inline]
 fn block_mins(
     block: &Block,
@@ -775,6 +795,7 @@ fn block_mins(
     base: i64,
     (lo, hi): (u32, u32),
     (to_go, shiftable): (&[f64], &[f64]),
+    same: bool,
 ) -> LaneMins {
     let steps = block.steps as usize;
     let at = base + PAD as i64;
@@ -782,6 +803,9 @@ fn block_mins(
     if steps > 0 && at >= 0 && at as usize + steps + LANES - 1 <= to_go.len() {
         // The values outside the target gear's states are +∞ (margins included): no clipping.
         let at = at as usize;
+        if same {
+            return simd::block_mins_same(costs, steps, &to_go[at..]);
+        }
         return simd::block_mins(costs, steps, &to_go[at..], &shiftable[at..]);
     }
     block_mins_clipped(costs, steps, base, (lo, hi), to_go, shiftable)
@@ -923,7 +947,7 @@ mod tests {
             let block = Block { first: 0, steps: steps as u32, offset: 0, spans: [(0, 0); LANES], reach: 0 };
             // Inside the margins (packed pass) and reaching below them (clipped pass).
             for base in [-4i64, 10, -(PAD as i64) - 3, count as i64 - 5] {
-                let mins = block_mins(&block, &costs, base, (lo, hi), (&to_go, &shiftable));
+                let mins = block_mins(&block, &costs, base, (lo, hi), (&to_go, &shiftable), false);
                 for l in 0..LANES {
                     assert_eq!(
                         (mins.all[l], mins.all_step[l]),
