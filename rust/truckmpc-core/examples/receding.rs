@@ -1,6 +1,7 @@
 //! Receding-horizon solves along a road profile CSV (distance_m, altitude_m, ...), the speed
 //! advanced by the predicted trajectory: the closed loop without Python and without the plant.
-//! Usage: receding ROAD.csv [moving|fixed] [delta_kmh] [horizon_m] [stage_m]
+//! Usage: receding ROAD.csv [moving|fixed] [delta_kmh] [horizon_m] [stage_m] [distance_m]
+//! (`distance_m` drives only that far from the road's start, e.g. 10000 for a short profiling run.)
 use std::sync::Arc;
 use std::time::Instant;
 use truckmpc_core::control::ShiftCounter;
@@ -38,7 +39,8 @@ fn main() {
     let mut mix = |x: u64| digest = (digest ^ x).wrapping_mul(0x100000001b3);
     let t0 = Instant::now();
     let mut s = road.start_m();
-    while s + p.stage_m <= road.end_m() {
+    let end_m = road.end_m().min(road.start_m() + num(6, f64::INFINITY));
+    while s + p.stage_m <= end_m {
         let sol = horizon::solve_at(
             &mut solver,
             &vehicle,

@@ -1,10 +1,14 @@
 //! Transition costs of one stage, kept across solves on a fixed (absolute) velocity grid.
 //!
 //! Successive receding-horizon solves share all but one of their stages: a stage at absolute road
-//! position k is solved N times, from N different start positions. With a fixed grid a row of
-//! costs depends only on (absolute stage, velocity index, target gear), so it is computed once and
-//! reused; stages behind the vehicle are dropped. A solve without the cache (moving grid, or the
-//! first stage, whose start speed is off the grid) fills a scratch [`StageRows`] the same way.
+//! position k is solved N times, from N different start positions. A row of costs depends only on
+//! (absolute stage, velocity index, target gear) and the two grids it joins ([`StageKey`]), so it
+//! is computed once and reused while those stay the same; stages behind the vehicle are dropped.
+//! On a fixed grid the grids never change. On a moving grid each stage's grid starts at its lower
+//! bound, which changes with the start speed, but is most often the same from one solve to the next
+//! (clamped at v_min, or carried by the same chain of bounds): a stage whose key changed is emptied
+//! and filled again. A solve without the cache (the first stage, whose grid is the start speed, or
+//! a horizon off the stage boundaries) fills a scratch [`StageRows`] the same way.
 //!
 //! Layout: per target gear, blocks of `LANES` consecutive source velocities whose rows are stored
 //! transposed ([`Block`]), because the DP's first pass walks one target gear at a time over all
@@ -113,6 +117,8 @@ pub struct Block {
     pub offset: u32,
     /// Per lane, its row's span on the next grid: (first index, length).
     pub spans: [(i32, u32); LANES],
+    /// Sum of the lanes' lengths: the block's transitions when all its targets are states.
+    pub reach: u32,
 }
 
 /// The row blocks of one stage towards one forward target gear, keyed by block index.
@@ -125,21 +131,20 @@ pub struct GearBlocks {
 /// Buffers for building blocks, kept by the solver so that filling allocates nothing.
 #[derive(Debug, Clone, Default)]
 pub struct RowScratch {
-    /// One row, as `row` writes it.
-    row: Vec<f64>,
     /// A block's rows end to end, before transposing.
     rows: Vec<f64>,
 }
 
 impl GearBlocks {
-    /// Make sure the blocks holding source keys `lo..=hi` exist; `row(key, out)` writes one
-    /// row's costs into `out` and returns its span. Returns the rows computed.
+    /// Make sure the blocks holding source keys `lo..=hi` exist; `row(key, out)` appends one
+    /// row's costs to `out` and returns its span and where its first cost is in `out`. Returns the
+    /// rows computed.
     pub fn fill(
         &mut self,
         lo: i64,
         hi: i64,
         scratch: &mut RowScratch,
-        mut row: impl FnMut(i64, &mut Vec<f64>) -> RowSpan,
+        mut row: impl FnMut(i64, &mut Vec<f64>) -> (RowSpan, usize),
     ) -> u64 {
         let costs = &mut self.costs;
         let lanes = LANES as i64;
@@ -148,9 +153,7 @@ impl GearBlocks {
             * self.blocks.fill(lo.div_euclid(lanes), hi.div_euclid(lanes), |b| {
                 scratch.rows.clear();
                 for (l, slot) in spans.iter_mut().enumerate() {
-                    let span = row(b * lanes + l as i64, &mut scratch.row);
-                    *slot = (span, scratch.rows.len());
-                    scratch.rows.extend_from_slice(&scratch.row[..span.len]);
+                    *slot = row(b * lanes + l as i64, &mut scratch.rows);
                 }
                 transpose(&spans, &scratch.rows, costs)
             })
@@ -167,23 +170,33 @@ impl GearBlocks {
 /// Append the rows of one block (spans and where each row starts in `row_costs`) to `costs`,
 /// transposed onto the block's diagonal band; returns the block.
 fn transpose(rows: &[(RowSpan, usize); LANES], row_costs: &[f64], costs: &mut Vec<f64>) -> Block {
-    let present = || rows.iter().enumerate().filter(|(_, (span, _))| span.len > 0);
-    let first = present().map(|(l, (span, _))| span.first - l as i64).min();
     let spans = std::array::from_fn(|l| (rows[l].0.first as i32, rows[l].0.len as u32));
-    let Some(first) = first else {
-        return Block { first: 0, steps: 0, offset: costs.len() as u32, spans };
-    };
-    let end = present().map(|(l, (span, _))| span.first - l as i64 + span.len as i64).max().unwrap();
+    // The band: from the lowest lane start to the highest lane end, both shifted by the lane.
+    let (mut first, mut end) = (i64::MAX, i64::MIN);
+    for (l, (span, _)) in rows.iter().enumerate() {
+        if span.len > 0 {
+            first = first.min(span.first - l as i64);
+            end = end.max(span.first - l as i64 + span.len as i64);
+        }
+    }
+    if first > end {
+        return Block { first: 0, steps: 0, offset: costs.len() as u32, spans, reach: 0 };
+    }
     let steps = (end - first) as usize;
     let offset = costs.len();
     costs.resize(offset + steps * LANES, f64::INFINITY);
-    for (l, (span, start)) in present() {
-        let d0 = (span.first - l as i64 - first) as usize;
-        for (t, &cost) in row_costs[*start..*start + span.len].iter().enumerate() {
-            costs[offset + (d0 + t) * LANES + l] = cost;
+    let band = &mut costs[offset..];
+    for (l, &(span, start)) in rows.iter().enumerate() {
+        if span.len > 0 {
+            let d0 = (span.first - l as i64 - first) as usize;
+            let lane = band[d0 * LANES + l..].iter_mut().step_by(LANES);
+            for (slot, &cost) in lane.zip(&row_costs[start..start + span.len]) {
+                *slot = cost;
+            }
         }
     }
-    Block { first: first as i32, steps: steps as u32, offset: offset as u32, spans }
+    let reach = rows.iter().map(|(span, _)| span.len as u32).sum();
+    Block { first: first as i32, steps: steps as u32, offset: offset as u32, spans, reach }
 }
 
 /// A neutral arc from one source speed: where it ends and the part of its cost that does not
@@ -196,19 +209,39 @@ pub struct NeutralArc {
     pub cost: f64,
 }
 
-/// Everything one stage keeps: its slope, its rows per target gear and its neutral arcs.
+/// What a stage's rows depend on besides the vehicle and the parameters: the slope and the speeds
+/// of the two grids' index 0 (compared bit for bit).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct StageKey {
+    /// Slope as wheel torque [Nm].
+    pub slope_torque_nm: f64,
+    /// Speed of grid index 0 at the stage [m/s].
+    pub origin_mps: f64,
+    /// Speed of grid index 0 at the next stage [m/s].
+    pub next_origin_mps: f64,
+}
+
+impl StageKey {
+    fn same(&self, other: &StageKey) -> bool {
+        self.slope_torque_nm.to_bits() == other.slope_torque_nm.to_bits()
+            && self.origin_mps.to_bits() == other.origin_mps.to_bits()
+            && self.next_origin_mps.to_bits() == other.next_origin_mps.to_bits()
+    }
+}
+
+/// Everything one stage keeps: its key, its rows per target gear and its neutral arcs.
 #[derive(Debug, Clone, Default)]
 pub struct StageRows {
-    slope_torque_nm: f64,
+    key: StageKey,
     /// Indexed by gear; entry 0 (neutral) is unused.
     gears: Vec<GearBlocks>,
     pub neutral: Keyed<NeutralArc>,
 }
 
 impl StageRows {
-    /// Empty the stage for a slope (as wheel torque [Nm]).
-    pub fn reset(&mut self, slope_torque_nm: f64) {
-        self.slope_torque_nm = slope_torque_nm;
+    /// Empty the stage for a key.
+    pub fn reset(&mut self, key: StageKey) {
+        self.key = key;
         for rows in &mut self.gears {
             rows.blocks.clear();
             rows.costs.clear();
@@ -237,9 +270,9 @@ pub struct RowCache {
 }
 
 impl RowCache {
-    /// Drop the stages before `stage` and make sure `stage..stage + count` exist with these slopes.
-    /// A stage whose slope changed (another road) is emptied.
-    pub fn prepare(&mut self, stage: u64, slope_torques_nm: &[f64]) {
+    /// Drop the stages before `stage` and make sure `stage..stage + count` exist with these keys.
+    /// A stage whose key changed (another road, or a moving grid that moved) is emptied.
+    pub fn prepare(&mut self, stage: u64, keys: impl Iterator<Item = StageKey>) {
         while self.first_stage < stage && !self.stages.is_empty() {
             self.spare.push(self.stages.pop_front().unwrap());
             self.first_stage += 1;
@@ -248,14 +281,14 @@ impl RowCache {
             self.spare.extend(self.stages.drain(..));
             self.first_stage = stage;
         }
-        for (k, &torque) in slope_torques_nm.iter().enumerate() {
+        for (k, key) in keys.enumerate() {
             let at = (stage - self.first_stage) as usize + k;
             if at == self.stages.len() {
                 let mut rows = self.spare.pop().unwrap_or_default();
-                rows.reset(torque);
+                rows.reset(key);
                 self.stages.push_back(rows);
-            } else if self.stages[at].slope_torque_nm != torque {
-                self.stages[at].reset(torque);
+            } else if !self.stages[at].key.same(&key) {
+                self.stages[at].reset(key);
             }
         }
     }

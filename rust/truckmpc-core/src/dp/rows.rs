@@ -32,13 +32,37 @@ impl GridIndex {
     /// Smallest index whose speed is at least `v_mps` (to rounding).
     #[inline]
     pub fn ceil(&self, v_mps: f64) -> i64 {
-        ((v_mps - self.origin_mps) / self.delta_mps - 1e-9).ceil() as i64
+        ceil_i64((v_mps - self.origin_mps) / self.delta_mps - 1e-9)
     }
 
     /// Largest index whose speed is at most `v_mps` (to rounding).
     #[inline]
     pub fn floor(&self, v_mps: f64) -> i64 {
-        ((v_mps - self.origin_mps) / self.delta_mps + 1e-9).floor() as i64
+        floor_i64((v_mps - self.origin_mps) / self.delta_mps + 1e-9)
+    }
+}
+
+/// `x.ceil() as i64` without the libm call that `ceil` is on x86-64 without SSE4.1: truncate, and
+/// step up where that lost a positive fraction. The same integer for every x (saturating at the
+/// ends of i64, 0 for NaN, as `as` does).
+#[inline]
+pub fn ceil_i64(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) < x {
+        t.saturating_add(1)
+    } else {
+        t
+    }
+}
+
+/// `x.floor() as i64` without the libm call, as [`ceil_i64`].
+#[inline]
+pub fn floor_i64(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) > x {
+        t.saturating_sub(1)
+    } else {
+        t
     }
 }
 
@@ -104,8 +128,12 @@ fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64) -> Option<(Inputs, f64)
     None
 }
 
-/// Fill `out` with the costs of joining `v_i` in forward `gear` to the grid indices of the next
-/// stage, and return their span. Indices no input reaches inside the span hold +∞.
+/// Append to `out` the costs of joining `v_i` in forward `gear` to the grid indices of the next
+/// stage; return their span and where its first cost is in `out`. Indices no input reaches inside
+/// the span hold +∞; a row with no admissible target appends nothing (len 0).
+///
+/// Each cost is computed by the same operations as [`pair`] (same bits); only the constants of
+/// the row are hoisted out of the loop.
 pub fn forward_row(
     vehicle: &Vehicle,
     p: &DpSettings,
@@ -114,43 +142,112 @@ pub fn forward_row(
     slope_torque: f64,
     grid: GridIndex,
     out: &mut Vec<f64>,
-) -> RowSpan {
-    out.clear();
+) -> (RowSpan, usize) {
+    let start = out.len();
     let m = maps(vehicle, p, v_i, gear, slope_torque);
     let h = p.stage_m;
     let (mut first, mut last) = (i64::MAX, i64::MIN);
-    if m.pedal.gain > 0.0 {
+    let pedal_on = m.pedal.gain > 0.0;
+    if pedal_on {
         first = grid.ceil(m.pedal.step(v_i, h, -p.epsilon));
         last = grid.floor(m.pedal.step(v_i, h, 1.0 + p.epsilon));
     }
     // Brake points lie within δ of v_max and below the pedal band (`pair` decides which qualify);
     // only a band that starts above v_max − δ leaves room for them.
     let v_max = p.v_max_mps();
-    let band_lo = if m.pedal.gain > 0.0 { m.pedal.step(v_i, h, -p.epsilon) } else { f64::INFINITY };
+    let band_lo = if pedal_on { m.pedal.step(v_i, h, -p.epsilon) } else { f64::INFINITY };
     if band_lo > v_max - p.delta_mps() {
         first = first.min(grid.floor(v_max - p.delta_mps()));
         last = last.max(grid.ceil(v_max + p.delta_mps()));
     }
     if last < first {
-        return RowSpan { first: 0, len: 0 };
+        return (RowSpan { first: 0, len: 0 }, start);
     }
-    for index in first..=last {
+    // The terms of `pair`, evaluated in the same order.
+    let (q_change, q_brake) = (p.q_speed_change, p.q_brake);
+    let fuel_per_pedal = p.q_fuel * m.full_fuel_g;
+    let (pedal_lo, pedal_hi) = (-p.epsilon, 1.0 + p.epsilon);
+    let window = p.delta_mps() * BRAKE_WINDOW;
+    let (a_pedal, g_pedal) = (m.pedal.accel_at_zero, m.pedal.gain);
+    let (a_brake, g_brake) = (m.brake.accel_at_zero, m.brake.gain);
+    out.extend((first..=last).map(|index| {
         let v_j = grid.speed(index);
-        out.push(pair(p, &m, v_i, v_j).map_or(f64::INFINITY, |(_, cost)| cost));
-    }
+        let change = q_change * (v_i - v_j).abs();
+        let demand = v_i * (v_j - v_i) / h;
+        if pedal_on {
+            let pedal = (demand - a_pedal) / g_pedal;
+            if pedal >= pedal_lo && pedal <= pedal_hi {
+                return fuel_per_pedal * pedal.clamp(0.0, 1.0) + change;
+            }
+            if pedal > pedal_hi {
+                return f64::INFINITY;
+            }
+        }
+        if (v_j - v_max).abs() < window {
+            let brake = (demand - a_brake) / g_brake;
+            if (0.0..=1.0).contains(&brake) {
+                return q_brake * brake + change;
+            }
+        }
+        f64::INFINITY
+    }));
     // Trim unreachable ends so the min-plus loop never scans them.
-    let lead = out.iter().take_while(|c| !c.is_finite()).count();
-    let trail = out.iter().rev().take_while(|c| !c.is_finite()).count();
-    if lead == out.len() {
-        out.clear();
-        return RowSpan { first: 0, len: 0 };
-    }
-    out.truncate(out.len() - trail);
-    out.drain(..lead);
-    RowSpan { first: first + lead as i64, len: out.len() }
+    let row = &out[start..];
+    let Some(lead) = row.iter().position(|c| c.is_finite()) else {
+        out.truncate(start);
+        return (RowSpan { first: 0, len: 0 }, start);
+    };
+    let trail = row.iter().rev().take_while(|c| !c.is_finite()).count();
+    let len = row.len() - lead - trail;
+    out.truncate(start + lead + len);
+    (RowSpan { first: first + lead as i64, len }, start + lead)
 }
 
 /// The inputs of one admissible pair (the solver recomputes them for the path it keeps).
 pub fn inputs(vehicle: &Vehicle, p: &DpSettings, v_i: f64, v_j: f64, gear: usize, slope_torque: f64) -> Option<Inputs> {
     pair(p, &maps(vehicle, p, v_i, gear, slope_torque), v_i, v_j).map(|(inputs, _)| inputs)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn integer_ceil_and_floor_equal_the_libm_ones() {
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            1e-300,
+            -1e-300,
+            2.5,
+            -2.5,
+            4503599627370495.5,
+            -4503599627370495.5,
+            9007199254740993.0,
+            9.3e18,
+            -9.3e18,
+            9_223_372_036_854_775_808.0, // 2^63
+            -9_223_372_036_854_775_808.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            f64::MAX,
+            f64::MIN,
+        ];
+        let mut seed = 11u64;
+        for _ in 0..100_000 {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            let x = f64::from_bits(seed);
+            values.push(x);
+            values.push((seed >> 11) as f64 * 1e-6 - 4e6);
+        }
+        for x in values {
+            assert_eq!(ceil_i64(x), x.ceil() as i64, "ceil {x:e}");
+            assert_eq!(floor_i64(x), x.floor() as i64, "floor {x:e}");
+        }
+    }
 }

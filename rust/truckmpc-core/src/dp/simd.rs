@@ -61,39 +61,141 @@ pub fn block_mins(costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64])
 
 /// [`block_mins`] in AVX2: one 4-wide step per d. Only additions, comparisons, minima and
 /// blends, so the results are those of the portable version bit for bit.
+///
+/// Each running minimum is a chain of compare and blend from one step to the next, whose latency
+/// (not the instruction count) bounds the loop. So even and odd steps keep separate minima, two
+/// chains that run side by side, merged at the end: the smaller value, and of equal values the
+/// earlier step, which is what one scan keeping the first strict improvement finds.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn block_mins_avx2(costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64]) -> LaneMins {
     use std::arch::x86_64::*;
     const _: () = assert!(LANES == 4);
     let (c, a, b) = (costs.as_ptr(), to_go.as_ptr(), shiftable.as_ptr());
-    let (mut all, mut shift) = (_mm256_set1_pd(INF), _mm256_set1_pd(INF));
-    // Steps as f64 lanes, so that they blend like the costs; exact for any realistic count.
-    let (mut all_step, mut shift_step, mut step) = (_mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd());
-    let one = _mm256_set1_pd(1.0);
-    for d in 0..steps {
-        // SAFETY: the caller checked costs.len() = steps·LANES and to_go, shiftable ≥ steps + LANES − 1.
-        let cost = _mm256_loadu_pd(c.add(d * LANES));
-        let x = _mm256_add_pd(cost, _mm256_loadu_pd(a.add(d)));
-        let better = _mm256_cmp_pd::<_CMP_LT_OQ>(x, all);
-        all = _mm256_blendv_pd(all, x, better);
-        all_step = _mm256_blendv_pd(all_step, step, better);
-        let y = _mm256_add_pd(cost, _mm256_loadu_pd(b.add(d)));
-        let better = _mm256_cmp_pd::<_CMP_LT_OQ>(y, shift);
-        shift = _mm256_blendv_pd(shift, y, better);
-        shift_step = _mm256_blendv_pd(shift_step, step, better);
-        step = _mm256_add_pd(step, one);
+    // Per parity: (all, all_step, shift, shift_step); steps as f64 lanes, so that they blend like
+    // the costs; exact for any realistic count.
+    let inf = _mm256_set1_pd(INF);
+    let zero = _mm256_setzero_pd();
+    let mut even = [inf, zero, inf, zero];
+    let mut odd = [inf, zero, inf, zero];
+    #[inline(always)]
+    unsafe fn step_into(acc: &mut [__m256d; 4], cost: __m256d, to_go: __m256d, shiftable: __m256d, step: __m256d) {
+        let x = _mm256_add_pd(cost, to_go);
+        let better = _mm256_cmp_pd::<_CMP_LT_OQ>(x, acc[0]);
+        acc[0] = _mm256_blendv_pd(acc[0], x, better);
+        acc[1] = _mm256_blendv_pd(acc[1], step, better);
+        let y = _mm256_add_pd(cost, shiftable);
+        let better = _mm256_cmp_pd::<_CMP_LT_OQ>(y, acc[2]);
+        acc[2] = _mm256_blendv_pd(acc[2], y, better);
+        acc[3] = _mm256_blendv_pd(acc[3], step, better);
     }
+    let two = _mm256_set1_pd(2.0);
+    let (mut step_even, mut step_odd) = (zero, _mm256_set1_pd(1.0));
+    let mut d = 0;
+    while d + 1 < steps {
+        // SAFETY: the caller checked costs.len() = steps·LANES and to_go, shiftable ≥ steps + LANES − 1.
+        step_into(
+            &mut even,
+            _mm256_loadu_pd(c.add(d * LANES)),
+            _mm256_loadu_pd(a.add(d)),
+            _mm256_loadu_pd(b.add(d)),
+            step_even,
+        );
+        step_into(
+            &mut odd,
+            _mm256_loadu_pd(c.add((d + 1) * LANES)),
+            _mm256_loadu_pd(a.add(d + 1)),
+            _mm256_loadu_pd(b.add(d + 1)),
+            step_odd,
+        );
+        step_even = _mm256_add_pd(step_even, two);
+        step_odd = _mm256_add_pd(step_odd, two);
+        d += 2;
+    }
+    if d < steps {
+        step_into(
+            &mut even,
+            _mm256_loadu_pd(c.add(d * LANES)),
+            _mm256_loadu_pd(a.add(d)),
+            _mm256_loadu_pd(b.add(d)),
+            step_even,
+        );
+    }
+    // The odd minimum wins when smaller, or equal at an earlier step.
+    let merge = |value: usize| {
+        let smaller = _mm256_cmp_pd::<_CMP_LT_OQ>(odd[value], even[value]);
+        let equal = _mm256_cmp_pd::<_CMP_EQ_OQ>(odd[value], even[value]);
+        let earlier = _mm256_cmp_pd::<_CMP_LT_OQ>(odd[value + 1], even[value + 1]);
+        let take = _mm256_or_pd(smaller, _mm256_and_pd(equal, earlier));
+        (_mm256_blendv_pd(even[value], odd[value], take), _mm256_blendv_pd(even[value + 1], odd[value + 1], take))
+    };
+    let ((all, all_step), (shift, shift_step)) = (merge(0), merge(2));
     let mut out = LaneMins { all: [0.0; LANES], all_step: [0; LANES], shift: [0.0; LANES], shift_step: [0; LANES] };
-    let (mut all_steps, mut shift_steps) = ([0.0; LANES], [0.0; LANES]);
     _mm256_storeu_pd(out.all.as_mut_ptr(), all);
     _mm256_storeu_pd(out.shift.as_mut_ptr(), shift);
-    _mm256_storeu_pd(all_steps.as_mut_ptr(), all_step);
-    _mm256_storeu_pd(shift_steps.as_mut_ptr(), shift_step);
-    for l in 0..LANES {
-        out.all_step[l] = all_steps[l] as u32;
-        out.shift_step[l] = shift_steps[l] as u32;
+    // Steps are small non-negative integers: exact as i32.
+    _mm_storeu_si128(out.all_step.as_mut_ptr().cast(), _mm256_cvttpd_epi32(all_step));
+    _mm_storeu_si128(out.shift_step.as_mut_ptr().cast(), _mm256_cvttpd_epi32(shift_step));
+    out
+}
+
+/// [`block_mins`] when the shiftable to-go is the to-go itself (bit for bit): one minimum per
+/// lane, returned as both.
+#[inline]
+pub fn block_mins_same(costs: &[f64], steps: usize, to_go: &[f64]) -> LaneMins {
+    let costs = &costs[..steps * LANES];
+    let to_go = &to_go[..steps + LANES - 1];
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked just above).
+            return unsafe { block_mins_same_avx2(costs, steps, to_go) };
+        }
     }
+    block_mins_portable(costs, steps, to_go, to_go)
+}
+
+/// [`block_mins_same`] in AVX2, with the two chains of [`block_mins_avx2`].
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn block_mins_same_avx2(costs: &[f64], steps: usize, to_go: &[f64]) -> LaneMins {
+    use std::arch::x86_64::*;
+    const _: () = assert!(LANES == 4);
+    let (c, a) = (costs.as_ptr(), to_go.as_ptr());
+    let inf = _mm256_set1_pd(INF);
+    let zero = _mm256_setzero_pd();
+    let mut even = [inf, zero];
+    let mut odd = [inf, zero];
+    #[inline(always)]
+    unsafe fn step_into(acc: &mut [__m256d; 2], cost: __m256d, to_go: __m256d, step: __m256d) {
+        let x = _mm256_add_pd(cost, to_go);
+        let better = _mm256_cmp_pd::<_CMP_LT_OQ>(x, acc[0]);
+        acc[0] = _mm256_blendv_pd(acc[0], x, better);
+        acc[1] = _mm256_blendv_pd(acc[1], step, better);
+    }
+    let two = _mm256_set1_pd(2.0);
+    let (mut step_even, mut step_odd) = (zero, _mm256_set1_pd(1.0));
+    let mut d = 0;
+    while d + 1 < steps {
+        // SAFETY: the caller checked costs.len() = steps·LANES and to_go ≥ steps + LANES − 1.
+        step_into(&mut even, _mm256_loadu_pd(c.add(d * LANES)), _mm256_loadu_pd(a.add(d)), step_even);
+        step_into(&mut odd, _mm256_loadu_pd(c.add((d + 1) * LANES)), _mm256_loadu_pd(a.add(d + 1)), step_odd);
+        step_even = _mm256_add_pd(step_even, two);
+        step_odd = _mm256_add_pd(step_odd, two);
+        d += 2;
+    }
+    if d < steps {
+        step_into(&mut even, _mm256_loadu_pd(c.add(d * LANES)), _mm256_loadu_pd(a.add(d)), step_even);
+    }
+    let smaller = _mm256_cmp_pd::<_CMP_LT_OQ>(odd[0], even[0]);
+    let equal = _mm256_cmp_pd::<_CMP_EQ_OQ>(odd[0], even[0]);
+    let earlier = _mm256_cmp_pd::<_CMP_LT_OQ>(odd[1], even[1]);
+    let take = _mm256_or_pd(smaller, _mm256_and_pd(equal, earlier));
+    let (all, all_step) = (_mm256_blendv_pd(even[0], odd[0], take), _mm256_blendv_pd(even[1], odd[1], take));
+    let mut out = LaneMins { all: [0.0; LANES], all_step: [0; LANES], shift: [0.0; LANES], shift_step: [0; LANES] };
+    _mm256_storeu_pd(out.all.as_mut_ptr(), all);
+    _mm_storeu_si128(out.all_step.as_mut_ptr().cast(), _mm256_cvttpd_epi32(all_step));
+    (out.shift, out.shift_step) = (out.all, out.all_step);
     out
 }
 
@@ -169,6 +271,22 @@ mod tests {
                         "steps {steps} lane {l}"
                     );
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn one_minimum_when_both_to_go_are_the_same() {
+        let mut seed = 7;
+        for steps in 0..40 {
+            for _ in 0..20 {
+                let costs = costs(&mut seed, steps * LANES);
+                let to_go = costs_of(&mut seed, steps + LANES - 1);
+                assert_eq!(
+                    block_mins_same(&costs, steps, &to_go),
+                    block_mins(&costs, steps, &to_go, &to_go),
+                    "steps {steps}"
+                );
             }
         }
     }

@@ -6,8 +6,8 @@
 //! grid: each state is joined only to that band (plus the brake points next to v_max and the one
 //! neutral arc), not to every state of the next stage. The result is the same as the thesis's
 //! all-pairs search, since every pair outside the band is infeasible there. The band's costs come
-//! from [`super::rows`]; on a fixed grid they are cached across solves ([`super::cache`]), and what
-//! remains per solve is a min-plus pass over contiguous arrays.
+//! from [`super::rows`]; they are cached across solves ([`super::cache`]) while a stage's grids stay
+//! the same, and what remains per solve is a min-plus pass over contiguous arrays.
 //!
 //! Shift limit: each state carries the number of stages until the next shift on its optimal
 //! continuation (k_lim at the final stage). A shift into state j is allowed when that number is at
@@ -15,7 +15,7 @@
 //! 1 + c ≥ k_lim, would let them come k_lim − 1 stages apart, contradicting the forward counter of
 //! (5.6).) Stages reached before the vehicle's own counter allows a shift keep the current gear.
 
-use super::cache::{Block, NeutralArc, RowCache, RowScratch, StageRows, LANES, PAD};
+use super::cache::{Block, NeutralArc, RowCache, RowScratch, StageKey, StageRows, LANES, PAD};
 use super::params::{DpSettings, GridAnchor, NeutralRule};
 use super::rows::{forward_row, inputs, GridIndex};
 use super::simd::{self, LaneMins};
@@ -93,9 +93,13 @@ struct Choices {
     /// Per slot, the counter of the neutral choice (the interpolating rule takes the smaller of
     /// the two neighbours', so it is not the counter at all_j).
     neutral_counter: Vec<u32>,
-    /// Per slot, the best and second-best shift targets over all gears: (cost, gear).
-    shift_first: Vec<(f64, u32)>,
-    shift_second: Vec<(f64, u32)>,
+    /// Per slot, the best and second-best shift targets over all gears: cost and gear.
+    first_cost: Vec<f64>,
+    first_gear: Vec<u32>,
+    second_cost: Vec<f64>,
+    second_gear: Vec<u32>,
+    /// Per slot, the speed-deviation cost Q2·max(v_ref − v, 0)² of the source velocity.
+    penalty: Vec<f64>,
 }
 
 /// No gear (in the two best shifts).
@@ -118,14 +122,25 @@ impl Choices {
                 v.resize(size, 0);
             }
         }
-        for v in [&mut self.shift_first, &mut self.shift_second] {
+        for v in [&mut self.first_cost, &mut self.second_cost] {
             if v.len() < self.width {
-                v.resize(self.width, (INF, NO_GEAR));
+                v.resize(self.width, INF);
             }
-            v[..self.width].fill((INF, NO_GEAR));
+            v[..self.width].fill(INF);
         }
-        if self.neutral_counter.len() < self.width {
-            self.neutral_counter.resize(self.width, 0);
+        for v in [&mut self.first_gear, &mut self.second_gear] {
+            if v.len() < self.width {
+                v.resize(self.width, NO_GEAR);
+            }
+            v[..self.width].fill(NO_GEAR);
+        }
+        for v in [&mut self.neutral_counter] {
+            if v.len() < self.width {
+                v.resize(self.width, 0);
+            }
+        }
+        if self.penalty.len() < self.width {
+            self.penalty.resize(self.width, 0.0);
         }
     }
 }
@@ -153,7 +168,7 @@ impl StageGrid {
 }
 
 /// A DP solver with its workspace; reuse one across solves so nothing is allocated per solve
-/// once the buffers have grown (and, on a fixed grid, so its row cache pays).
+/// once the buffers have grown (and so its row cache pays).
 #[derive(Debug, Clone)]
 pub struct Solver {
     params: DpSettings,
@@ -171,9 +186,13 @@ pub struct Solver {
     cost_next: Vec<f64>,
     /// cost_next where the state's continuation allows a shift into it, +∞ elsewhere.
     shift_next: Vec<f64>,
+    /// Per gear, whether its block of shift_next equals cost_next bit for bit (every state's
+    /// continuation allows a shift, or has no finite cost): one minimum then serves for both.
+    shift_same_next: Vec<bool>,
     counter_next: Vec<u32>,
     cost_cur: Vec<f64>,
     shift_cur: Vec<f64>,
+    shift_same_cur: Vec<bool>,
     counter_cur: Vec<u32>,
     /// Decisions per stage, flat; offsets[k] is the start of stage k, indexed [gear * count + i].
     decisions: Vec<Decision>,
@@ -186,13 +205,13 @@ pub struct Solver {
 }
 
 impl Solver {
-    /// A solver for these parameters (built by [`DpSettings::new`], which validates). On a fixed
-    /// grid it caches transition costs across solves given their absolute stage.
+    /// A solver for these parameters (built by [`DpSettings::new`], which validates). It caches
+    /// transition costs across solves given their absolute stage (while the stage's grids stay the
+    /// same).
     pub fn new(params: DpSettings) -> Self {
-        let caching = params.grid == GridAnchor::Fixed;
         Solver {
             params,
-            caching,
+            caching: true,
             intervals: Intervals::default(),
             grids: Vec::new(),
             slope_torques: Vec::new(),
@@ -200,9 +219,11 @@ impl Solver {
             active: Vec::new(),
             cost_next: Vec::new(),
             shift_next: Vec::new(),
+            shift_same_next: Vec::new(),
             counter_next: Vec::new(),
             cost_cur: Vec::new(),
             shift_cur: Vec::new(),
+            shift_same_cur: Vec::new(),
             counter_cur: Vec::new(),
             decisions: Vec::new(),
             offsets: Vec::new(),
@@ -213,9 +234,9 @@ impl Solver {
         }
     }
 
-    /// Turn the row cache off (or back on, on a fixed grid): the results are the same, only slower.
+    /// Turn the row cache off (or back on): the results are the same, only slower.
     pub fn set_caching(&mut self, on: bool) {
-        self.caching = on && self.params.grid == GridAnchor::Fixed;
+        self.caching = on;
     }
 
     /// The parameters.
@@ -246,12 +267,17 @@ impl Solver {
         let gears = vehicle.forward_gears() + 1;
         self.slope_torques.clear();
         self.slope_torques.extend(slopes.iter().map(|&a| vehicle.slope_torque_nm(a)));
+        self.build_space(vehicle, start, slopes);
         let cached_from = if self.caching { first_stage } else { None };
         if let Some(stage) = cached_from {
             // Stage k of this solve (k ≥ 1 has grid states) is absolute stage `stage + k`.
-            self.cache.prepare(stage + 1, &self.slope_torques[1..]);
+            let keys = (1..n_stages).map(|k| StageKey {
+                slope_torque_nm: self.slope_torques[k],
+                origin_mps: self.grids[k].index.origin_mps,
+                next_origin_mps: self.grids[k + 1].index.origin_mps,
+            });
+            self.cache.prepare(stage + 1, keys);
         }
-        self.build_space(vehicle, start, slopes);
         let states = self.gear_ranges.iter().map(|&(lo, hi)| if hi >= lo { (hi - lo + 1) as usize } else { 0 }).sum();
 
         // Terminal cost 0; the counters of final states allow any shift before them.
@@ -267,12 +293,17 @@ impl Solver {
             }
         }
         self.shift_next.clone_from(&self.cost_next);
+        self.shift_same_next.clear();
+        self.shift_same_next.resize(gears, true);
+        self.shift_same_cur.clear();
+        self.shift_same_cur.resize(gears, true);
 
         let mut transitions = 0usize;
         for k in (0..n_stages).rev() {
             transitions += self.backward_stage(vehicle, k, cached_from.map(|s| s + k as u64), start.gear);
             std::mem::swap(&mut self.cost_cur, &mut self.cost_next);
             std::mem::swap(&mut self.shift_cur, &mut self.shift_next);
+            std::mem::swap(&mut self.shift_same_cur, &mut self.shift_same_next);
             std::mem::swap(&mut self.counter_cur, &mut self.counter_next);
         }
         let cost = self.cost_next[start.gear * stride(1) + PAD];
@@ -411,7 +442,7 @@ impl Solver {
         let (stage, computed): (&mut StageRows, &mut u64) = match abs_stage {
             Some(stage) if k > 0 => self.cache.stage(stage),
             _ => {
-                self.scratch_rows.reset(self.slope_torques[k]);
+                self.scratch_rows.reset(StageKey { slope_torque_nm: self.slope_torques[k], ..StageKey::default() });
                 (&mut self.scratch_rows, &mut uncounted)
             }
         };
@@ -425,9 +456,10 @@ impl Solver {
             if g == NEUTRAL {
                 stage.neutral.fill(key_lo, key_hi, |key| neutral_arc(p, vehicle, here.index.speed(key), slope_torque));
                 let slot0 = (key_lo - ch.base_key) as usize;
+                let join = NeutralJoin::new(p, next, (lo, hi));
+                let (cost_next, counter_next) = (&self.cost_next[PAD..], &self.counter_next[PAD..]);
                 for (s, arc) in stage.neutral.get(key_lo, key_hi).iter().enumerate() {
-                    let (cost, j, counter) =
-                        neutral_join(p, arc, next, (lo, hi), &self.cost_next[PAD..], &self.counter_next[PAD..]);
+                    let (cost, j, counter) = join.join(arc, cost_next, counter_next);
                     let at = out + slot0 + s;
                     (ch.all_cost[at], ch.all_j[at], ch.neutral_counter[slot0 + s]) = (cost, j, counter);
                     (ch.shift_cost[at], ch.shift_j[at]) = (if counter >= p.k_lim { cost } else { INF }, j);
@@ -441,20 +473,31 @@ impl Solver {
             });
             let values = g * stride(next.count)..(g + 1) * stride(next.count);
             let values = (&self.cost_next[values.clone()], &self.shift_next[values]);
+            let same = self.shift_same_next[g];
             let (blocks, first_key) = rows.get(key_lo, key_hi);
             debug_assert_eq!(first_key, ch.base_key);
             for (b, block) in blocks.iter().enumerate() {
                 let base = block.first as i64 - next.first;
-                let mins = block_mins(block, &rows.costs, base, (lo, hi), values);
+                let mins = block_mins(block, &rows.costs, base, (lo, hi), values, same);
                 let at = out + b * LANES..out + (b + 1) * LANES;
                 ch.all_cost[at.clone()].copy_from_slice(&mins.all);
                 ch.shift_cost[at.clone()].copy_from_slice(&mins.shift);
                 let (all_j, shift_j) = (&mut ch.all_j[at.clone()], &mut ch.shift_j[at]);
-                let key0 = first_key + (b * LANES) as i64;
+                // Next-grid index of a lane's step (base + lane + step, as u32 like the i64 sum
+                // truncated); meaningless where the cost is +∞.
+                let base32 = base as u32;
                 for l in 0..LANES {
-                    // Next-grid index of a lane's step; meaningless where the cost is +∞.
-                    let j = |step: u32| (base + (l as u32 + step) as i64) as u32;
-                    (all_j[l], shift_j[l]) = (j(mins.all_step[l]), j(mins.shift_step[l]));
+                    all_j[l] = base32.wrapping_add(l as u32).wrapping_add(mins.all_step[l]);
+                    shift_j[l] = base32.wrapping_add(l as u32).wrapping_add(mins.shift_step[l]);
+                }
+                let key0 = first_key + (b * LANES) as i64;
+                let inside = base >= lo as i64 && base + block.steps as i64 + LANES as i64 - 2 <= hi as i64;
+                if inside && key0 >= key_lo && key0 + LANES as i64 - 1 <= key_hi {
+                    // Every lane's targets are states and every lane a source: no clipping.
+                    transitions += block.reach as usize;
+                    continue;
+                }
+                for l in 0..LANES {
                     let key = key0 + l as i64;
                     let (first, len) = block.spans[l];
                     let first = first as i64 - next.first;
@@ -484,20 +527,32 @@ impl Solver {
         let ch = &mut self.choices;
         // Slot of source velocity i.
         let s0 = (here.first - ch.base_key) as usize;
+        let sources = s0 + i_lo..s0 + i_hi + 1;
         // The two best shift targets per velocity, so that each state's best shift to another
         // gear is O(1). Gears are scanned in order, keeping the first of equal costs.
         for &g in active_next {
-            let costs = &ch.shift_cost[g * ch.width + s0 + i_lo..=g * ch.width + s0 + i_hi];
-            let firsts = &mut ch.shift_first[s0 + i_lo..=s0 + i_hi];
-            let seconds = &mut ch.shift_second[s0 + i_lo..=s0 + i_hi];
-            for ((&c, first), second) in costs.iter().zip(firsts).zip(seconds) {
-                if c < first.0 {
-                    *second = *first;
-                    *first = (c, g as u32);
-                } else if c < second.0 {
-                    *second = (c, g as u32);
+            let costs = &ch.shift_cost[g * ch.width + sources.start..g * ch.width + sources.end];
+            let first_cost = &mut ch.first_cost[sources.clone()];
+            let first_gear = &mut ch.first_gear[sources.clone()];
+            let second_cost = &mut ch.second_cost[sources.clone()];
+            let second_gear = &mut ch.second_gear[sources.clone()];
+            let m = costs.len();
+            assert!(first_cost.len() == m && first_gear.len() == m && second_cost.len() == m && second_gear.len() == m);
+            for t in 0..m {
+                let c = costs[t];
+                if c < first_cost[t] {
+                    (second_cost[t], second_gear[t]) = (first_cost[t], first_gear[t]);
+                    (first_cost[t], first_gear[t]) = (c, g as u32);
+                } else if c < second_cost[t] {
+                    (second_cost[t], second_gear[t]) = (c, g as u32);
                 }
             }
+        }
+        // The speed-deviation cost of each source velocity, once for all its gears (the same
+        // operations as per state, so the same bits).
+        for (slot, i) in ch.penalty[sources.clone()].iter_mut().zip(i_lo..) {
+            let below = (v_ref - here.speed(i)).max(0.0);
+            *slot = q_speed_below * below * below;
         }
         let stride_n = stride(next.count);
         for &g_i in active_here {
@@ -507,47 +562,38 @@ impl Solver {
             }
             let stays = active_next.contains(&g_i);
             let (lo, hi) = (lo as usize, hi as usize);
-            let (slots, out) = (s0 + lo..s0 + hi + 1, g_i * ch.width + s0 + lo..g_i * ch.width + s0 + hi + 1);
+            let slots = s0 + lo..s0 + hi + 1;
+            let out = g_i * ch.width + slots.start..g_i * ch.width + slots.end;
             let values = g_i * stride(n) + PAD + lo..g_i * stride(n) + PAD + hi + 1;
             let decisions = self.offsets[k] + g_i * n + lo..self.offsets[k] + g_i * n + hi + 1;
-            let (all_cost, all_j) = (&ch.all_cost[out.clone()], &ch.all_j[out]);
-            let (firsts, seconds, neutral_counters) =
-                (&ch.shift_first[slots.clone()], &ch.shift_second[slots.clone()], &ch.neutral_counter[slots]);
-            let (cost_cur, counter_cur) = (&mut self.cost_cur[values.clone()], &mut self.counter_cur[values.clone()]);
-            let (shift_cur, decisions) = (&mut self.shift_cur[values], &mut self.decisions[decisions]);
-            let m = hi - lo + 1;
-            // Equal lengths, stated once: the loop below then needs no bounds checks on them.
-            assert!(
-                all_cost.len() == m
-                    && all_j.len() == m
-                    && firsts.len() == m
-                    && seconds.len() == m
-                    && neutral_counters.len() == m
-            );
-            assert!(cost_cur.len() == m && counter_cur.len() == m && shift_cur.len() == m && decisions.len() == m);
-            for t in 0..m {
-                let i = lo + t;
-                let stay_cost = if stays { all_cost[t] } else { INF };
-                let (shift_cost, shift_gear) = if firsts[t].1 != g_i as u32 { firsts[t] } else { seconds[t] };
-                let (best_cost, decision, counter) = if shift_gear != NO_GEAR && shift_cost + q4 < stay_cost {
-                    let j = ch.shift_j[shift_gear as usize * ch.width + s0 + i];
-                    (shift_cost + q4, Decision { j: j as u16, gear: shift_gear as u8 }, 1)
-                } else {
-                    let j = if stays { all_j[t] } else { 0 };
-                    let carried = match (stay_cost < INF, g_i) {
-                        (false, _) => 0,
-                        (true, NEUTRAL) => neutral_counters[t],
-                        (true, _) => self.counter_next[g_i * stride_n + PAD + j as usize],
-                    };
-                    (stay_cost, Decision { j: j as u16, gear: g_i as u8 }, carried.saturating_add(1).min(u32::MAX / 2))
-                };
-                let below = (v_ref - here.speed(i)).max(0.0);
-                let total = best_cost + q_speed_below * below * below;
-                cost_cur[t] = total;
-                counter_cur[t] = counter;
-                shift_cur[t] = if counter >= k_lim { total } else { INF };
-                decisions[t] = decision;
-            }
+            let state = StateOut {
+                cost: &mut self.cost_cur[values.clone()],
+                counter: &mut self.counter_cur[values.clone()],
+                shift: &mut self.shift_cur[values],
+                decision: &mut self.decisions[decisions],
+            };
+            let input = StateIn {
+                gear: g_i as u32,
+                slot0: slots.start,
+                all_cost: &ch.all_cost[out.clone()],
+                all_j: &ch.all_j[out],
+                first_cost: &ch.first_cost[slots.clone()],
+                first_gear: &ch.first_gear[slots.clone()],
+                second_cost: &ch.second_cost[slots.clone()],
+                second_gear: &ch.second_gear[slots.clone()],
+                neutral_counter: &ch.neutral_counter[slots.clone()],
+                penalty: &ch.penalty[slots],
+                shift_j: &ch.shift_j,
+                width: ch.width,
+                counter_next: &self.counter_next[g_i * stride_n + PAD..(g_i + 1) * stride_n],
+                q4,
+                k_lim,
+            };
+            self.shift_same_cur[g_i] = match (stays, g_i == NEUTRAL) {
+                (false, _) => decide_states::<false, false>(input, state),
+                (true, false) => decide_states::<true, false>(input, state),
+                (true, true) => decide_states::<true, true>(input, state),
+            };
             // The rest of the gear's block (no state there) is +∞ for the min-plus pass.
             let block = g_i * stride(n)..(g_i + 1) * stride(n);
             for part in [block.start..block.start + PAD + lo, block.start + PAD + hi + 1..block.end] {
@@ -587,6 +633,88 @@ impl Solver {
     }
 }
 
+/// What the second pass reads for the states of one gear at one stage (slices over its states).
+struct StateIn<'a> {
+    gear: u32,
+    /// Choice slot of the first state.
+    slot0: usize,
+    all_cost: &'a [f64],
+    all_j: &'a [u32],
+    first_cost: &'a [f64],
+    first_gear: &'a [u32],
+    second_cost: &'a [f64],
+    second_gear: &'a [u32],
+    neutral_counter: &'a [u32],
+    penalty: &'a [f64],
+    /// All gears' shift targets, [gear * width + slot].
+    shift_j: &'a [u32],
+    width: usize,
+    /// The gear's counters at the next stage, from index 0.
+    counter_next: &'a [u32],
+    q4: f64,
+    k_lim: u32,
+}
+
+/// What the second pass writes for the states of one gear at one stage.
+struct StateOut<'a> {
+    cost: &'a mut [f64],
+    counter: &'a mut [u32],
+    shift: &'a mut [f64],
+    decision: &'a mut [Decision],
+}
+
+/// Stay in the gear or take the best shift to another, per state. `STAYS`: the gear has states at
+/// the next stage; `NEUTRAL_STATE`: the gear is neutral (whose counter comes with its choice).
+/// Returns whether every state's shiftable cost equals its cost bit for bit.
+#[inline(always)]
+fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(input: StateIn, out: StateOut) -> bool {
+    let m = out.cost.len();
+    // Equal lengths, stated once: the loop below then needs no bounds checks on them.
+    assert!(
+        input.all_cost.len() == m
+            && input.all_j.len() == m
+            && input.first_cost.len() == m
+            && input.first_gear.len() == m
+            && input.second_cost.len() == m
+            && input.second_gear.len() == m
+            && input.neutral_counter.len() == m
+            && input.penalty.len() == m
+    );
+    assert!(out.counter.len() == m && out.shift.len() == m && out.decision.len() == m);
+    let mut blocked = false;
+    for t in 0..m {
+        let stay_cost = if STAYS { input.all_cost[t] } else { INF };
+        // The best shift to another gear. With none, its cost is +∞ and never beats staying.
+        let own = input.first_gear[t] == input.gear;
+        let shift_cost = (if own { input.second_cost[t] } else { input.first_cost[t] }) + input.q4;
+        let (best_cost, decision, counter) = if shift_cost < stay_cost {
+            let shift_gear = if own { input.second_gear[t] } else { input.first_gear[t] };
+            let j = input.shift_j[shift_gear as usize * input.width + input.slot0 + t];
+            (shift_cost, Decision { j: j as u16, gear: shift_gear as u8 }, 1)
+        } else {
+            let j = if STAYS { input.all_j[t] } else { 0 };
+            let carried = if !STAYS || !(stay_cost < INF) {
+                0
+            } else if NEUTRAL_STATE {
+                input.neutral_counter[t]
+            } else {
+                input.counter_next[j as usize]
+            };
+            (stay_cost, Decision { j: j as u16, gear: input.gear as u8 }, carried.saturating_add(1).min(u32::MAX / 2))
+        };
+        let total = best_cost + input.penalty[t];
+        out.cost[t] = total;
+        out.counter[t] = counter;
+        let shiftable = counter >= input.k_lim;
+        // Not shiftable and not +∞: the shiftable cost (+∞) differs from the cost.
+        blocked |= !shiftable & (total != INF);
+        out.shift[t] = if shiftable { total } else { INF };
+        out.decision[t] = decision;
+    }
+    // Otherwise each shiftable cost is its cost (or both are +∞): the same bits.
+    !blocked
+}
+
 /// The single neutral arc from `v_i_mps` on a stage: where the physics ends it, and its fuel and
 /// speed-change cost.
 fn neutral_arc(p: &DpSettings, vehicle: &Vehicle, v_i_mps: f64, slope_torque: f64) -> NeutralArc {
@@ -596,59 +724,70 @@ fn neutral_arc(p: &DpSettings, vehicle: &Vehicle, v_i_mps: f64, slope_torque: f6
     NeutralArc { v_end_mps, cost: p.q_fuel * fuel + p.q_speed_change * (v_i_mps - v_end_mps).abs() }
 }
 
-/// Join a neutral arc to the next grid by the configured rule, within the neutral states' index
-/// range: (cost with the cost-to-go, next-grid index, counter of the continuation); cost +∞ when
-/// the arc ends off the states.
-#[inline]
-fn neutral_join(
-    p: &DpSettings,
-    arc: &NeutralArc,
-    next: StageGrid,
-    (lo, hi): (u32, u32),
-    cost_next: &[f64],
-    counter_next: &[u32],
-) -> (f64, u32, u32) {
-    const NONE: (f64, u32, u32) = (INF, 0, 0);
-    let x = (arc.v_end_mps - next.speed(0)) / p.delta_mps();
-    // Grid indices are never negative; x below −0.5 is outside the grid either way.
-    if x < lo as f64 - 0.5 || x > hi as f64 + 0.5 {
-        return NONE;
+/// Joins neutral arcs to the next grid by the configured rule, within the neutral states' index
+/// range, with the stage's constants computed once.
+struct NeutralJoin {
+    rule: NeutralRule,
+    /// Speed of next-grid index 0 [m/s].
+    origin_mps: f64,
+    delta_mps: f64,
+    lo: u32,
+    hi: u32,
+}
+
+impl NeutralJoin {
+    fn new(p: &DpSettings, next: StageGrid, (lo, hi): (u32, u32)) -> Self {
+        NeutralJoin { rule: p.neutral_rule, origin_mps: next.speed(0), delta_mps: p.delta_mps(), lo, hi }
     }
-    let (to_go, j, counter) = match p.neutral_rule {
-        NeutralRule::Nearest => {
-            let j = (x + 0.5) as usize; // round half up without a libm call; x + 0.5 >= 0 here
-            if j < lo as usize || j > hi as usize {
-                return NONE;
-            }
-            (cost_next[j], j, counter_next[j])
+
+    /// (cost with the cost-to-go, next-grid index, counter of the continuation); cost +∞ when
+    /// the arc ends off the states.
+    #[inline]
+    fn join(&self, arc: &NeutralArc, cost_next: &[f64], counter_next: &[u32]) -> (f64, u32, u32) {
+        const NONE: (f64, u32, u32) = (INF, 0, 0);
+        let (lo, hi) = (self.lo, self.hi);
+        let x = (arc.v_end_mps - self.origin_mps) / self.delta_mps;
+        // Grid indices are never negative; x below −0.5 is outside the grid either way.
+        if x < lo as f64 - 0.5 || x > hi as f64 + 0.5 {
+            return NONE;
         }
-        NeutralRule::Interpolate => {
-            const TOL: f64 = 1e-9;
-            if x < lo as f64 - TOL || x > hi as f64 + TOL {
-                return NONE;
+        let (to_go, j, counter) = match self.rule {
+            NeutralRule::Nearest => {
+                let j = (x + 0.5) as usize; // round half up without a libm call; x + 0.5 >= 0 here
+                if j < lo as usize || j > hi as usize {
+                    return NONE;
+                }
+                (cost_next[j], j, counter_next[j])
             }
-            let x = x.clamp(lo as f64, hi as f64);
-            let j0 = x as usize;
-            let w = x - j0 as f64;
-            if w == 0.0 {
-                (cost_next[j0], j0, counter_next[j0])
-            } else {
-                let to_go = (1.0 - w) * cost_next[j0] + w * cost_next[j0 + 1];
-                let nearest = if w < 0.5 { j0 } else { j0 + 1 };
-                (to_go, nearest, counter_next[j0].min(counter_next[j0 + 1]))
+            NeutralRule::Interpolate => {
+                const TOL: f64 = 1e-9;
+                if x < lo as f64 - TOL || x > hi as f64 + TOL {
+                    return NONE;
+                }
+                let x = x.clamp(lo as f64, hi as f64);
+                let j0 = x as usize;
+                let w = x - j0 as f64;
+                if w == 0.0 {
+                    (cost_next[j0], j0, counter_next[j0])
+                } else {
+                    let to_go = (1.0 - w) * cost_next[j0] + w * cost_next[j0 + 1];
+                    let nearest = if w < 0.5 { j0 } else { j0 + 1 };
+                    (to_go, nearest, counter_next[j0].min(counter_next[j0 + 1]))
+                }
             }
+        };
+        if !to_go.is_finite() {
+            return NONE;
         }
-    };
-    if !to_go.is_finite() {
-        return NONE;
+        (arc.cost + to_go, j as u32, counter)
     }
-    (arc.cost + to_go, j as u32, counter)
 }
 
 /// The min-plus pass over one block of rows towards one forward target gear: per lane, the best
 /// of row cost + cost-to-go and the best among targets whose continuation allows a shift now.
 /// `base` is the next-grid index of lane 0 at step 0; `values` the target gear's blocks of
-/// cost_next and shift_next (margins included, state j at PAD + j).
+/// cost_next and shift_next (margins included, state j at PAD + j); `same` when they are equal
+/// bit for bit.
 #[inline]
 fn block_mins(
     block: &Block,
@@ -656,6 +795,7 @@ fn block_mins(
     base: i64,
     (lo, hi): (u32, u32),
     (to_go, shiftable): (&[f64], &[f64]),
+    same: bool,
 ) -> LaneMins {
     let steps = block.steps as usize;
     let at = base + PAD as i64;
@@ -663,6 +803,9 @@ fn block_mins(
     if steps > 0 && at >= 0 && at as usize + steps + LANES - 1 <= to_go.len() {
         // The values outside the target gear's states are +∞ (margins included): no clipping.
         let at = at as usize;
+        if same {
+            return simd::block_mins_same(costs, steps, &to_go[at..]);
+        }
         return simd::block_mins(costs, steps, &to_go[at..], &shiftable[at..]);
     }
     block_mins_clipped(costs, steps, base, (lo, hi), to_go, shiftable)
@@ -701,6 +844,64 @@ fn block_mins_clipped(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::road::Road;
+    use crate::vehicle::VehicleParams;
+
+    /// A receding sequence of solves on a hilly road (with a model error, so that start speeds
+    /// are off any grid), each solve's outputs as bits.
+    fn receding(params: &DpSettings, caching: bool) -> Vec<(bool, u64, u64, u64, usize, usize, u64)> {
+        let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
+        let n = 600;
+        let distance: Vec<f64> = (0..=n).map(|i| 25.0 * i as f64).collect();
+        let slopes: Vec<f64> =
+            (0..n).map(|i| 0.04 * ((i as f64) * 0.021).sin() * ((i as f64) * 0.0037).cos()).collect();
+        let road = Road::new(distance, slopes).unwrap();
+        let mut solver = Solver::new(params.clone());
+        solver.set_caching(caching);
+        let mut scratch = Vec::new();
+        let (mut v, mut gear, mut since) = (85.0 / 3.6, 12usize, params.k_lim);
+        let mut out = Vec::new();
+        for stage in 0..300 {
+            let s = road.start_m() + stage as f64 * params.stage_m;
+            let start = InitialState { v_mps: v, gear, stages_since_shift: since };
+            let sol = super::super::horizon::solve_at(&mut solver, &vehicle, &road, s, start, &mut scratch);
+            let next_v = sol.trajectory.get(1).map_or(0, |p| p.v_mps.to_bits());
+            out.push((
+                sol.feasible,
+                sol.cost.to_bits(),
+                sol.pedal.to_bits(),
+                sol.brake.to_bits(),
+                sol.gear,
+                sol.transitions,
+                next_v,
+            ));
+            if sol.feasible {
+                since = if sol.gear != gear { 1 } else { (since + 1).min(params.k_lim) };
+                gear = sol.gear;
+                v = sol.trajectory[1].v_mps + if stage % 3 == 0 { 0.013 * ((stage as f64) * 0.7).sin() } else { 0.0 };
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn moving_grid_rows_from_the_cache_give_the_same_bits() {
+        for rule in [NeutralRule::Nearest, NeutralRule::Interpolate] {
+            let params = DpSettings {
+                grid: GridAnchor::Moving,
+                neutral_rule: rule,
+                horizon_m: 1500.0,
+                delta_kmh: 0.2,
+                ..DpSettings::default()
+            };
+            let with = receding(&params, true);
+            let without = receding(&params, false);
+            assert!(with.iter().filter(|s| s.0).count() > 200);
+            for (k, (a, b)) in with.iter().zip(&without).enumerate() {
+                assert_eq!(a, b, "solve {k} differs with the cache ({rule:?})");
+            }
+        }
+    }
 
     /// Per lane, the first strict improvement over the targets that are states (`lo..=hi`).
     fn scalar_lane(
@@ -743,10 +944,10 @@ mod tests {
                 to_go[PAD + j as usize] = next() as f64;
                 shiftable[PAD + j as usize] = if next() < 3 { INF } else { to_go[PAD + j as usize] };
             }
-            let block = Block { first: 0, steps: steps as u32, offset: 0, spans: [(0, 0); LANES] };
+            let block = Block { first: 0, steps: steps as u32, offset: 0, spans: [(0, 0); LANES], reach: 0 };
             // Inside the margins (packed pass) and reaching below them (clipped pass).
             for base in [-4i64, 10, -(PAD as i64) - 3, count as i64 - 5] {
-                let mins = block_mins(&block, &costs, base, (lo, hi), (&to_go, &shiftable));
+                let mins = block_mins(&block, &costs, base, (lo, hi), (&to_go, &shiftable), false);
                 for l in 0..LANES {
                     assert_eq!(
                         (mins.all[l], mins.all_step[l]),

@@ -207,7 +207,9 @@ pub fn grid(params: &DpSettings, lo: f64, hi: f64) -> Grid {
     // Absorbs rounding so that an interval exactly k·δ wide keeps its last point.
     const SLACK: f64 = 1e-9;
     match params.grid {
-        GridAnchor::Moving => Grid { first_mps: lo, count: ((hi - lo) / delta + SLACK).floor() as usize + 1 },
+        GridAnchor::Moving => {
+            Grid { first_mps: lo, count: super::rows::floor_i64((hi - lo) / delta + SLACK).max(0) as usize + 1 }
+        }
         GridAnchor::Fixed => {
             // The bounds are multiples of δ already ([`grid_intervals`]).
             let first = (lo / delta).round();
