@@ -243,11 +243,11 @@ BAD_INPUTS = [
     (["--set", "mass_kg"], ["--set", "key=value"]),
     (["--controller", "fuzzy"], ["--controller"]),
     # MPC configuration (issue 3): each names the key and what was expected.
-    (["--set", "delta_kmh=0"], ["--set delta_kmh", "> 0"]),
+    (["--set", "delta_kmh=0"], ["--set delta_kmh", "in (0, 100]"]),
     (["--set", "delta_kmh=-0.1"], ["--set delta_kmh"]),
     (["--set", "n_min_rpm=2000"], ["--set n_min_rpm", "n_max_rpm"]),
     (["--set", "n_max_rpm=900"], ["n_max_rpm"]),
-    (["--set", "epsilon=-0.1"], ["--set epsilon", ">= 0"]),
+    (["--set", "epsilon=-0.1"], ["--set epsilon", "in [0, 1]"]),
     (["--set", "horizon_m=10"], ["--set horizon_m", "stage"]),
     (["--set", "k_lim=0"], ["--set k_lim"]),
     (["--set", "neutral_rule=closest"], ["--set neutral_rule", "nearest"]),

@@ -7,11 +7,11 @@ declare_params! {
     /// The driver's set speed and the band around it, shared by the PI and the look-ahead controller.
     pub struct CruiseParams in "cruise" {
         /// v_ref, the set speed.
-        v_ref_kmh: f64 = 85.0, unit "km/h", range Range::POSITIVE;
+        v_ref_kmh: f64 = 85.0, unit "km/h", range Range::positive_up_to(250.0);
         /// Allowed increase above v_ref: v_max = v_ref + v_inc is a hard limit (the PI brakes above it).
-        v_inc_kmh: f64 = 5.0, unit "km/h", range Range::NON_NEGATIVE;
+        v_inc_kmh: f64 = 5.0, unit "km/h", range Range::between(0.0, 100.0);
         /// Allowed decrease below v_ref: v_min = v_ref - v_dec, a soft limit of the look-ahead controller.
-        v_dec_kmh: f64 = 5.0, unit "km/h", range Range::NON_NEGATIVE;
+        v_dec_kmh: f64 = 5.0, unit "km/h", range Range::between(0.0, 250.0);
     }
 }
 

@@ -44,31 +44,31 @@ declare_params! {
     /// The look-ahead DP-MPC.
     pub struct MpcParams in "mpc" {
         /// S, stage length: one solve per stage, its control held over the stage.
-        stage_m: f64 = 25.0, unit "m", range Range::POSITIVE;
+        stage_m: f64 = 25.0, unit "m", range Range::positive_up_to(1e4);
         /// Prediction horizon; N = round(horizon / S) stages.
-        horizon_m: f64 = 1500.0, unit "m", range Range::POSITIVE;
+        horizon_m: f64 = 1500.0, unit "m", range Range::positive_up_to(1e6);
         /// δ, step of the DP's speed grid.
-        delta_kmh: f64 = 0.2, unit "km/h", range Range::POSITIVE;
+        delta_kmh: f64 = 0.2, unit "km/h", range Range::positive_up_to(100.0);
         /// ε, pedal tolerance: levels in [-ε, 1 + ε] are accepted and clipped to [0, 1].
-        epsilon: f64 = 0.1, unit "-", range Range::NON_NEGATIVE;
+        epsilon: f64 = 0.1, unit "-", range Range::between(0.0, 1.0);
         /// Least number of stages between two gear shifts; null = 200 m / S (table 6.1).
-        k_lim: Option<u32> = None, unit "stages", range Range::AT_LEAST_ONE;
+        k_lim: Option<u32> = None, unit "stages", range Range::between(1.0, 1e6);
         /// Lowest engine speed of a usable gear (5.7).
-        n_min_rpm: f64 = 1000.0, unit "rpm", range Range::NON_NEGATIVE;
+        n_min_rpm: f64 = 1000.0, unit "rpm", range Range::between(0.0, 1e4);
         /// Highest engine speed of a usable gear (5.7).
-        n_max_rpm: f64 = 2000.0, unit "rpm", range Range::POSITIVE;
+        n_max_rpm: f64 = 2000.0, unit "rpm", range Range::positive_up_to(1e4);
         /// Whether the controller may coast in neutral (section 6.6).
         allow_neutral: bool = true, unit "-", range Range::ANY;
         /// Q1, weight per gram of fuel.
-        q_fuel: f64 = 2.0, unit "1/g", range Range::NON_NEGATIVE;
+        q_fuel: f64 = 2.0, unit "1/g", range Range::between(0.0, 1e6);
         /// Q2, weight per (m/s)² below v_ref; null = 5 if δ < 0.15 km/h else 7 (table 6.2).
-        q_speed_below: Option<f64> = None, unit "1/(m/s)^2", range Range::NON_NEGATIVE;
+        q_speed_below: Option<f64> = None, unit "1/(m/s)^2", range Range::between(0.0, 1e6);
         /// Q3, weight per m/s of speed change over a stage.
-        q_speed_change: f64 = 15.0, unit "1/(m/s)", range Range::NON_NEGATIVE;
+        q_speed_change: f64 = 15.0, unit "1/(m/s)", range Range::between(0.0, 1e6);
         /// Q4, weight per gear shift.
-        q_gear_shift: f64 = 15.0, unit "1/shift", range Range::NON_NEGATIVE;
+        q_gear_shift: f64 = 15.0, unit "1/shift", range Range::between(0.0, 1e6);
         /// Q5, weight per unit brake level held over a stage.
-        q_brake: f64 = 100.0, unit "-", range Range::NON_NEGATIVE;
+        q_brake: f64 = 100.0, unit "-", range Range::between(0.0, 1e6);
         /// Neutral arcs end on the nearest grid point or interpolate the cost-to-go.
         neutral_rule: NeutralRule = NeutralRule::Nearest, unit "-", range Range::ANY;
         /// Speed grid anchored at each stage's lower bound (moving, 5.8) or on multiples of δ (fixed).

@@ -9,21 +9,21 @@ declare_params! {
     /// km/h·s and is clamped to ±limit (the anti-windup).
     pub struct PiParams in "pi" {
         /// K_P, pedal proportional gain.
-        pedal_kp: f64 = 1.845, unit "1/(km/h)", range Range::NON_NEGATIVE;
+        pedal_kp: f64 = 1.845, unit "1/(km/h)", range Range::between(0.0, 1e3);
         /// I_P, pedal integral gain.
-        pedal_ki: f64 = 0.2, unit "1/(km/h s)", range Range::NON_NEGATIVE;
+        pedal_ki: f64 = 0.2, unit "1/(km/h s)", range Range::between(0.0, 1e3);
         /// Clamp of the pedal integrator (the anti-windup's saturation value).
-        pedal_integrator_limit: f64 = 30.0, unit "km/h s", range Range::POSITIVE;
+        pedal_integrator_limit: f64 = 30.0, unit "km/h s", range Range::positive_up_to(1e6);
         /// K_B, brake proportional gain; the brake acts on v - v_max.
-        brake_kp: f64 = 0.3, unit "1/(km/h)", range Range::NON_NEGATIVE;
+        brake_kp: f64 = 0.3, unit "1/(km/h)", range Range::between(0.0, 1e3);
         /// I_B, brake integral gain.
-        brake_ki: f64 = 0.02, unit "1/(km/h s)", range Range::NON_NEGATIVE;
+        brake_ki: f64 = 0.02, unit "1/(km/h s)", range Range::between(0.0, 1e3);
         /// Clamp of the brake integrator.
-        brake_integrator_limit: f64 = 30.0, unit "km/h s", range Range::POSITIVE;
+        brake_integrator_limit: f64 = 30.0, unit "km/h s", range Range::positive_up_to(1e6);
         /// Engine speed below which each gear 1..n shifts down; null for gear 1.
-        gear_down_rpm: Vec<Option<f64>> = down_thresholds(), unit "rpm", range Range::POSITIVE;
+        gear_down_rpm: Vec<Option<f64>> = down_thresholds(), unit "rpm", range Range::positive_up_to(1e4);
         /// Engine speed above which each gear 1..n shifts up; null for the top gear.
-        gear_up_rpm: Vec<Option<f64>> = up_thresholds(), unit "rpm", range Range::POSITIVE;
+        gear_up_rpm: Vec<Option<f64>> = up_thresholds(), unit "rpm", range Range::positive_up_to(1e4);
     }
 }
 

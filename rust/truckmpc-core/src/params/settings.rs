@@ -113,13 +113,13 @@ mod tests {
     #[test]
     fn errors_name_the_key_and_what_was_expected() {
         let err = RunSettings::from_values([("mass_kg", &Value::Int(-1))]).unwrap_err();
-        assert_eq!(err.to_string(), "mass_kg: expected a number > 0, got -1");
+        assert_eq!(err.to_string(), "mass_kg: expected a number in (0, 1000000], got -1");
         let err = RunSettings::from_values([("plant_dt_s", &Value::Float(f64::NAN))]).unwrap_err();
         assert_eq!(err.to_string(), "plant_dt_s: expected a finite number in (0, 1], got NaN");
         let err = RunSettings::from_values([("grid", &Value::Text("loose".into()))]).unwrap_err();
         assert_eq!(err.to_string(), "grid: expected 'moving' or 'fixed', got 'loose'");
         let err = RunSettings::from_values([("k_lim", &Value::Float(2.5))]).unwrap_err();
-        assert_eq!(err.to_string(), "k_lim: expected a whole number >= 1 or null, got 2.5");
+        assert_eq!(err.to_string(), "k_lim: expected a whole number in [1, 1000000] or null, got 2.5");
         let err = RunSettings::from_values([("v_ref_kmh", &Value::Int(5))]).unwrap_err();
         let CoreError::Invalid { key, related, .. } = err;
         assert_eq!((key.as_str(), related), ("v_dec_kmh", vec!["v_ref_kmh".to_string()]));

@@ -71,6 +71,17 @@ impl Range {
     /// (0, 1]: efficiencies, time steps in seconds.
     pub const FRACTION: Range = Range { lo: Bound::Exclusive(0.0), hi: Bound::Inclusive(1.0) };
 
+    /// (0, hi]: a positive quantity with a physical upper limit (no truck weighs 1e308 kg; values
+    /// that large overflow the model's products into infinities and NaN).
+    pub const fn positive_up_to(hi: f64) -> Range {
+        Range { lo: Bound::Exclusive(0.0), hi: Bound::Inclusive(hi) }
+    }
+
+    /// [lo, hi].
+    pub const fn between(lo: f64, hi: f64) -> Range {
+        Range { lo: Bound::Inclusive(lo), hi: Bound::Inclusive(hi) }
+    }
+
     /// Whether `x` is finite and within the range.
     pub fn contains(&self, x: f64) -> bool {
         let above = match self.lo {
