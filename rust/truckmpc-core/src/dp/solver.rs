@@ -202,6 +202,8 @@ pub struct Solver {
     /// Rows of the stage being solved when they do not come from the cache.
     scratch_rows: StageRows,
     cache: RowCache,
+    /// Steps of the interval passes from earlier solves, by absolute stage.
+    interval_memo: space::IntervalMemo,
 }
 
 impl Solver {
@@ -231,6 +233,7 @@ impl Solver {
             scratch: RowScratch::default(),
             scratch_rows: StageRows::default(),
             cache: RowCache::default(),
+            interval_memo: space::IntervalMemo::default(),
         }
     }
 
@@ -267,7 +270,7 @@ impl Solver {
         let gears = vehicle.forward_gears() + 1;
         self.slope_torques.clear();
         self.slope_torques.extend(slopes.iter().map(|&a| vehicle.slope_torque_nm(a)));
-        self.build_space(vehicle, start, slopes);
+        self.build_space(vehicle, start, slopes, first_stage);
         let cached_from = if self.caching { first_stage } else { None };
         if let Some(stage) = cached_from {
             // Stage k of this solve (k ≥ 1 has grid states) is absolute stage `stage + k`.
@@ -315,9 +318,11 @@ impl Solver {
     }
 
     /// Intervals, grids, gear ranges and active gears of every stage.
-    fn build_space(&mut self, vehicle: &Vehicle, start: InitialState, slopes: &[f64]) {
+    fn build_space(&mut self, vehicle: &Vehicle, start: InitialState, slopes: &[f64], first_stage: Option<u64>) {
+        // Absolute stages, when known, let the interval passes reuse steps of earlier solves.
         let p = &self.params;
-        space::intervals(vehicle, p, start.v_mps, slopes, &mut self.intervals);
+        let memo = first_stage.filter(|_| self.caching).map(|stage| (stage, &mut self.interval_memo));
+        space::intervals_from_stage(vehicle, p, start.v_mps, slopes, memo, &mut self.intervals);
         let delta = p.delta_mps();
         self.grids.clear();
         self.grids.push(StageGrid {
