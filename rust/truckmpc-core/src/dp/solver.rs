@@ -477,39 +477,29 @@ impl Solver {
                 forward_row(vehicle, p, here.index.speed(key), g, slope_torque, next.index, buf)
             });
             let values = g * stride(next.count)..(g + 1) * stride(next.count);
-            let values = (&self.cost_next[values.clone()], &self.shift_next[values]);
-            let same = self.shift_same_next[g];
             let (blocks, first_key) = rows.get(key_lo, key_hi);
             debug_assert_eq!(first_key, ch.base_key);
-            for (b, block) in blocks.iter().enumerate() {
-                let base = block.first as i64 - next.first;
-                let mins = block_mins(block, &rows.costs, base, (lo, hi), values, same);
-                let at = out + b * LANES..out + (b + 1) * LANES;
-                ch.all_cost[at.clone()].copy_from_slice(&mins.all);
-                ch.shift_cost[at.clone()].copy_from_slice(&mins.shift);
-                let (all_j, shift_j) = (&mut ch.all_j[at.clone()], &mut ch.shift_j[at]);
-                // Next-grid index of a lane's step (base + lane + step, as u32 like the i64 sum
-                // truncated); meaningless where the cost is +∞.
-                let base32 = base as u32;
-                for l in 0..LANES {
-                    all_j[l] = base32.wrapping_add(l as u32).wrapping_add(mins.all_step[l]);
-                    shift_j[l] = base32.wrapping_add(l as u32).wrapping_add(mins.shift_step[l]);
-                }
-                let key0 = first_key + (b * LANES) as i64;
-                let inside = base >= lo as i64 && base + block.steps as i64 + LANES as i64 - 2 <= hi as i64;
-                if inside && key0 >= key_lo && key0 + LANES as i64 - 1 <= key_hi {
-                    // Every lane's targets are states and every lane a source: no clipping.
-                    transitions += block.reach as usize;
-                    continue;
-                }
-                for l in 0..LANES {
-                    let key = key0 + l as i64;
-                    let (first, len) = block.spans[l];
-                    let first = first as i64 - next.first;
-                    let reached = ((first + len as i64 - 1).min(hi as i64) - first.max(lo as i64) + 1).max(0) as usize;
-                    transitions += if key >= key_lo && key <= key_hi { reached } else { 0 };
-                }
-            }
+            let pass = GearPass {
+                blocks,
+                costs: &rows.costs,
+                next_first: next.first,
+                lo,
+                hi,
+                to_go: &self.cost_next[values.clone()],
+                shiftable: &self.shift_next[values],
+                same: self.shift_same_next[g],
+                first_key,
+                key_lo,
+                key_hi,
+            };
+            let span = out..out + blocks.len() * LANES;
+            let choices = GearChoices {
+                all_cost: &mut ch.all_cost[span.clone()],
+                all_j: &mut ch.all_j[span.clone()],
+                shift_cost: &mut ch.shift_cost[span.clone()],
+                shift_j: &mut ch.shift_j[span],
+            };
+            transitions += gear_pass_dispatch(&pass, choices);
         }
         transitions
     }
@@ -788,13 +778,100 @@ impl NeutralJoin {
     }
 }
 
+/// What the first pass reads for one forward target gear.
+struct GearPass<'a> {
+    /// The blocks of the source keys, from `first_key` on.
+    blocks: &'a [Block],
+    costs: &'a [f64],
+    /// Grid index of the next grid's state 0.
+    next_first: i64,
+    /// The target gear's states at the next stage.
+    lo: u32,
+    hi: u32,
+    /// The target gear's blocks of cost_next and shift_next (margins included).
+    to_go: &'a [f64],
+    shiftable: &'a [f64],
+    /// Whether `shiftable` equals `to_go` bit for bit.
+    same: bool,
+    first_key: i64,
+    /// The source keys with states.
+    key_lo: i64,
+    key_hi: i64,
+}
+
+/// Where the first pass writes for one forward target gear: one value per block lane.
+struct GearChoices<'a> {
+    all_cost: &'a mut [f64],
+    all_j: &'a mut [u32],
+    shift_cost: &'a mut [f64],
+    shift_j: &'a mut [u32],
+}
+
+/// [`gear_pass`] with the best kernels of the CPU. Returns the transitions evaluated.
+fn gear_pass_dispatch(pass: &GearPass, out: GearChoices) -> usize {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(kernels) = simd::Avx2::detect() {
+        // SAFETY: `kernels` exists, so the CPU has AVX2.
+        return unsafe { gear_pass_avx2(kernels, pass, out) };
+    }
+    gear_pass(simd::Portable, pass, out)
+}
+
+/// [`gear_pass`] compiled for AVX2, so that its kernels inline into the loop over blocks.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn gear_pass_avx2(kernels: simd::Avx2, pass: &GearPass, out: GearChoices) -> usize {
+    gear_pass(kernels, pass, out)
+}
+
+/// The first pass towards one forward target gear: per block, the lanes' best ways into the gear
+/// (and the best that allow a shift now), their next-grid indices, and the transitions counted.
+#[inline(always)]
+fn gear_pass<K: simd::Kernels>(kernels: K, pass: &GearPass, out: GearChoices) -> usize {
+    let (lo, hi) = (pass.lo, pass.hi);
+    let mut transitions = 0;
+    let n = pass.blocks.len() * LANES;
+    assert!(out.all_cost.len() == n && out.all_j.len() == n && out.shift_cost.len() == n && out.shift_j.len() == n);
+    for (b, block) in pass.blocks.iter().enumerate() {
+        let base = block.first as i64 - pass.next_first;
+        let mins = block_mins(kernels, block, pass.costs, base, (lo, hi), (pass.to_go, pass.shiftable), pass.same);
+        let at = b * LANES..(b + 1) * LANES;
+        out.all_cost[at.clone()].copy_from_slice(&mins.all);
+        out.shift_cost[at.clone()].copy_from_slice(&mins.shift);
+        let (all_j, shift_j) = (&mut out.all_j[at.clone()], &mut out.shift_j[at]);
+        // Next-grid index of a lane's step (base + lane + step, as u32 like the i64 sum
+        // truncated); meaningless where the cost is +∞.
+        let base32 = base as u32;
+        for l in 0..LANES {
+            all_j[l] = base32.wrapping_add(l as u32).wrapping_add(mins.all_step[l]);
+            shift_j[l] = base32.wrapping_add(l as u32).wrapping_add(mins.shift_step[l]);
+        }
+        let key0 = pass.first_key + (b * LANES) as i64;
+        let inside = base >= lo as i64 && base + block.steps as i64 + LANES as i64 - 2 <= hi as i64;
+        if inside && key0 >= pass.key_lo && key0 + LANES as i64 - 1 <= pass.key_hi {
+            // Every lane's targets are states and every lane a source: no clipping.
+            transitions += block.reach as usize;
+            continue;
+        }
+        for l in 0..LANES {
+            let key = key0 + l as i64;
+            let (first, len) = block.spans[l];
+            let first = first as i64 - pass.next_first;
+            let reached = ((first + len as i64 - 1).min(hi as i64) - first.max(lo as i64) + 1).max(0) as usize;
+            transitions += if key >= pass.key_lo && key <= pass.key_hi { reached } else { 0 };
+        }
+    }
+    transitions
+}
+
 /// The min-plus pass over one block of rows towards one forward target gear: per lane, the best
 /// of row cost + cost-to-go and the best among targets whose continuation allows a shift now.
 /// `base` is the next-grid index of lane 0 at step 0; `values` the target gear's blocks of
 /// cost_next and shift_next (margins included, state j at PAD + j); `same` when they are equal
 /// bit for bit.
-#[inline]
-fn block_mins(
+#[inline(always)]
+fn block_mins<K: simd::Kernels>(
+    kernels: K,
     block: &Block,
     costs: &[f64],
     base: i64,
@@ -809,9 +886,9 @@ fn block_mins(
         // The values outside the target gear's states are +∞ (margins included): no clipping.
         let at = at as usize;
         if same {
-            return simd::block_mins_same(costs, steps, &to_go[at..]);
+            return kernels.block_mins_same(costs, steps, &to_go[at..]);
         }
-        return simd::block_mins(costs, steps, &to_go[at..], &shiftable[at..]);
+        return kernels.block_mins(costs, steps, &to_go[at..], &shiftable[at..]);
     }
     block_mins_clipped(costs, steps, base, (lo, hi), to_go, shiftable)
 }
@@ -952,7 +1029,7 @@ mod tests {
             let block = Block { first: 0, steps: steps as u32, offset: 0, spans: [(0, 0); LANES], reach: 0 };
             // Inside the margins (packed pass) and reaching below them (clipped pass).
             for base in [-4i64, 10, -(PAD as i64) - 3, count as i64 - 5] {
-                let mins = block_mins(&block, &costs, base, (lo, hi), (&to_go, &shiftable), false);
+                let mins = block_mins(simd::Portable, &block, &costs, base, (lo, hi), (&to_go, &shiftable), false);
                 for l in 0..LANES {
                     assert_eq!(
                         (mins.all[l], mins.all_step[l]),
