@@ -145,8 +145,10 @@ impl Choices {
     }
 }
 
-/// The decision stored for a state: the next state (grid index, gear).
-#[derive(Debug, Clone, Copy, Default)]
+/// The decision stored for a state: the next state (grid index, gear). `repr(C)`: the AVX2
+/// second pass writes it as one u32, j in the low half and the gear in the byte above.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[repr(C)]
 struct Decision {
     j: u16,
     gear: u8,
@@ -204,6 +206,8 @@ pub struct Solver {
     cache: RowCache,
     /// Steps of the interval passes from earlier solves, by absolute stage.
     interval_memo: space::IntervalMemo,
+    /// Whether the CPU has AVX2 (for the second pass), detected once.
+    avx2: Option<Avx2Token>,
 }
 
 impl Solver {
@@ -234,6 +238,7 @@ impl Solver {
             scratch_rows: StageRows::default(),
             cache: RowCache::default(),
             interval_memo: space::IntervalMemo::default(),
+            avx2: Avx2Token::detect(),
         }
     }
 
@@ -585,9 +590,9 @@ impl Solver {
                 k_lim,
             };
             self.shift_same_cur[g_i] = match (stays, g_i == NEUTRAL) {
-                (false, _) => decide_states::<false, false>(input, state),
-                (true, false) => decide_states::<true, false>(input, state),
-                (true, true) => decide_states::<true, true>(input, state),
+                (false, _) => decide_states::<false, false>(input, state, None),
+                (true, false) => decide_states::<true, false>(input, state, self.avx2),
+                (true, true) => decide_states::<true, true>(input, state, None),
             };
             // The rest of the gear's block (no state there) is +∞ for the min-plus pass.
             let block = g_i * stride(n)..(g_i + 1) * stride(n);
@@ -662,7 +667,11 @@ struct StateOut<'a> {
 /// the next stage; `NEUTRAL_STATE`: the gear is neutral (whose counter comes with its choice).
 /// Returns whether every state's shiftable cost equals its cost bit for bit.
 #[inline(always)]
-fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(input: StateIn, out: StateOut) -> bool {
+fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(
+    input: StateIn,
+    mut out: StateOut,
+    avx2: Option<Avx2Token>,
+) -> bool {
     let m = out.cost.len();
     // Equal lengths, stated once: the loop below then needs no bounds checks on them.
     assert!(
@@ -676,8 +685,15 @@ fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(input: StateIn, o
             && input.penalty.len() == m
     );
     assert!(out.counter.len() == m && out.shift.len() == m && out.decision.len() == m);
-    let mut blocked = false;
-    for t in 0..m {
+    let (mut blocked, mut done) = (false, 0);
+    #[cfg(target_arch = "x86_64")]
+    if let (true, false, Some(_)) = (STAYS, NEUTRAL_STATE, avx2) {
+        // SAFETY: the token exists only where the CPU has AVX2; the lengths are checked above.
+        (done, blocked) = unsafe { decide_staying_avx2(&input, &mut out) };
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = avx2;
+    for t in done..m {
         let stay_cost = if STAYS { input.all_cost[t] } else { INF };
         // The best shift to another gear. With none, its cost is +∞ and never beats staying.
         let own = input.first_gear[t] == input.gear;
@@ -708,6 +724,105 @@ fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(input: StateIn, o
     }
     // Otherwise each shiftable cost is its cost (or both are +∞): the same bits.
     !blocked
+}
+
+/// Proof that the CPU has AVX2 (for the second pass).
+#[derive(Debug, Clone, Copy)]
+struct Avx2Token(());
+
+impl Avx2Token {
+    fn detect() -> Option<Self> {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            return Some(Avx2Token(()));
+        }
+        None
+    }
+}
+
+/// [`decide_states`] for a forward gear that stays, four states at a time in AVX2, as far as whole
+/// groups of four go: returns the states done and whether one of them was blocked. Every value is
+/// the scalar loop's: the same additions (shift + Q4, best + Q2 term), comparisons and selects,
+/// and the counters' integer rules (saturating +1, at most u32::MAX / 2, ≥ k_lim).
+///
+/// # Safety
+/// The CPU must have AVX2, and the slices of `input` and `out` the lengths `decide_states` checks.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn decide_staying_avx2(input: &StateIn, out: &mut StateOut) -> (usize, bool) {
+    use std::arch::x86_64::*;
+    let m = out.cost.len();
+    let groups = m / 4 * 4;
+    let inf = _mm256_set1_pd(INF);
+    let q4 = _mm256_set1_pd(input.q4);
+    let gear = _mm_set1_epi32(input.gear as i32);
+    let one = _mm_set1_epi32(1);
+    let below_max = _mm_set1_epi32((u32::MAX - 1) as i32);
+    let half = _mm_set1_epi32((u32::MAX / 2) as i32);
+    let k_lim = _mm_set1_epi32(input.k_lim as i32);
+    let width = _mm_set1_epi32(input.width as i32);
+    let lanes = _mm_setr_epi32(0, 1, 2, 3);
+    let low16 = _mm_set1_epi32(0xffff);
+    let low8 = _mm_set1_epi32(0xff);
+    // Gathers read only where the scalar loop reads; indices are clamped into the slices anyway.
+    let last_counter = _mm_set1_epi32(input.counter_next.len().saturating_sub(1) as i32);
+    let last_shift_j = _mm_set1_epi32(input.shift_j.len().saturating_sub(1).min(i32::MAX as usize) as i32);
+    // The 32-bit halves of 64-bit lane masks.
+    let pack = |mask: __m256d| {
+        _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(
+            _mm256_castpd_si256(mask),
+            _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6),
+        ))
+    };
+    let widen = |mask: __m128i| _mm256_castsi256_pd(_mm256_cvtepi32_epi64(mask));
+    let mut blocked = _mm256_setzero_pd();
+    let mut t = 0;
+    while t < groups {
+        let stay = _mm256_loadu_pd(input.all_cost.as_ptr().add(t));
+        let first_gear = _mm_loadu_si128(input.first_gear.as_ptr().add(t).cast());
+        let second_gear = _mm_loadu_si128(input.second_gear.as_ptr().add(t).cast());
+        let own = _mm_cmpeq_epi32(first_gear, gear);
+        let shift_cost = _mm256_add_pd(
+            _mm256_blendv_pd(
+                _mm256_loadu_pd(input.first_cost.as_ptr().add(t)),
+                _mm256_loadu_pd(input.second_cost.as_ptr().add(t)),
+                widen(own),
+            ),
+            q4,
+        );
+        let take = _mm256_cmp_pd::<_CMP_LT_OQ>(shift_cost, stay);
+        let take32 = pack(take);
+        let finite32 = pack(_mm256_cmp_pd::<_CMP_LT_OQ>(stay, inf));
+        // Staying: the continuation's counter (0 when staying has no finite cost) + 1.
+        let all_j = _mm_loadu_si128(input.all_j.as_ptr().add(t).cast());
+        let carried = _mm_mask_i32gather_epi32::<4>(
+            _mm_setzero_si128(),
+            input.counter_next.as_ptr().cast(),
+            _mm_min_epu32(all_j, last_counter),
+            _mm_andnot_si128(take32, finite32),
+        );
+        let stay_counter = _mm_min_epu32(_mm_add_epi32(_mm_min_epu32(carried, below_max), one), half);
+        let counter = _mm_blendv_epi8(stay_counter, one, take32);
+        let total =
+            _mm256_add_pd(_mm256_blendv_pd(stay, shift_cost, take), _mm256_loadu_pd(input.penalty.as_ptr().add(t)));
+        let shiftable32 = _mm_cmpeq_epi32(_mm_max_epu32(counter, k_lim), counter);
+        let shiftable = widen(shiftable32);
+        _mm256_storeu_pd(out.cost.as_mut_ptr().add(t), total);
+        _mm_storeu_si128(out.counter.as_mut_ptr().add(t).cast(), counter);
+        _mm256_storeu_pd(out.shift.as_mut_ptr().add(t), _mm256_blendv_pd(inf, total, shiftable));
+        blocked = _mm256_or_pd(blocked, _mm256_andnot_pd(shiftable, _mm256_cmp_pd::<_CMP_NEQ_UQ>(total, inf)));
+        // Shifting: the target of the best other gear.
+        let shift_gear = _mm_blendv_epi8(first_gear, second_gear, own);
+        let slot = _mm_add_epi32(_mm_set1_epi32((input.slot0 + t) as i32), lanes);
+        let at = _mm_min_epu32(_mm_add_epi32(_mm_mullo_epi32(shift_gear, width), slot), last_shift_j);
+        let shift_j = _mm_mask_i32gather_epi32::<4>(_mm_setzero_si128(), input.shift_j.as_ptr().cast(), at, take32);
+        let j = _mm_blendv_epi8(all_j, shift_j, take32);
+        let next_gear = _mm_blendv_epi8(gear, shift_gear, take32);
+        let decision = _mm_or_si128(_mm_and_si128(j, low16), _mm_slli_epi32::<16>(_mm_and_si128(next_gear, low8)));
+        _mm_storeu_si128(out.decision.as_mut_ptr().add(t).cast(), decision);
+        t += 4;
+    }
+    (groups, _mm256_movemask_pd(blocked) != 0)
 }
 
 /// The single neutral arc from `v_i_mps` on a stage: where the physics ends it, and its fuel and
@@ -964,6 +1079,68 @@ mod tests {
             }
         }
         out
+    }
+
+    #[test]
+    fn second_pass_in_avx2_equals_the_scalar_loop() {
+        let Some(avx2) = Avx2Token::detect() else { return };
+        let mut seed = 13u64;
+        let mut next = move |n: u64| {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 33) % n
+        };
+        let (width, gears) = (24usize, 6usize);
+        for case in 0..400 {
+            let m = 1 + next(21) as usize;
+            let slot0 = next((width - m + 1) as u64) as usize;
+            let gear = 1 + next(gears as u64 - 1) as u32;
+            let k_lim = [0, 1, 3, 8, u32::MAX][case % 5];
+            let mut cost = |inf_one_in: u64| if next(inf_one_in) == 0 { INF } else { next(7) as f64 * 0.5 };
+            let all_cost: Vec<f64> = (0..m).map(|_| cost(4)).collect();
+            let first_cost: Vec<f64> = (0..m).map(|_| cost(3)).collect();
+            let second_cost: Vec<f64> = first_cost.iter().map(|&c| if c == INF { INF } else { c + cost(3) }).collect();
+            // As the first pass leaves them: no gear exactly where the cost is +∞.
+            let mut gear_of = |c: f64| if c == INF { NO_GEAR } else { next(gears as u64) as u32 };
+            let first_gear: Vec<u32> = first_cost.iter().map(|&c| gear_of(c)).collect();
+            let second_gear: Vec<u32> = second_cost.iter().map(|&c| gear_of(c)).collect();
+            let counter_next: Vec<u32> =
+                (0..40).map(|_| [0, 1, 2, 7, 8, 9, u32::MAX / 2, u32::MAX - 1, u32::MAX][next(9) as usize]).collect();
+            let all_j: Vec<u32> = (0..m).map(|_| next(40) as u32).collect();
+            let shift_j: Vec<u32> = (0..width * gears).map(|_| next(1000) as u32).collect();
+            let penalty: Vec<f64> = (0..m).map(|_| next(5) as f64 * 0.25).collect();
+            let neutral_counter = vec![0; m];
+            let run = |avx2: Option<Avx2Token>| {
+                let (mut c, mut n, mut sh, mut d) =
+                    (vec![0.0; m], vec![0; m], vec![0.0; m], vec![Decision::default(); m]);
+                let input = StateIn {
+                    gear,
+                    slot0,
+                    all_cost: &all_cost,
+                    all_j: &all_j,
+                    first_cost: &first_cost,
+                    first_gear: &first_gear,
+                    second_cost: &second_cost,
+                    second_gear: &second_gear,
+                    neutral_counter: &neutral_counter,
+                    penalty: &penalty,
+                    shift_j: &shift_j,
+                    width,
+                    counter_next: &counter_next,
+                    q4: 0.5,
+                    k_lim,
+                };
+                let out = StateOut { cost: &mut c, counter: &mut n, shift: &mut sh, decision: &mut d };
+                let same = decide_states::<true, false>(input, out, avx2);
+                (
+                    c.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
+                    n,
+                    sh.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
+                    d,
+                    same,
+                )
+            };
+            assert_eq!(run(Some(avx2)), run(None), "case {case}");
+        }
     }
 
     #[test]
