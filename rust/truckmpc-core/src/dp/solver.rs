@@ -468,11 +468,22 @@ impl Solver {
                 let slot0 = (key_lo - ch.base_key) as usize;
                 let join = NeutralJoin::new(p, next, (lo, hi));
                 let (cost_next, counter_next) = (&self.cost_next[PAD..], &self.counter_next[PAD..]);
-                for (s, arc) in stage.neutral.get(key_lo, key_hi).iter().enumerate() {
+                let arcs = stage.neutral.get(key_lo, key_hi);
+                let (slots, at) = (slot0..slot0 + arcs.len(), out + slot0..out + slot0 + arcs.len());
+                let (all_cost, all_j) = (&mut ch.all_cost[at.clone()], &mut ch.all_j[at.clone()]);
+                let (shift_cost, shift_j) = (&mut ch.shift_cost[at.clone()], &mut ch.shift_j[at]);
+                let counters = &mut ch.neutral_counter[slots];
+                let mut done = 0;
+                #[cfg(target_arch = "x86_64")]
+                if let (NeutralRule::Nearest, Some(_)) = (p.neutral_rule, self.avx2) {
+                    let out = NeutralOut { all_cost, all_j, counters, shift_cost, shift_j };
+                    // SAFETY: the token exists only where the CPU has AVX2.
+                    done = unsafe { join_nearest_avx2(&join, arcs, (cost_next, counter_next), p.k_lim, out) };
+                }
+                for (s, arc) in arcs.iter().enumerate().skip(done) {
                     let (cost, j, counter) = join.join(arc, cost_next, counter_next);
-                    let at = out + slot0 + s;
-                    (ch.all_cost[at], ch.all_j[at], ch.neutral_counter[slot0 + s]) = (cost, j, counter);
-                    (ch.shift_cost[at], ch.shift_j[at]) = (if counter >= p.k_lim { cost } else { INF }, j);
+                    (all_cost[s], all_j[s], counters[s]) = (cost, j, counter);
+                    (shift_cost[s], shift_j[s]) = (if counter >= p.k_lim { cost } else { INF }, j);
                 }
                 transitions += i_hi - i_lo + 1;
                 continue;
@@ -979,6 +990,92 @@ fn gear_pass<K: simd::Kernels>(kernels: K, pass: &GearPass, out: GearChoices) ->
     transitions
 }
 
+/// Where the neutral arcs' choices go: one value per source, from the first.
+#[cfg(target_arch = "x86_64")]
+struct NeutralOut<'a> {
+    all_cost: &'a mut [f64],
+    all_j: &'a mut [u32],
+    counters: &'a mut [u32],
+    shift_cost: &'a mut [f64],
+    shift_j: &'a mut [u32],
+}
+
+/// [`NeutralJoin::join`] with the nearest rule (and the shiftable cost), four arcs at a time in
+/// AVX2, as far as whole groups of four go and no end speed is NaN: returns the arcs done. The
+/// same operations as the scalar join: the division, the range tests, the truncation of x + 0.5
+/// (exact: x + 0.5 is in [0, 2^31) where it is used), the cost-to-go and counter read only where
+/// the scalar join reads them, and the finiteness test.
+///
+/// # Safety
+/// The CPU must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn join_nearest_avx2(
+    join: &NeutralJoin,
+    arcs: &[NeutralArc],
+    (cost_next, counter_next): (&[f64], &[u32]),
+    k_lim: u32,
+    out: NeutralOut,
+) -> usize {
+    use std::arch::x86_64::*;
+    let n = arcs.len();
+    assert!(
+        out.all_cost.len() == n
+            && out.all_j.len() == n
+            && out.counters.len() == n
+            && out.shift_cost.len() == n
+            && out.shift_j.len() == n
+    );
+    // The gathers below read indices within [lo, hi] only; the values must hold them.
+    if (join.hi as usize) >= cost_next.len().min(counter_next.len()) || join.hi >= i32::MAX as u32 {
+        return 0;
+    }
+    let groups = n / 4 * 4;
+    let (origin, delta) = (_mm256_set1_pd(join.origin_mps), _mm256_set1_pd(join.delta_mps));
+    let (below, above) = (_mm256_set1_pd(join.lo as f64 - 0.5), _mm256_set1_pd(join.hi as f64 + 0.5));
+    let half = _mm256_set1_pd(0.5);
+    let inf = _mm256_set1_pd(INF);
+    let sign = _mm256_set1_pd(-0.0);
+    let (lo, hi) = (_mm_set1_epi32(join.lo as i32), _mm_set1_epi32(join.hi as i32));
+    let k_lim = _mm_set1_epi32(k_lim as i32);
+    let pack = |mask: __m256d| {
+        _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(
+            _mm256_castpd_si256(mask),
+            _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6),
+        ))
+    };
+    let widen = |mask: __m128i| _mm256_castsi256_pd(_mm256_cvtepi32_epi64(mask));
+    let mut t = 0;
+    while t < groups {
+        // (v_end, cost) of arcs t..t + 4, as [v0 c0 v1 c1] [v2 c2 v3 c3].
+        let a = _mm256_loadu_pd(arcs.as_ptr().add(t).cast());
+        let b = _mm256_loadu_pd(arcs.as_ptr().add(t + 2).cast());
+        let v_end = _mm256_permute4x64_pd::<0b11_01_10_00>(_mm256_unpacklo_pd(a, b));
+        let arc_cost = _mm256_permute4x64_pd::<0b11_01_10_00>(_mm256_unpackhi_pd(a, b));
+        let x = _mm256_div_pd(_mm256_sub_pd(v_end, origin), delta);
+        if _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_UNORD_Q>(x, x)) != 0 {
+            break;
+        }
+        let near = _mm256_and_pd(_mm256_cmp_pd::<_CMP_GE_OQ>(x, below), _mm256_cmp_pd::<_CMP_LE_OQ>(x, above));
+        let j = _mm256_cvttpd_epi32(_mm256_add_pd(x, half));
+        let in_states = _mm_andnot_si128(_mm_or_si128(_mm_cmpgt_epi32(lo, j), _mm_cmpgt_epi32(j, hi)), pack(near));
+        let to_go = _mm256_mask_i32gather_pd::<8>(_mm256_setzero_pd(), cost_next.as_ptr(), j, widen(in_states));
+        let finite = _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_andnot_pd(sign, to_go), inf);
+        let ok = _mm_and_si128(in_states, pack(finite));
+        let counter = _mm_mask_i32gather_epi32::<4>(_mm_setzero_si128(), counter_next.as_ptr().cast(), j, ok);
+        let cost = _mm256_blendv_pd(inf, _mm256_add_pd(arc_cost, to_go), widen(ok));
+        let j = _mm_and_si128(j, ok);
+        let shiftable = widen(_mm_cmpeq_epi32(_mm_max_epu32(counter, k_lim), counter));
+        _mm256_storeu_pd(out.all_cost.as_mut_ptr().add(t), cost);
+        _mm_storeu_si128(out.all_j.as_mut_ptr().add(t).cast(), j);
+        _mm_storeu_si128(out.counters.as_mut_ptr().add(t).cast(), counter);
+        _mm256_storeu_pd(out.shift_cost.as_mut_ptr().add(t), _mm256_blendv_pd(inf, cost, shiftable));
+        _mm_storeu_si128(out.shift_j.as_mut_ptr().add(t).cast(), j);
+        t += 4;
+    }
+    t
+}
+
 /// The min-plus pass over one block of rows towards one forward target gear: per lane, the best
 /// of row cost + cost-to-go and the best among targets whose continuation allows a shift now.
 /// `base` is the next-grid index of lane 0 at step 0; `values` the target gear's blocks of
@@ -1140,6 +1237,57 @@ mod tests {
                 )
             };
             assert_eq!(run(Some(avx2)), run(None), "case {case}");
+        }
+    }
+
+    #[test]
+    fn neutral_join_in_avx2_equals_the_scalar_join() {
+        if Avx2Token::detect().is_none() {
+            return;
+        }
+        let mut seed = 17u64;
+        let mut next = move |n: u64| {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 33) % n
+        };
+        for case in 0..300 {
+            let (lo, hi) = (next(6) as u32, 6 + next(20) as u32);
+            let join = NeutralJoin {
+                rule: NeutralRule::Nearest,
+                origin_mps: 20.0 + next(100) as f64 * 0.01,
+                delta_mps: 0.1 / 3.6,
+                lo,
+                hi,
+            };
+            let n = next(23) as usize;
+            let arcs: Vec<NeutralArc> = (0..n)
+                .map(|_| NeutralArc {
+                    // From well below to well above the states, with exact half steps.
+                    v_end_mps: join.origin_mps
+                        + (next(64) as f64 * 0.5 - 4.0) * join.delta_mps
+                        + next(3) as f64 * 1e-12,
+                    cost: next(9) as f64 * 0.25,
+                })
+                .collect();
+            let cost_next: Vec<f64> = (0..40).map(|_| if next(4) == 0 { INF } else { next(11) as f64 }).collect();
+            let counter_next: Vec<u32> = (0..40).map(|_| next(12) as u32).collect();
+            let k_lim = [0, 4, 8, u32::MAX][case % 4];
+            let scalar: Vec<_> = arcs
+                .iter()
+                .map(|arc| {
+                    let (cost, j, counter) = join.join(arc, &cost_next, &counter_next);
+                    (cost.to_bits(), j, counter, if counter >= k_lim { cost } else { INF }.to_bits(), j)
+                })
+                .collect();
+            let (mut a, mut b, mut c, mut d, mut e) = (vec![0.0; n], vec![0; n], vec![0; n], vec![0.0; n], vec![0; n]);
+            let out =
+                NeutralOut { all_cost: &mut a, all_j: &mut b, counters: &mut c, shift_cost: &mut d, shift_j: &mut e };
+            // SAFETY: AVX2 was detected above.
+            let done = unsafe { join_nearest_avx2(&join, &arcs, (&cost_next, &counter_next), k_lim, out) };
+            assert_eq!(done, n / 4 * 4);
+            for t in 0..done {
+                assert_eq!((a[t].to_bits(), b[t], c[t], d[t].to_bits(), e[t]), scalar[t], "case {case} arc {t}");
+            }
         }
     }
 
