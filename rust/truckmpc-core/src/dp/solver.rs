@@ -549,7 +549,13 @@ impl Solver {
             let second_gear = &mut ch.second_gear[sources.clone()];
             let m = costs.len();
             assert!(first_cost.len() == m && first_gear.len() == m && second_cost.len() == m && second_gear.len() == m);
-            for t in 0..m {
+            let mut done = 0;
+            #[cfg(target_arch = "x86_64")]
+            if self.avx2.is_some() {
+                // SAFETY: the token exists only where the CPU has AVX2; the lengths are checked above.
+                done = unsafe { rank_avx2(costs, g as u32, (first_cost, first_gear), (second_cost, second_gear)) };
+            }
+            for t in done..m {
                 let c = costs[t];
                 if c < first_cost[t] {
                     (second_cost[t], second_gear[t]) = (first_cost[t], first_gear[t]);
@@ -1000,6 +1006,50 @@ struct NeutralOut<'a> {
     shift_j: &'a mut [u32],
 }
 
+/// The ranking of one gear's shift costs into the two best per slot (the scalar loop of
+/// `stay_or_shift`) four slots at a time in AVX2, as far as whole groups of four go: returns the
+/// slots done. Selects on the same strict comparisons: a cost below the first moves the first to
+/// second place, a cost between the two takes the second place.
+///
+/// # Safety
+/// The CPU must have AVX2, and all slices the length of `costs`.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn rank_avx2(
+    costs: &[f64],
+    gear: u32,
+    (first_cost, first_gear): (&mut [f64], &mut [u32]),
+    (second_cost, second_gear): (&mut [f64], &mut [u32]),
+) -> usize {
+    use std::arch::x86_64::*;
+    let groups = costs.len() / 4 * 4;
+    let gear = _mm_set1_epi32(gear as i32);
+    let pack = |mask: __m256d| {
+        _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(
+            _mm256_castpd_si256(mask),
+            _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6),
+        ))
+    };
+    let mut t = 0;
+    while t < groups {
+        let c = _mm256_loadu_pd(costs.as_ptr().add(t));
+        let (f, s) = (_mm256_loadu_pd(first_cost.as_ptr().add(t)), _mm256_loadu_pd(second_cost.as_ptr().add(t)));
+        let fg = _mm_loadu_si128(first_gear.as_ptr().add(t).cast());
+        let sg = _mm_loadu_si128(second_gear.as_ptr().add(t).cast());
+        let below_first = _mm256_cmp_pd::<_CMP_LT_OQ>(c, f);
+        let below_either = _mm256_or_pd(below_first, _mm256_cmp_pd::<_CMP_LT_OQ>(c, s));
+        let (below_first32, below_either32) = (pack(below_first), pack(below_either));
+        let s = _mm256_blendv_pd(s, _mm256_blendv_pd(c, f, below_first), below_either);
+        let sg = _mm_blendv_epi8(sg, _mm_blendv_epi8(gear, fg, below_first32), below_either32);
+        _mm256_storeu_pd(second_cost.as_mut_ptr().add(t), s);
+        _mm_storeu_si128(second_gear.as_mut_ptr().add(t).cast(), sg);
+        _mm256_storeu_pd(first_cost.as_mut_ptr().add(t), _mm256_blendv_pd(f, c, below_first));
+        _mm_storeu_si128(first_gear.as_mut_ptr().add(t).cast(), _mm_blendv_epi8(fg, gear, below_first32));
+        t += 4;
+    }
+    groups
+}
+
 /// [`NeutralJoin::join`] with the nearest rule (and the shiftable cost), four arcs at a time in
 /// AVX2, as far as whole groups of four go and no end speed is NaN: returns the arcs done. The
 /// same operations as the scalar join: the division, the range tests, the truncation of x + 0.5
@@ -1288,6 +1338,49 @@ mod tests {
             for t in 0..done {
                 assert_eq!((a[t].to_bits(), b[t], c[t], d[t].to_bits(), e[t]), scalar[t], "case {case} arc {t}");
             }
+        }
+    }
+
+    #[test]
+    fn shift_ranking_in_avx2_equals_the_scalar_loop() {
+        if Avx2Token::detect().is_none() {
+            return;
+        }
+        let mut seed = 19u64;
+        let mut next = move |n: u64| {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 33) % n
+        };
+        for case in 0..200 {
+            let m = next(19) as usize;
+            let (mut f, mut fg, mut s, mut sg) = (vec![INF; m], vec![NO_GEAR; m], vec![INF; m], vec![NO_GEAR; m]);
+            let (mut f2, mut fg2, mut s2, mut sg2) = (f.clone(), fg.clone(), s.clone(), sg.clone());
+            for g in 0..6u32 {
+                // Few distinct values: many ties.
+                let costs: Vec<f64> = (0..m).map(|_| if next(3) == 0 { INF } else { next(4) as f64 }).collect();
+                for t in 0..m {
+                    let c = costs[t];
+                    if c < f[t] {
+                        (s[t], sg[t]) = (f[t], fg[t]);
+                        (f[t], fg[t]) = (c, g);
+                    } else if c < s[t] {
+                        (s[t], sg[t]) = (c, g);
+                    }
+                }
+                // SAFETY: AVX2 was detected above; equal lengths.
+                let done = unsafe { rank_avx2(&costs, g, (&mut f2, &mut fg2), (&mut s2, &mut sg2)) };
+                for t in done..m {
+                    let c = costs[t];
+                    if c < f2[t] {
+                        (s2[t], sg2[t]) = (f2[t], fg2[t]);
+                        (f2[t], fg2[t]) = (c, g);
+                    } else if c < s2[t] {
+                        (s2[t], sg2[t]) = (c, g);
+                    }
+                }
+            }
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!((bits(&f), fg, bits(&s), sg), (bits(&f2), fg2, bits(&s2), sg2), "case {case}");
         }
     }
 
