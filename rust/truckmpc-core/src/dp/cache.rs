@@ -200,8 +200,10 @@ fn transpose(rows: &[(RowSpan, usize); LANES], row_costs: &[f64], costs: &mut Ve
 }
 
 /// A neutral arc from one source speed: where it ends and the part of its cost that does not
-/// depend on the cost-to-go (fuel and speed change).
+/// depend on the cost-to-go (fuel and speed change). `repr(C)`: the solver loads four arcs as two
+/// pairs of (end speed, cost).
 #[derive(Debug, Clone, Copy, Default)]
+#[repr(C)]
 pub struct NeutralArc {
     /// End speed after the stage [m/s].
     pub v_end_mps: f64,

@@ -170,7 +170,7 @@ pub fn forward_row(
     let window = p.delta_mps() * BRAKE_WINDOW;
     let (a_pedal, g_pedal) = (m.pedal.accel_at_zero, m.pedal.gain);
     let (a_brake, g_brake) = (m.brake.accel_at_zero, m.brake.gain);
-    out.extend((first..=last).map(|index| {
+    let cost = |index: i64| {
         let v_j = grid.speed(index);
         let change = q_change * (v_i - v_j).abs();
         let demand = v_i * (v_j - v_i) / h;
@@ -190,7 +190,17 @@ pub fn forward_row(
             }
         }
         f64::INFINITY
-    }));
+    };
+    #[cfg(target_arch = "x86_64")]
+    if pedal_on && std::arch::is_x86_feature_detected!("avx2") {
+        let row = PedalRow { v_i, h, grid, q_change, fuel_per_pedal, pedal_lo, pedal_hi, a_pedal, g_pedal };
+        // SAFETY: the CPU has AVX2 (checked just above).
+        unsafe { pedal_row_avx2(&row, first, last, out, cost) };
+    } else {
+        out.extend((first..=last).map(cost));
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    out.extend((first..=last).map(cost));
     // Trim unreachable ends so the min-plus loop never scans them.
     let row = &out[start..];
     let Some(lead) = row.iter().position(|c| c.is_finite()) else {
@@ -203,6 +213,76 @@ pub fn forward_row(
     (RowSpan { first: first + lead as i64, len }, start + lead)
 }
 
+/// The constants of a row's pedal costs.
+#[cfg(target_arch = "x86_64")]
+struct PedalRow {
+    v_i: f64,
+    h: f64,
+    grid: GridIndex,
+    q_change: f64,
+    fuel_per_pedal: f64,
+    pedal_lo: f64,
+    pedal_hi: f64,
+    a_pedal: f64,
+    g_pedal: f64,
+}
+
+/// Append the costs of indices `first..=last` four at a time in AVX2: the pedal branch of
+/// [`forward_row`]'s `cost` with the same operations in the same order (grid speed, speed change,
+/// demand, pedal, f64::clamp as two selects, cost); lanes whose pedal is below the band (or NaN),
+/// which `cost` sends on to the brake test, are computed by `cost` itself.
+///
+/// # Safety
+/// The CPU must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn pedal_row_avx2(row: &PedalRow, first: i64, last: i64, out: &mut Vec<f64>, cost: impl Fn(i64) -> f64) {
+    use std::arch::x86_64::*;
+    let n = (last - first + 1) as usize;
+    // Room for whole groups of four; only the first n values are kept.
+    out.reserve(n + 3);
+    let at = out.len();
+    let dst = out.spare_capacity_mut().as_mut_ptr().cast::<f64>();
+    let splat = _mm256_set1_pd;
+    let (v_i, h, origin, delta) = (splat(row.v_i), splat(row.h), splat(row.grid.origin_mps), splat(row.grid.delta_mps));
+    let (q_change, fuel_per_pedal) = (splat(row.q_change), splat(row.fuel_per_pedal));
+    let (pedal_lo, pedal_hi, a_pedal, g_pedal) =
+        (splat(row.pedal_lo), splat(row.pedal_hi), splat(row.a_pedal), splat(row.g_pedal));
+    let (zero, one, inf, sign) = (splat(0.0), splat(1.0), splat(f64::INFINITY), splat(-0.0));
+    let lanes = _mm256_setr_pd(0.0, 1.0, 2.0, 3.0);
+    let mut t = 0;
+    while t < n {
+        let index = first + t as i64;
+        // Exact: small integers.
+        let v_j = _mm256_add_pd(origin, _mm256_mul_pd(_mm256_add_pd(splat(index as f64), lanes), delta));
+        let change = _mm256_mul_pd(q_change, _mm256_andnot_pd(sign, _mm256_sub_pd(v_i, v_j)));
+        let demand = _mm256_div_pd(_mm256_mul_pd(v_i, _mm256_sub_pd(v_j, v_i)), h);
+        let pedal = _mm256_div_pd(_mm256_sub_pd(demand, a_pedal), g_pedal);
+        let in_band =
+            _mm256_and_pd(_mm256_cmp_pd::<_CMP_GE_OQ>(pedal, pedal_lo), _mm256_cmp_pd::<_CMP_LE_OQ>(pedal, pedal_hi));
+        let above = _mm256_cmp_pd::<_CMP_GT_OQ>(pedal, pedal_hi);
+        let clipped = _mm256_blendv_pd(
+            _mm256_blendv_pd(pedal, zero, _mm256_cmp_pd::<_CMP_LT_OQ>(pedal, zero)),
+            one,
+            _mm256_cmp_pd::<_CMP_GT_OQ>(pedal, one),
+        );
+        let costs = _mm256_blendv_pd(inf, _mm256_add_pd(_mm256_mul_pd(fuel_per_pedal, clipped), change), in_band);
+        // SAFETY: t + 3 < n + 3, within the capacity reserved above.
+        _mm256_storeu_pd(dst.add(t), costs);
+        let other = !_mm256_movemask_pd(_mm256_or_pd(in_band, above)) & 0b1111;
+        if other != 0 {
+            for l in 0..(n - t).min(4) {
+                if other & (1 << l) != 0 {
+                    *dst.add(t + l) = cost(index + l as i64);
+                }
+            }
+        }
+        t += 4;
+    }
+    // SAFETY: the first n values after `at` were written above.
+    out.set_len(at + n);
+}
+
 /// The inputs of one admissible pair (the solver recomputes them for the path it keeps).
 pub fn inputs(vehicle: &Vehicle, p: &DpSettings, v_i: f64, v_j: f64, gear: usize, slope_torque: f64) -> Option<Inputs> {
     pair(p, &maps(vehicle, p, v_i, gear, slope_torque), v_i, v_j).map(|(inputs, _)| inputs)
@@ -211,6 +291,43 @@ pub fn inputs(vehicle: &Vehicle, p: &DpSettings, v_i: f64, v_j: f64, gear: usize
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::vehicle::VehicleParams;
+
+    /// Every cost of a row is `pair`'s, bit for bit (whichever path computed it), and the row is
+    /// trimmed to its finite ends: over speeds, gears and slopes, with brake points next to v_max.
+    #[test]
+    fn rows_hold_the_costs_of_pair() {
+        let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
+        let p = DpSettings::default();
+        let mut out = vec![1.0; 3];
+        for (s, slope) in [-0.06, -0.03, -0.01, 0.0, 0.01, 0.03, 0.06].into_iter().enumerate() {
+            let torque = vehicle.slope_torque_nm(slope);
+            for gear in 1..=vehicle.forward_gears() {
+                for step in 0..60 {
+                    let v_i = p.v_max_mps() - 0.37 * step as f64 / 3.6;
+                    let grid = GridIndex { origin_mps: 15.0 + 0.013 * s as f64, delta_mps: p.delta_mps() };
+                    let before = out.len();
+                    let (span, at) = forward_row(&vehicle, &p, v_i, gear, torque, grid, &mut out);
+                    assert_eq!(out.len(), at + span.len);
+                    assert!(at >= before);
+                    let m = maps(&vehicle, &p, v_i, gear, torque);
+                    let reference = |index: i64| pair(&p, &m, v_i, grid.speed(index)).map_or(f64::INFINITY, |(_, c)| c);
+                    for (t, &c) in out[at..].iter().enumerate() {
+                        assert_eq!(c.to_bits(), reference(span.first + t as i64).to_bits(), "v {v_i} gear {gear}");
+                    }
+                    if span.len > 0 {
+                        assert!(out[at].is_finite() && out[at + span.len - 1].is_finite());
+                        // Just outside the span nothing is admissible.
+                        assert!(
+                            !reference(span.first - 1).is_finite()
+                                && !reference(span.first + span.len as i64).is_finite()
+                        );
+                    }
+                    out.truncate(3);
+                }
+            }
+        }
+    }
 
     #[test]
     fn integer_ceil_and_floor_equal_the_libm_ones() {

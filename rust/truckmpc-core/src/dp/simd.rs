@@ -68,6 +68,7 @@ pub fn block_mins(costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64])
 /// earlier step, which is what one scan keeping the first strict improvement finds.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
+#[inline]
 unsafe fn block_mins_avx2(costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64]) -> LaneMins {
     use std::arch::x86_64::*;
     const _: () = assert!(LANES == 4);
@@ -158,6 +159,7 @@ pub fn block_mins_same(costs: &[f64], steps: usize, to_go: &[f64]) -> LaneMins {
 /// [`block_mins_same`] in AVX2, with the two chains of [`block_mins_avx2`].
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
+#[inline]
 unsafe fn block_mins_same_avx2(costs: &[f64], steps: usize, to_go: &[f64]) -> LaneMins {
     use std::arch::x86_64::*;
     const _: () = assert!(LANES == 4);
@@ -197,6 +199,70 @@ unsafe fn block_mins_same_avx2(costs: &[f64], steps: usize, to_go: &[f64]) -> La
     _mm_storeu_si128(out.all_step.as_mut_ptr().cast(), _mm256_cvttpd_epi32(all_step));
     (out.shift, out.shift_step) = (out.all, out.all_step);
     out
+}
+
+/// The min-plus kernels of one instruction set, for callers that run many blocks in a loop: a
+/// loop generic over `Kernels` and instantiated inside a function compiled for AVX2 (see
+/// [`Avx2::detect`]) inlines the AVX2 kernels, with no call, feature check or result in memory
+/// per block.
+pub trait Kernels: Copy {
+    /// As [`block_mins`].
+    fn block_mins(self, costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64]) -> LaneMins;
+    /// As [`block_mins_same`].
+    fn block_mins_same(self, costs: &[f64], steps: usize, to_go: &[f64]) -> LaneMins;
+}
+
+/// The portable kernels.
+#[derive(Debug, Clone, Copy)]
+pub struct Portable;
+
+impl Kernels for Portable {
+    #[inline(always)]
+    fn block_mins(self, costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64]) -> LaneMins {
+        let costs = &costs[..steps * LANES];
+        let (to_go, shiftable) = (&to_go[..steps + LANES - 1], &shiftable[..steps + LANES - 1]);
+        block_mins_portable(costs, steps, to_go, shiftable)
+    }
+
+    #[inline(always)]
+    fn block_mins_same(self, costs: &[f64], steps: usize, to_go: &[f64]) -> LaneMins {
+        let costs = &costs[..steps * LANES];
+        let to_go = &to_go[..steps + LANES - 1];
+        block_mins_portable(costs, steps, to_go, to_go)
+    }
+}
+
+/// The AVX2 kernels; a value exists only where the CPU has AVX2.
+#[cfg(target_arch = "x86_64")]
+#[derive(Debug, Clone, Copy)]
+pub struct Avx2(());
+
+#[cfg(target_arch = "x86_64")]
+impl Avx2 {
+    /// The AVX2 kernels if the CPU has AVX2.
+    #[inline]
+    pub fn detect() -> Option<Avx2> {
+        std::arch::is_x86_feature_detected!("avx2").then_some(Avx2(()))
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+impl Kernels for Avx2 {
+    #[inline(always)]
+    fn block_mins(self, costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64]) -> LaneMins {
+        let costs = &costs[..steps * LANES];
+        let (to_go, shiftable) = (&to_go[..steps + LANES - 1], &shiftable[..steps + LANES - 1]);
+        // SAFETY: an `Avx2` exists only where the CPU has AVX2; the lengths are checked above.
+        unsafe { block_mins_avx2(costs, steps, to_go, shiftable) }
+    }
+
+    #[inline(always)]
+    fn block_mins_same(self, costs: &[f64], steps: usize, to_go: &[f64]) -> LaneMins {
+        let costs = &costs[..steps * LANES];
+        let to_go = &to_go[..steps + LANES - 1];
+        // SAFETY: as in `block_mins`.
+        unsafe { block_mins_same_avx2(costs, steps, to_go) }
+    }
 }
 
 #[inline(always)]

@@ -145,8 +145,10 @@ impl Choices {
     }
 }
 
-/// The decision stored for a state: the next state (grid index, gear).
-#[derive(Debug, Clone, Copy, Default)]
+/// The decision stored for a state: the next state (grid index, gear). `repr(C)`: the AVX2
+/// second pass writes it as one u32, j in the low half and the gear in the byte above.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[repr(C)]
 struct Decision {
     j: u16,
     gear: u8,
@@ -202,6 +204,10 @@ pub struct Solver {
     /// Rows of the stage being solved when they do not come from the cache.
     scratch_rows: StageRows,
     cache: RowCache,
+    /// Steps of the interval passes from earlier solves, by absolute stage.
+    interval_memo: space::IntervalMemo,
+    /// Whether the CPU has AVX2 (for the second pass), detected once.
+    avx2: Option<Avx2Token>,
 }
 
 impl Solver {
@@ -231,6 +237,8 @@ impl Solver {
             scratch: RowScratch::default(),
             scratch_rows: StageRows::default(),
             cache: RowCache::default(),
+            interval_memo: space::IntervalMemo::default(),
+            avx2: Avx2Token::detect(),
         }
     }
 
@@ -267,7 +275,7 @@ impl Solver {
         let gears = vehicle.forward_gears() + 1;
         self.slope_torques.clear();
         self.slope_torques.extend(slopes.iter().map(|&a| vehicle.slope_torque_nm(a)));
-        self.build_space(vehicle, start, slopes);
+        self.build_space(vehicle, start, slopes, first_stage);
         let cached_from = if self.caching { first_stage } else { None };
         if let Some(stage) = cached_from {
             // Stage k of this solve (k ≥ 1 has grid states) is absolute stage `stage + k`.
@@ -315,9 +323,11 @@ impl Solver {
     }
 
     /// Intervals, grids, gear ranges and active gears of every stage.
-    fn build_space(&mut self, vehicle: &Vehicle, start: InitialState, slopes: &[f64]) {
+    fn build_space(&mut self, vehicle: &Vehicle, start: InitialState, slopes: &[f64], first_stage: Option<u64>) {
+        // Absolute stages, when known, let the interval passes reuse steps of earlier solves.
         let p = &self.params;
-        space::intervals(vehicle, p, start.v_mps, slopes, &mut self.intervals);
+        let memo = first_stage.filter(|_| self.caching).map(|stage| (stage, &mut self.interval_memo));
+        space::intervals_from_stage(vehicle, p, start.v_mps, slopes, memo, &mut self.intervals);
         let delta = p.delta_mps();
         self.grids.clear();
         self.grids.push(StageGrid {
@@ -458,11 +468,22 @@ impl Solver {
                 let slot0 = (key_lo - ch.base_key) as usize;
                 let join = NeutralJoin::new(p, next, (lo, hi));
                 let (cost_next, counter_next) = (&self.cost_next[PAD..], &self.counter_next[PAD..]);
-                for (s, arc) in stage.neutral.get(key_lo, key_hi).iter().enumerate() {
+                let arcs = stage.neutral.get(key_lo, key_hi);
+                let (slots, at) = (slot0..slot0 + arcs.len(), out + slot0..out + slot0 + arcs.len());
+                let (all_cost, all_j) = (&mut ch.all_cost[at.clone()], &mut ch.all_j[at.clone()]);
+                let (shift_cost, shift_j) = (&mut ch.shift_cost[at.clone()], &mut ch.shift_j[at]);
+                let counters = &mut ch.neutral_counter[slots];
+                let mut done = 0;
+                #[cfg(target_arch = "x86_64")]
+                if let (NeutralRule::Nearest, Some(_)) = (p.neutral_rule, self.avx2) {
+                    let out = NeutralOut { all_cost, all_j, counters, shift_cost, shift_j };
+                    // SAFETY: the token exists only where the CPU has AVX2.
+                    done = unsafe { join_nearest_avx2(&join, arcs, (cost_next, counter_next), p.k_lim, out) };
+                }
+                for (s, arc) in arcs.iter().enumerate().skip(done) {
                     let (cost, j, counter) = join.join(arc, cost_next, counter_next);
-                    let at = out + slot0 + s;
-                    (ch.all_cost[at], ch.all_j[at], ch.neutral_counter[slot0 + s]) = (cost, j, counter);
-                    (ch.shift_cost[at], ch.shift_j[at]) = (if counter >= p.k_lim { cost } else { INF }, j);
+                    (all_cost[s], all_j[s], counters[s]) = (cost, j, counter);
+                    (shift_cost[s], shift_j[s]) = (if counter >= p.k_lim { cost } else { INF }, j);
                 }
                 transitions += i_hi - i_lo + 1;
                 continue;
@@ -472,39 +493,29 @@ impl Solver {
                 forward_row(vehicle, p, here.index.speed(key), g, slope_torque, next.index, buf)
             });
             let values = g * stride(next.count)..(g + 1) * stride(next.count);
-            let values = (&self.cost_next[values.clone()], &self.shift_next[values]);
-            let same = self.shift_same_next[g];
             let (blocks, first_key) = rows.get(key_lo, key_hi);
             debug_assert_eq!(first_key, ch.base_key);
-            for (b, block) in blocks.iter().enumerate() {
-                let base = block.first as i64 - next.first;
-                let mins = block_mins(block, &rows.costs, base, (lo, hi), values, same);
-                let at = out + b * LANES..out + (b + 1) * LANES;
-                ch.all_cost[at.clone()].copy_from_slice(&mins.all);
-                ch.shift_cost[at.clone()].copy_from_slice(&mins.shift);
-                let (all_j, shift_j) = (&mut ch.all_j[at.clone()], &mut ch.shift_j[at]);
-                // Next-grid index of a lane's step (base + lane + step, as u32 like the i64 sum
-                // truncated); meaningless where the cost is +∞.
-                let base32 = base as u32;
-                for l in 0..LANES {
-                    all_j[l] = base32.wrapping_add(l as u32).wrapping_add(mins.all_step[l]);
-                    shift_j[l] = base32.wrapping_add(l as u32).wrapping_add(mins.shift_step[l]);
-                }
-                let key0 = first_key + (b * LANES) as i64;
-                let inside = base >= lo as i64 && base + block.steps as i64 + LANES as i64 - 2 <= hi as i64;
-                if inside && key0 >= key_lo && key0 + LANES as i64 - 1 <= key_hi {
-                    // Every lane's targets are states and every lane a source: no clipping.
-                    transitions += block.reach as usize;
-                    continue;
-                }
-                for l in 0..LANES {
-                    let key = key0 + l as i64;
-                    let (first, len) = block.spans[l];
-                    let first = first as i64 - next.first;
-                    let reached = ((first + len as i64 - 1).min(hi as i64) - first.max(lo as i64) + 1).max(0) as usize;
-                    transitions += if key >= key_lo && key <= key_hi { reached } else { 0 };
-                }
-            }
+            let pass = GearPass {
+                blocks,
+                costs: &rows.costs,
+                next_first: next.first,
+                lo,
+                hi,
+                to_go: &self.cost_next[values.clone()],
+                shiftable: &self.shift_next[values],
+                same: self.shift_same_next[g],
+                first_key,
+                key_lo,
+                key_hi,
+            };
+            let span = out..out + blocks.len() * LANES;
+            let choices = GearChoices {
+                all_cost: &mut ch.all_cost[span.clone()],
+                all_j: &mut ch.all_j[span.clone()],
+                shift_cost: &mut ch.shift_cost[span.clone()],
+                shift_j: &mut ch.shift_j[span],
+            };
+            transitions += gear_pass_dispatch(&pass, choices);
         }
         transitions
     }
@@ -538,7 +549,13 @@ impl Solver {
             let second_gear = &mut ch.second_gear[sources.clone()];
             let m = costs.len();
             assert!(first_cost.len() == m && first_gear.len() == m && second_cost.len() == m && second_gear.len() == m);
-            for t in 0..m {
+            let mut done = 0;
+            #[cfg(target_arch = "x86_64")]
+            if self.avx2.is_some() {
+                // SAFETY: the token exists only where the CPU has AVX2; the lengths are checked above.
+                done = unsafe { rank_avx2(costs, g as u32, (first_cost, first_gear), (second_cost, second_gear)) };
+            }
+            for t in done..m {
                 let c = costs[t];
                 if c < first_cost[t] {
                     (second_cost[t], second_gear[t]) = (first_cost[t], first_gear[t]);
@@ -590,9 +607,9 @@ impl Solver {
                 k_lim,
             };
             self.shift_same_cur[g_i] = match (stays, g_i == NEUTRAL) {
-                (false, _) => decide_states::<false, false>(input, state),
-                (true, false) => decide_states::<true, false>(input, state),
-                (true, true) => decide_states::<true, true>(input, state),
+                (false, _) => decide_states::<false, false>(input, state, None),
+                (true, false) => decide_states::<true, false>(input, state, self.avx2),
+                (true, true) => decide_states::<true, true>(input, state, None),
             };
             // The rest of the gear's block (no state there) is +∞ for the min-plus pass.
             let block = g_i * stride(n)..(g_i + 1) * stride(n);
@@ -667,7 +684,11 @@ struct StateOut<'a> {
 /// the next stage; `NEUTRAL_STATE`: the gear is neutral (whose counter comes with its choice).
 /// Returns whether every state's shiftable cost equals its cost bit for bit.
 #[inline(always)]
-fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(input: StateIn, out: StateOut) -> bool {
+fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(
+    input: StateIn,
+    mut out: StateOut,
+    avx2: Option<Avx2Token>,
+) -> bool {
     let m = out.cost.len();
     // Equal lengths, stated once: the loop below then needs no bounds checks on them.
     assert!(
@@ -681,8 +702,15 @@ fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(input: StateIn, o
             && input.penalty.len() == m
     );
     assert!(out.counter.len() == m && out.shift.len() == m && out.decision.len() == m);
-    let mut blocked = false;
-    for t in 0..m {
+    let (mut blocked, mut done) = (false, 0);
+    #[cfg(target_arch = "x86_64")]
+    if let (true, false, Some(_)) = (STAYS, NEUTRAL_STATE, avx2) {
+        // SAFETY: the token exists only where the CPU has AVX2; the lengths are checked above.
+        (done, blocked) = unsafe { decide_staying_avx2(&input, &mut out) };
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = avx2;
+    for t in done..m {
         let stay_cost = if STAYS { input.all_cost[t] } else { INF };
         // The best shift to another gear. With none, its cost is +∞ and never beats staying.
         let own = input.first_gear[t] == input.gear;
@@ -713,6 +741,105 @@ fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(input: StateIn, o
     }
     // Otherwise each shiftable cost is its cost (or both are +∞): the same bits.
     !blocked
+}
+
+/// Proof that the CPU has AVX2 (for the second pass).
+#[derive(Debug, Clone, Copy)]
+struct Avx2Token(());
+
+impl Avx2Token {
+    fn detect() -> Option<Self> {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            return Some(Avx2Token(()));
+        }
+        None
+    }
+}
+
+/// [`decide_states`] for a forward gear that stays, four states at a time in AVX2, as far as whole
+/// groups of four go: returns the states done and whether one of them was blocked. Every value is
+/// the scalar loop's: the same additions (shift + Q4, best + Q2 term), comparisons and selects,
+/// and the counters' integer rules (saturating +1, at most u32::MAX / 2, ≥ k_lim).
+///
+/// # Safety
+/// The CPU must have AVX2, and the slices of `input` and `out` the lengths `decide_states` checks.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn decide_staying_avx2(input: &StateIn, out: &mut StateOut) -> (usize, bool) {
+    use std::arch::x86_64::*;
+    let m = out.cost.len();
+    let groups = m / 4 * 4;
+    let inf = _mm256_set1_pd(INF);
+    let q4 = _mm256_set1_pd(input.q4);
+    let gear = _mm_set1_epi32(input.gear as i32);
+    let one = _mm_set1_epi32(1);
+    let below_max = _mm_set1_epi32((u32::MAX - 1) as i32);
+    let half = _mm_set1_epi32((u32::MAX / 2) as i32);
+    let k_lim = _mm_set1_epi32(input.k_lim as i32);
+    let width = _mm_set1_epi32(input.width as i32);
+    let lanes = _mm_setr_epi32(0, 1, 2, 3);
+    let low16 = _mm_set1_epi32(0xffff);
+    let low8 = _mm_set1_epi32(0xff);
+    // Gathers read only where the scalar loop reads; indices are clamped into the slices anyway.
+    let last_counter = _mm_set1_epi32(input.counter_next.len().saturating_sub(1) as i32);
+    let last_shift_j = _mm_set1_epi32(input.shift_j.len().saturating_sub(1).min(i32::MAX as usize) as i32);
+    // The 32-bit halves of 64-bit lane masks.
+    let pack = |mask: __m256d| {
+        _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(
+            _mm256_castpd_si256(mask),
+            _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6),
+        ))
+    };
+    let widen = |mask: __m128i| _mm256_castsi256_pd(_mm256_cvtepi32_epi64(mask));
+    let mut blocked = _mm256_setzero_pd();
+    let mut t = 0;
+    while t < groups {
+        let stay = _mm256_loadu_pd(input.all_cost.as_ptr().add(t));
+        let first_gear = _mm_loadu_si128(input.first_gear.as_ptr().add(t).cast());
+        let second_gear = _mm_loadu_si128(input.second_gear.as_ptr().add(t).cast());
+        let own = _mm_cmpeq_epi32(first_gear, gear);
+        let shift_cost = _mm256_add_pd(
+            _mm256_blendv_pd(
+                _mm256_loadu_pd(input.first_cost.as_ptr().add(t)),
+                _mm256_loadu_pd(input.second_cost.as_ptr().add(t)),
+                widen(own),
+            ),
+            q4,
+        );
+        let take = _mm256_cmp_pd::<_CMP_LT_OQ>(shift_cost, stay);
+        let take32 = pack(take);
+        let finite32 = pack(_mm256_cmp_pd::<_CMP_LT_OQ>(stay, inf));
+        // Staying: the continuation's counter (0 when staying has no finite cost) + 1.
+        let all_j = _mm_loadu_si128(input.all_j.as_ptr().add(t).cast());
+        let carried = _mm_mask_i32gather_epi32::<4>(
+            _mm_setzero_si128(),
+            input.counter_next.as_ptr().cast(),
+            _mm_min_epu32(all_j, last_counter),
+            _mm_andnot_si128(take32, finite32),
+        );
+        let stay_counter = _mm_min_epu32(_mm_add_epi32(_mm_min_epu32(carried, below_max), one), half);
+        let counter = _mm_blendv_epi8(stay_counter, one, take32);
+        let total =
+            _mm256_add_pd(_mm256_blendv_pd(stay, shift_cost, take), _mm256_loadu_pd(input.penalty.as_ptr().add(t)));
+        let shiftable32 = _mm_cmpeq_epi32(_mm_max_epu32(counter, k_lim), counter);
+        let shiftable = widen(shiftable32);
+        _mm256_storeu_pd(out.cost.as_mut_ptr().add(t), total);
+        _mm_storeu_si128(out.counter.as_mut_ptr().add(t).cast(), counter);
+        _mm256_storeu_pd(out.shift.as_mut_ptr().add(t), _mm256_blendv_pd(inf, total, shiftable));
+        blocked = _mm256_or_pd(blocked, _mm256_andnot_pd(shiftable, _mm256_cmp_pd::<_CMP_NEQ_UQ>(total, inf)));
+        // Shifting: the target of the best other gear.
+        let shift_gear = _mm_blendv_epi8(first_gear, second_gear, own);
+        let slot = _mm_add_epi32(_mm_set1_epi32((input.slot0 + t) as i32), lanes);
+        let at = _mm_min_epu32(_mm_add_epi32(_mm_mullo_epi32(shift_gear, width), slot), last_shift_j);
+        let shift_j = _mm_mask_i32gather_epi32::<4>(_mm_setzero_si128(), input.shift_j.as_ptr().cast(), at, take32);
+        let j = _mm_blendv_epi8(all_j, shift_j, take32);
+        let next_gear = _mm_blendv_epi8(gear, shift_gear, take32);
+        let decision = _mm_or_si128(_mm_and_si128(j, low16), _mm_slli_epi32::<16>(_mm_and_si128(next_gear, low8)));
+        _mm_storeu_si128(out.decision.as_mut_ptr().add(t).cast(), decision);
+        t += 4;
+    }
+    (groups, _mm256_movemask_pd(blocked) != 0)
 }
 
 /// The single neutral arc from `v_i_mps` on a stage: where the physics ends it, and its fuel and
@@ -783,13 +910,230 @@ impl NeutralJoin {
     }
 }
 
+/// What the first pass reads for one forward target gear.
+struct GearPass<'a> {
+    /// The blocks of the source keys, from `first_key` on.
+    blocks: &'a [Block],
+    costs: &'a [f64],
+    /// Grid index of the next grid's state 0.
+    next_first: i64,
+    /// The target gear's states at the next stage.
+    lo: u32,
+    hi: u32,
+    /// The target gear's blocks of cost_next and shift_next (margins included).
+    to_go: &'a [f64],
+    shiftable: &'a [f64],
+    /// Whether `shiftable` equals `to_go` bit for bit.
+    same: bool,
+    first_key: i64,
+    /// The source keys with states.
+    key_lo: i64,
+    key_hi: i64,
+}
+
+/// Where the first pass writes for one forward target gear: one value per block lane.
+struct GearChoices<'a> {
+    all_cost: &'a mut [f64],
+    all_j: &'a mut [u32],
+    shift_cost: &'a mut [f64],
+    shift_j: &'a mut [u32],
+}
+
+/// [`gear_pass`] with the best kernels of the CPU. Returns the transitions evaluated.
+fn gear_pass_dispatch(pass: &GearPass, out: GearChoices) -> usize {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(kernels) = simd::Avx2::detect() {
+        // SAFETY: `kernels` exists, so the CPU has AVX2.
+        return unsafe { gear_pass_avx2(kernels, pass, out) };
+    }
+    gear_pass(simd::Portable, pass, out)
+}
+
+/// [`gear_pass`] compiled for AVX2, so that its kernels inline into the loop over blocks.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn gear_pass_avx2(kernels: simd::Avx2, pass: &GearPass, out: GearChoices) -> usize {
+    gear_pass(kernels, pass, out)
+}
+
+/// The first pass towards one forward target gear: per block, the lanes' best ways into the gear
+/// (and the best that allow a shift now), their next-grid indices, and the transitions counted.
+#[inline(always)]
+fn gear_pass<K: simd::Kernels>(kernels: K, pass: &GearPass, out: GearChoices) -> usize {
+    let (lo, hi) = (pass.lo, pass.hi);
+    let mut transitions = 0;
+    let n = pass.blocks.len() * LANES;
+    assert!(out.all_cost.len() == n && out.all_j.len() == n && out.shift_cost.len() == n && out.shift_j.len() == n);
+    for (b, block) in pass.blocks.iter().enumerate() {
+        let base = block.first as i64 - pass.next_first;
+        let mins = block_mins(kernels, block, pass.costs, base, (lo, hi), (pass.to_go, pass.shiftable), pass.same);
+        let at = b * LANES..(b + 1) * LANES;
+        out.all_cost[at.clone()].copy_from_slice(&mins.all);
+        out.shift_cost[at.clone()].copy_from_slice(&mins.shift);
+        let (all_j, shift_j) = (&mut out.all_j[at.clone()], &mut out.shift_j[at]);
+        // Next-grid index of a lane's step (base + lane + step, as u32 like the i64 sum
+        // truncated); meaningless where the cost is +∞.
+        let base32 = base as u32;
+        for l in 0..LANES {
+            all_j[l] = base32.wrapping_add(l as u32).wrapping_add(mins.all_step[l]);
+            shift_j[l] = base32.wrapping_add(l as u32).wrapping_add(mins.shift_step[l]);
+        }
+        let key0 = pass.first_key + (b * LANES) as i64;
+        let inside = base >= lo as i64 && base + block.steps as i64 + LANES as i64 - 2 <= hi as i64;
+        if inside && key0 >= pass.key_lo && key0 + LANES as i64 - 1 <= pass.key_hi {
+            // Every lane's targets are states and every lane a source: no clipping.
+            transitions += block.reach as usize;
+            continue;
+        }
+        for l in 0..LANES {
+            let key = key0 + l as i64;
+            let (first, len) = block.spans[l];
+            let first = first as i64 - pass.next_first;
+            let reached = ((first + len as i64 - 1).min(hi as i64) - first.max(lo as i64) + 1).max(0) as usize;
+            transitions += if key >= pass.key_lo && key <= pass.key_hi { reached } else { 0 };
+        }
+    }
+    transitions
+}
+
+/// Where the neutral arcs' choices go: one value per source, from the first.
+#[cfg(target_arch = "x86_64")]
+struct NeutralOut<'a> {
+    all_cost: &'a mut [f64],
+    all_j: &'a mut [u32],
+    counters: &'a mut [u32],
+    shift_cost: &'a mut [f64],
+    shift_j: &'a mut [u32],
+}
+
+/// The ranking of one gear's shift costs into the two best per slot (the scalar loop of
+/// `stay_or_shift`) four slots at a time in AVX2, as far as whole groups of four go: returns the
+/// slots done. Selects on the same strict comparisons: a cost below the first moves the first to
+/// second place, a cost between the two takes the second place.
+///
+/// # Safety
+/// The CPU must have AVX2, and all slices the length of `costs`.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn rank_avx2(
+    costs: &[f64],
+    gear: u32,
+    (first_cost, first_gear): (&mut [f64], &mut [u32]),
+    (second_cost, second_gear): (&mut [f64], &mut [u32]),
+) -> usize {
+    use std::arch::x86_64::*;
+    let groups = costs.len() / 4 * 4;
+    let gear = _mm_set1_epi32(gear as i32);
+    let pack = |mask: __m256d| {
+        _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(
+            _mm256_castpd_si256(mask),
+            _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6),
+        ))
+    };
+    let mut t = 0;
+    while t < groups {
+        let c = _mm256_loadu_pd(costs.as_ptr().add(t));
+        let (f, s) = (_mm256_loadu_pd(first_cost.as_ptr().add(t)), _mm256_loadu_pd(second_cost.as_ptr().add(t)));
+        let fg = _mm_loadu_si128(first_gear.as_ptr().add(t).cast());
+        let sg = _mm_loadu_si128(second_gear.as_ptr().add(t).cast());
+        let below_first = _mm256_cmp_pd::<_CMP_LT_OQ>(c, f);
+        let below_either = _mm256_or_pd(below_first, _mm256_cmp_pd::<_CMP_LT_OQ>(c, s));
+        let (below_first32, below_either32) = (pack(below_first), pack(below_either));
+        let s = _mm256_blendv_pd(s, _mm256_blendv_pd(c, f, below_first), below_either);
+        let sg = _mm_blendv_epi8(sg, _mm_blendv_epi8(gear, fg, below_first32), below_either32);
+        _mm256_storeu_pd(second_cost.as_mut_ptr().add(t), s);
+        _mm_storeu_si128(second_gear.as_mut_ptr().add(t).cast(), sg);
+        _mm256_storeu_pd(first_cost.as_mut_ptr().add(t), _mm256_blendv_pd(f, c, below_first));
+        _mm_storeu_si128(first_gear.as_mut_ptr().add(t).cast(), _mm_blendv_epi8(fg, gear, below_first32));
+        t += 4;
+    }
+    groups
+}
+
+/// [`NeutralJoin::join`] with the nearest rule (and the shiftable cost), four arcs at a time in
+/// AVX2, as far as whole groups of four go and no end speed is NaN: returns the arcs done. The
+/// same operations as the scalar join: the division, the range tests, the truncation of x + 0.5
+/// (exact: x + 0.5 is in [0, 2^31) where it is used), the cost-to-go and counter read only where
+/// the scalar join reads them, and the finiteness test.
+///
+/// # Safety
+/// The CPU must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn join_nearest_avx2(
+    join: &NeutralJoin,
+    arcs: &[NeutralArc],
+    (cost_next, counter_next): (&[f64], &[u32]),
+    k_lim: u32,
+    out: NeutralOut,
+) -> usize {
+    use std::arch::x86_64::*;
+    let n = arcs.len();
+    assert!(
+        out.all_cost.len() == n
+            && out.all_j.len() == n
+            && out.counters.len() == n
+            && out.shift_cost.len() == n
+            && out.shift_j.len() == n
+    );
+    // The gathers below read indices within [lo, hi] only; the values must hold them.
+    if (join.hi as usize) >= cost_next.len().min(counter_next.len()) || join.hi >= i32::MAX as u32 {
+        return 0;
+    }
+    let groups = n / 4 * 4;
+    let (origin, delta) = (_mm256_set1_pd(join.origin_mps), _mm256_set1_pd(join.delta_mps));
+    let (below, above) = (_mm256_set1_pd(join.lo as f64 - 0.5), _mm256_set1_pd(join.hi as f64 + 0.5));
+    let half = _mm256_set1_pd(0.5);
+    let inf = _mm256_set1_pd(INF);
+    let sign = _mm256_set1_pd(-0.0);
+    let (lo, hi) = (_mm_set1_epi32(join.lo as i32), _mm_set1_epi32(join.hi as i32));
+    let k_lim = _mm_set1_epi32(k_lim as i32);
+    let pack = |mask: __m256d| {
+        _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(
+            _mm256_castpd_si256(mask),
+            _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6),
+        ))
+    };
+    let widen = |mask: __m128i| _mm256_castsi256_pd(_mm256_cvtepi32_epi64(mask));
+    let mut t = 0;
+    while t < groups {
+        // (v_end, cost) of arcs t..t + 4, as [v0 c0 v1 c1] [v2 c2 v3 c3].
+        let a = _mm256_loadu_pd(arcs.as_ptr().add(t).cast());
+        let b = _mm256_loadu_pd(arcs.as_ptr().add(t + 2).cast());
+        let v_end = _mm256_permute4x64_pd::<0b11_01_10_00>(_mm256_unpacklo_pd(a, b));
+        let arc_cost = _mm256_permute4x64_pd::<0b11_01_10_00>(_mm256_unpackhi_pd(a, b));
+        let x = _mm256_div_pd(_mm256_sub_pd(v_end, origin), delta);
+        if _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_UNORD_Q>(x, x)) != 0 {
+            break;
+        }
+        let near = _mm256_and_pd(_mm256_cmp_pd::<_CMP_GE_OQ>(x, below), _mm256_cmp_pd::<_CMP_LE_OQ>(x, above));
+        let j = _mm256_cvttpd_epi32(_mm256_add_pd(x, half));
+        let in_states = _mm_andnot_si128(_mm_or_si128(_mm_cmpgt_epi32(lo, j), _mm_cmpgt_epi32(j, hi)), pack(near));
+        let to_go = _mm256_mask_i32gather_pd::<8>(_mm256_setzero_pd(), cost_next.as_ptr(), j, widen(in_states));
+        let finite = _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_andnot_pd(sign, to_go), inf);
+        let ok = _mm_and_si128(in_states, pack(finite));
+        let counter = _mm_mask_i32gather_epi32::<4>(_mm_setzero_si128(), counter_next.as_ptr().cast(), j, ok);
+        let cost = _mm256_blendv_pd(inf, _mm256_add_pd(arc_cost, to_go), widen(ok));
+        let j = _mm_and_si128(j, ok);
+        let shiftable = widen(_mm_cmpeq_epi32(_mm_max_epu32(counter, k_lim), counter));
+        _mm256_storeu_pd(out.all_cost.as_mut_ptr().add(t), cost);
+        _mm_storeu_si128(out.all_j.as_mut_ptr().add(t).cast(), j);
+        _mm_storeu_si128(out.counters.as_mut_ptr().add(t).cast(), counter);
+        _mm256_storeu_pd(out.shift_cost.as_mut_ptr().add(t), _mm256_blendv_pd(inf, cost, shiftable));
+        _mm_storeu_si128(out.shift_j.as_mut_ptr().add(t).cast(), j);
+        t += 4;
+    }
+    t
+}
+
 /// The min-plus pass over one block of rows towards one forward target gear: per lane, the best
 /// of row cost + cost-to-go and the best among targets whose continuation allows a shift now.
 /// `base` is the next-grid index of lane 0 at step 0; `values` the target gear's blocks of
 /// cost_next and shift_next (margins included, state j at PAD + j); `same` when they are equal
 /// bit for bit.
-#[inline]
-fn block_mins(
+#[inline(always)]
+fn block_mins<K: simd::Kernels>(
+    kernels: K,
     block: &Block,
     costs: &[f64],
     base: i64,
@@ -804,9 +1148,9 @@ fn block_mins(
         // The values outside the target gear's states are +∞ (margins included): no clipping.
         let at = at as usize;
         if same {
-            return simd::block_mins_same(costs, steps, &to_go[at..]);
+            return kernels.block_mins_same(costs, steps, &to_go[at..]);
         }
-        return simd::block_mins(costs, steps, &to_go[at..], &shiftable[at..]);
+        return kernels.block_mins(costs, steps, &to_go[at..], &shiftable[at..]);
     }
     block_mins_clipped(costs, steps, base, (lo, hi), to_go, shiftable)
 }
@@ -885,6 +1229,162 @@ mod tests {
     }
 
     #[test]
+    fn second_pass_in_avx2_equals_the_scalar_loop() {
+        let Some(avx2) = Avx2Token::detect() else { return };
+        let mut seed = 13u64;
+        let mut next = move |n: u64| {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 33) % n
+        };
+        let (width, gears) = (24usize, 6usize);
+        for case in 0..400 {
+            let m = 1 + next(21) as usize;
+            let slot0 = next((width - m + 1) as u64) as usize;
+            let gear = 1 + next(gears as u64 - 1) as u32;
+            let k_lim = [0, 1, 3, 8, u32::MAX][case % 5];
+            let mut cost = |inf_one_in: u64| if next(inf_one_in) == 0 { INF } else { next(7) as f64 * 0.5 };
+            let all_cost: Vec<f64> = (0..m).map(|_| cost(4)).collect();
+            let first_cost: Vec<f64> = (0..m).map(|_| cost(3)).collect();
+            let second_cost: Vec<f64> = first_cost.iter().map(|&c| if c == INF { INF } else { c + cost(3) }).collect();
+            // As the first pass leaves them: no gear exactly where the cost is +∞.
+            let mut gear_of = |c: f64| if c == INF { NO_GEAR } else { next(gears as u64) as u32 };
+            let first_gear: Vec<u32> = first_cost.iter().map(|&c| gear_of(c)).collect();
+            let second_gear: Vec<u32> = second_cost.iter().map(|&c| gear_of(c)).collect();
+            let counter_next: Vec<u32> =
+                (0..40).map(|_| [0, 1, 2, 7, 8, 9, u32::MAX / 2, u32::MAX - 1, u32::MAX][next(9) as usize]).collect();
+            let all_j: Vec<u32> = (0..m).map(|_| next(40) as u32).collect();
+            let shift_j: Vec<u32> = (0..width * gears).map(|_| next(1000) as u32).collect();
+            let penalty: Vec<f64> = (0..m).map(|_| next(5) as f64 * 0.25).collect();
+            let neutral_counter = vec![0; m];
+            let run = |avx2: Option<Avx2Token>| {
+                let (mut c, mut n, mut sh, mut d) =
+                    (vec![0.0; m], vec![0; m], vec![0.0; m], vec![Decision::default(); m]);
+                let input = StateIn {
+                    gear,
+                    slot0,
+                    all_cost: &all_cost,
+                    all_j: &all_j,
+                    first_cost: &first_cost,
+                    first_gear: &first_gear,
+                    second_cost: &second_cost,
+                    second_gear: &second_gear,
+                    neutral_counter: &neutral_counter,
+                    penalty: &penalty,
+                    shift_j: &shift_j,
+                    width,
+                    counter_next: &counter_next,
+                    q4: 0.5,
+                    k_lim,
+                };
+                let out = StateOut { cost: &mut c, counter: &mut n, shift: &mut sh, decision: &mut d };
+                let same = decide_states::<true, false>(input, out, avx2);
+                (
+                    c.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
+                    n,
+                    sh.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
+                    d,
+                    same,
+                )
+            };
+            assert_eq!(run(Some(avx2)), run(None), "case {case}");
+        }
+    }
+
+    #[test]
+    fn neutral_join_in_avx2_equals_the_scalar_join() {
+        if Avx2Token::detect().is_none() {
+            return;
+        }
+        let mut seed = 17u64;
+        let mut next = move |n: u64| {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 33) % n
+        };
+        for case in 0..300 {
+            let (lo, hi) = (next(6) as u32, 6 + next(20) as u32);
+            let join = NeutralJoin {
+                rule: NeutralRule::Nearest,
+                origin_mps: 20.0 + next(100) as f64 * 0.01,
+                delta_mps: 0.1 / 3.6,
+                lo,
+                hi,
+            };
+            let n = next(23) as usize;
+            let arcs: Vec<NeutralArc> = (0..n)
+                .map(|_| NeutralArc {
+                    // From well below to well above the states, with exact half steps.
+                    v_end_mps: join.origin_mps
+                        + (next(64) as f64 * 0.5 - 4.0) * join.delta_mps
+                        + next(3) as f64 * 1e-12,
+                    cost: next(9) as f64 * 0.25,
+                })
+                .collect();
+            let cost_next: Vec<f64> = (0..40).map(|_| if next(4) == 0 { INF } else { next(11) as f64 }).collect();
+            let counter_next: Vec<u32> = (0..40).map(|_| next(12) as u32).collect();
+            let k_lim = [0, 4, 8, u32::MAX][case % 4];
+            let scalar: Vec<_> = arcs
+                .iter()
+                .map(|arc| {
+                    let (cost, j, counter) = join.join(arc, &cost_next, &counter_next);
+                    (cost.to_bits(), j, counter, if counter >= k_lim { cost } else { INF }.to_bits(), j)
+                })
+                .collect();
+            let (mut a, mut b, mut c, mut d, mut e) = (vec![0.0; n], vec![0; n], vec![0; n], vec![0.0; n], vec![0; n]);
+            let out =
+                NeutralOut { all_cost: &mut a, all_j: &mut b, counters: &mut c, shift_cost: &mut d, shift_j: &mut e };
+            // SAFETY: AVX2 was detected above.
+            let done = unsafe { join_nearest_avx2(&join, &arcs, (&cost_next, &counter_next), k_lim, out) };
+            assert_eq!(done, n / 4 * 4);
+            for t in 0..done {
+                assert_eq!((a[t].to_bits(), b[t], c[t], d[t].to_bits(), e[t]), scalar[t], "case {case} arc {t}");
+            }
+        }
+    }
+
+    #[test]
+    fn shift_ranking_in_avx2_equals_the_scalar_loop() {
+        if Avx2Token::detect().is_none() {
+            return;
+        }
+        let mut seed = 19u64;
+        let mut next = move |n: u64| {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 33) % n
+        };
+        for case in 0..200 {
+            let m = next(19) as usize;
+            let (mut f, mut fg, mut s, mut sg) = (vec![INF; m], vec![NO_GEAR; m], vec![INF; m], vec![NO_GEAR; m]);
+            let (mut f2, mut fg2, mut s2, mut sg2) = (f.clone(), fg.clone(), s.clone(), sg.clone());
+            for g in 0..6u32 {
+                // Few distinct values: many ties.
+                let costs: Vec<f64> = (0..m).map(|_| if next(3) == 0 { INF } else { next(4) as f64 }).collect();
+                for t in 0..m {
+                    let c = costs[t];
+                    if c < f[t] {
+                        (s[t], sg[t]) = (f[t], fg[t]);
+                        (f[t], fg[t]) = (c, g);
+                    } else if c < s[t] {
+                        (s[t], sg[t]) = (c, g);
+                    }
+                }
+                // SAFETY: AVX2 was detected above; equal lengths.
+                let done = unsafe { rank_avx2(&costs, g, (&mut f2, &mut fg2), (&mut s2, &mut sg2)) };
+                for t in done..m {
+                    let c = costs[t];
+                    if c < f2[t] {
+                        (s2[t], sg2[t]) = (f2[t], fg2[t]);
+                        (f2[t], fg2[t]) = (c, g);
+                    } else if c < s2[t] {
+                        (s2[t], sg2[t]) = (c, g);
+                    }
+                }
+            }
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!((bits(&f), fg, bits(&s), sg), (bits(&f2), fg2, bits(&s2), sg2), "case {case}");
+        }
+    }
+
+    #[test]
     fn moving_grid_rows_from_the_cache_give_the_same_bits() {
         for rule in [NeutralRule::Nearest, NeutralRule::Interpolate] {
             let params = DpSettings {
@@ -947,7 +1447,7 @@ mod tests {
             let block = Block { first: 0, steps: steps as u32, offset: 0, spans: [(0, 0); LANES], reach: 0 };
             // Inside the margins (packed pass) and reaching below them (clipped pass).
             for base in [-4i64, 10, -(PAD as i64) - 3, count as i64 - 5] {
-                let mins = block_mins(&block, &costs, base, (lo, hi), (&to_go, &shiftable), false);
+                let mins = block_mins(simd::Portable, &block, &costs, base, (lo, hi), (&to_go, &shiftable), false);
                 for l in 0..LANES {
                     assert_eq!(
                         (mins.all[l], mins.all_step[l]),

@@ -94,88 +94,185 @@ pub struct Intervals {
 
 /// Forward reachability from `v0_mps` cut to [v_min, v_max] (5.4.2), then the final stage's lower
 /// bound raised to v_ref and the backward pass removing speeds that cannot reach it. On a fixed
-/// grid the bounds are grid speeds found from grid speeds ([`grid_intervals`]).
+/// grid the bounds are grid speeds found from grid speeds ([`grid_forward`], [`grid_backward`]).
 pub fn intervals(vehicle: &Vehicle, params: &DpSettings, v0_mps: f64, slopes: &[f64], out: &mut Intervals) {
-    match params.grid {
-        GridAnchor::Moving => continuous_intervals(vehicle, params, v0_mps, slopes, out),
-        GridAnchor::Fixed => grid_intervals(vehicle, params, v0_mps, slopes, out),
-    }
+    intervals_from_stage(vehicle, params, v0_mps, slopes, None, out)
 }
 
-/// The thesis's intervals (5.4.2), bounds as continuous speeds [m/s].
-fn continuous_intervals(vehicle: &Vehicle, params: &DpSettings, v0_mps: f64, slopes: &[f64], out: &mut Intervals) {
-    let (v_min, v_max) = (params.v_min_mps(), params.v_max_mps());
+/// As [`intervals`], with the absolute index of the first stage and a memo kept across solves:
+/// each step of the forward and backward passes is a function of its stage's slope and its input
+/// bounds only, and successive receding horizons mostly repeat the same steps at the same road
+/// stages (the chains of bounds meet). A step whose stage, slope and inputs (bit for bit) are
+/// those of the memo returns the memo's output, which is what computing it would give.
+pub fn intervals_from_stage(
+    vehicle: &Vehicle,
+    params: &DpSettings,
+    v0_mps: f64,
+    slopes: &[f64],
+    memo: Option<(u64, &mut IntervalMemo)>,
+    out: &mut Intervals,
+) {
+    let (forward, backward): (StepFn<2>, StepFn<1>) = match params.grid {
+        GridAnchor::Moving => (continuous_forward, continuous_backward),
+        GridAnchor::Fixed => (grid_forward, grid_backward),
+    };
+    let mut memo = memo.map(|(stage, memo)| {
+        memo.prepare(slopes.len());
+        (stage, memo)
+    });
     out.lo.clear();
     out.hi.clear();
     out.lo.push(v0_mps);
     out.hi.push(v0_mps);
     for (k, &slope) in slopes.iter().enumerate() {
-        let (v_plus, v_plus_low) = full_pedal_speeds(vehicle, params, out.hi[k], slope);
-        let v_minus = lowest_speed(vehicle, params, out.lo[k], slope);
-        let hi = v_plus.min(v_max);
-        let lo = if v_plus >= v_min { v_minus.max(v_min).min(v_max) } else { v_plus_low.min(hi) };
-        out.lo.push(lo.min(hi));
+        let input = [out.lo[k], out.hi[k], 0.0];
+        let [lo, hi] = match &mut memo {
+            Some((stage, memo)) => {
+                memo.forward.get(*stage + k as u64, slope, input, |x| forward(vehicle, params, x, slope))
+            }
+            None => forward(vehicle, params, input, slope),
+        };
+        out.lo.push(lo);
         out.hi.push(hi);
     }
     let n = slopes.len();
-    out.lo[n] = params.v_ref_mps().min(out.hi[n]);
+    out.lo[n] = match params.grid {
+        GridAnchor::Moving => params.v_ref_mps().min(out.hi[n]),
+        GridAnchor::Fixed => {
+            let grid = GridIndex { origin_mps: 0.0, delta_mps: params.delta_mps() };
+            grid.speed(grid.ceil(params.v_ref_mps()).min(index_of(params, out.hi[n])))
+        }
+    };
     for k in (1..n).rev() {
-        let needed = min_speed_reaching(vehicle, params, out.lo[k], out.hi[k], slopes[k], out.lo[k + 1]);
-        out.lo[k] = out.lo[k].max(needed);
+        let input = [out.lo[k], out.hi[k], out.lo[k + 1]];
+        let [lo] = match &mut memo {
+            Some((stage, memo)) => {
+                memo.backward.get(*stage + k as u64, slopes[k], input, |x| backward(vehicle, params, x, slopes[k]))
+            }
+            None => backward(vehicle, params, input, slopes[k]),
+        };
+        out.lo[k] = lo;
     }
 }
 
-/// The intervals of 5.4.2 on a fixed grid: every bound is a multiple of δ, and each stage's bounds
-/// are found from the previous stage's grid bounds, not from continuous speeds. The top of stage
-/// k + 1 is the highest grid speed that full pedal reaches from the top of stage k, and the backward
-/// pass keeps the lowest grid speed from which full pedal reaches the next stage's lowest one.
-/// Rounding continuous bounds instead breaks the chain on long climbs: the last stage's bound (the
-/// end of the continuous full-pedal chain) then lies above what any grid path can reach.
-fn grid_intervals(vehicle: &Vehicle, params: &DpSettings, v0_mps: f64, slopes: &[f64], out: &mut Intervals) {
+/// One step of a pass: (inputs, slope) to outputs. Forward: [lo, hi, _] of stage k to [lo, hi] of
+/// stage k + 1; backward: [lo, hi, lo of stage k + 1] of stage k to its new lo.
+type StepFn<const N: usize> = fn(&Vehicle, &DpSettings, [f64; 3], f64) -> [f64; N];
+
+/// Steps of one pass remembered per absolute stage (a ring over the horizon's stages).
+#[derive(Debug, Clone, Default)]
+pub struct StepMemo<const N: usize> {
+    entries: Vec<MemoEntry<N>>,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct MemoEntry<const N: usize> {
+    stage: u64,
+    slope: u64,
+    input: [u64; 3],
+    output: [f64; N],
+}
+
+impl<const N: usize> MemoEntry<N> {
+    /// No step (no stage has this index).
+    const EMPTY: Self = MemoEntry { stage: u64::MAX, slope: 0, input: [0; 3], output: [0.0; N] };
+}
+
+impl<const N: usize> StepMemo<N> {
+    fn get(&mut self, stage: u64, slope: f64, input: [f64; 3], step: impl FnOnce([f64; 3]) -> [f64; N]) -> [f64; N] {
+        let len = self.entries.len() as u64;
+        let entry = &mut self.entries[(stage % len) as usize];
+        let key = (stage, slope.to_bits(), input.map(f64::to_bits));
+        if (entry.stage, entry.slope, entry.input) == key {
+            return entry.output;
+        }
+        let output = step(input);
+        *entry = MemoEntry { stage: key.0, slope: key.1, input: key.2, output };
+        output
+    }
+}
+
+/// The memo of both passes, kept by the solver across solves.
+#[derive(Debug, Clone, Default)]
+pub struct IntervalMemo {
+    forward: StepMemo<2>,
+    backward: StepMemo<1>,
+}
+
+impl IntervalMemo {
+    /// Room for horizons of `stages` stages (one entry per stage and pass).
+    fn prepare(&mut self, stages: usize) {
+        let size = stages + 1;
+        if self.forward.entries.len() != size {
+            self.forward.entries = vec![MemoEntry::EMPTY; size];
+            self.backward.entries = vec![MemoEntry::EMPTY; size];
+        }
+    }
+}
+
+/// The thesis's forward step (5.4.2), bounds as continuous speeds [m/s].
+fn continuous_forward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, _]: [f64; 3], slope: f64) -> [f64; 2] {
+    let (v_min, v_max) = (params.v_min_mps(), params.v_max_mps());
+    let (v_plus, v_plus_low) = full_pedal_speeds(vehicle, params, hi, slope);
+    let v_minus = lowest_speed(vehicle, params, lo, slope);
+    let hi = v_plus.min(v_max);
+    let lo = if v_plus >= v_min { v_minus.max(v_min).min(v_max) } else { v_plus_low.min(hi) };
+    [lo.min(hi), hi]
+}
+
+/// The thesis's backward step: raise lo to the lowest speed that reaches the next stage's lo.
+fn continuous_backward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, target]: [f64; 3], slope: f64) -> [f64; 1] {
+    let needed = min_speed_reaching(vehicle, params, lo, hi, slope, target);
+    [lo.max(needed)]
+}
+
+/// Index of a bound already on the fixed grid (multiples of δ).
+fn index_of(params: &DpSettings, v_mps: f64) -> i64 {
+    (v_mps / params.delta_mps()).round() as i64
+}
+
+/// The forward step of 5.4.2 on a fixed grid: every bound is a multiple of δ, and each stage's
+/// bounds are found from the previous stage's grid bounds, not from continuous speeds. The top of
+/// stage k + 1 is the highest grid speed that full pedal reaches from the top of stage k. Rounding
+/// continuous bounds instead breaks the chain on long climbs: the last stage's bound (the end of
+/// the continuous full-pedal chain) then lies above what any grid path can reach.
+fn grid_forward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, _]: [f64; 3], slope: f64) -> [f64; 2] {
     let (v_min_mps, v_max_mps) = (params.v_min_mps(), params.v_max_mps());
     // Multiples of δ: index i is the speed i·δ [m/s].
     let grid = GridIndex { origin_mps: 0.0, delta_mps: params.delta_mps() };
-    // Index of a bound already on the grid.
-    let index_of = |v_mps: f64| (v_mps / grid.delta_mps).round() as i64;
     let top = grid.floor(v_max_mps);
-    out.lo.clear();
-    out.hi.clear();
-    out.lo.push(v0_mps);
-    out.hi.push(v0_mps);
-    for (k, &slope) in slopes.iter().enumerate() {
-        let (v_plus, v_plus_low) = full_pedal_speeds(vehicle, params, out.hi[k], slope);
-        let v_minus = lowest_speed(vehicle, params, out.lo[k], slope);
-        let hi = grid.floor(v_plus).min(top);
-        let lo = if v_plus >= v_min_mps { grid.ceil(v_minus.max(v_min_mps)) } else { grid.floor(v_plus_low) };
-        out.lo.push(grid.speed(lo.min(hi)));
-        out.hi.push(grid.speed(hi));
-    }
-    let n = slopes.len();
-    out.lo[n] = grid.speed(grid.ceil(params.v_ref_mps()).min(index_of(out.hi[n])));
-    for k in (1..n).rev() {
-        let (lo, hi) = (index_of(out.lo[k]), index_of(out.hi[k]));
-        let target = index_of(out.lo[k + 1]);
-        let reaches =
-            |index: i64| grid.floor(full_pedal_speeds(vehicle, params, grid.speed(index), slopes[k]).0) >= target;
-        // Full-pedal end speed grows with the start speed: bisect for the lowest index that reaches.
-        let needed = if reaches(lo) {
-            lo
-        } else if !reaches(hi) {
-            hi
-        } else {
-            let (mut a, mut b) = (lo, hi);
-            while b - a > 1 {
-                let mid = a + (b - a) / 2;
-                if reaches(mid) {
-                    b = mid;
-                } else {
-                    a = mid;
-                }
+    let (v_plus, v_plus_low) = full_pedal_speeds(vehicle, params, hi, slope);
+    let v_minus = lowest_speed(vehicle, params, lo, slope);
+    let hi = grid.floor(v_plus).min(top);
+    let lo = if v_plus >= v_min_mps { grid.ceil(v_minus.max(v_min_mps)) } else { grid.floor(v_plus_low) };
+    [grid.speed(lo.min(hi)), grid.speed(hi)]
+}
+
+/// The backward step on a fixed grid: the lowest grid speed of the stage from which full pedal
+/// reaches the next stage's lowest one.
+fn grid_backward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, target]: [f64; 3], slope: f64) -> [f64; 1] {
+    let grid = GridIndex { origin_mps: 0.0, delta_mps: params.delta_mps() };
+    let (lo, hi) = (index_of(params, lo), index_of(params, hi));
+    let target = index_of(params, target);
+    let reaches = |index: i64| grid.floor(full_pedal_speeds(vehicle, params, grid.speed(index), slope).0) >= target;
+    // Full-pedal end speed grows with the start speed: bisect for the lowest index that reaches.
+    let needed = if reaches(lo) {
+        lo
+    } else if !reaches(hi) {
+        hi
+    } else {
+        let (mut a, mut b) = (lo, hi);
+        while b - a > 1 {
+            let mid = a + (b - a) / 2;
+            if reaches(mid) {
+                b = mid;
+            } else {
+                a = mid;
             }
-            b
-        };
-        out.lo[k] = grid.speed(needed);
-    }
+        }
+        b
+    };
+    [grid.speed(needed)]
 }
 
 /// Smallest speed in [lo, hi] from which full pedal reaches `target` in one stage (bisection to a
