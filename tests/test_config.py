@@ -262,6 +262,7 @@ BAD_SETS = [
     ("pedal_kp", ["--set 'pedal_kp': expected key=value"]),
     ("=3", ["expected key=value"]),
     ("pedal_kp=[1,", ["--set pedal_kp", "not valid YAML"]),
+    ("pedal_kp=[&a [1, 1], *a, *a]", ["--set pedal_kp", "aliases are not accepted"]),
 ]
 
 

@@ -38,8 +38,11 @@ from truckmpc.errors import ConfigError, TruckmpcError
 from truckmpc.record import RunRequest, load_replay, run_record
 from truckmpc.results import check_run_dir, format_table, write_outputs
 from truckmpc.road import COLUMNS_COMMENT, default_test_track, load_road, make_section, write_road, write_shipped_roads
+from truckmpc.signals import Stopped, received_signal, stopping_on_signals
 from truckmpc.sim import CONTROLLERS, simulate
+from truckmpc.status import status_line
 from truckmpc.units import KMH_PER_MPS, M_PER_KM, PCT_PER_FRACTION
+from truckmpc.workload import check_runs, duration
 
 USAGE_EXIT_CODE = 2
 
@@ -103,6 +106,9 @@ class _OneLineErrors(TyperGroup):
             _fail(f"{where}{err.strerror or err}")
         except typer.Abort:
             _fail("aborted", 1)
+        except Stopped as stop:  # SIGINT or SIGTERM: one line, exit 130 or 143
+            typer.echo(str(stop), err=True)
+            sys.exit(stop.exit_code)
         if not standalone_mode:
             return rv
         sys.exit(rv if isinstance(rv, int) else 0)
@@ -154,6 +160,9 @@ SetOpt = Annotated[
         "--set", metavar="KEY=VALUE", help="Override any vehicle, controller or simulation key: key=value; repeatable."
     ),
 ]
+ForceOpt = Annotated[
+    bool, typer.Option("--force", help="Run even when the estimated work is beyond an hour (refused otherwise).")
+]
 
 
 def _run_config(vehicle: Path | None, config: list[Path] | None, set_: list[str] | None) -> RunConfig:
@@ -179,6 +188,7 @@ def simulate_cmd(
         Path | None,
         typer.Option("--replay", metavar="SUMMARY", help="Rerun exactly what a summary.json records (road, settings)."),
     ] = None,
+    force: ForceOpt = False,
 ) -> None:
     """Run controllers over a road; print a short table, write DIR/summary.json and DIR/trace-<controller>.csv.
 
@@ -201,18 +211,20 @@ def simulate_cmd(
         profile = profile.reversed() if reverse else profile
         chosen = BOTH if controller is None else controller.value
         names = ("pi", "mpc") if chosen == BOTH else (chosen,)
-        request = RunRequest(
-            None if road is None else str(road),
-            reverse,
-            names,
-            _text(vehicle),
-            tuple(map(str, config or ())),
-            tuple(set_ or ()),
-        )
+        inputs = (_text(vehicle), tuple(map(str, config or ())), tuple(set_ or ()))
+        request = RunRequest(_text(road), reverse, names, *inputs)
+    estimate_s = check_runs(profile, run_config, list(request.controllers), force=force)
     out_dir = Path("out") / profile.name if out is None else out
     check_run_dir(out_dir)
-    results = {name: simulate(profile, run_config, name) for name in request.controllers}
-    written = write_outputs(out_dir, profile, results, run_record(request, profile, run_config))
+    with stopping_on_signals():
+        try:
+            results = {}
+            for name in request.controllers:
+                with status_line(f"{name}: driving {profile.name} (estimate for all: {duration(estimate_s)})"):
+                    results[name] = simulate(profile, run_config, name)
+            written = write_outputs(out_dir, profile, results, run_record(request, profile, run_config))
+        except KeyboardInterrupt:
+            raise Stopped("nothing written", received_signal()) from None
     typer.echo(format_table(profile, results, run_config))
     typer.echo("wrote " + ", ".join(str(p) for p in written))
 
@@ -247,6 +259,7 @@ def sweep_cmd(
     config: ConfigOpt = None,
     set_: SetOpt = None,
     quiet: Annotated[bool, typer.Option("--quiet", help="No progress bar.")] = False,
+    force: ForceOpt = False,
 ) -> None:
     """Run PI and MPC on every road for every combination of the --grid axes; one row each in DIR/sweep.csv.
 
@@ -255,26 +268,23 @@ def sweep_cmd(
     from truckmpc.sweep import SweepInterrupted, SweepWorkerDied, plan_sweep, progress_bar, run_plan
 
     try:
-        plan = plan_sweep(
-            road,
-            tuple(grid or ()),
-            reverse=reverse,
-            vehicle_path=vehicle,
-            config_paths=tuple(config or ()),
-            overrides=tuple(set_ or ()),
-        )
-        with progress_bar(not quiet) as hook:
-            result = run_plan(plan, out, jobs=jobs, progress=hook)
+        with stopping_on_signals():
+            with status_line("checking every combination of the grid"):
+                plan = plan_sweep(
+                    road,
+                    tuple(grid or ()),
+                    reverse=reverse,
+                    vehicle_path=vehicle,
+                    config_paths=tuple(config or ()),
+                    overrides=tuple(set_ or ()),
+                )
+            with progress_bar(not quiet) as hook:
+                result = run_plan(plan, out, jobs=jobs, progress=hook, force=force, notice=_notice)
     except SweepInterrupted as stop:
-        typer.echo(
-            f"interrupted: {stop.done} of {stop.total} rows kept in {stop.partial_path}; "
-            "run the same command again to resume",
-            err=True,
-        )
-        raise typer.Exit(130) from None
+        kept = f"{stop.done} of {stop.total} rows kept in {stop.partial_path}; run the same command again to resume"
+        raise Stopped(kept, received_signal()) from None
     except KeyboardInterrupt:
-        typer.echo("interrupted before any run started", err=True)
-        raise typer.Exit(130) from None
+        raise Stopped("before any run started", received_signal()) from None
     except SweepWorkerDied as err:
         _fail(str(err), 1)
     axes = [axis.key for axis in plan.axes]
@@ -286,6 +296,10 @@ def sweep_cmd(
         f"wrote {result.csv_path} ({len(result.rows)} rows: {result.mpc_runs} MPC and {result.pi_runs} PI runs, "
         f"{result.resumed_rows} rows resumed)"
     )
+
+
+def _notice(text: str) -> None:
+    typer.echo(text, err=True)
 
 
 def _parse_gear(text: str | None, forward_gears: int) -> int | None:

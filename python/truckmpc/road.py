@@ -29,7 +29,9 @@ from .units import PCT_PER_FRACTION
 
 __all__ = [
     "COLUMNS_COMMENT",
+    "MAX_ABS_DISTANCE_M",
     "MAX_GRADE",
+    "MAX_LENGTH_M",
     "SECTION_KINDS",
     "RoadProfile",
     "concatenate",
@@ -48,6 +50,15 @@ MAX_GRADE = 0.30
 # Slack on the limit check so that a profile at the limit survives being written (altitudes
 # rounded to 1 um) and read back.
 _GRADE_CHECK = MAX_GRADE + 1e-3
+
+MAX_LENGTH_M = 1e7
+"""Longest accepted road [m] (10 000 km): longer than any drive a truck makes without stopping
+(the long-haul cycle is 108 km), and far beyond it a run's plant steps and trace stop fitting in
+memory and time; a longer road is taken to be an input error (a distance in mm, a typo)."""
+
+MAX_ABS_DISTANCE_M = 1e9
+"""Largest accepted |distance| of a road point [m]: below it float64 resolves distances to 0.2 um,
+far finer than the 1 mm a road file is written with, so a road may start at any chainage up to it."""
 _REVERSED = "-reversed"
 
 
@@ -74,6 +85,11 @@ class RoadProfile:
             raise RoadError(f"{where}: expected at least two points, got {distance.size}")
         if not (np.all(np.isfinite(distance)) and np.all(np.isfinite(altitude))):
             raise RoadError(f"{where}: expected finite distances and altitudes")
+        if np.max(np.abs(distance)) > MAX_ABS_DISTANCE_M:
+            raise RoadError(f"{where}: expected distances within +-{MAX_ABS_DISTANCE_M:g} m")
+        if distance[-1] - distance[0] > MAX_LENGTH_M:
+            length = distance[-1] - distance[0]
+            raise RoadError(f"{where}: expected a road of at most {MAX_LENGTH_M:g} m, got {length:g} m")
         step = np.diff(distance)
         if not np.all(step > 0):
             raise RoadError(f"{where}: expected strictly increasing distances (point {int(np.argmin(step > 0)) + 1})")
@@ -197,6 +213,8 @@ def _cell(where: str, number: int, name: str, text: str) -> float:
         raise RoadError(f"{where}:{number}: column {name!r}: expected a number, got {text!r}") from None
     if not math.isfinite(value):
         raise RoadError(f"{where}:{number}: column {name!r}: expected a finite number, got {text!r}")
+    if name == "distance_m" and abs(value) > MAX_ABS_DISTANCE_M:
+        raise RoadError(f"{where}:{number}: column {name!r}: expected at most {MAX_ABS_DISTANCE_M:g} m, got {text!r}")
     return value
 
 
@@ -210,6 +228,11 @@ def _check_row(where: str, number: int, data: dict[str, list[float]]) -> None:
         )
     if len(distance) < 2:
         return
+    if distance[-1] - distance[0] > MAX_LENGTH_M:
+        raise RoadError(
+            f"{where}:{number}: column 'distance_m': expected a road of at most {MAX_LENGTH_M:g} m from the first "
+            f"row's {distance[0]:g}, got {distance[-1]:g}"
+        )
     if not distance[-1] > distance[-2]:
         raise RoadError(
             f"{where}:{number}: column 'distance_m': expected more than the previous row's {distance[-2]:g}, "
@@ -284,6 +307,11 @@ def make_section(
     for name, value in (("lead_m", lead), ("tail_m", tail)):
         if not (math.isfinite(value) and value >= 0):
             raise RoadError(f"{where}: {name}: expected a number >= 0, got {value!r}")
+    if length_m + lead + tail > MAX_LENGTH_M:
+        raise RoadError(
+            f"{where}: length_m: expected lead_m + length_m + tail_m of at most {MAX_LENGTH_M:g} m, "
+            f"got {length_m + lead + tail:g} m"
+        )
     start_grade, end_grade = _slope_law(where, kind, slope_pct)
     # The feature's ends and, for a crest or depression, its top or bottom are always points.
     middle = [lead + length_m / 2] if start_grade != end_grade else []

@@ -33,7 +33,7 @@ from truckmpc.config.keys import (
     overlay_path,
     unknown_key,
 )
-from truckmpc.config.yamlfile import read_mapping
+from truckmpc.config.yamlfile import load_value, read_mapping
 from truckmpc.errors import ConfigError
 
 PathLike = str | os.PathLike[str]
@@ -184,7 +184,7 @@ class _Layers:
         if key not in KEYS:
             raise unknown_key(origin, key, KEYS)
         try:
-            raw = yaml.safe_load(raw_text)
+            raw = load_value(raw_text)
         except yaml.YAMLError as err:
             problem = getattr(err, "problem", None) or "syntax error"
             raise ConfigError(f"{origin}: value {raw_text.strip()!r} is not valid YAML ({problem})") from None

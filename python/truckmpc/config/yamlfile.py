@@ -14,7 +14,16 @@ PathLike = str | os.PathLike[str]
 
 
 class _StrictLoader(yaml.SafeLoader):
-    """Safe loader that rejects a key given twice in one mapping (PyYAML keeps the last silently)."""
+    """Safe loader that rejects a key given twice in one mapping (PyYAML keeps the last silently)
+    and any alias (``*name``): a config file has no use for them, and nested aliases expand
+    exponentially (a "billion laughs" of a few lines took 38 s and 3 GB before a MemoryError)."""
+
+    def compose_node(self, parent: yaml.Node | None, index: int) -> yaml.Node | None:
+        if self.check_event(yaml.AliasEvent):
+            event = self.peek_event()  # type: ignore[no-untyped-call]
+            problem = f"found the alias *{event.anchor}: aliases are not accepted in a config file"
+            raise yaml.composer.ComposerError(None, None, problem, event.start_mark)
+        return super().compose_node(parent, index)
 
 
 def _construct_mapping(loader: _StrictLoader, node: yaml.MappingNode, deep: bool = False) -> dict[Any, Any]:
@@ -44,7 +53,10 @@ def read_mapping(path: PathLike) -> tuple[dict[str, Any], str, dict[str, int]]:
     """The top-level mapping of a YAML file, the file's display name and the line of each key."""
     where = display_path(Path(path))
     text = read_user_text(Path(path), where, "a YAML file", ConfigError)
-    loader = _StrictLoader(text)
+    try:
+        loader = _StrictLoader(text)  # raises on a control character
+    except yaml.YAMLError as err:
+        raise ConfigError(f"{where}: invalid YAML: {err}") from None
     try:
         node = loader.get_single_node()
         data = None if node is None else loader.construct_document(node)
@@ -62,7 +74,7 @@ def read_mapping(path: PathLike) -> tuple[dict[str, Any], str, dict[str, int]]:
     for key in data:
         if not isinstance(key, str):
             raise ConfigError(f"{where}: key {show_value(key)}: expected a text key")
-    keys = [] if node is None else [k for k, _ in node.value if isinstance(k, yaml.ScalarNode)]
+    keys = [k for k, _ in node.value if isinstance(k, yaml.ScalarNode)] if isinstance(node, yaml.MappingNode) else []
     lines = {k.value: k.start_mark.line + 1 for k in keys}
     return data, where, lines
 
@@ -75,3 +87,13 @@ def show_value(value: Any) -> str:
         return "null"
     text = repr(value)
     return text if len(text) <= 60 else text[:57] + "..."
+
+
+def load_value(text: str) -> Any:
+    """One YAML value (a `--set` value), with the same rules as a config file: no aliases, no key
+    given twice. Raises `yaml.YAMLError`."""
+    loader = _StrictLoader(text)
+    try:
+        return loader.get_single_data()
+    finally:
+        loader.dispose()

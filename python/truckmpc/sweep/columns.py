@@ -10,7 +10,7 @@ from __future__ import annotations
 import contextlib
 import json
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 from truckmpc.compare import compare
@@ -77,3 +77,19 @@ def parse_cell(text: str) -> Any:
         with contextlib.suppress(ValueError):
             return number(text)
     return text
+
+
+def damaged_cell(cells: Sequence[str]) -> str | None:
+    """What is wrong with the result cells (:data:`SWEEP_COLUMNS`) of a row read back, or None when
+    each is what :func:`cell` writes there: true or false for ``*stalled``, else a finite number or
+    blank."""
+    if len(cells) != len(SWEEP_COLUMNS):
+        return f"expected {len(SWEEP_COLUMNS)} result cells, got {len(cells)}"
+    for column, text in zip(SWEEP_COLUMNS, cells, strict=True):
+        value = parse_cell(text)
+        if column.endswith("stalled"):
+            if not isinstance(value, bool):
+                return f"column {column!r}: expected true or false, got {text!r}"
+        elif value is not None and (isinstance(value, (bool, str)) or not math.isfinite(value)):
+            return f"column {column!r}: expected a number or blank, got {text!r}"
+    return None

@@ -64,30 +64,39 @@ def csv_line(cells: Sequence[str]) -> str:
     return buffer.getvalue()
 
 
-def read_rows(path: Path, columns: Sequence[str]) -> list[list[str]]:
-    """Complete rows of a sweep CSV (a last line cut short by an interruption is ignored)."""
+def read_rows(path: Path, columns: Sequence[str]) -> list[tuple[int, list[str]]]:
+    """(line number, cells) of each complete line of a sweep CSV after its header, whatever its
+    number of cells (a last line cut short by an interruption is ignored; bytes that are not UTF-8
+    are read as U+FFFD, so a damaged line is still a line)."""
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_bytes().decode("utf-8", errors="replace")
     except FileNotFoundError:
         return []
     lines = text.splitlines(keepends=True)
     if not lines:
         return []
-    if next(csv.reader([lines[0]])) != list(columns):
+    if next(csv.reader([lines[0]]), []) != list(columns):
         raise SweepError(f"{path}: its columns are not this sweep's; remove it or use another --out")
     rows = []
-    for line in lines[1:]:
+    for number, line in enumerate(lines[1:], start=2):
         if not line.endswith("\n"):
             break
-        cells = next(csv.reader([line]), [])
-        if len(cells) == len(columns):
-            rows.append(cells)
+        try:
+            cells = next(csv.reader([line]), [])
+        except csv.Error:  # e.g. a NUL byte
+            cells = []
+        rows.append((number, cells))
     return rows
 
 
-def finished_rows(out: Path, columns: Sequence[str]) -> list[list[str]]:
-    """The rows already in ``sweep.csv`` and ``sweep.partial.csv`` (possibly repeated)."""
-    return [*read_rows(out / CSV_NAME, columns), *read_rows(out / PARTIAL_NAME, columns)]
+def finished_rows(out: Path, columns: Sequence[str]) -> list[tuple[str, list[str]]]:
+    """The rows already in ``sweep.csv`` and ``sweep.partial.csv`` (possibly repeated), each with
+    where it was read (``DIR/sweep.partial.csv:7``)."""
+    return [
+        (f"{out / name}:{number}", cells)
+        for name in (CSV_NAME, PARTIAL_NAME)
+        for number, cells in read_rows(out / name, columns)
+    ]
 
 
 class PartialFile:

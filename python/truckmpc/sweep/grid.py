@@ -36,9 +36,11 @@ def parse_axis(text: str) -> Axis:
     if not sep or not key or not spec:
         raise SweepError(f"--grid {text!r}: expected KEY=SPEC (SPEC start:stop:step or a comma list)")
     values = _range(where, spec) if ":" in spec else _list(where, spec)
-    for a, b in itertools.combinations(values, 2):
-        if type(a) is type(b) and a == b:
-            raise SweepError(f"{where}: value {cell(a)} is given twice")
+    seen: set[tuple[type, Any]] = set()
+    for value in values:  # a set, not all pairs: a range of 10 000 values took seconds
+        if (type(value), value) in seen:
+            raise SweepError(f"{where}: value {cell(value)} is given twice")
+        seen.add((type(value), value))
     return Axis(key, tuple(values), spec)
 
 

@@ -10,23 +10,33 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from truckmpc.config import RunConfig, load_run_config
+import yaml
+
+from truckmpc import _core
+from truckmpc.config import SPEC_BY_KEY, Origin, RunConfig, load_run_config
 from truckmpc.errors import ConfigError
 from truckmpc.road import PathLike, RoadProfile, load_road
 from truckmpc.sweep.columns import SWEEP_COLUMNS, cell, yaml_text
 from truckmpc.sweep.errors import SweepError
 from truckmpc.sweep.grid import Axis, expand_grid, parse_axis
+from truckmpc.workload import check_trace, run_work
+
+MAX_SWEEP_ROWS = 1_000_000
+"""Most rows (roads × combinations) a sweep may have: its CSV is then about 0.4 GB, and planning
+it takes about a minute; more is taken to be a typo in a range."""
 
 
 @dataclass(frozen=True)
 class Row:
     """One (road, combination) of a sweep: its place in grid order, its overrides, its PI key and
-    a rough relative cost of its MPC run (for scheduling only)."""
+    the estimated seconds of its MPC run and of its PI run, and the memory of its MPC's dynamic
+    program [bytes] (:mod:`truckmpc.workload`)."""
 
     index: int
     road: int
@@ -34,6 +44,8 @@ class Row:
     overrides: tuple[str, ...]
     pi_key: str
     cost: float = 0.0
+    pi_cost: float = 0.0
+    dp_bytes: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -87,16 +99,21 @@ def plan_sweep(
     base = _Base(
         None if vehicle_path is None else str(vehicle_path), tuple(str(p) for p in config_paths), tuple(overrides)
     )
+    _check_size(checked, len(profiles))
     base_config = base.config()  # errors in the base name their file or --set
     keys = [axis.key for axis in checked]
+    combinations = _Combinations(base, base_config, checked)
     combos = []
     for values in expand_grid(checked):
         texts = tuple(f"{key}={yaml_text(v)}" for key, v in zip(keys, values, strict=True))
-        combos.append((values, texts, _combination_config(base, checked, values, texts)))
+        config = combinations.config(values, texts)
+        for profile in profiles:
+            check_trace(profile, config)
+        combos.append((values, texts, config, _section_values(config)))
     rows = [
-        Row(len(combos) * r + i, r, values, texts, _pi_key(r, config), _mpc_cost(profile, config))
+        _row(len(combos) * r + i, r, values, texts, _pi_key(r, sections), profile, config)
         for r, profile in enumerate(profiles)
-        for i, (values, texts, config) in enumerate(combos)
+        for i, (values, texts, config, sections) in enumerate(combos)
     ]
     direction = "reverse" if reverse else "forward"
     settings = _settings(profiles, direction, checked, base, base_config)
@@ -146,6 +163,63 @@ def _profiles(roads: Sequence[RoadProfile | PathLike], reverse: bool) -> list[Ro
     return profiles
 
 
+def _row(
+    index: int,
+    road: int,
+    values: tuple[Any, ...],
+    texts: tuple[str, ...],
+    pi_key: str,
+    profile: RoadProfile,
+    config: RunConfig,
+) -> Row:
+    """A planned row with the estimated work of its runs."""
+    mpc = run_work(profile, config, "mpc")
+    pi_s = run_work(profile, config, "pi").total_s
+    return Row(index, road, values, texts, pi_key, mpc.total_s, pi_s, mpc.dp_bytes)
+
+
+def _check_size(axes: Sequence[Axis], roads: int) -> None:
+    """Refuse more than :data:`MAX_SWEEP_ROWS` rows before expanding the grid."""
+    combinations = math.prod(len(axis.values) for axis in axes)
+    if combinations * roads > MAX_SWEEP_ROWS:
+        raise SweepError(
+            f"--grid: expected at most {MAX_SWEEP_ROWS} rows (combinations × roads), got {combinations} "
+            f"combinations × {roads} road{'s' if roads > 1 else ''}"
+        )
+
+
+class _Combinations:
+    """The configurations of a grid's combinations: the base's resolved values with the axis values
+    put in, validated by the core. Reading the files again per combination took 6.7 ms, most of a
+    sweep's planning; only a combination the core refuses is loaded again through the files, so
+    that its error names where each value came from exactly as ``load_run_config`` does."""
+
+    def __init__(self, base: _Base, base_config: RunConfig, axes: Sequence[Axis]) -> None:
+        self._base, self._axes = base, axes
+        self._values = base_config.settings.values()
+        self._origins = dict(base_config.origins)
+        self._rank = max((origin.rank for origin in self._origins.values()), default=0) + 1
+        self._parsed: dict[str, Any] = {}
+
+    def config(self, values: tuple[Any, ...], texts: tuple[str, ...]) -> RunConfig:
+        """The validated configuration of one combination (``texts``: its ``key=value`` overrides)."""
+        merged, origins = dict(self._values), dict(self._origins)
+        try:
+            for i, text in enumerate(texts):
+                key, _, raw = text.partition("=")
+                merged[key] = self._parse(raw)
+                origins[key] = Origin(f"--set {key}", self._rank + i)
+            settings = _core.Settings(merged)
+        except (yaml.YAMLError, _core.ParamError):
+            return _combination_config(self._base, self._axes, values, texts)
+        return RunConfig(settings=settings, origins=origins)
+
+    def _parse(self, raw: str) -> Any:
+        if raw not in self._parsed:
+            self._parsed[raw] = yaml.safe_load(raw)
+        return self._parsed[raw]
+
+
 def _combination_config(
     base: _Base, axes: Sequence[Axis], values: tuple[Any, ...], texts: tuple[str, ...]
 ) -> RunConfig:
@@ -163,17 +237,22 @@ def _combination_config(
         raise SweepError(message) from None
 
 
-def _pi_key(road: int, config: RunConfig) -> str:
+_PI_SECTIONS = ("vehicle", "cruise", "pi", "sim")
+
+
+def _section_values(config: RunConfig) -> dict[str, dict[str, Any]]:
+    """The values of the sections a PI run depends on, by section."""
+    sections: dict[str, dict[str, Any]] = {name: {} for name in _PI_SECTIONS}
+    for key, value in config.settings.values().items():
+        section = SPEC_BY_KEY[key].section
+        if section in sections:
+            sections[section][key] = value
+    return sections
+
+
+def _pi_key(road: int, sections: Mapping[str, Mapping[str, Any]]) -> str:
     """Everything the PI run depends on: road, vehicle, PI and simulation values (not the MPC's)."""
-    parts = [road, *(dict(config.section(name)) for name in ("vehicle", "cruise", "pi", "sim"))]
-    return json.dumps(parts, sort_keys=True)
-
-
-def _mpc_cost(profile: RoadProfile, config: RunConfig) -> float:
-    """Relative work of an MPC run: solves (length / S) times stages per solve (horizon / S) times
-    grid points per stage (1 / delta)."""
-    stage_m, horizon_m, delta_kmh = (float(config.mpc[key]) for key in ("stage_m", "horizon_m", "delta_kmh"))
-    return profile.length_m / stage_m * (horizon_m / stage_m) / delta_kmh
+    return json.dumps([road, *(sections[name] for name in _PI_SECTIONS)], sort_keys=True)
 
 
 def _settings(

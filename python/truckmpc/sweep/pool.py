@@ -11,6 +11,7 @@ from typing import Any, NamedTuple
 
 from truckmpc.config import load_run_config
 from truckmpc.road import RoadProfile
+from truckmpc.signals import received_signal
 from truckmpc.sim import simulate
 from truckmpc.sweep.columns import MPC_FIELDS, PI_FIELDS
 from truckmpc.sweep.errors import SweepWorkerDied
@@ -93,6 +94,8 @@ class Runner:
             for future in as_completed(futures):
                 yield futures[future], future.result()
         except BrokenProcessPool:
+            if received_signal() is not None:  # the signal reached the workers too (sent to the process group)
+                raise KeyboardInterrupt from None
             raise SweepWorkerDied(
                 "a sweep worker process died (killed? out of memory?); run the same command again to resume"
             ) from None

@@ -4,13 +4,14 @@ ones run, and ``sweep.csv`` is written when all are done."""
 from __future__ import annotations
 
 import os
+import sys
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from truckmpc.road import PathLike, RoadProfile
-from truckmpc.sweep.columns import PI_FIELDS, parse_cell, result_cells
+from truckmpc.sweep.columns import PI_FIELDS, damaged_cell, parse_cell, result_cells
 from truckmpc.sweep.errors import SweepInterrupted
 from truckmpc.sweep.files import (
     PARTIAL_NAME,
@@ -24,6 +25,7 @@ from truckmpc.sweep.files import (
 from truckmpc.sweep.grid import Axis
 from truckmpc.sweep.plan import Row, SweepPlan, plan_sweep
 from truckmpc.sweep.pool import Runner, Task
+from truckmpc.workload import MAX_WORK_S, WorkError, memory_limit_bytes, too_big, too_long
 
 
 @dataclass(frozen=True)
@@ -53,6 +55,7 @@ def run_sweep(
     overrides: Sequence[str] = (),
     jobs: int | None = None,
     progress: ProgressHook | None = None,
+    force: bool = False,
 ) -> SweepResult:
     """Run (or resume) a sweep into directory ``out``: PI and MPC on every road for every
     combination of ``grid`` (``["horizon_m=250:3000:250", "delta_kmh=0.1,0.2"]`` or
@@ -63,7 +66,7 @@ def run_sweep(
     plan = plan_sweep(
         roads, grid, reverse=reverse, vehicle_path=vehicle_path, config_paths=config_paths, overrides=overrides
     )
-    return run_plan(plan, out, jobs=jobs, progress=progress)
+    return run_plan(plan, out, jobs=jobs, progress=progress, force=force)
 
 
 def run_plan(
@@ -72,25 +75,31 @@ def run_plan(
     *,
     jobs: int | None = None,
     progress: ProgressHook | None = None,
+    force: bool = False,
+    notice: Callable[[str], None] | None = None,
 ) -> SweepResult:
     """Run (or resume) a planned sweep into directory ``out``; see :mod:`truckmpc.sweep`.
 
     ``jobs``: processes (default ``os.cpu_count()``); 1 runs in this process. ``realtime_ratio`` of
     each row is measured under whatever load the other jobs make.
-    Raises :class:`SweepError` if ``out`` holds a different sweep; on ``KeyboardInterrupt`` the
+    Raises :class:`SweepError` if ``out`` holds a different sweep,
+    :class:`~truckmpc.workload.WorkError` if the runs left would take more than an hour (unless
+    ``force``); damaged rows resumed from ``out`` are dropped, to run again, and ``notice`` (default:
+    a line on stderr) is told. On ``KeyboardInterrupt`` the
     workers are stopped, the finished rows stay in ``sweep.partial.csv`` and
     :class:`SweepInterrupted` (a ``KeyboardInterrupt``) says how many.
     """
     out = Path(out)
     jobs = max(1, jobs or os.cpu_count() or 1)
     check_out_dir(out, plan.settings)
-    done = _resumed_rows(plan, out)
+    done = _resumed_rows(plan, out, notice or _to_stderr)
     resumed = len(done)
     pending = [row for row in plan.rows if row.index not in done]
     pi_cache = _resumed_pi_figures(plan, done)
+    tasks = _tasks(pending, pi_cache)
+    _check_work(plan, tasks, jobs, force)
     out.mkdir(parents=True, exist_ok=True)
     write_settings(out, plan.settings, jobs)
-    tasks = _tasks(pending, pi_cache)
     header = csv_line(plan.columns)
     partial = PartialFile(out / PARTIAL_NAME, header, [csv_line(cells) for _, cells in sorted(done.items())])
     if progress:
@@ -117,14 +126,45 @@ def run_plan(
     )
 
 
-def _resumed_rows(plan: SweepPlan, out: Path) -> dict[int, list[str]]:
-    """Row index -> cells of the plan's rows already in ``out`` (the first copy of each)."""
+def _to_stderr(text: str) -> None:
+    print(text, file=sys.stderr)
+
+
+def _check_work(plan: SweepPlan, tasks: Sequence[Task], jobs: int, force: bool) -> None:
+    """Refuse, unless ``force``, tasks whose estimated wall time on ``jobs`` processes is beyond the
+    limit, or whose dynamic programs, ``jobs`` at a time, would hold more memory than the limit."""
+    if force or not tasks:
+        return
+    costs = [plan.rows[t.row].pi_cost if t.controller == "pi" else plan.rows[t.row].cost for t in tasks]
+    at_once = max(1, min(jobs, len(tasks)))
+    where = "--grid" if plan.axes else "sweep"
+    runs = f"for {len(tasks)} runs on {jobs} process{'es' if jobs > 1 else ''}"
+    dp_bytes, limit_bytes = at_once * max(plan.rows[t.row].dp_bytes for t in tasks), memory_limit_bytes()
+    if dp_bytes > limit_bytes:
+        raise WorkError(f"{where}: {too_big(dp_bytes, limit_bytes, runs)}")
+    wall_s = max(sum(costs) / at_once, max(costs))
+    if wall_s > MAX_WORK_S:
+        raise WorkError(f"{where}: {too_long(wall_s, runs)}")
+
+
+def _resumed_rows(plan: SweepPlan, out: Path, notice: Callable[[str], None]) -> dict[int, list[str]]:
+    """Row index -> cells of the plan's rows already in ``out`` (the first copy of each). A damaged
+    row (a cell that is not what the sweep writes there, a wrong number of cells, axis values not in
+    this sweep) is dropped, to run again, and ``notice`` is told in one line."""
     by_key = {plan.row_key(row): row for row in plan.rows}
+    first_result = 2 + len(plan.axes)
     done: dict[int, list[str]] = {}
-    for cells in finished_rows(out, plan.columns):
-        row = by_key.get(tuple(cells[: 2 + len(plan.axes)]))
-        if row is not None:
-            done.setdefault(row.index, cells)
+    dropped: list[str] = []
+    for where, cells in finished_rows(out, plan.columns):
+        row = by_key.get(tuple(cells[:first_result]))
+        problem = "not a row of this sweep" if row is None else damaged_cell(cells[first_result:])
+        if problem is not None or row is None:
+            dropped.append(f"{where}: {problem}")
+            continue
+        done.setdefault(row.index, cells)
+    if dropped:
+        rows = "1 damaged row" if len(dropped) == 1 else f"{len(dropped)} damaged rows"
+        notice(f"dropped {rows}, to run again ({dropped[0]}{'; ...' if len(dropped) > 1 else ''})")
     return done
 
 

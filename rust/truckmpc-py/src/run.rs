@@ -5,7 +5,9 @@
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use truckmpc_core::control::{Controller, Decision, GearLogic, PiController, RecedingController};
+use std::time::Instant;
+
+use truckmpc_core::control::{Controller, Decision, GearLogic, PiController, RecedingController, SolverStats};
 use truckmpc_core::dp::DpSettings;
 use truckmpc_core::sim::{self, RunSummary, Trace};
 use truckmpc_core::{Control, PlantState, Road};
@@ -106,7 +108,11 @@ fn run(
     };
     let altitude_m = altitude_m.as_array().to_vec();
     let (road, start_kmh) = (&road.inner, s.start_speed_kmh());
-    let output = py.detach(|| sim::run(vehicle, road, &altitude_m, ctrl.as_mut(), &s.sim, start_kmh)).map_err(to_py)?;
+    let mut watched = Interruptible { inner: ctrl.as_mut(), checked: Instant::now(), error: None };
+    let output = py.detach(|| sim::run(vehicle, road, &altitude_m, &mut watched, &s.sim, start_kmh)).map_err(to_py)?;
+    if let Some(err) = watched.error {
+        return Err(err);
+    }
     Ok(PyRunOutput {
         controller: output.controller.to_string(),
         summary: summary_dict(py, &output.summary)?.unbind(),
@@ -128,6 +134,44 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run_python, m)?)?;
     m.add_function(wrap_pyfunction!(steady_gear, m)?)?;
     Ok(())
+}
+
+/// How often a run with the GIL released looks for a signal (Ctrl-C, SIGTERM) to handle.
+const SIGNAL_CHECK_S: f64 = 0.05;
+
+/// A built-in controller whose run stops when Python has a signal to handle: the GIL is taken back
+/// every [`SIGNAL_CHECK_S`] to run the signal handlers, and their exception ends the loop.
+struct Interruptible<'a> {
+    inner: &'a mut (dyn Controller + Send),
+    checked: Instant,
+    error: Option<PyErr>,
+}
+
+impl Controller for Interruptible<'_> {
+    fn name(&self) -> &'static str {
+        self.inner.name()
+    }
+
+    fn start(&mut self, road: &Road, state: &PlantState) {
+        self.inner.start(road, state);
+    }
+
+    fn decide(&mut self, road: &Road, state: &PlantState) -> Decision {
+        let decision = self.inner.decide(road, state);
+        if self.checked.elapsed().as_secs_f64() > SIGNAL_CHECK_S {
+            self.checked = Instant::now();
+            self.error = Python::attach(|py| py.check_signals()).err();
+        }
+        decision
+    }
+
+    fn aborted(&self) -> bool {
+        self.error.is_some() || self.inner.aborted()
+    }
+
+    fn solver_stats(&self) -> Option<SolverStats> {
+        self.inner.solver_stats()
+    }
 }
 
 /// A controller written in Python (the `truckmpc.controller.Controller` protocol) driven by the

@@ -1,0 +1,160 @@
+"""Work estimates: settings that would run for hours are refused up front (unless --force), and a
+sweep's many combinations are validated quickly."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+import truckmpc.sweep.run as sweep_run
+import truckmpc.workload as workload
+from truckmpc import default_test_track, load_run_config, simulate
+from truckmpc.cli import app
+from truckmpc.sweep import expand_grid, parse_axis
+from truckmpc.sweep.columns import yaml_text
+from truckmpc.sweep.plan import _Base, _Combinations
+
+runner = CliRunner()
+REPO = Path(__file__).resolve().parents[1]
+TEST_TRACK = REPO / "roads" / "test-track.csv"
+
+
+def run(*args: object):
+    return runner.invoke(app, [str(a) for a in args])
+
+
+@pytest.fixture(autouse=True)
+def in_tmp(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "short.csv").write_text("distance_m,altitude_m\n0,0\n150,1.5\n300,0\n")
+    return tmp_path
+
+
+def assert_refused(result, where: str) -> None:
+    assert result.exit_code == 2, result.output
+    assert result.stderr.count("\n") == 1 and "Traceback" not in result.output
+    assert result.stderr.startswith(f"error: {where}: about "), result.stderr
+    assert "of work at this setting (limit 1 h); pass --force to run it anyway" in result.stderr
+
+
+def hours_in(message: str) -> float:
+    figure, unit = message.split("about ", 1)[1].split()[:2]
+    return float(figure) * {"h": 1.0, "days": 24.0}[unit]
+
+
+def test_a_tiny_plant_step_is_refused_with_its_estimate(in_tmp):
+    result = run("simulate", "--controller", "pi", "--set", "plant_dt_s=1e-9", "--out", "res")
+    assert_refused(result, "--set plant_dt_s")
+    # The 8.5 km test track at 85 km/h in steps of 1e-9 s: 3.6e11 steps; the Rust loop takes about
+    # 1e-7 s a step, so hours, not minutes nor years.
+    assert 1 < hours_in(result.stderr) < 100
+    assert not (in_tmp / "res").exists()
+
+
+def test_a_fine_speed_grid_is_refused_naming_where_it_was_set(in_tmp):
+    assert_refused(run("simulate", "--set", "delta_kmh=0.001", "--out", "res"), "--set delta_kmh")
+    (in_tmp / "fine.yaml").write_text("# overlay\ndelta_kmh: 0.001\n")
+    assert_refused(run("simulate", "--config", "fine.yaml", "--out", "res"), "fine.yaml:2: key 'delta_kmh'")
+    assert not (in_tmp / "res").exists()
+
+
+def test_a_grid_too_large_for_memory_is_refused_naming_its_size(in_tmp, monkeypatch):
+    # delta 0.01 km/h over a 10 km/h band and 60 stages: 1001² × 60 units of 2.5 bytes, 150 MB.
+    monkeypatch.setattr(workload, "memory_limit_bytes", lambda: 100e6)
+    result = run("simulate", "--road", "short.csv", "--set", "delta_kmh=0.01", "--out", "res")
+    assert result.exit_code == 2 and result.stderr.count("\n") == 1, result.output
+    assert result.stderr.startswith("error: --set delta_kmh: about 0.15 GB of memory for the dynamic program")
+    assert "(limit 0.1 GB, half this machine's); pass --force" in result.stderr
+    assert not (in_tmp / "res").exists()
+    assert run("simulate", "--road", "short.csv", "--set", "delta_kmh=0.2", "--out", "res").exit_code == 0
+
+
+def test_force_runs_what_the_estimate_refuses(in_tmp, monkeypatch):
+    monkeypatch.setattr(workload, "MAX_WORK_S", 1e-6)
+    args = ["simulate", "--road", "short.csv", "--controller", "pi", "--out", "res"]
+    assert run(*args).exit_code == 2 and not (in_tmp / "res").exists()
+    forced = run(*args, "--force")
+    assert forced.exit_code == 0, forced.output
+    assert (in_tmp / "res" / "summary.json").exists()
+
+
+def test_force_runs_a_sweep_the_estimate_refuses(in_tmp, monkeypatch):
+    monkeypatch.setattr(sweep_run, "MAX_WORK_S", 1e-6)
+    args = ["sweep", "--road", "short.csv", "--grid", "horizon_m=250,500", "--jobs", "1", "--out", "sw"]
+    refused = run(*args)
+    assert refused.exit_code == 2 and refused.stderr.startswith("error: --grid: about ")
+    assert "pass --force" in refused.stderr and not (in_tmp / "sw").exists()
+    forced = run(*args, "--force")
+    assert forced.exit_code == 0, forced.output
+    assert len((in_tmp / "sw" / "sweep.csv").read_text().splitlines()) == 3
+
+
+def test_a_sweep_counts_the_memory_of_the_runs_it_holds_at_once(in_tmp, monkeypatch):
+    monkeypatch.setattr(sweep_run, "memory_limit_bytes", lambda: 200e6)  # one 150 MB DP fits, two do not
+    args = ["sweep", "--road", "short.csv", "--grid", "delta_kmh=0.01,0.2", "--out", "sw"]
+    refused = run(*args, "--jobs", "2")
+    assert refused.exit_code == 2, refused.output
+    assert refused.stderr.startswith("error: --grid: about 0.301 GB of memory for the dynamic program for 3 runs on 2")
+    assert "(limit 0.2 GB, half this machine's)" in refused.stderr
+    assert not (in_tmp / "sw").exists()
+    single = run(*args, "--jobs", "1")
+    assert single.exit_code == 0, single.output
+
+
+def test_the_estimate_is_within_a_factor_of_ten_of_a_measured_run():
+    road = default_test_track()
+    for overrides in ((), ("delta_kmh=0.1", "horizon_m=2000")):
+        config = load_run_config(overrides=overrides)
+        for controller in ("pi", "mpc"):
+            started = time.perf_counter()
+            simulate(road, config, controller)
+            measured_s = time.perf_counter() - started
+            estimate_s = workload.run_work(road, config, controller).total_s
+            assert measured_s / 10 < estimate_s < measured_s * 10, (overrides, controller, measured_s, estimate_s)
+
+
+def test_a_sweep_of_many_combinations_is_validated_quickly_and_refused_with_its_estimate(in_tmp):
+    # 30 000 combinations of MPC runs of about a second each (δ 0.05 km/h over the test track): hours
+    # on 2 processes. Validating them through the files took 6.7 ms each (over three minutes) before
+    # anything was said.
+    started = time.perf_counter()
+    result = run(
+        "sweep",
+        "--road",
+        TEST_TRACK,
+        "--grid",
+        "q_fuel=1:300:1",
+        "--grid",
+        "q_brake=1:100:1",
+        "--set",
+        "delta_kmh=0.05",
+        "--jobs",
+        "2",
+        "--out",
+        "sw",
+    )
+    elapsed_s = time.perf_counter() - started
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith("error: --grid: about ") and "for 30001 runs on 2 processes" in result.stderr
+    assert 1 < hours_in(result.stderr) < 100
+    assert elapsed_s < 30 and not (in_tmp / "sw").exists()
+
+
+@pytest.mark.parametrize(
+    "grid",
+    [
+        ["mass_kg=20000,40000", "allow_neutral=true,false", "neutral_rule=nearest,interpolate"],
+        ["v_ref_kmh=70:90:10", "k_lim=null,4", "delta_kmh=0.1,0.5", "start_speed_kmh=null,60.5"],
+    ],
+)
+def test_each_combination_has_the_configuration_load_run_config_gives(grid):
+    axes = [parse_axis(text) for text in grid]
+    base = _Base(None, (), ("v_inc_kmh=6",))
+    combinations = _Combinations(base, base.config(), axes)
+    for values in expand_grid(axes):
+        texts = tuple(f"{axis.key}={yaml_text(v)}" for axis, v in zip(axes, values, strict=True))
+        expected = load_run_config(overrides=("v_inc_kmh=6", *texts)).settings.values()
+        assert combinations.config(values, texts).settings.values() == expected
