@@ -5,7 +5,9 @@
 //! at the start of the next stage under the inputs being applied now, solves the dynamic program
 //! over the horizon from there, and keeps the first control of the optimum for that next stage.
 //! Stage boundaries are counted from the road's start. When a solve finds no admissible path, the
-//! controller keeps the inputs it is applying and counts the event.
+//! controller counts the event and, by `on_infeasible`, either keeps the inputs it is applying (the
+//! thesis's rule) or rescues: a solve with the lower speed bound and the shift limit relaxed, and
+//! failing that the [`Rescue`] policy until a later solve succeeds.
 
 use std::sync::Arc;
 use std::time::Instant;
