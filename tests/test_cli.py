@@ -119,6 +119,19 @@ def test_simulate_gives_no_delta_when_the_mpc_stalls(in_tmp):
     assert "delta fuel" not in result.stdout
 
 
+def test_the_table_counts_the_fallbacks_of_a_steep_climb(in_tmp):
+    # 6 % over 1 km: the DP finds no admissible path from about 200 m on; the rescue climbs.
+    assert run("road", "make", "hill", "--length-m", "1000", "--slope-pct", "6", "-o", "h6.csv").exit_code == 0
+    result = run("simulate", "--road", "h6.csv", "--out", "res")
+    assert result.exit_code == 0, result.stderr
+    mpc = json.loads((in_tmp / "res" / "summary.json").read_text())["mpc"]
+    assert mpc["fallback_relaxed"] + mpc["fallback_rescues"] > 0
+    lines = {line.split("  ")[0]: line.split()[-1] for line in result.stdout.splitlines()}
+    assert lines["relaxed solves driven"] == str(mpc["fallback_relaxed"])
+    assert lines["rescues"] == str(mpc["fallback_rescues"])
+    assert lines["rescue distance [m]"] == f"{mpc['fallback_rescue_m']:.0f}"
+
+
 # ---------------------------------------------------------------------------------------------
 # model stationary: tables B.1 (40 t) and B.2 (20 t) of the thesis, within 2 %.
 

@@ -159,6 +159,9 @@ _FIGURES = (
     ("compute time", "compute_time_s", "s", ".2f"),
     ("realtime ratio", "realtime_ratio", "", ".2e"),
     ("infeasible solves", "infeasible_solves", "", "d"),
+    ("relaxed solves driven", "fallback_relaxed", "", "d"),
+    ("rescues", "fallback_rescues", "", "d"),
+    ("rescue distance", "fallback_rescue_m", "m", ".0f"),
     ("solve time mean", "solve_ms_mean", "ms", ".3f"),
     ("solve time max", "solve_ms_max", "ms", ".3f"),
 )
