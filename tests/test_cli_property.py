@@ -140,7 +140,11 @@ def check_case(case: tuple[str, str, str | None, list[str]]) -> int:
     return result.exit_code
 
 
-@settings(max_examples=int(os.environ.get("TRUCKMPC_PROPERTY_EXAMPLES", "60")), deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(
+    max_examples=int(os.environ.get("TRUCKMPC_PROPERTY_EXAMPLES", "60")),
+    deadline=None,
+    suppress_health_check=[HealthCheck.too_slow],
+)
 @given(cli_case())
 def test_simulate_succeeds_completely_or_fails_with_one_error_line(case):
     event(f"exit {check_case(case)}")
