@@ -118,8 +118,10 @@ def read_rows(path: Path) -> list[dict[str, str]]:
         lambda line: line.replace(",false,", ",fals3,", 1),  # a stalled flag
         lambda line: line.replace(".", "x", 3),  # numbers
         lambda line: line[:30] + "\x00" + line[31:],  # a NUL byte
+        lambda line: line[:30] + "\x0c" + line[31:],  # a form feed: a line break to str.splitlines
+        lambda line: line[:30] + "\u2028" + line[31:],  # so is the Unicode line separator
     ],
-    ids=["flag", "number", "nul"],
+    ids=["flag", "number", "nul", "form-feed", "line-separator"],
 )
 def test_a_damaged_row_of_an_interrupted_sweep_is_dropped_and_run_again(in_tmp, damage):
     write_road(make_section("hill", 200, -3.0, lead_m=100, tail_m=100), in_tmp / "descent.csv")
@@ -138,6 +140,25 @@ def test_a_damaged_row_of_an_interrupted_sweep_is_dropped_and_run_again(in_tmp, 
     assert f"{PARTIAL_NAME}:3" in again.stderr
     assert "(3 rows: 1 MPC and 0 PI runs, 2 rows resumed)" in again.stdout
     assert read_rows(in_tmp / "sw" / "sweep.csv") == complete
+
+
+DEEP = "[" * 5000  # PyYAML composes nested collections recursively: a RecursionError, not a YAMLError
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["simulate", "--set", f"horizon_m={DEEP}"], ["--set horizon_m", "nested too deeply"]),
+        (["simulate", "--config", "deep.yaml"], ["deep.yaml", "nested too deeply"]),
+        (["sweep", "--road", "short.csv", "--grid", f"horizon_m={DEEP}", "--out", "sw"], ["--grid horizon_m"]),
+    ],
+    ids=["set", "config", "grid"],
+)
+def test_yaml_nested_too_deeply_is_one_error_line(in_tmp, short_road, args, words):
+    (in_tmp / "deep.yaml").write_text(f"horizon_m: {DEEP}\n")
+    result = run(*args, *(["--out", "res"] if args[0] == "simulate" else []))
+    assert_one_error_line(result, *words)
+    assert not (in_tmp / "res").exists() and not (in_tmp / "sw").exists()
 
 
 @pytest.mark.parametrize(

@@ -93,11 +93,15 @@ def test_force_runs_a_sweep_the_estimate_refuses(in_tmp, monkeypatch):
 
 
 def test_a_sweep_counts_the_memory_of_the_runs_it_holds_at_once(in_tmp, monkeypatch):
-    monkeypatch.setattr(sweep_run, "memory_limit_bytes", lambda: 200e6)  # one 150 MB DP fits, two do not
-    args = ["sweep", "--road", "short.csv", "--grid", "delta_kmh=0.01,0.2", "--out", "sw"]
+    # DPs of 150.3 MB (δ 0.01 km/h) and 124.2 MB (δ 0.011): either fits in 200 MB, both at once do not;
+    # the PI holds none, and a δ 0.2 DP (0.4 MB) beside the 150 MB one fits.
+    monkeypatch.setattr(sweep_run, "memory_limit_bytes", lambda: 200e6)
+    fits = run("sweep", "--road", "short.csv", "--grid", "delta_kmh=0.01,0.2", "--jobs", "2", "--out", "ok")
+    assert fits.exit_code == 0, fits.output
+    args = ["sweep", "--road", "short.csv", "--grid", "delta_kmh=0.01,0.011", "--out", "sw"]
     refused = run(*args, "--jobs", "2")
     assert refused.exit_code == 2, refused.output
-    assert refused.stderr.startswith("error: --grid: about 0.301 GB of memory for the dynamic program for 3 runs on 2")
+    assert refused.stderr.startswith("error: --grid: about 0.275 GB of memory for the dynamic program for 3 runs on 2")
     assert "(limit 0.2 GB, half this machine's)" in refused.stderr
     assert not (in_tmp / "sw").exists()
     single = run(*args, "--jobs", "1")

@@ -33,6 +33,8 @@ def received_signal() -> int | None:
 
 def _raise_interrupt(signum: int, frame: FrameType | None) -> None:
     global _received
+    if _received is not None:  # a second signal while the first one's cleanup runs: let it finish
+        return
     _received = signum
     raise KeyboardInterrupt
 

@@ -33,7 +33,7 @@ from truckmpc.config.keys import (
     overlay_path,
     unknown_key,
 )
-from truckmpc.config.yamlfile import load_value, read_mapping
+from truckmpc.config.yamlfile import load_value, read_mapping, show_value
 from truckmpc.errors import ConfigError
 
 PathLike = str | os.PathLike[str]
@@ -186,8 +186,9 @@ class _Layers:
         try:
             raw = load_value(raw_text)
         except yaml.YAMLError as err:
-            problem = getattr(err, "problem", None) or "syntax error"
-            raise ConfigError(f"{origin}: value {raw_text.strip()!r} is not valid YAML ({problem})") from None
+            problem = getattr(err, "problem", None) or str(err) or "syntax error"
+            shown = show_value(raw_text.strip())
+            raise ConfigError(f"{origin}: value {shown} is not valid YAML ({problem})") from None
         self.next_layer()
         self.put(key, raw, origin)
 

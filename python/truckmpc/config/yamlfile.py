@@ -65,6 +65,8 @@ def read_mapping(path: PathLike) -> tuple[dict[str, Any], str, dict[str, int]]:
         raise ConfigError(f"{where}{line}: invalid YAML: {err.problem or err.context}") from None
     except yaml.YAMLError as err:
         raise ConfigError(f"{where}: invalid YAML: {err}") from None
+    except RecursionError:  # PyYAML composes nested collections recursively
+        raise ConfigError(f"{where}: invalid YAML: nested too deeply") from None
     finally:
         loader.dispose()
     if data is None:
@@ -95,5 +97,7 @@ def load_value(text: str) -> Any:
     loader = _StrictLoader(text)
     try:
         return loader.get_single_data()
+    except RecursionError:
+        raise yaml.YAMLError("nested too deeply") from None
     finally:
         loader.dispose()

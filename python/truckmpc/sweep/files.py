@@ -72,15 +72,18 @@ def read_rows(path: Path, columns: Sequence[str]) -> list[tuple[int, list[str]]]
         text = path.read_bytes().decode("utf-8", errors="replace")
     except FileNotFoundError:
         return []
-    lines = text.splitlines(keepends=True)
-    if not lines:
+    # Only "\n" ends a line the sweep writes: splitlines() would also split a damaged line at a form
+    # feed or a U+2028 and stop reading there.
+    lines = [line + "\n" for line in text.split("\n")]
+    lines[-1] = lines[-1][:-1]  # what follows the last newline: a line cut short, or nothing
+    if not lines[0]:
         return []
     if next(csv.reader([lines[0]]), []) != list(columns):
         raise SweepError(f"{path}: its columns are not this sweep's; remove it or use another --out")
     rows = []
     for number, line in enumerate(lines[1:], start=2):
         if not line.endswith("\n"):
-            break
+            break  # cut short by an interruption
         try:
             cells = next(csv.reader([line]), [])
         except csv.Error:  # e.g. a NUL byte

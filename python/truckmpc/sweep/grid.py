@@ -66,7 +66,7 @@ def _list(where: str, spec: str) -> list[Any]:
     for item in spec.split(","):
         try:
             value = yaml.safe_load(item)
-        except yaml.YAMLError:
+        except (yaml.YAMLError, RecursionError):
             raise SweepError(f"{where}: value {item.strip()!r} is not a YAML scalar") from None
         if item.strip() == "" or isinstance(value, (list, dict)):
             raise SweepError(f"{where}: expected a comma list of scalar values, got {spec!r}")

@@ -132,14 +132,16 @@ def _to_stderr(text: str) -> None:
 
 def _check_work(plan: SweepPlan, tasks: Sequence[Task], jobs: int, force: bool) -> None:
     """Refuse, unless ``force``, tasks whose estimated wall time on ``jobs`` processes is beyond the
-    limit, or whose dynamic programs, ``jobs`` at a time, would hold more memory than the limit."""
+    limit, or whose largest dynamic programs, ``jobs`` of them at once, would hold more memory than
+    the limit."""
     if force or not tasks:
         return
     costs = [plan.rows[t.row].pi_cost if t.controller == "pi" else plan.rows[t.row].cost for t in tasks]
     at_once = max(1, min(jobs, len(tasks)))
     where = "--grid" if plan.axes else "sweep"
     runs = f"for {len(tasks)} runs on {jobs} process{'es' if jobs > 1 else ''}"
-    dp_bytes, limit_bytes = at_once * max(plan.rows[t.row].dp_bytes for t in tasks), memory_limit_bytes()
+    largest = sorted((plan.rows[t.row].dp_bytes for t in tasks if t.controller == "mpc"), reverse=True)
+    dp_bytes, limit_bytes = sum(largest[:at_once]), memory_limit_bytes()
     if dp_bytes > limit_bytes:
         raise WorkError(f"{where}: {too_big(dp_bytes, limit_bytes, runs)}")
     wall_s = max(sum(costs) / at_once, max(costs))
