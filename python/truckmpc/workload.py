@@ -71,7 +71,7 @@ class WorkError(TruckmpcError):
 @dataclass(frozen=True)
 class Work:
     """Estimated seconds of one run [s]: its plant integration and its dynamic programs; and the
-    memory its dynamic program holds [bytes] (0 for the PI)."""
+    memory its dynamic program holds [bytes]. A PI run's work is the plant part alone."""
 
     plant_s: float
     dp_s: float
@@ -91,9 +91,8 @@ def plant_steps(profile: RoadProfile, config: RunConfig) -> float:
 def solve_units(config: RunConfig) -> float:
     """DP units of one MPC solve: stages per solve × speed-grid points² per stage."""
     get = config.settings.get
-    stages = max(round(float(get("horizon_m")) / float(get("stage_m"))), 1)
     points = (float(get("v_inc_kmh")) + float(get("v_dec_kmh"))) / float(get("delta_kmh")) + 1
-    return stages * points**2
+    return config.settings.horizon_stages * points**2
 
 
 def dp_units(profile: RoadProfile, config: RunConfig) -> float:

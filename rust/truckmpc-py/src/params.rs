@@ -155,6 +155,12 @@ impl PySettings {
         self.inner.mpc.k_lim_stages()
     }
 
+    /// N, the stages of the MPC's horizon (round(horizon / S), at least 1).
+    #[getter]
+    fn horizon_stages(&self) -> usize {
+        self.inner.mpc.stages()
+    }
+
     /// Q2 with its default resolved (5 below δ = 0.15 km/h, else 7; table 6.2).
     #[getter]
     fn q_speed_below_weight(&self) -> f64 {
