@@ -25,6 +25,12 @@ class _StrictLoader(yaml.SafeLoader):
             raise yaml.composer.ComposerError(None, None, problem, event.start_mark)
         return super().compose_node(parent, index)
 
+    def get_single_node(self) -> yaml.Node | None:
+        try:
+            return super().get_single_node()
+        except RecursionError:  # PyYAML composes nested collections recursively
+            raise yaml.YAMLError("nested too deeply") from None
+
 
 def _construct_mapping(loader: _StrictLoader, node: yaml.MappingNode, deep: bool = False) -> dict[Any, Any]:
     seen: set[Any] = set()
@@ -65,8 +71,6 @@ def read_mapping(path: PathLike) -> tuple[dict[str, Any], str, dict[str, int]]:
         raise ConfigError(f"{where}{line}: invalid YAML: {err.problem or err.context}") from None
     except yaml.YAMLError as err:
         raise ConfigError(f"{where}: invalid YAML: {err}") from None
-    except RecursionError:  # PyYAML composes nested collections recursively
-        raise ConfigError(f"{where}: invalid YAML: nested too deeply") from None
     finally:
         loader.dispose()
     if data is None:
@@ -97,7 +101,5 @@ def load_value(text: str) -> Any:
     loader = _StrictLoader(text)
     try:
         return loader.get_single_data()
-    except RecursionError:
-        raise yaml.YAMLError("nested too deeply") from None
     finally:
         loader.dispose()

@@ -10,6 +10,7 @@ from typing import Any
 
 import yaml
 
+from truckmpc.config.yamlfile import load_value
 from truckmpc.sweep.columns import cell
 from truckmpc.sweep.errors import SweepError
 
@@ -65,8 +66,8 @@ def _list(where: str, spec: str) -> list[Any]:
     values = []
     for item in spec.split(","):
         try:
-            value = yaml.safe_load(item)
-        except (yaml.YAMLError, RecursionError):
+            value = load_value(item)
+        except yaml.YAMLError:
             raise SweepError(f"{where}: value {item.strip()!r} is not a YAML scalar") from None
         if item.strip() == "" or isinstance(value, (list, dict)):
             raise SweepError(f"{where}: expected a comma list of scalar values, got {spec!r}")
