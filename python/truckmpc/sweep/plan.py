@@ -20,12 +20,13 @@ import yaml
 
 from truckmpc import _core
 from truckmpc.config import SPEC_BY_KEY, Origin, RunConfig, load_run_config
+from truckmpc.config.yamlfile import load_value
 from truckmpc.errors import ConfigError
 from truckmpc.road import PathLike, RoadProfile, load_road
 from truckmpc.sweep.columns import SWEEP_COLUMNS, cell, yaml_text
 from truckmpc.sweep.errors import SweepError
 from truckmpc.sweep.grid import Axis, expand_grid, parse_axis
-from truckmpc.workload import check_trace, run_work
+from truckmpc.workload import Work, check_trace, run_work
 
 MAX_SWEEP_ROWS = 1_000_000
 """Most rows (roads × combinations) a sweep may have: its CSV is then about 0.4 GB, and planning
@@ -35,17 +36,19 @@ it takes about a minute; more is taken to be a typo in a range."""
 @dataclass(frozen=True)
 class Row:
     """One (road, combination) of a sweep: its place in grid order, its overrides, its PI key and
-    the estimated seconds of its MPC run and of its PI run, and the memory of its MPC's dynamic
-    program [bytes] (:mod:`truckmpc.workload`)."""
+    the estimated work of its MPC run (:mod:`truckmpc.workload`; its PI run's is the plant part)."""
 
     index: int
     road: int
     values: tuple[Any, ...]
     overrides: tuple[str, ...]
     pi_key: str
-    cost: float = 0.0
-    pi_cost: float = 0.0
-    dp_bytes: float = 0.0
+    work: Work
+
+    @property
+    def cost(self) -> float:
+        """Estimated seconds of the row's MPC run [s] (the longest are scheduled first)."""
+        return self.work.total_s
 
 
 @dataclass(frozen=True)
@@ -111,7 +114,7 @@ def plan_sweep(
             check_trace(profile, config)
         combos.append((values, texts, config, _section_values(config)))
     rows = [
-        _row(len(combos) * r + i, r, values, texts, _pi_key(r, sections), profile, config)
+        Row(len(combos) * r + i, r, values, texts, _pi_key(r, sections), run_work(profile, config, "mpc"))
         for r, profile in enumerate(profiles)
         for i, (values, texts, config, sections) in enumerate(combos)
     ]
@@ -163,21 +166,6 @@ def _profiles(roads: Sequence[RoadProfile | PathLike], reverse: bool) -> list[Ro
     return profiles
 
 
-def _row(
-    index: int,
-    road: int,
-    values: tuple[Any, ...],
-    texts: tuple[str, ...],
-    pi_key: str,
-    profile: RoadProfile,
-    config: RunConfig,
-) -> Row:
-    """A planned row with the estimated work of its runs."""
-    mpc = run_work(profile, config, "mpc")
-    pi_s = run_work(profile, config, "pi").total_s
-    return Row(index, road, values, texts, pi_key, mpc.total_s, pi_s, mpc.dp_bytes)
-
-
 def _check_size(axes: Sequence[Axis], roads: int) -> None:
     """Refuse more than :data:`MAX_SWEEP_ROWS` rows before expanding the grid."""
     combinations = math.prod(len(axis.values) for axis in axes)
@@ -216,7 +204,7 @@ class _Combinations:
 
     def _parse(self, raw: str) -> Any:
         if raw not in self._parsed:
-            self._parsed[raw] = yaml.safe_load(raw)
+            self._parsed[raw] = load_value(raw)
         return self._parsed[raw]
 
 

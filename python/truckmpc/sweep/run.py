@@ -136,11 +136,12 @@ def _check_work(plan: SweepPlan, tasks: Sequence[Task], jobs: int, force: bool) 
     the limit."""
     if force or not tasks:
         return
-    costs = [plan.rows[t.row].pi_cost if t.controller == "pi" else plan.rows[t.row].cost for t in tasks]
+    works = [(plan.rows[t.row].work, t.controller) for t in tasks]
+    costs = [work.plant_s if controller == "pi" else work.total_s for work, controller in works]
     at_once = max(1, min(jobs, len(tasks)))
     where = "--grid" if plan.axes else "sweep"
     runs = f"for {len(tasks)} runs on {jobs} process{'es' if jobs > 1 else ''}"
-    largest = sorted((plan.rows[t.row].dp_bytes for t in tasks if t.controller == "mpc"), reverse=True)
+    largest = sorted((work.dp_bytes for work, controller in works if controller == "mpc"), reverse=True)
     dp_bytes, limit_bytes = sum(largest[:at_once]), memory_limit_bytes()
     if dp_bytes > limit_bytes:
         raise WorkError(f"{where}: {too_big(dp_bytes, limit_bytes, runs)}")
