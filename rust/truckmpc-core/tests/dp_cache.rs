@@ -44,7 +44,7 @@ fn run(params: &DpSettings, caching: bool, road: &Road, vehicle: &Vehicle) -> Ve
 fn cached_and_uncached_solves_are_bit_identical() {
     let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
     let road = hilly_road();
-    for rule in [NeutralRule::Nearest, NeutralRule::Interpolate] {
+    for rule in [NeutralRule::Nearest, NeutralRule::Interpolate, NeutralRule::Quadratic] {
         let params = DpSettings {
             grid: GridAnchor::Fixed,
             neutral_rule: rule,

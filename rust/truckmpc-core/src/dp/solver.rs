@@ -902,12 +902,49 @@ impl NeutralJoin {
                     (to_go, nearest, counter_next[j0].min(counter_next[j0 + 1]))
                 }
             }
+            NeutralRule::Quadratic => match quadratic_to_go(x, (lo, hi), cost_next, counter_next) {
+                Some(found) => found,
+                None => return NONE,
+            },
         };
         if !to_go.is_finite() {
             return NONE;
         }
         (arc.cost + to_go, j as u32, counter)
     }
+}
+
+/// The cost-to-go at fractional grid index `x` (None outside the states `lo..=hi`)
+/// through the three states around the nearest one, as (cost-to-go, nearest index, smallest
+/// counter of the points used). At the ends of the states, or next to a state without a finite
+/// cost, the stencil falls back to the two points bracketing `x`, then to the nearest alone when
+/// `x` is within rounding of it; None when no finite cost brackets `x`.
+#[inline]
+fn quadratic_to_go(x: f64, (lo, hi): (u32, u32), cost: &[f64], counter: &[u32]) -> Option<(f64, usize, u32)> {
+    const TOL: f64 = 1e-9;
+    if x < lo as f64 - TOL || x > hi as f64 + TOL {
+        return None;
+    }
+    let x = x.clamp(lo as f64, hi as f64);
+    let j = (x + 0.5) as usize;
+    let t = x - j as f64; // in [-0.5, 0.5]
+    let (lo, hi) = (lo as usize, hi as usize);
+    if j > lo && j < hi && cost[j - 1].is_finite() && cost[j].is_finite() && cost[j + 1].is_finite() {
+        // Lagrange weights on (j - 1, j, j + 1) at offset t.
+        let (wm, w0, wp) = (0.5 * t * (t - 1.0), 1.0 - t * t, 0.5 * t * (t + 1.0));
+        let to_go = wm * cost[j - 1] + w0 * cost[j] + wp * cost[j + 1];
+        let c = counter[j - 1].min(counter[j]).min(counter[j + 1]);
+        return Some((to_go, j, c));
+    }
+    if t.abs() <= TOL {
+        return cost[j].is_finite().then_some((cost[j], j, counter[j]));
+    }
+    let j0 = if t < 0.0 { j - 1 } else { j };
+    if j0 < lo || j0 + 1 > hi || !cost[j0].is_finite() || !cost[j0 + 1].is_finite() {
+        return None;
+    }
+    let w = x - j0 as f64;
+    Some(((1.0 - w) * cost[j0] + w * cost[j0 + 1], j, counter[j0].min(counter[j0 + 1])))
 }
 
 /// What the first pass reads for one forward target gear.
@@ -1290,6 +1327,46 @@ mod tests {
         }
     }
 
+    /// The quadratic rule is exact on a quadratic cost-to-go wherever three states surround the
+    /// end speed; its error on a cubic is third order in the grid step (a quarter when it halves,
+    /// where linear interpolation's is second order, a half); at the ends and next to a state with
+    /// no finite cost it interpolates between the two bracketing states; outside it finds none.
+    #[test]
+    fn quadratic_neutral_join_is_exact_on_quadratics_and_third_order() {
+        let quad = |x: f64| 3.0 + 0.7 * x - 0.04 * x * x;
+        let cost: Vec<f64> = (0..40).map(|j| quad(j as f64)).collect();
+        let counter = vec![9u32; 40];
+        for t in 0..=200 {
+            let x = 2.0 + t as f64 * 0.17;
+            let (to_go, j, _) = quadratic_to_go(x, (0, 39), &cost, &counter).unwrap();
+            assert!((to_go - quad(x)).abs() < 1e-12, "x {x}: {to_go} vs {}", quad(x));
+            assert_eq!(j, (x + 0.5) as usize);
+        }
+        // A smooth non-quadratic on grids of step h: error at mid-cells shrinks with h³.
+        let error = |h: f64| {
+            let f = |v: f64| (0.3 * v).sin() + 0.02 * v * v * v;
+            let values: Vec<f64> = (0..400).map(|j| f(j as f64 * h)).collect();
+            let x = 5.0 / h + 0.37; // the same speed region at every h
+            (quadratic_to_go(x, (0, 399), &values, &vec![0; 400]).unwrap().0 - f(x * h)).abs()
+        };
+        let ratio = error(0.1) / error(0.05);
+        assert!(ratio > 6.0 && ratio < 10.0, "error ratio at half the step: {ratio}");
+        // Bracketing fallback: next to +∞, and at the ends of the states.
+        let mut holes = cost.clone();
+        holes[21] = INF;
+        let (to_go, _, _) = quadratic_to_go(19.8, (0, 39), &holes, &counter).unwrap();
+        assert!((to_go - (0.2 * cost[19] + 0.8 * cost[20])).abs() < 1e-12);
+        let (to_go, _, _) = quadratic_to_go(0.3, (0, 39), &cost, &counter).unwrap();
+        assert!((to_go - (0.7 * cost[0] + 0.3 * cost[1])).abs() < 1e-12);
+        assert!(quadratic_to_go(20.6, (0, 39), &holes, &counter).is_none());
+        assert!(quadratic_to_go(39.2, (0, 39), &cost, &counter).is_none());
+        assert!(quadratic_to_go(-0.2, (0, 39), &cost, &counter).is_none());
+        // The counter is the smallest among the points used.
+        let mut counters = counter.clone();
+        counters[11] = 2;
+        assert_eq!(quadratic_to_go(10.2, (0, 39), &cost, &counters).unwrap().2, 2);
+    }
+
     #[test]
     fn neutral_join_in_avx2_equals_the_scalar_join() {
         if Avx2Token::detect().is_none() {
@@ -1386,7 +1463,7 @@ mod tests {
 
     #[test]
     fn moving_grid_rows_from_the_cache_give_the_same_bits() {
-        for rule in [NeutralRule::Nearest, NeutralRule::Interpolate] {
+        for rule in [NeutralRule::Nearest, NeutralRule::Interpolate, NeutralRule::Quadratic] {
             let params = DpSettings {
                 grid: GridAnchor::Moving,
                 neutral_rule: rule,

@@ -13,6 +13,10 @@ choice_enum! {
         Nearest = "nearest",
         /// Interpolate the cost-to-go linearly between the two neighbouring grid points (unbiased).
         Interpolate = "interpolate",
+        /// Interpolate the cost-to-go through the three grid points around the end speed: exact
+        /// for a quadratic cost-to-go, so its error is third order in δ where linear
+        /// interpolation's is second order and one-signed on a convex cost-to-go.
+        Quadratic = "quadratic",
     }
 }
 
@@ -49,8 +53,8 @@ declare_params! {
         horizon_m: f64 = 1500.0, unit "m", range Range::positive_up_to(1e6);
         /// δ, step of the DP's speed grid.
         delta_kmh: f64 = 0.2, unit "km/h", range Range::positive_up_to(100.0);
-        /// ε, pedal tolerance: levels in [-ε, 1 + ε] are accepted and clipped to [0, 1].
-        epsilon: f64 = 0.1, unit "-", range Range::between(0.0, 1.0);
+        /// ε, pedal tolerance: levels in [-ε, 1 + ε] are accepted and clipped to [0, 1]; null = half a grid step δ of speed change.
+        epsilon: Option<f64> = Some(0.1), unit "-", range Range::between(0.0, 1.0);
         /// Least number of stages between two gear shifts; null = 200 m / S (table 6.1).
         k_lim: Option<u32> = None, unit "stages", range Range::between(1.0, 1e6);
         /// Lowest engine speed of a usable gear (5.7).
@@ -69,7 +73,7 @@ declare_params! {
         q_gear_shift: f64 = 15.0, unit "1/shift", range Range::between(0.0, 1e6);
         /// Q5, weight per unit brake level held over a stage.
         q_brake: f64 = 100.0, unit "-", range Range::between(0.0, 1e6);
-        /// Neutral arcs end on the nearest grid point or interpolate the cost-to-go.
+        /// Neutral arcs end on the nearest grid point, or interpolate the cost-to-go linearly or through the three nearest points.
         neutral_rule: NeutralRule = NeutralRule::Nearest, unit "-", range Range::ANY;
         /// Speed grid anchored at each stage's lower bound (moving, 5.8) or on multiples of δ (fixed).
         grid: GridAnchor = GridAnchor::Moving, unit "-", range Range::ANY;
