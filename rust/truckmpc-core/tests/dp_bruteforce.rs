@@ -69,11 +69,16 @@ impl Problem<'_> {
             return Some(p.q_fuel * fuel + p.q_speed_change * (v_i - v_end).abs() + shift);
         }
         let pedal = pedal_for_step(self.vehicle, v_i, v_j, g_j, self.slopes[k], h);
-        if pedal >= -p.epsilon && pedal <= 1.0 + p.epsilon {
+        // Without a value, ε is the pedal that moves the stage's end speed by half a grid step.
+        let epsilon = p.epsilon.unwrap_or_else(|| {
+            let at = |v_end: f64| pedal_for_step(self.vehicle, v_i, v_end, g_j, self.slopes[k], h);
+            at(v_i + 0.5 * delta) - at(v_i)
+        });
+        if pedal >= -epsilon && pedal <= 1.0 + epsilon {
             let fuel = stage_fuel_g(self.vehicle, v_i, pedal.clamp(0.0, 1.0), g_j, h);
             return Some(p.q_fuel * fuel + p.q_speed_change * (v_i - v_j).abs() + shift);
         }
-        if pedal < -p.epsilon && (v_j - v_max).abs() < delta * BRAKE_WINDOW {
+        if pedal < -epsilon && (v_j - v_max).abs() < delta * BRAKE_WINDOW {
             let brake = brake_for_step(self.vehicle, v_i, v_j, g_j, self.slopes[k], h);
             if (0.0..=1.0).contains(&brake) {
                 return Some(p.q_brake * brake + p.q_speed_change * (v_i - v_j).abs() + shift);
@@ -127,6 +132,7 @@ fn random_case(
     vehicle: &Vehicle,
     k_lim: u32,
     anchor: GridAnchor,
+    epsilon: Option<f64>,
 ) -> (DpSettings, InitialState, Vec<f64>) {
     let stages = 3 + (rng.next() * 4.0) as usize;
     let p = DpSettings {
@@ -136,6 +142,7 @@ fn random_case(
         k_lim,
         neutral_rule: NeutralRule::Nearest,
         grid: anchor,
+        epsilon,
         ..DpSettings::default()
     };
     let slopes: Vec<f64> = (0..stages).map(|_| rng.range(-0.04, 0.04)).collect();
@@ -156,11 +163,16 @@ fn grids_of(vehicle: &Vehicle, p: &DpSettings, start: InitialState, slopes: &[f6
 
 /// Runs `cases` random problems; returns (feasible cases, cases where the DP's cost is the optimum).
 fn check(k_lim: u32, anchor: GridAnchor, cases: usize, seed: u64) -> (usize, usize) {
+    check_with(k_lim, anchor, Some(0.1), cases, seed)
+}
+
+/// [`check`] with the pedal tolerance ε given (None: half a grid step of speed).
+fn check_with(k_lim: u32, anchor: GridAnchor, epsilon: Option<f64>, cases: usize, seed: u64) -> (usize, usize) {
     let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
     let mut rng = Rng(seed);
     let (mut feasible, mut equal) = (0, 0);
     for case in 0..cases {
-        let (p, start, slopes) = random_case(&mut rng, &vehicle, k_lim, anchor);
+        let (p, start, slopes) = random_case(&mut rng, &vehicle, k_lim, anchor, epsilon);
         let grids = grids_of(&vehicle, &p, start, &slopes);
         let problem =
             Problem { vehicle: &vehicle, p: &p, slopes: slopes.clone(), grids, start, memo: RefCell::default() };
@@ -208,6 +220,15 @@ fn dp_equals_enumeration_on_fixed_grid() {
     let (feasible, equal) = check(1, GridAnchor::Fixed, 150, 0x1234_5678_9ABC_DEF1);
     assert!(feasible > 100, "too few feasible cases: {feasible}");
     assert_eq!(equal, feasible);
+}
+
+#[test]
+fn dp_equals_enumeration_with_the_pedal_tolerance_of_half_a_grid_step() {
+    for (anchor, seed) in [(GridAnchor::Fixed, 0x0BAD_5EED_1234_5678), (GridAnchor::Moving, 0x5EED_0BAD_8765_4321)] {
+        let (feasible, equal) = check_with(1, anchor, None, 150, seed);
+        assert!(feasible > 100, "too few feasible cases: {feasible}");
+        assert_eq!(equal, feasible);
+    }
 }
 
 #[test]

@@ -57,3 +57,40 @@ fn fixed_grid_bounds_are_grid_speeds_below_v_max() {
     // The climb outlasts the horizon's end: the final bound falls below v_ref (the chain case).
     assert!(iv.lo[slopes.len()] < p.v_ref_mps());
 }
+
+/// With the pedal tolerance of half a grid step (ε without a value), the grid point nearest to the
+/// fuel-cut end speed is a state of stage 1 even when it lies below that speed: a row reaches it
+/// (clipped to zero pedal), so the search space must hold it. With the thesis's fixed ε the lower
+/// bound stays at the first grid speed at or above fuel cut.
+#[test]
+fn half_step_tolerance_keeps_the_grid_point_nearest_to_fuel_cut() {
+    use truckmpc_core::levels::brake_accel;
+    let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
+    let mut below = 0;
+    for epsilon in [None, Some(0.1)] {
+        for delta_kmh in [0.1, 0.4] {
+            let p = DpSettings { epsilon, allow_neutral: false, ..params(delta_kmh) };
+            let delta = p.delta_mps();
+            for step in 0..40 {
+                let v0 = (82.0 + 0.137 * step as f64) / 3.6;
+                let slope = -0.005;
+                let slopes = vec![slope; p.stages()];
+                let mut iv = Intervals::default();
+                intervals(&vehicle, &p, v0, &slopes, &mut iv);
+                // Fuel cut in the gear with the most engine drag among those usable at v0.
+                let (lo, hi) = truckmpc_core::dp::space::usable_gears(&vehicle, v0, p.n_min_rpm, p.n_max_rpm).unwrap();
+                let cut = (lo..=hi)
+                    .map(|g| brake_accel(&vehicle, v0, g, slope).step(v0, p.stage_m, 0.0))
+                    .fold(f64::INFINITY, f64::min);
+                let nearest = (cut / delta).round() * delta;
+                if epsilon.is_none() {
+                    assert!(iv.lo[1] <= nearest + 1e-9, "v0 {v0}: lower bound {} above {nearest}", iv.lo[1]);
+                    below += usize::from(nearest < cut);
+                } else {
+                    assert!(iv.lo[1] >= cut - 1e-9, "v0 {v0}: thesis bound {} below fuel cut {cut}", iv.lo[1]);
+                }
+            }
+        }
+    }
+    assert!(below > 10, "too few cases with the nearest point below fuel cut: {below}");
+}

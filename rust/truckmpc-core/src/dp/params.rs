@@ -17,8 +17,8 @@ pub struct DpSettings {
     pub horizon_m: f64,
     /// δ [km/h].
     pub delta_kmh: f64,
-    /// ε [-].
-    pub epsilon: f64,
+    /// ε [-]; None: half a grid step δ of speed change, per row ([`DpSettings::pedal_band`]).
+    pub epsilon: Option<f64>,
     /// v_ref [km/h].
     pub v_ref_kmh: f64,
     /// v_inc [km/h].
@@ -105,6 +105,19 @@ impl DpSettings {
     /// δ [m/s].
     pub fn delta_mps(&self) -> f64 {
         self.delta_kmh / 3.6
+    }
+
+    /// The pedal levels accepted (and clipped to [0, 1]) from `v_i_mps` when one unit of pedal
+    /// changes the end speed of a stage by `gain_mps2 · S / v_i` [m/s]: [−ε, 1 + ε], where ε
+    /// without a value is the pedal worth half a grid step δ, so that every stage reaches at least
+    /// one grid point and the clipping error vanishes as δ shrinks.
+    #[inline]
+    pub fn pedal_band(&self, v_i_mps: f64, gain_mps2: f64) -> (f64, f64) {
+        let e = match self.epsilon {
+            Some(e) => e,
+            None => 0.5 * self.delta_mps() * v_i_mps / (gain_mps2 * self.stage_m),
+        };
+        (-e, 1.0 + e)
     }
 
     /// v_ref [m/s].

@@ -109,11 +109,12 @@ fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64) -> Option<(Inputs, f64)
     let change = p.q_speed_change * (v_i - v_j).abs();
     if m.pedal.gain > 0.0 {
         let pedal = m.pedal.input_for(v_i, v_j, h);
-        if pedal >= -p.epsilon && pedal <= 1.0 + p.epsilon {
+        let (pedal_lo, pedal_hi) = p.pedal_band(v_i, m.pedal.gain);
+        if pedal >= pedal_lo && pedal <= pedal_hi {
             let clipped = pedal.clamp(0.0, 1.0);
             return Some((Inputs { pedal: clipped, brake: 0.0 }, p.q_fuel * m.full_fuel_g * clipped + change));
         }
-        if pedal > 1.0 + p.epsilon {
+        if pedal > pedal_hi {
             return None;
         }
     }
@@ -148,14 +149,15 @@ pub fn forward_row(
     let h = p.stage_m;
     let (mut first, mut last) = (i64::MAX, i64::MIN);
     let pedal_on = m.pedal.gain > 0.0;
+    let (pedal_lo, pedal_hi) = p.pedal_band(v_i, m.pedal.gain);
     if pedal_on {
-        first = grid.ceil(m.pedal.step(v_i, h, -p.epsilon));
-        last = grid.floor(m.pedal.step(v_i, h, 1.0 + p.epsilon));
+        first = grid.ceil(m.pedal.step(v_i, h, pedal_lo));
+        last = grid.floor(m.pedal.step(v_i, h, pedal_hi));
     }
     // Brake points lie within δ of v_max and below the pedal band (`pair` decides which qualify);
     // only a band that starts above v_max − δ leaves room for them.
     let v_max = p.v_max_mps();
-    let band_lo = if pedal_on { m.pedal.step(v_i, h, -p.epsilon) } else { f64::INFINITY };
+    let band_lo = if pedal_on { m.pedal.step(v_i, h, pedal_lo) } else { f64::INFINITY };
     if band_lo > v_max - p.delta_mps() {
         first = first.min(grid.floor(v_max - p.delta_mps()));
         last = last.max(grid.ceil(v_max + p.delta_mps()));
@@ -166,7 +168,6 @@ pub fn forward_row(
     // The terms of `pair`, evaluated in the same order.
     let (q_change, q_brake) = (p.q_speed_change, p.q_brake);
     let fuel_per_pedal = p.q_fuel * m.full_fuel_g;
-    let (pedal_lo, pedal_hi) = (-p.epsilon, 1.0 + p.epsilon);
     let window = p.delta_mps() * BRAKE_WINDOW;
     let (a_pedal, g_pedal) = (m.pedal.accel_at_zero, m.pedal.gain);
     let (a_brake, g_brake) = (m.brake.accel_at_zero, m.brake.gain);

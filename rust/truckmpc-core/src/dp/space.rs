@@ -210,6 +210,17 @@ impl IntervalMemo {
     }
 }
 
+/// How far beyond full pedal and fuel cut a stage's end speeds count as reached [m/s]: half a grid
+/// step when the pedal tolerance is half a grid step (ε without a value), where a row admits the
+/// grid points within that distance of its physical band; 0 with a fixed ε, as in the thesis.
+fn band_slack_mps(params: &DpSettings) -> f64 {
+    if params.epsilon.is_none() {
+        0.5 * params.delta_mps()
+    } else {
+        0.0
+    }
+}
+
 /// The thesis's forward step (5.4.2), bounds as continuous speeds [m/s].
 fn continuous_forward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, _]: [f64; 3], slope: f64) -> [f64; 2] {
     let (v_min, v_max) = (params.v_min_mps(), params.v_max_mps());
@@ -243,6 +254,7 @@ fn grid_forward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, _]: [f64; 3], s
     let top = grid.floor(v_max_mps);
     let (v_plus, v_plus_low) = full_pedal_speeds(vehicle, params, hi, slope);
     let v_minus = lowest_speed(vehicle, params, lo, slope);
+    let (v_plus, v_minus) = (v_plus + band_slack_mps(params), v_minus - band_slack_mps(params));
     let hi = grid.floor(v_plus).min(top);
     let lo = if v_plus >= v_min_mps { grid.ceil(v_minus.max(v_min_mps)) } else { grid.floor(v_plus_low) };
     [grid.speed(lo.min(hi)), grid.speed(hi)]
