@@ -34,6 +34,7 @@ from typer.core import TyperGroup
 from truckmpc import _core
 from truckmpc.bench import BENCH_HELP, bench_cmd
 from truckmpc.config import RunConfig, load_run_config
+from truckmpc.convergence import convergence_document, halved_configs, run_halves
 from truckmpc.errors import ConfigError, TruckmpcError
 from truckmpc.record import RunRequest, load_replay, run_record
 from truckmpc.results import check_run_dir, format_table, write_outputs
@@ -189,6 +190,14 @@ def simulate_cmd(
         typer.Option("--replay", metavar="SUMMARY", help="Rerun exactly what a summary.json records (road, settings)."),
     ] = None,
     force: ForceOpt = False,
+    check_convergence: Annotated[
+        bool,
+        typer.Option(
+            "--check-convergence",
+            help="Also run the MPC at half the speed step and at half the stage length, and report how far "
+            "delta fuel and delta time move (flagged beyond 0.3 points).",
+        ),
+    ] = False,
 ) -> None:
     """Run controllers over a road; print a short table, write DIR/summary.json and DIR/trace-<controller>.csv.
 
@@ -196,7 +205,8 @@ def simulate_cmd(
     A directory holding an earlier run is replaced whole.
     """
     if replay is not None:
-        given = [name for name, value in _run_options(road, controller, vehicle, config, set_, reverse) if value]
+        options = (road, controller, vehicle, config, set_, reverse, check_convergence)
+        given = [name for name, value in _run_options(*options) if value]
         if given:
             raise typer.BadParameter(
                 f"takes the whole run from {replay}; drop {', '.join(given)}", param_hint="'--replay'"
@@ -212,8 +222,9 @@ def simulate_cmd(
         chosen = BOTH if controller is None else controller.value
         names = ("pi", "mpc") if chosen == BOTH else (chosen,)
         inputs = (_text(vehicle), tuple(map(str, config or ())), tuple(set_ or ()))
-        request = RunRequest(_text(road), reverse, names, *inputs)
-    estimate_s = check_runs(profile, run_config, list(request.controllers), force=force)
+        request = RunRequest(_text(road), reverse, names, *inputs, check_convergence=check_convergence)
+    halves = _halved_configs(request, run_config)
+    estimate_s = check_runs(profile, run_config, list(request.controllers), force=force, extra=halves.values())
     out_dir = Path("out") / profile.name if out is None else out
     check_run_dir(out_dir)
     with stopping_on_signals():
@@ -222,16 +233,33 @@ def simulate_cmd(
             for name in request.controllers:
                 with status_line(f"{name}: driving {profile.name} (estimate for all: {duration(estimate_s)})"):
                     results[name] = simulate(profile, run_config, name)
-            written = write_outputs(out_dir, profile, results, run_record(request, profile, run_config))
+            extra = {}
+            if halves:
+                with status_line(f"mpc at half delta_kmh and half stage_m: driving {profile.name}"):
+                    extra["convergence"] = convergence_document(results, run_halves(profile, halves), halves)
+            written = write_outputs(out_dir, profile, results, run_record(request, profile, run_config), extra)
         except KeyboardInterrupt:
             raise Stopped("nothing written", received_signal()) from None
-    typer.echo(format_table(profile, results, run_config))
+    typer.echo(format_table(profile, results, run_config, extra.get("convergence")))
     typer.echo("wrote " + ", ".join(str(p) for p in written))
+
+
+def _halved_configs(request: RunRequest, config: RunConfig) -> dict[str, RunConfig]:
+    """The configurations of `--check-convergence` (none without it); it needs the MPC and its baseline."""
+    if not request.check_convergence:
+        return {}
+    if set(request.controllers) != {"pi", "mpc"}:
+        raise typer.BadParameter(
+            f"expected --controller both (the mpc against the pi), got {','.join(request.controllers)}",
+            param_hint="'--check-convergence'",
+        )
+    return halved_configs(config)
 
 
 def _run_options(*values: object) -> list[tuple[str, object]]:
     """The simulate options that --replay replaces, with the values given."""
-    return list(zip(("--road", "--controller", "--vehicle", "--config", "--set", "--reverse"), values, strict=True))
+    names = ("--road", "--controller", "--vehicle", "--config", "--set", "--reverse", "--check-convergence")
+    return list(zip(names, values, strict=True))
 
 
 def _text(path: Path | None) -> str | None:

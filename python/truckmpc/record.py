@@ -34,6 +34,8 @@ class RunRequest:
     vehicle_path: str | None = None
     config_paths: tuple[str, ...] = ()
     overrides: tuple[str, ...] = ()
+    check_convergence: bool = False
+    """Whether the MPC also ran at half δ and half S (`--check-convergence`)."""
 
 
 def program_version() -> str:
@@ -59,6 +61,7 @@ def run_record(request: RunRequest, profile: RoadProfile, config: RunConfig) -> 
             "reverse": request.reverse,
         },
         "controllers": list(request.controllers),
+        "check_convergence": request.check_convergence,
         "inputs": {
             "vehicle": request.vehicle_path,
             "configs": list(request.config_paths),
@@ -96,7 +99,10 @@ def load_replay(path: Path) -> tuple[RunRequest, RoadProfile, RunConfig]:
     controllers = tuple(_field(run, "controllers", list, f"{where}: run"))
     inputs = _field(run, "inputs", dict, f"{where}: run")
     given = (inputs.get("vehicle"), tuple(inputs.get("configs", ())), tuple(inputs.get("overrides", ())))
-    return RunRequest(road_path, reverse, controllers, *given), profile, config
+    check = run.get("check_convergence", False)
+    if not isinstance(check, bool):
+        raise ConfigError(f"{where}: run: key 'check_convergence': expected bool, got {type(check).__name__}")
+    return RunRequest(road_path, reverse, controllers, *given, check_convergence=check), profile, config
 
 
 def _field(doc: Mapping[str, Any], key: str, kind: type | tuple[type, ...], where: str) -> Any:

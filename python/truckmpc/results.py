@@ -26,6 +26,7 @@ import numpy as np
 
 from truckmpc.atomic import OutputDir
 from truckmpc.compare import compare
+from truckmpc.convergence import convergence_lines
 from truckmpc.errors import ConfigError
 from truckmpc.sim import TRACE_COLUMNS, RunResult
 from truckmpc.table import figure_lines, label_width
@@ -130,9 +131,11 @@ def write_outputs(
     road: RoadProfile,
     results: Mapping[str, RunResult],
     run: Mapping[str, Any] | None = None,
+    extra: Mapping[str, Any] | None = None,
 ) -> list[Path]:
     """Write ``summary.json`` and one ``trace-<controller>.csv`` per run into ``out_dir``, all or
-    nothing, replacing any earlier run there whole (see :func:`check_run_dir`).
+    nothing, replacing any earlier run there whole (see :func:`check_run_dir`). `extra` adds
+    top-level objects to the summary (``convergence``).
 
     Returns the paths written.
     """
@@ -140,7 +143,8 @@ def write_outputs(
     check_run_dir(out)
     names = ["summary.json"] + [f"trace-{name}.csv" for name in results]
     with OutputDir(out, replace=True) as staging:
-        text = json.dumps(_clean(summary_document(road, results, run)), indent=2, default=_json_default)
+        doc = {**summary_document(road, results, run), **(extra or {})}
+        text = json.dumps(_clean(doc), indent=2, default=_json_default)
         (staging / "summary.json").write_text(text + "\n", encoding="utf-8")
         for name, result in results.items():
             (staging / f"trace-{name}.csv").write_text(trace_csv(result), encoding="utf-8")
@@ -167,9 +171,15 @@ _FIGURES = (
 )
 
 
-def format_table(road: RoadProfile, results: Mapping[str, RunResult], config: RunConfig | None = None) -> str:
+def format_table(
+    road: RoadProfile,
+    results: Mapping[str, RunResult],
+    config: RunConfig | None = None,
+    convergence: Mapping[str, Any] | None = None,
+) -> str:
     """A short plain-text table of the runs' main figures, one column per controller; with the
-    configuration, its first line names the truck's mass, v_ref and the speed band."""
+    configuration, its first line names the truck's mass, v_ref and the speed band; with a
+    ``convergence`` object, how far the deltas move at half δ and half S."""
     names = list(results)
     doc = summary_document(road, results)
     lines = [f"road {road.name}: {road.length_m / M_PER_KM:.2f} km" + ("" if config is None else _setup(config))]
@@ -180,6 +190,8 @@ def format_table(road: RoadProfile, results: Mapping[str, RunResult], config: Ru
         if doc.get(key) is not None:
             lines.append(f"{key.replace('_pct', ' [%]').replace('_', ' '):<{width}}{doc[key]:>+14.2f}")
     lines += [text for key, text in doc.items() if key.startswith("not_comparable")]
+    if convergence is not None:
+        lines += convergence_lines(convergence, width)
     for name in names:
         if results[name].message:
             lines.append(f"{name}: {results[name].message}")

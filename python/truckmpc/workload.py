@@ -135,12 +135,21 @@ def check_trace(profile: RoadProfile, config: RunConfig) -> None:
         )
 
 
-def check_runs(profile: RoadProfile, config: RunConfig, controllers: Sequence[str], *, force: bool = False) -> float:
-    """The estimated seconds of running `controllers` one after another over `profile`; refuse,
-    unless `force`, beyond :data:`MAX_WORK_S` or a DP beyond :func:`memory_limit_bytes`, and a
-    trace beyond :data:`MAX_TRACE_ROWS` always."""
+def check_runs(
+    profile: RoadProfile,
+    config: RunConfig,
+    controllers: Sequence[str],
+    *,
+    force: bool = False,
+    extra: Iterable[RunConfig] = (),
+) -> float:
+    """The estimated seconds of running `controllers` one after another over `profile`, and the
+    MPC at each configuration of `extra` after them; refuse, unless `force`, beyond
+    :data:`MAX_WORK_S` or a DP beyond :func:`memory_limit_bytes`, and a trace beyond
+    :data:`MAX_TRACE_ROWS` always."""
     check_trace(profile, config)
     works = [run_work(profile, config, name) for name in controllers]
+    works += [run_work(profile, other, "mpc") for other in extra]
     total_s = sum(work.total_s for work in works)
     if force:
         return total_s

@@ -1,0 +1,111 @@
+"""The discretisation error of a look-ahead run: the MPC driven again at half the speed step δ and
+at half the stage length S, and how far Δfuel and Δtime against the baseline move.
+
+The halved runs solve the same problem at a finer resolution: the shift limit keeps its spacing in
+metres (k_lim doubled at S/2) and the speed-deficit weight Q2 keeps the value the run used (its
+default otherwise depends on δ). Weights charged per stage (Q2, Q5) still weigh twice as much per
+kilometre at S/2; that is the cost as defined, not rounding.
+
+``summary.json`` gets::
+
+    "convergence": {"delta_fuel_pct_half_delta": <points>, "delta_fuel_pct_half_stage": ...,
+                    "delta_time_pct_half_delta": ..., "delta_time_pct_half_stage": ...,
+                    "half_delta": {"delta_kmh", "delta_fuel_pct", "delta_time_pct", "fuel_kg", "time_s"},
+                    "half_stage": {"stage_m", "k_lim", ...},
+                    "flag_points": 0.3, "flagged": [<fields beyond it>]}
+
+Each ``*_half_*`` field is Δ at the halved setting minus Δ of the run, in percentage points; null
+(with ``not_comparable`` in the half's object) when a halved run is not comparable.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from truckmpc.compare import compare
+from truckmpc.config import RunConfig, config_from_values
+from truckmpc.road import RoadProfile
+from truckmpc.sim import RunResult, simulate
+
+FLAG_POINTS = 0.3
+"""A Δ that moves by more than this many percentage points at half δ or half S is flagged."""
+
+HALVES = ("half_delta", "half_stage")
+"""The halved settings, in the order they run."""
+
+
+def halved_configs(config: RunConfig) -> dict[str, RunConfig]:
+    """The run's configuration at δ/2 and at S/2, Q2 held at the run's value and k_lim at its
+    spacing in metres."""
+    settings = config.settings
+    values = settings.values()
+    pinned = {**values, "q_speed_below": settings.q_speed_below_weight}
+    where = "--check-convergence"
+    return {
+        "half_delta": config_from_values({**pinned, "delta_kmh": values["delta_kmh"] / 2}, where),
+        "half_stage": config_from_values(
+            {**pinned, "stage_m": values["stage_m"] / 2, "k_lim": 2 * settings.k_lim_stages}, where
+        ),
+    }
+
+
+def run_halves(road: RoadProfile, configs: Mapping[str, RunConfig]) -> dict[str, RunResult]:
+    """The MPC over `road` at each halved configuration."""
+    return {half: simulate(road, config, "mpc") for half, config in configs.items()}
+
+
+def convergence_document(
+    results: Mapping[str, RunResult], halves: Mapping[str, RunResult], configs: Mapping[str, RunConfig]
+) -> dict[str, Any]:
+    """The ``convergence`` object of ``summary.json`` from the run's PI and MPC results and the
+    halved MPC runs."""
+    base, mpc = results["pi"].summary, results["mpc"].summary
+    run = compare(base, mpc)
+    doc: dict[str, Any] = {}
+    objects: dict[str, dict[str, Any]] = {}
+    for half in HALVES:
+        summary = halves[half].summary
+        moved = compare(base, summary)
+        mpc_settings = configs[half].mpc
+        detail: dict[str, Any] = {
+            "delta_kmh": mpc_settings.delta_kmh,
+            "stage_m": mpc_settings.stage_m,
+            "k_lim": configs[half].settings.k_lim_stages,
+            "delta_fuel_pct": moved.delta_fuel_pct,
+            "delta_time_pct": moved.delta_time_pct,
+            "fuel_kg": summary["fuel_kg"],
+            "time_s": summary["time_s"],
+        }
+        reason = moved.not_comparable or run.not_comparable
+        if reason is not None:
+            detail["not_comparable"] = reason
+        for name, at_run, at_half in (
+            ("fuel", run.delta_fuel_pct, moved.delta_fuel_pct),
+            ("time", run.delta_time_pct, moved.delta_time_pct),
+        ):
+            doc[f"delta_{name}_pct_{half}"] = None if at_run is None or at_half is None else at_half - at_run
+        objects[half] = detail
+    moves = {key: value for key, value in doc.items() if value is not None}
+    doc.update(objects)
+    doc["flag_points"] = FLAG_POINTS
+    doc["flagged"] = [key for key, value in moves.items() if abs(value) > FLAG_POINTS]
+    return doc
+
+
+def convergence_lines(doc: Mapping[str, Any], width: int) -> list[str]:
+    """The printed table's lines for a ``convergence`` object: how far each Δ moves at the halved
+    setting (``delta fuel δ/2 [pts]``), flagged beyond :data:`FLAG_POINTS`, or why it is not
+    comparable."""
+    lines = []
+    for half, label in (("half_delta", "δ/2"), ("half_stage", "S/2")):
+        for name in ("fuel", "time"):
+            key = f"delta_{name}_pct_{half}"
+            value = doc[key]
+            text = f"delta {name} {label} [pts]"
+            if value is None:
+                lines.append(f"{text:<{width}}{'n/a':>14}  {doc[half].get('not_comparable', '')}")
+                continue
+            flag = f"  not converged (> {FLAG_POINTS} pts)" if key in doc["flagged"] else ""
+            lines.append(f"{text:<{width}}{value:>+14.2f}{flag}")
+    return lines

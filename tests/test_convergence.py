@@ -1,0 +1,96 @@
+"""`truckmpc simulate --check-convergence`: the MPC again at half δ and half S, and how far the
+deltas move, checked against runs made independently with the same settings through `--set`."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from truckmpc import load_road, load_run_config, simulate
+from truckmpc.cli import app
+
+runner = CliRunner()
+HILL = Path(__file__).resolve().parents[1] / "roads" / "hill_L500_A-3.csv"
+
+
+def run(*args: str):
+    return runner.invoke(app, [str(a) for a in args])
+
+
+@pytest.fixture(scope="module")
+def checked(tmp_path_factory):
+    """A --check-convergence run on the 500 m −3 % descent at δ 0.4 km/h, S 50 m."""
+    out = tmp_path_factory.mktemp("checked")
+    args = ["--road", HILL, "--set", "delta_kmh=0.4", "--set", "stage_m=50", "--set", "horizon_m=1000"]
+    result = run("simulate", *args, "--check-convergence", "--out", out)
+    assert result.exit_code == 0, result.stderr
+    return json.loads((out / "summary.json").read_text()), result.stdout, out
+
+
+def pct(value: float, base: float) -> float:
+    return (value - base) / base * 100
+
+
+def test_the_halved_runs_are_the_mpc_at_half_delta_and_half_stage_with_q2_and_the_shift_spacing_held(checked):
+    doc, _, _ = checked
+    road = load_road(HILL)
+    # δ 0.4 km/h resolves Q2 to 7 (table 6.2); the halved runs keep it, and k_lim keeps 200 m.
+    common = ["stage_m=50", "horizon_m=1000", "q_speed_below=7"]
+    expected = {
+        "half_delta": [*common, "delta_kmh=0.2"],
+        "half_stage": ["delta_kmh=0.4", "stage_m=25", "horizon_m=1000", "q_speed_below=7", "k_lim=8"],
+    }
+    for half, overrides in expected.items():
+        alone = simulate(road, load_run_config(overrides=overrides), "mpc").summary
+        assert doc["convergence"][half]["fuel_kg"] == alone["fuel_kg"]
+        assert doc["convergence"][half]["time_s"] == alone["time_s"]
+    assert doc["convergence"]["half_delta"]["delta_kmh"] == 0.2
+    assert (doc["convergence"]["half_stage"]["stage_m"], doc["convergence"]["half_stage"]["k_lim"]) == (25.0, 8)
+
+
+def test_each_move_is_the_halved_delta_minus_the_runs_delta_in_points(checked):
+    doc, _, _ = checked
+    conv = doc["convergence"]
+    fuel_pi, time_pi = doc["pi"]["fuel_kg"], doc["pi"]["time_s"]
+    for half in ("half_delta", "half_stage"):
+        fuel_move = pct(conv[half]["fuel_kg"], fuel_pi) - pct(doc["mpc"]["fuel_kg"], fuel_pi)
+        time_move = pct(conv[half]["time_s"], time_pi) - pct(doc["mpc"]["time_s"], time_pi)
+        assert conv[f"delta_fuel_pct_{half}"] == pytest.approx(fuel_move, abs=1e-9)
+        assert conv[f"delta_time_pct_{half}"] == pytest.approx(time_move, abs=1e-9)
+    moves = {k: v for k, v in conv.items() if k.startswith("delta_")}
+    assert len(moves) == 4
+    assert conv["flagged"] == [k for k, v in moves.items() if abs(v) > 0.3]
+
+
+def test_the_table_prints_each_move_and_flags_those_beyond_a_third_of_a_point(checked):
+    doc, stdout, _ = checked
+    conv = doc["convergence"]
+    # At δ 0.4 km/h and S 50 m this descent is far from converged: the coarse grid cannot coast.
+    assert abs(conv["delta_fuel_pct_half_delta"]) > 0.3
+    for label, key in (
+        ("delta fuel δ/2 [pts]", "delta_fuel_pct_half_delta"),
+        ("delta time S/2", "delta_time_pct_half_stage"),
+    ):
+        line = next(line for line in stdout.splitlines() if line.startswith(label))
+        assert f"{conv[key]:+.2f}" in line
+        assert ("not converged" in line) == (key in conv["flagged"])
+
+
+def test_replay_runs_the_check_again(checked, tmp_path):
+    doc, _, out = checked
+    result = run("simulate", "--replay", out / "summary.json", "--out", tmp_path / "again")
+    assert result.exit_code == 0, result.stderr
+    again = json.loads((tmp_path / "again" / "summary.json").read_text())
+    assert again["run"]["check_convergence"] is True
+    assert again["convergence"]["half_stage"]["fuel_kg"] == doc["convergence"]["half_stage"]["fuel_kg"]
+
+
+def test_the_check_needs_both_controllers(tmp_path):
+    result = run("simulate", "--road", HILL, "--controller", "mpc", "--check-convergence", "--out", tmp_path / "x")
+    assert result.exit_code == 2
+    assert result.stderr.strip().count("\n") == 0 and "--check-convergence" in result.stderr
+    assert "expected --controller both" in result.stderr
+    assert not (tmp_path / "x").exists()
