@@ -2,9 +2,11 @@
 at half the stage length S, and how far Δfuel and Δtime against the baseline move.
 
 The halved runs solve the same problem at a finer resolution: the shift limit keeps its spacing in
-metres (k_lim doubled at S/2) and the speed-deficit weight Q2 keeps the value the run used (its
-default otherwise depends on δ). Weights charged per stage (Q2, Q5) still weigh twice as much per
-kilometre at S/2; that is the cost as defined, not rounding.
+metres (k_lim doubled at S/2), weights given per kilometre (``q_speed_below_per_km``,
+``q_brake_per_km``) keep their value per kilometre, and a speed-deficit weight Q2 given per stage
+keeps the value the run used (its table 6.2 default depends on δ). Weights given per stage (the
+thesis's Q2 and Q5) weigh twice as much per kilometre at S/2; that is the cost as defined, not
+rounding.
 
 ``summary.json`` gets::
 
@@ -40,7 +42,10 @@ def halved_configs(config: RunConfig) -> dict[str, RunConfig]:
     spacing in metres."""
     settings = config.settings
     values = settings.values()
-    pinned = {**values, "q_speed_below": settings.q_speed_below_weight}
+    # Q2 given per kilometre scales with S by itself; per stage (or by the δ rule) it is held.
+    pinned = dict(values)
+    if values["q_speed_below_per_km"] is None:
+        pinned["q_speed_below"] = settings.q_speed_below_weight
     where = "--check-convergence"
     return {
         "half_delta": config_from_values({**pinned, "delta_kmh": values["delta_kmh"] / 2}, where),

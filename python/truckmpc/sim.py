@@ -123,8 +123,9 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
 
 
 def _mpc_settings(config: RunConfig) -> dict[str, Any]:
-    """The MPC's parameters as the DP takes them (k_lim and Q2 resolved), for its summary."""
+    """The MPC's parameters as the DP takes them (k_lim, Q2 and Q5 per stage resolved), for its summary."""
     params = {**config.mpc, **config.cruise}
     params["k_lim"] = config.settings.k_lim_stages
     params["q_speed_below"] = config.settings.q_speed_below_weight
+    params["q_brake"] = config.settings.q_brake_weight
     return {"settings": params}

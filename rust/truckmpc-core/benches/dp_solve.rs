@@ -44,9 +44,9 @@ fn hilly_road() -> Road {
     Road::new(distance, slope).expect("synthetic road is valid")
 }
 
-/// The declared defaults at one setting (k_lim and Q2 resolved by their table 6.1/6.2 rules).
+/// The thesis's controller at one setting (k_lim and Q2 resolved by their table 6.1/6.2 rules).
 fn params(stage_m: f64, delta_kmh: f64, horizon_m: f64, grid: GridAnchor) -> DpSettings {
-    let mpc = MpcParams { stage_m, horizon_m, delta_kmh, allow_neutral: true, grid, ..MpcParams::default() };
+    let mpc = MpcParams { stage_m, horizon_m, delta_kmh, allow_neutral: true, grid, ..MpcParams::thesis() };
     DpSettings::new(&mpc, &CruiseParams::default()).expect("benchmark parameters are valid")
 }
 

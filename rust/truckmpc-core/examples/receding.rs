@@ -28,7 +28,7 @@ fn main() {
         horizon_m: num(4, 3000.0),
         stage_m: num(5, 25.0),
         q_speed_below: 5.0,
-        ..DpSettings::default()
+        ..DpSettings::thesis()
     };
     let mut solver = Solver::new(p.clone());
     let mut scratch = Vec::new();

@@ -64,7 +64,7 @@ fn mpc_drives_a_hill_once_per_stage() {
     let vehicle = Arc::new(Vehicle::new(VehicleParams::default()).unwrap());
     let (road, altitude) = hill(0.03);
     let gears = GearLogic::new(&vehicle, &PiParams::default()).unwrap();
-    let mpc = MpcParams { horizon_m: 1000.0, delta_kmh: 0.2, ..MpcParams::default() };
+    let mpc = MpcParams { horizon_m: 1000.0, delta_kmh: 0.2, ..MpcParams::thesis() };
     let params = DpSettings::new(&mpc, &CruiseParams::default()).unwrap();
     let mut mpc = RecedingController::new(vehicle.clone(), params, gears);
     let out = run(&vehicle, &road, &altitude, &mut mpc, &SIM, 85.0).unwrap();

@@ -56,7 +56,7 @@ impl Problem<'_> {
     /// Cost of one transition (without the speed-deviation term), or None if inadmissible.
     fn transition(&self, k: usize, v_i: f64, g_i: usize, j: usize, g_j: usize) -> Option<f64> {
         let p = self.p;
-        let (h, delta, v_max) = (p.stage_m, p.delta_mps(), p.v_max_mps());
+        let (h, delta) = (p.stage_m, p.delta_mps());
         let v_j = self.grids[k + 1].speed(j, delta);
         let shift = if g_i != g_j { p.q_gear_shift } else { 0.0 };
         if g_j == NEUTRAL {
@@ -68,6 +68,24 @@ impl Problem<'_> {
             let fuel = stage_fuel_g(self.vehicle, v_i, 0.0, NEUTRAL, h);
             return Some(p.q_fuel * fuel + p.q_speed_change * (v_i - v_end).abs() + shift);
         }
+        let by_pedal_or_brake = self.pedal_or_brake(k, v_i, v_j, g_j).map(|cost| cost + shift);
+        if !p.fuel_cut_arcs {
+            return by_pedal_or_brake;
+        }
+        // Fuel cut in gear g_j, ending where the physics puts it, rounded like a neutral arc.
+        let v_end = brake_accel(self.vehicle, v_i, g_j, self.slopes[k]).step(v_i, h, 0.0);
+        let nearest = ((v_end - self.grids[k + 1].first_mps) / delta).round();
+        let by_arc = (nearest == j as f64).then(|| p.q_speed_change * (v_i - v_end).abs() + shift);
+        match (by_pedal_or_brake, by_arc) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        }
+    }
+
+    /// Cost of joining v_i to v_j in forward gear g_j by pedal or brake (no shift cost).
+    fn pedal_or_brake(&self, k: usize, v_i: f64, v_j: f64, g_j: usize) -> Option<f64> {
+        let p = self.p;
+        let (h, delta, v_max) = (p.stage_m, p.delta_mps(), p.v_max_mps());
         let pedal = pedal_for_step(self.vehicle, v_i, v_j, g_j, self.slopes[k], h);
         // Without a value, ε is the pedal that moves the stage's end speed by half a grid step.
         let epsilon = p.epsilon.unwrap_or_else(|| {
@@ -76,12 +94,12 @@ impl Problem<'_> {
         });
         if pedal >= -epsilon && pedal <= 1.0 + epsilon {
             let fuel = stage_fuel_g(self.vehicle, v_i, pedal.clamp(0.0, 1.0), g_j, h);
-            return Some(p.q_fuel * fuel + p.q_speed_change * (v_i - v_j).abs() + shift);
+            return Some(p.q_fuel * fuel + p.q_speed_change * (v_i - v_j).abs());
         }
         if pedal < -epsilon && (v_j - v_max).abs() < delta * BRAKE_WINDOW {
             let brake = brake_for_step(self.vehicle, v_i, v_j, g_j, self.slopes[k], h);
             if (0.0..=1.0).contains(&brake) {
-                return Some(p.q_brake * brake + p.q_speed_change * (v_i - v_j).abs() + shift);
+                return Some(p.q_brake * brake + p.q_speed_change * (v_i - v_j).abs());
             }
         }
         None
@@ -132,7 +150,7 @@ fn random_case(
     vehicle: &Vehicle,
     k_lim: u32,
     anchor: GridAnchor,
-    epsilon: Option<f64>,
+    (epsilon, fuel_cut_arcs): (Option<f64>, bool),
 ) -> (DpSettings, InitialState, Vec<f64>) {
     let stages = 3 + (rng.next() * 4.0) as usize;
     let p = DpSettings {
@@ -143,7 +161,8 @@ fn random_case(
         neutral_rule: NeutralRule::Nearest,
         grid: anchor,
         epsilon,
-        ..DpSettings::default()
+        fuel_cut_arcs,
+        ..DpSettings::thesis()
     };
     let slopes: Vec<f64> = (0..stages).map(|_| rng.range(-0.04, 0.04)).collect();
     let v0 = rng.range(80.0, 90.0) / 3.6;
@@ -163,16 +182,23 @@ fn grids_of(vehicle: &Vehicle, p: &DpSettings, start: InitialState, slopes: &[f6
 
 /// Runs `cases` random problems; returns (feasible cases, cases where the DP's cost is the optimum).
 fn check(k_lim: u32, anchor: GridAnchor, cases: usize, seed: u64) -> (usize, usize) {
-    check_with(k_lim, anchor, Some(0.1), cases, seed)
+    check_with(k_lim, anchor, (Some(0.1), false), cases, seed)
 }
 
-/// [`check`] with the pedal tolerance ε given (None: half a grid step of speed).
-fn check_with(k_lim: u32, anchor: GridAnchor, epsilon: Option<f64>, cases: usize, seed: u64) -> (usize, usize) {
+/// [`check`] with the pedal tolerance ε (None: half a grid step of speed) and whether fuel cut in a
+/// gear is also an exact arc.
+fn check_with(
+    k_lim: u32,
+    anchor: GridAnchor,
+    tolerance_and_arcs: (Option<f64>, bool),
+    cases: usize,
+    seed: u64,
+) -> (usize, usize) {
     let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
     let mut rng = Rng(seed);
     let (mut feasible, mut equal) = (0, 0);
     for case in 0..cases {
-        let (p, start, slopes) = random_case(&mut rng, &vehicle, k_lim, anchor, epsilon);
+        let (p, start, slopes) = random_case(&mut rng, &vehicle, k_lim, anchor, tolerance_and_arcs);
         let grids = grids_of(&vehicle, &p, start, &slopes);
         let problem =
             Problem { vehicle: &vehicle, p: &p, slopes: slopes.clone(), grids, start, memo: RefCell::default() };
@@ -225,7 +251,22 @@ fn dp_equals_enumeration_on_fixed_grid() {
 #[test]
 fn dp_equals_enumeration_with_the_pedal_tolerance_of_half_a_grid_step() {
     for (anchor, seed) in [(GridAnchor::Fixed, 0x0BAD_5EED_1234_5678), (GridAnchor::Moving, 0x5EED_0BAD_8765_4321)] {
-        let (feasible, equal) = check_with(1, anchor, None, 150, seed);
+        let (feasible, equal) = check_with(1, anchor, (None, false), 150, seed);
+        assert!(feasible > 100, "too few feasible cases: {feasible}");
+        assert_eq!(equal, feasible);
+    }
+}
+
+/// Fuel cut in a gear as an arc, rounded to the nearest grid point: the enumeration takes the
+/// cheaper of the arc and the pedal or brake into each grid point.
+#[test]
+fn dp_equals_enumeration_with_fuel_cut_arcs() {
+    for (anchor, tolerance, seed) in [
+        (GridAnchor::Fixed, None, 0x7777_1234_ABCD_0001),
+        (GridAnchor::Moving, Some(0.1), 0x7777_4321_DCBA_0002),
+        (GridAnchor::Fixed, Some(0.0), 0x7777_5555_AAAA_0003),
+    ] {
+        let (feasible, equal) = check_with(1, anchor, (tolerance, true), 150, seed);
         assert!(feasible > 100, "too few feasible cases: {feasible}");
         assert_eq!(equal, feasible);
     }

@@ -50,7 +50,7 @@ fn cached_and_uncached_solves_are_bit_identical() {
             neutral_rule: rule,
             horizon_m: 1500.0,
             delta_kmh: 0.2,
-            ..DpSettings::default()
+            ..DpSettings::thesis()
         };
         let with = run(&params, true, &road, &vehicle);
         let without = run(&params, false, &road, &vehicle);

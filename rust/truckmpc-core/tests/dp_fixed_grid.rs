@@ -12,7 +12,7 @@ fn climb(stages: usize, climb_from: usize, grade: f64) -> Vec<f64> {
 }
 
 fn params(delta_kmh: f64) -> DpSettings {
-    DpSettings { grid: GridAnchor::Fixed, delta_kmh, horizon_m: 3000.0, stage_m: 25.0, ..DpSettings::default() }
+    DpSettings { grid: GridAnchor::Fixed, delta_kmh, horizon_m: 3000.0, stage_m: 25.0, ..DpSettings::thesis() }
 }
 
 #[test]

@@ -161,9 +161,15 @@ impl PySettings {
         self.inner.mpc.stages()
     }
 
-    /// Q2 with its default resolved (5 below δ = 0.15 km/h, else 7; table 6.2).
+    /// Q2 per stage, resolved (q_speed_below, else q_speed_below_per_km × S, else table 6.2).
     #[getter]
     fn q_speed_below_weight(&self) -> f64 {
         self.inner.mpc.q_speed_below_weight()
+    }
+
+    /// Q5 per stage, resolved (q_brake, else q_brake_per_km × S).
+    #[getter]
+    fn q_brake_weight(&self) -> f64 {
+        self.inner.mpc.q_brake_weight()
     }
 }

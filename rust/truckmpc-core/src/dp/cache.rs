@@ -199,8 +199,8 @@ fn transpose(rows: &[(RowSpan, usize); LANES], row_costs: &[f64], costs: &mut Ve
     Block { first: first as i32, steps: steps as u32, offset: offset as u32, spans, reach }
 }
 
-/// A neutral arc from one source speed: where it ends and the part of its cost that does not
-/// depend on the cost-to-go (fuel and speed change). `repr(C)`: the solver loads four arcs as two
+/// A neutral arc (or a fuel-cut arc in a gear) from one source speed: where it ends and the part
+/// of its cost that does not depend on the cost-to-go (fuel and speed change). `repr(C)`: the solver loads four arcs as two
 /// pairs of (end speed, cost).
 #[derive(Debug, Clone, Copy, Default)]
 #[repr(C)]
@@ -238,6 +238,8 @@ pub struct StageRows {
     /// Indexed by gear; entry 0 (neutral) is unused.
     gears: Vec<GearBlocks>,
     pub neutral: Keyed<NeutralArc>,
+    /// Fuel-cut arcs per forward gear (entry 0 unused), when the settings use them.
+    cut: Vec<Keyed<NeutralArc>>,
 }
 
 impl StageRows {
@@ -249,6 +251,18 @@ impl StageRows {
             rows.costs.clear();
         }
         self.neutral.clear();
+        for arcs in &mut self.cut {
+            arcs.clear();
+        }
+    }
+
+    /// The fuel-cut arcs in forward `gear`.
+    #[inline]
+    pub fn cut(&mut self, gear: usize) -> &mut Keyed<NeutralArc> {
+        if self.cut.len() <= gear {
+            self.cut.resize_with(gear + 1, Keyed::default);
+        }
+        &mut self.cut[gear]
     }
 
     /// The row blocks towards forward `gear`.

@@ -33,15 +33,17 @@ pub struct DpSettings {
     pub n_max_rpm: f64,
     /// Neutral allowed.
     pub allow_neutral: bool,
+    /// Fuel cut in a forward gear as an exact arc, joined like neutral arcs.
+    pub fuel_cut_arcs: bool,
     /// Q1 [1/g].
     pub q_fuel: f64,
-    /// Q2 [1/(m/s)²], resolved.
+    /// Q2 per stage [1/(m/s)²], resolved.
     pub q_speed_below: f64,
     /// Q3 [1/(m/s)].
     pub q_speed_change: f64,
     /// Q4 [1/shift].
     pub q_gear_shift: f64,
-    /// Q5 [-].
+    /// Q5 per stage [-], resolved.
     pub q_brake: f64,
     /// Neutral arcs' rule.
     pub neutral_rule: NeutralRule,
@@ -52,13 +54,18 @@ pub struct DpSettings {
 }
 
 impl Default for DpSettings {
-    /// The declared defaults (tables 6.1 and 6.2 at S = 25 m, δ = 0.2 km/h).
+    /// The declared defaults.
     fn default() -> Self {
         Self::resolve(&MpcParams::default(), &CruiseParams::default())
     }
 }
 
 impl DpSettings {
+    /// The settings of the thesis's controller ([`MpcParams::thesis`]) in the default cruise band.
+    pub fn thesis() -> Self {
+        Self::resolve(&MpcParams::thesis(), &CruiseParams::default())
+    }
+
     /// Validate `mpc` and `cruise` (ranges and checks between keys) and resolve the defaults.
     pub fn new(mpc: &MpcParams, cruise: &CruiseParams) -> CoreResult<Self> {
         mpc.check_ranges()?;
@@ -80,11 +87,12 @@ impl DpSettings {
             n_min_rpm: mpc.n_min_rpm,
             n_max_rpm: mpc.n_max_rpm,
             allow_neutral: mpc.allow_neutral,
+            fuel_cut_arcs: mpc.fuel_cut_arcs,
             q_fuel: mpc.q_fuel,
             q_speed_below: mpc.q_speed_below_weight(),
             q_speed_change: mpc.q_speed_change,
             q_gear_shift: mpc.q_gear_shift,
-            q_brake: mpc.q_brake,
+            q_brake: mpc.q_brake_weight(),
             neutral_rule: mpc.neutral_rule,
             grid: mpc.grid,
             on_infeasible: mpc.on_infeasible,

@@ -299,7 +299,7 @@ mod tests {
     #[test]
     fn rows_hold_the_costs_of_pair() {
         let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
-        let p = DpSettings::default();
+        let p = DpSettings::thesis();
         let mut out = vec![1.0; 3];
         for (s, slope) in [-0.06, -0.03, -0.01, 0.0, 0.01, 0.03, 0.06].into_iter().enumerate() {
             let torque = vehicle.slope_torque_nm(slope);

@@ -145,14 +145,29 @@ impl Choices {
     }
 }
 
-/// The decision stored for a state: the next state (grid index, gear). `repr(C)`: the AVX2
-/// second pass writes it as one u32, j in the low half and the gear in the byte above.
+/// The decision stored for a state: the next state (grid index, gear) and whether the stage is
+/// driven as a fuel-cut arc. `repr(C)`: the AVX2 second pass writes it as one u32, j in the low
+/// half, the gear in the byte above and the top byte of the choice's index (its [`ARC`] flag) last.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 #[repr(C)]
 struct Decision {
     j: u16,
     gear: u8,
+    arc: u8,
 }
+
+impl Decision {
+    /// The decision for a choice's next-grid index `j` (with its [`ARC`] flag) into `gear`.
+    #[inline]
+    fn new(j: u32, gear: u32) -> Self {
+        Decision { j: j as u16, gear: gear as u8, arc: (j >> 24) as u8 }
+    }
+}
+
+/// Flag on a choice's next-grid index (`all_j`, `shift_j`): the way into the target gear is its
+/// fuel-cut arc, whose end speed is off the grid and whose control is zero pedal and brake; the
+/// index is the grid point nearest to the arc's end. Grid indices stay below 2^16.
+const ARC: u32 = 1 << 24;
 
 /// One stage's grid: speeds of grid indices `first..first + count` of `index`.
 #[derive(Debug, Clone, Copy)]
@@ -516,6 +531,19 @@ impl Solver {
                 shift_j: &mut ch.shift_j[span],
             };
             transitions += gear_pass_dispatch(&pass, choices);
+            if p.fuel_cut_arcs {
+                let arcs = stage.cut(g);
+                arcs.fill(key_lo, key_hi, |key| cut_arc(p, vehicle, here.index.speed(key), g, slope_torque));
+                let block = g * stride(next.count) + PAD;
+                let (cost_next, counter_next) = (&self.cost_next[block..], &self.counter_next[block..]);
+                let join = NeutralJoin::new(p, next, (lo, hi));
+                let slot0 = out + (key_lo - ch.base_key) as usize;
+                for (at, arc) in (slot0..).zip(arcs.get(key_lo, key_hi)) {
+                    let (cost, j, _) = join.join(arc, cost_next, counter_next);
+                    better_by_arc(cost, j, counter_next[j as usize] >= p.k_lim, ch, at);
+                }
+                transitions += (key_hi - key_lo + 1) as usize;
+            }
         }
         transitions
     }
@@ -630,7 +658,7 @@ impl Solver {
             let d = self.decisions[self.offsets[k] + g * self.grids[k].count + i];
             let (next_i, next_g) = (d.j as usize, d.gear as usize);
             let v_next = self.grids[k + 1].speed(next_i);
-            let (pedal, brake) = if next_g == NEUTRAL {
+            let (pedal, brake) = if next_g == NEUTRAL || d.arc != 0 {
                 (0.0, 0.0)
             } else {
                 let u = inputs(vehicle, &self.params, v, v_next, next_g, self.slope_torques[k])
@@ -718,7 +746,7 @@ fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(
         let (best_cost, decision, counter) = if shift_cost < stay_cost {
             let shift_gear = if own { input.second_gear[t] } else { input.first_gear[t] };
             let j = input.shift_j[shift_gear as usize * input.width + input.slot0 + t];
-            (shift_cost, Decision { j: j as u16, gear: shift_gear as u8 }, 1)
+            (shift_cost, Decision::new(j, shift_gear), 1)
         } else {
             let j = if STAYS { input.all_j[t] } else { 0 };
             let carried = if !STAYS || !(stay_cost < INF) {
@@ -726,9 +754,9 @@ fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(
             } else if NEUTRAL_STATE {
                 input.neutral_counter[t]
             } else {
-                input.counter_next[j as usize]
+                input.counter_next[(j & !ARC) as usize]
             };
-            (stay_cost, Decision { j: j as u16, gear: input.gear as u8 }, carried.saturating_add(1).min(u32::MAX / 2))
+            (stay_cost, Decision::new(j, input.gear), carried.saturating_add(1).min(u32::MAX / 2))
         };
         let total = best_cost + input.penalty[t];
         out.cost[t] = total;
@@ -779,7 +807,9 @@ unsafe fn decide_staying_avx2(input: &StateIn, out: &mut StateOut) -> (usize, bo
     let k_lim = _mm_set1_epi32(input.k_lim as i32);
     let width = _mm_set1_epi32(input.width as i32);
     let lanes = _mm_setr_epi32(0, 1, 2, 3);
-    let low16 = _mm_set1_epi32(0xffff);
+    // A choice's index in the low half and its flag byte on top, the gear going in between.
+    let index_and_flag = _mm_set1_epi32(0xff00_ffff_u32 as i32);
+    let arc = _mm_set1_epi32(ARC as i32);
     let low8 = _mm_set1_epi32(0xff);
     // Gathers read only where the scalar loop reads; indices are clamped into the slices anyway.
     let last_counter = _mm_set1_epi32(input.counter_next.len().saturating_sub(1) as i32);
@@ -815,7 +845,7 @@ unsafe fn decide_staying_avx2(input: &StateIn, out: &mut StateOut) -> (usize, bo
         let carried = _mm_mask_i32gather_epi32::<4>(
             _mm_setzero_si128(),
             input.counter_next.as_ptr().cast(),
-            _mm_min_epu32(all_j, last_counter),
+            _mm_min_epu32(_mm_andnot_si128(arc, all_j), last_counter),
             _mm_andnot_si128(take32, finite32),
         );
         let stay_counter = _mm_min_epu32(_mm_add_epi32(_mm_min_epu32(carried, below_max), one), half);
@@ -835,7 +865,8 @@ unsafe fn decide_staying_avx2(input: &StateIn, out: &mut StateOut) -> (usize, bo
         let shift_j = _mm_mask_i32gather_epi32::<4>(_mm_setzero_si128(), input.shift_j.as_ptr().cast(), at, take32);
         let j = _mm_blendv_epi8(all_j, shift_j, take32);
         let next_gear = _mm_blendv_epi8(gear, shift_gear, take32);
-        let decision = _mm_or_si128(_mm_and_si128(j, low16), _mm_slli_epi32::<16>(_mm_and_si128(next_gear, low8)));
+        let decision =
+            _mm_or_si128(_mm_and_si128(j, index_and_flag), _mm_slli_epi32::<16>(_mm_and_si128(next_gear, low8)));
         _mm_storeu_si128(out.decision.as_mut_ptr().add(t).cast(), decision);
         t += 4;
     }
@@ -849,6 +880,26 @@ fn neutral_arc(p: &DpSettings, vehicle: &Vehicle, v_i_mps: f64, slope_torque: f6
     let v_end_mps = brake_accel_on(vehicle, v_i_mps, NEUTRAL, slope_torque).step(v_i_mps, h, 0.0);
     let fuel = stage_fuel_g(vehicle, v_i_mps, 0.0, NEUTRAL, h);
     NeutralArc { v_end_mps, cost: p.q_fuel * fuel + p.q_speed_change * (v_i_mps - v_end_mps).abs() }
+}
+
+/// The fuel-cut arc from `v_i_mps` in forward `gear` on a stage: zero pedal and brake, the
+/// engine's drag braking; no fuel (as a row at zero pedal), the speed-change cost only.
+fn cut_arc(p: &DpSettings, vehicle: &Vehicle, v_i_mps: f64, gear: usize, slope_torque: f64) -> NeutralArc {
+    let v_end_mps = brake_accel_on(vehicle, v_i_mps, gear, slope_torque).step(v_i_mps, p.stage_m, 0.0);
+    let fuel = stage_fuel_g(vehicle, v_i_mps, 0.0, gear, p.stage_m);
+    NeutralArc { v_end_mps, cost: p.q_fuel * fuel + p.q_speed_change * (v_i_mps - v_end_mps).abs() }
+}
+
+/// Let a fuel-cut arc of cost `cost` (cost-to-go included) to grid point `j` take choice slot `at`
+/// where it is strictly cheaper, and the shift choice too when its continuation allows a shift.
+#[inline]
+fn better_by_arc(cost: f64, j: u32, shiftable: bool, ch: &mut Choices, at: usize) {
+    if cost < ch.all_cost[at] {
+        (ch.all_cost[at], ch.all_j[at]) = (cost, j | ARC);
+    }
+    if shiftable && cost < ch.shift_cost[at] {
+        (ch.shift_cost[at], ch.shift_j[at]) = (cost, j | ARC);
+    }
 }
 
 /// Joins neutral arcs to the next grid by the configured rule, within the neutral states' index
@@ -1289,8 +1340,10 @@ mod tests {
             let second_gear: Vec<u32> = second_cost.iter().map(|&c| gear_of(c)).collect();
             let counter_next: Vec<u32> =
                 (0..40).map(|_| [0, 1, 2, 7, 8, 9, u32::MAX / 2, u32::MAX - 1, u32::MAX][next(9) as usize]).collect();
-            let all_j: Vec<u32> = (0..m).map(|_| next(40) as u32).collect();
-            let shift_j: Vec<u32> = (0..width * gears).map(|_| next(1000) as u32).collect();
+            // Some choices are fuel-cut arcs, flagged on their index.
+            let mut index = |n: u64| next(n) as u32 | if next(3) == 0 { ARC } else { 0 };
+            let all_j: Vec<u32> = (0..m).map(|_| index(40)).collect();
+            let shift_j: Vec<u32> = (0..width * gears).map(|_| index(1000)).collect();
             let penalty: Vec<f64> = (0..m).map(|_| next(5) as f64 * 0.25).collect();
             let neutral_counter = vec![0; m];
             let run = |avx2: Option<Avx2Token>| {
@@ -1469,7 +1522,7 @@ mod tests {
                 neutral_rule: rule,
                 horizon_m: 1500.0,
                 delta_kmh: 0.2,
-                ..DpSettings::default()
+                ..DpSettings::thesis()
             };
             let with = receding(&params, true);
             let without = receding(&params, false);

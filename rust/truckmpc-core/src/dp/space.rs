@@ -125,7 +125,8 @@ pub fn intervals_from_stage(
     out.lo.push(v0_mps);
     out.hi.push(v0_mps);
     for (k, &slope) in slopes.iter().enumerate() {
-        let input = [out.lo[k], out.hi[k], 0.0];
+        // The third input says whether lo is a widened bound (every stage but the start's).
+        let input = [out.lo[k], out.hi[k], if k > 0 { 1.0 } else { 0.0 }];
         let [lo, hi] = match &mut memo {
             Some((stage, memo)) => {
                 memo.forward.get(*stage + k as u64, slope, input, |x| forward(vehicle, params, x, slope))
@@ -155,8 +156,8 @@ pub fn intervals_from_stage(
     }
 }
 
-/// One step of a pass: (inputs, slope) to outputs. Forward: [lo, hi, _] of stage k to [lo, hi] of
-/// stage k + 1; backward: [lo, hi, lo of stage k + 1] of stage k to its new lo.
+/// One step of a pass: (inputs, slope) to outputs. Forward: [lo, hi, 1 if lo was widened below
+/// fuel cut else 0] of stage k to [lo, hi] of stage k + 1; backward: [lo, hi, lo of stage k + 1] of stage k to its new lo.
 type StepFn<const N: usize> = fn(&Vehicle, &DpSettings, [f64; 3], f64) -> [f64; N];
 
 /// Steps of one pass remembered per absolute stage (a ring over the horizon's stages).
@@ -210,11 +211,14 @@ impl IntervalMemo {
     }
 }
 
-/// How far beyond full pedal and fuel cut a stage's end speeds count as reached [m/s]: half a grid
-/// step when the pedal tolerance is half a grid step (ε without a value), where a row admits the
-/// grid points within that distance of its physical band; 0 with a fixed ε, as in the thesis.
+/// How far below fuel cut a stage's end speeds count as reached on a fixed grid [m/s]: a grid step
+/// with fuel-cut arcs, so that the grid points around any arc's end are states; half a step when
+/// the pedal tolerance is half a grid step (ε without a value), where a row admits the grid point
+/// within that distance below fuel cut; 0 with a fixed ε, as in the thesis.
 fn band_slack_mps(params: &DpSettings) -> f64 {
-    if params.epsilon.is_none() {
+    if params.fuel_cut_arcs {
+        params.delta_mps()
+    } else if params.epsilon.is_none() {
         0.5 * params.delta_mps()
     } else {
         0.0
@@ -247,14 +251,17 @@ fn index_of(params: &DpSettings, v_mps: f64) -> i64 {
 /// stage k + 1 is the highest grid speed that full pedal reaches from the top of stage k. Rounding
 /// continuous bounds instead breaks the chain on long climbs: the last stage's bound (the end of
 /// the continuous full-pedal chain) then lies above what any grid path can reach.
-fn grid_forward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, _]: [f64; 3], slope: f64) -> [f64; 2] {
+fn grid_forward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, widened]: [f64; 3], slope: f64) -> [f64; 2] {
     let (v_min_mps, v_max_mps) = (params.v_min_mps(), params.v_max_mps());
     // Multiples of δ: index i is the speed i·δ [m/s].
     let grid = GridIndex { origin_mps: 0.0, delta_mps: params.delta_mps() };
     let top = grid.floor(v_max_mps);
     let (v_plus, v_plus_low) = full_pedal_speeds(vehicle, params, hi, slope);
-    let v_minus = lowest_speed(vehicle, params, lo, slope);
-    let (v_plus, v_minus) = (v_plus + band_slack_mps(params), v_minus - band_slack_mps(params));
+    // The slack widens each stage's bound once: the chain of bounds continues from the bound
+    // without it (else it would compound over the horizon). Only below: above, a final bound
+    // raised to v_ref on a climb would then lie beyond every grid path.
+    let slack = band_slack_mps(params);
+    let v_minus = lowest_speed(vehicle, params, lo + widened * slack, slope) - slack;
     let hi = grid.floor(v_plus).min(top);
     let lo = if v_plus >= v_min_mps { grid.ceil(v_minus.max(v_min_mps)) } else { grid.floor(v_plus_low) };
     [grid.speed(lo.min(hi)), grid.speed(hi)]

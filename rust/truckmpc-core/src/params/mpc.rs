@@ -41,6 +41,9 @@ choice_enum! {
     }
 }
 
+/// Metres per kilometre, for the weights given per kilometre.
+const M_PER_KM: f64 = 1000.0;
+
 /// Table 6.1: the shift limit k_lim is chosen so that S · k_lim = 200 m.
 pub const SHIFT_SPACING_M: f64 = 200.0;
 
@@ -65,14 +68,20 @@ declare_params! {
         allow_neutral: bool = true, unit "-", range Range::ANY;
         /// Q1, weight per gram of fuel.
         q_fuel: f64 = 2.0, unit "1/g", range Range::between(0.0, 1e6);
-        /// Q2, weight per (m/s)² below v_ref; null = 5 if δ < 0.15 km/h else 7 (table 6.2).
+        /// Q2 per stage, weight per (m/s)² below v_ref at each stage's start; null = q_speed_below_per_km × S, or without it 5 if δ < 0.15 km/h else 7 (table 6.2).
         q_speed_below: Option<f64> = None, unit "1/(m/s)^2", range Range::between(0.0, 1e6);
+        /// Q2 per kilometre driven, so that S is a resolution of one cost (used when q_speed_below is null).
+        q_speed_below_per_km: Option<f64> = None, unit "1/((m/s)^2 km)", range Range::between(0.0, 1e9);
         /// Q3, weight per m/s of speed change over a stage.
         q_speed_change: f64 = 15.0, unit "1/(m/s)", range Range::between(0.0, 1e6);
         /// Q4, weight per gear shift.
         q_gear_shift: f64 = 15.0, unit "1/shift", range Range::between(0.0, 1e6);
-        /// Q5, weight per unit brake level held over a stage.
-        q_brake: f64 = 100.0, unit "-", range Range::between(0.0, 1e6);
+        /// Q5 per stage, weight per unit brake level held over a stage; null = q_brake_per_km × S.
+        q_brake: Option<f64> = Some(100.0), unit "-", range Range::between(0.0, 1e6);
+        /// Q5 per kilometre, weight per unit brake level held over a kilometre (used when q_brake is null).
+        q_brake_per_km: Option<f64> = None, unit "1/km", range Range::between(0.0, 1e9);
+        /// Fuel cut in a forward gear is also an exact arc: its end speed off the grid, joined to the next stage's grid by neutral_rule (otherwise only the grid point above fuel cut, at a small pedal, or below it within ε).
+        fuel_cut_arcs: bool = false, unit "-", range Range::ANY;
         /// Neutral arcs end on the nearest grid point, or interpolate the cost-to-go linearly or through the three nearest points.
         neutral_rule: NeutralRule = NeutralRule::Nearest, unit "-", range Range::ANY;
         /// Speed grid anchored at each stage's lower bound (moving, 5.8) or on multiples of δ (fixed).
@@ -83,14 +92,49 @@ declare_params! {
 }
 
 impl MpcParams {
+    /// The thesis's controller as printed (chapter 5, tables 6.1 and 6.2; the `thesis` preset): the
+    /// moving grid at δ 0.2 km/h, ε = 0.1, neutral arcs on the nearest grid point, no fuel-cut
+    /// arcs, Q2 and Q5 per stage, and the inputs kept when a solve finds no admissible path.
+    pub fn thesis() -> Self {
+        MpcParams {
+            delta_kmh: 0.2,
+            epsilon: Some(0.1),
+            fuel_cut_arcs: false,
+            q_speed_below: None,
+            q_speed_below_per_km: None,
+            q_brake: Some(100.0),
+            q_brake_per_km: None,
+            neutral_rule: NeutralRule::Nearest,
+            grid: GridAnchor::Moving,
+            on_infeasible: OnInfeasible::Hold,
+            ..MpcParams::default()
+        }
+    }
+
     /// k_lim with its default resolved: round(200 m / S), at least 1 (table 6.1).
     pub fn k_lim_stages(&self) -> u32 {
         self.k_lim.unwrap_or_else(|| (SHIFT_SPACING_M / self.stage_m).round_ties_even().max(1.0) as u32)
     }
 
-    /// Q2 with its default resolved: 5 below δ = 0.15 km/h, else 7 (table 6.2).
+    /// Q2 per stage with its default resolved: q_speed_below, else q_speed_below_per_km × S, else
+    /// 5 below δ = 0.15 km/h and 7 above (table 6.2).
     pub fn q_speed_below_weight(&self) -> f64 {
-        self.q_speed_below.unwrap_or(if self.delta_kmh < 0.15 { 5.0 } else { 7.0 })
+        match (self.q_speed_below, self.q_speed_below_per_km) {
+            (Some(per_stage), _) => per_stage,
+            (None, Some(per_km)) => per_km * self.stage_m / M_PER_KM,
+            (None, None) => {
+                if self.delta_kmh < 0.15 {
+                    5.0
+                } else {
+                    7.0
+                }
+            }
+        }
+    }
+
+    /// Q5 per stage: q_brake, else q_brake_per_km × S (one of them is set, [`Self::check_with`]).
+    pub fn q_brake_weight(&self) -> f64 {
+        self.q_brake.unwrap_or_else(|| self.q_brake_per_km.unwrap_or(f64::NAN) * self.stage_m / M_PER_KM)
     }
 
     /// Number of stages N in the horizon.
@@ -101,6 +145,11 @@ impl MpcParams {
     /// Checks between keys, and against the speed band of `cruise`; the error names the key and
     /// the others the check involved.
     pub fn check_with(&self, cruise: &CruiseParams) -> CoreResult<()> {
+        if self.q_brake.is_none() && self.q_brake_per_km.is_none() {
+            return Err(CoreError::invalid("q_brake", "a number when q_brake_per_km is null")
+                .got("null")
+                .related(&["q_brake_per_km"]));
+        }
         if self.horizon_m < self.stage_m {
             let expected = format!("at least one stage (horizon_m >= stage_m = {})", self.stage_m);
             return Err(CoreError::invalid("horizon_m", expected).got(self.horizon_m).related(&["stage_m"]));
@@ -133,5 +182,35 @@ impl MpcParams {
                 .related(&["v_inc_kmh", "v_dec_kmh"]));
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Weights given per kilometre are the same cost at every S: Q2 and Q5 per stage scale with S,
+    /// and a stage's charge per metre stays the same. A weight given per stage wins over one per km.
+    #[test]
+    fn weights_per_km_scale_with_the_stage() {
+        for stage_m in [10.0, 12.5, 25.0, 50.0] {
+            let mpc = MpcParams {
+                stage_m,
+                q_speed_below_per_km: Some(200.0),
+                q_brake: None,
+                q_brake_per_km: Some(4000.0),
+                ..MpcParams::default()
+            };
+            assert!((mpc.q_speed_below_weight() / stage_m - 0.2).abs() < 1e-12);
+            assert!((mpc.q_brake_weight() / stage_m - 4.0).abs() < 1e-12);
+            let per_stage = MpcParams { q_speed_below: Some(3.0), q_brake: Some(7.0), ..mpc };
+            assert_eq!((per_stage.q_speed_below_weight(), per_stage.q_brake_weight()), (3.0, 7.0));
+        }
+        // Without either, Q2 follows table 6.2 and Q5 is an error naming q_brake.
+        let thesis = MpcParams { delta_kmh: 0.1, ..MpcParams::default() };
+        assert_eq!(thesis.q_speed_below_weight(), 5.0);
+        let neither = MpcParams { q_brake: None, q_brake_per_km: None, ..MpcParams::default() };
+        let err = neither.check_with(&CruiseParams::default()).unwrap_err();
+        assert!(err.to_string().contains("q_brake"), "{err}");
     }
 }
