@@ -94,3 +94,37 @@ fn half_step_tolerance_keeps_the_grid_point_nearest_to_fuel_cut() {
     }
     assert!(below > 10, "too few cases with the nearest point below fuel cut: {below}");
 }
+
+/// A whole-road solve keeps every stage's cost-to-go; a one-stage solve from the start against
+/// the stored stage 1 gives the whole solve's cost and first control (Bellman's principle), and so
+/// does one from each state on the optimal path against the stage after it.
+#[test]
+fn one_stage_solves_against_the_stored_values_follow_the_whole_road_optimum() {
+    use truckmpc_core::dp::ValueTable;
+    let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
+    for p in [DpSettings::default(), DpSettings { horizon_m: 3000.0, ..DpSettings::thesis() }] {
+        let p = DpSettings { horizon_m: 3000.0, ..p };
+        let slopes: Vec<f64> = (0..p.stages()).map(|k| 0.03 * ((k as f64) * 0.09).sin()).collect();
+        let start = InitialState { v_mps: 84.3 / 3.6, gear: 12, stages_since_shift: p.k_lim };
+        let mut solver = Solver::new(p.clone());
+        let mut table = ValueTable::default();
+        let whole = solver.solve_recording(&vehicle, start, &slopes, &mut table);
+        assert!(whole.feasible);
+        assert_eq!(table.stages.len(), slopes.len() + 1);
+        let mut one = Solver::new(p.clone());
+        let first = one.solve_to_values(&vehicle, start, slopes[0], &table.stages[1]);
+        assert_eq!(first.cost.to_bits(), whole.cost.to_bits());
+        assert_eq!((first.pedal, first.brake, first.gear), (whole.pedal, whole.brake, whole.gear));
+        let mut since = if whole.gear != start.gear { 1 } else { (start.stages_since_shift + 1).min(p.k_lim) };
+        for (k, &slope) in slopes.iter().enumerate().skip(1) {
+            let point = whole.trajectory[k];
+            let state =
+                InitialState { v_mps: point.v_mps, gear: whole.trajectory[k - 1].gear, stages_since_shift: since };
+            let step = one.solve_to_values(&vehicle, state, slope, &table.stages[k + 1]);
+            assert!(step.feasible, "stage {k}");
+            assert_eq!(step.gear, point.gear, "stage {k}");
+            assert!((step.pedal - point.pedal).abs() < 1e-12 && (step.brake - point.brake).abs() < 1e-12, "stage {k}");
+            since = if point.gear != state.gear { 1 } else { (since + 1).min(p.k_lim) };
+        }
+    }
+}

@@ -8,6 +8,8 @@ pub mod rows;
 pub mod simd;
 pub mod solver;
 pub mod space;
+pub mod values;
 
 pub use params::{DpSettings, GridAnchor, NeutralRule};
 pub use solver::{InitialState, Solution, Solver, TrajectoryPoint};
+pub use values::{StageValues, ValueTable};

@@ -20,6 +20,7 @@ use super::params::{DpSettings, GridAnchor, NeutralRule};
 use super::rows::{forward_row, inputs, GridIndex};
 use super::simd::{self, LaneMins};
 use super::space::{self, Grid, Intervals};
+use super::values::{StageValues, ValueTable};
 use crate::levels::{brake_accel_on, stage_fuel_g};
 use crate::vehicle::{Vehicle, NEUTRAL};
 
@@ -29,6 +30,16 @@ const INF: f64 = f64::INFINITY;
 #[inline]
 fn stride(count: usize) -> usize {
     count + 2 * PAD
+}
+
+/// Where a solve ends and what it keeps.
+enum Ends<'a> {
+    /// At the horizon's end, cost 0 on every final state.
+    Horizon,
+    /// At the horizon's end, keeping every stage's cost-to-go.
+    Recording(&'a mut ValueTable),
+    /// On stored states with their cost-to-go.
+    Values(&'a StageValues),
 }
 
 /// Initial state of a solve: the speed predicted at the start of the horizon, the gear used on the
@@ -286,11 +297,52 @@ impl Solver {
         slopes: &[f64],
         first_stage: Option<u64>,
     ) -> Solution {
+        self.solve_inner(vehicle, start, slopes, first_stage, Ends::Horizon)
+    }
+
+    /// Solve over a whole road's stages at once (one grade per stage) and keep every stage's
+    /// cost-to-go in `table` (stage k at index k), for one-stage solves against it later.
+    pub fn solve_recording(
+        &mut self,
+        vehicle: &Vehicle,
+        start: InitialState,
+        slopes: &[f64],
+        table: &mut ValueTable,
+    ) -> Solution {
+        table.stages.clear();
+        table.stages.resize_with(slopes.len() + 1, StageValues::default);
+        self.solve_inner(vehicle, start, slopes, None, Ends::Recording(table))
+    }
+
+    /// One stage on grade `slope` from `start`, ending on the states of `next` with their
+    /// cost-to-go (a stage of a [`ValueTable`]) instead of the horizon's end.
+    pub fn solve_to_values(
+        &mut self,
+        vehicle: &Vehicle,
+        start: InitialState,
+        slope: f64,
+        next: &StageValues,
+    ) -> Solution {
+        self.solve_inner(vehicle, start, &[slope], None, Ends::Values(next))
+    }
+
+    fn solve_inner(
+        &mut self,
+        vehicle: &Vehicle,
+        start: InitialState,
+        slopes: &[f64],
+        first_stage: Option<u64>,
+        mut ends: Ends,
+    ) -> Solution {
         let n_stages = slopes.len();
         let gears = vehicle.forward_gears() + 1;
         self.slope_torques.clear();
         self.slope_torques.extend(slopes.iter().map(|&a| vehicle.slope_torque_nm(a)));
-        self.build_space(vehicle, start, slopes, first_stage);
+        let terminal = match &ends {
+            Ends::Values(next) => Some(*next),
+            _ => None,
+        };
+        self.build_space(vehicle, start, slopes, first_stage, terminal);
         let cached_from = if self.caching { first_stage } else { None };
         if let Some(stage) = cached_from {
             // Stage k of this solve (k ≥ 1 has grid states) is absolute stage `stage + k`.
@@ -315,15 +367,36 @@ impl Solver {
                 self.cost_next[g * stride_last + PAD + lo as usize..=g * stride_last + PAD + hi as usize].fill(0.0);
             }
         }
-        self.shift_next.clone_from(&self.cost_next);
         self.shift_same_next.clear();
         self.shift_same_next.resize(gears, true);
+        if let Some(next) = terminal {
+            self.load_terminal(next, gears);
+        }
+        self.shift_next.clone_from(&self.cost_next);
+        for g in 0..gears {
+            let block = g * stride_last..(g + 1) * stride_last;
+            for (value, &counter) in self.shift_next[block.clone()].iter_mut().zip(&self.counter_next[block]) {
+                if counter < self.params.k_lim {
+                    *value = INF;
+                }
+            }
+            self.shift_same_next[g] = self.shift_next[g * stride_last..(g + 1) * stride_last]
+                .iter()
+                .zip(&self.cost_next[g * stride_last..(g + 1) * stride_last])
+                .all(|(a, b)| a.to_bits() == b.to_bits());
+        }
         self.shift_same_cur.clear();
         self.shift_same_cur.resize(gears, true);
+        if let Ends::Recording(table) = &mut ends {
+            table.stages[n_stages] = self.stage_values(n_stages, gears, true);
+        }
 
         let mut transitions = 0usize;
         for k in (0..n_stages).rev() {
             transitions += self.backward_stage(vehicle, k, cached_from.map(|s| s + k as u64), start.gear);
+            if let (Ends::Recording(table), true) = (&mut ends, k > 0) {
+                table.stages[k] = self.stage_values(k, gears, false);
+            }
             std::mem::swap(&mut self.cost_cur, &mut self.cost_next);
             std::mem::swap(&mut self.shift_cur, &mut self.shift_next);
             std::mem::swap(&mut self.shift_same_cur, &mut self.shift_same_next);
@@ -337,8 +410,47 @@ impl Solver {
         solution
     }
 
-    /// Intervals, grids, gear ranges and active gears of every stage.
-    fn build_space(&mut self, vehicle: &Vehicle, start: InitialState, slopes: &[f64], first_stage: Option<u64>) {
+    /// Stage `k`'s states and values: J_{k+1} in `cost_next` when `next` (the horizon's end,
+    /// before the backward pass), else J_k just written to `cost_cur`.
+    fn stage_values(&self, k: usize, gears: usize, next: bool) -> StageValues {
+        let grid = self.grids[k];
+        let ranges = &self.gear_ranges[k * gears..(k + 1) * gears];
+        let mut values = StageValues::new(grid.index.origin_mps, grid.index.delta_mps, grid.first, grid.count, ranges);
+        let (cost, counter) =
+            if next { (&self.cost_next, &self.counter_next) } else { (&self.cost_cur, &self.counter_cur) };
+        for (g, &(lo, hi)) in ranges.iter().enumerate() {
+            if hi >= lo {
+                let at = g * stride(grid.count) + PAD;
+                let states = at + lo as usize..=at + hi as usize;
+                values.set_gear(g, &cost[states.clone()], &counter[states]);
+            }
+        }
+        values
+    }
+
+    /// The horizon's end on the states of `next`: their cost-to-go and counters.
+    fn load_terminal(&mut self, next: &StageValues, gears: usize) {
+        let n = self.grids.len() - 1;
+        let stride_last = stride(self.grids[n].count);
+        for g in 0..gears {
+            let (lo, hi) = self.gear_ranges[n * gears + g];
+            for j in lo as usize..=hi as usize {
+                let at = g * stride_last + PAD + j;
+                (self.cost_next[at], self.counter_next[at]) = next.get(g, j).unwrap_or((INF, 0));
+            }
+        }
+    }
+
+    /// Intervals, grids, gear ranges and active gears of every stage; the last stage's are those
+    /// of `terminal` when the solve ends on stored values.
+    fn build_space(
+        &mut self,
+        vehicle: &Vehicle,
+        start: InitialState,
+        slopes: &[f64],
+        first_stage: Option<u64>,
+        terminal: Option<&StageValues>,
+    ) {
         // Absolute stages, when known, let the interval passes reuse steps of earlier solves.
         let p = &self.params;
         let memo = first_stage.filter(|_| self.caching).map(|stage| (stage, &mut self.interval_memo));
@@ -363,7 +475,12 @@ impl Solver {
                 },
             });
         }
+        if let Some(next) = terminal {
+            let index = GridIndex { origin_mps: next.origin_mps, delta_mps: next.delta_mps };
+            *self.grids.last_mut().expect("a stage") = StageGrid { index, first: next.first, count: next.count };
+        }
         let gears = vehicle.forward_gears() + 1;
+        let last = self.grids.len() - 1;
         // Stages 1..=forced are reached before the shift limit lets the truck leave its gear.
         let forced = p.k_lim.saturating_sub(start.stages_since_shift) as usize;
         self.gear_ranges.clear();
@@ -372,12 +489,13 @@ impl Solver {
             let full = (0u32, grid.count as u32 - 1);
             self.active[k].clear();
             for g in 0..gears {
-                let range = if k == 0 || k <= forced {
-                    if g == start.gear {
-                        full
-                    } else {
-                        (1, 0)
-                    }
+                let stored = terminal.filter(|_| k == last).map(|next| next.ranges.get(g).copied().unwrap_or((1, 0)));
+                let range = if (k == 0 || k <= forced) && g != start.gear {
+                    (1, 0)
+                } else if let Some(range) = stored {
+                    range
+                } else if k == 0 || k <= forced {
+                    full
                 } else if g == NEUTRAL {
                     if p.allow_neutral {
                         full
