@@ -99,16 +99,35 @@ def test_default_pi_and_cruise_are_table_a3_a4() -> None:
     assert pi.gear_up_rpm == (1800.0,) * 10 + (1700.0, None)
 
 
-def test_default_mpc_is_tables_6_1_6_2_and_simulation() -> None:
-    run = load_run_config()
+def test_thesis_preset_is_tables_6_1_6_2_and_simulation() -> None:
+    run = load_run_config(config_paths=["thesis"])
     mpc = run.mpc
     assert (mpc.stage_m, mpc.horizon_m, mpc.delta_kmh, mpc.epsilon) == (25.0, 1500.0, 0.2, 0.1)
     assert (mpc.q_fuel, mpc.q_speed_change, mpc.q_gear_shift, mpc.q_brake) == (2.0, 15.0, 15.0, 100.0)
-    assert (mpc.k_lim, mpc.q_speed_below) == (None, None)
+    assert (mpc.grid, mpc.neutral_rule, mpc.fuel_cut_arcs, mpc.on_infeasible) == ("moving", "nearest", False, "hold")
+    assert (mpc.k_lim, mpc.q_speed_below, mpc.q_speed_below_per_km, mpc.q_brake_per_km) == (None, None, None, None)
     assert (run.settings.k_lim_stages, run.settings.q_speed_below_weight) == (8, 7.0)  # S k_lim = 200 m; delta 0.2
-    fine = load_run_config(overrides=["stage_m=50", "delta_kmh=0.1"]).settings
-    assert (fine.k_lim_stages, fine.q_speed_below_weight) == (4, 5.0)
+    fine = load_run_config(config_paths=["thesis"], overrides=["stage_m=50", "delta_kmh=0.1"]).settings
+    assert (fine.k_lim_stages, fine.q_speed_below_weight, fine.q_brake_weight) == (4, 5.0, 100.0)
     assert (run.sim.plant_dt_s, run.sim.trace_step_m, run.sim.start_speed_kmh) == (0.05, 25.0, None)
+
+
+def test_default_mpc_weighs_per_kilometre_what_the_thesis_weighs_per_25_m_stage() -> None:
+    run = load_run_config()
+    mpc = run.mpc
+    assert (mpc.grid, mpc.neutral_rule, mpc.fuel_cut_arcs, mpc.epsilon) == ("fixed", "quadratic", True, None)
+    assert (run.settings.q_speed_below_weight, run.settings.q_brake_weight) == (5.0, 100.0)  # at S 25 m
+    for stage_m in (12.5, 50.0):
+        other = load_run_config(overrides=[f"stage_m={stage_m}"]).settings
+        assert other.q_speed_below_weight == pytest.approx(5.0 * stage_m / 25.0)
+        assert other.q_brake_weight == pytest.approx(100.0 * stage_m / 25.0)
+    # A weight given per stage is used as given.
+    assert load_run_config(overrides=["q_brake=7"]).settings.q_brake_weight == 7.0
+
+
+def test_a_brake_weight_is_needed_per_stage_or_per_kilometre() -> None:
+    with pytest.raises(ConfigError, match=r"q_brake.*expected a number when q_brake_per_km is null"):
+        load_run_config(overrides=["q_brake_per_km=null"])
 
 
 def test_run_config_plain_dict_and_sources() -> None:

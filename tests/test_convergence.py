@@ -11,6 +11,7 @@ from typer.testing import CliRunner
 
 from truckmpc import load_road, load_run_config, simulate
 from truckmpc.cli import app
+from truckmpc.convergence import convergence_document, halved_configs, run_halves
 
 runner = CliRunner()
 HILL = Path(__file__).resolve().parents[1] / "roads" / "hill_L500_A-3.csv"
@@ -22,9 +23,11 @@ def run(*args: str):
 
 @pytest.fixture(scope="module")
 def checked(tmp_path_factory):
-    """A --check-convergence run on the 500 m −3 % descent at δ 0.4 km/h, S 50 m."""
+    """A --check-convergence run of the thesis's controller on the 500 m −3 % descent at δ 0.4 km/h,
+    S 50 m."""
     out = tmp_path_factory.mktemp("checked")
-    args = ["--road", HILL, "--set", "delta_kmh=0.4", "--set", "stage_m=50", "--set", "horizon_m=1000"]
+    args = ["--road", HILL, "--config", "thesis", "--set", "delta_kmh=0.4", "--set", "stage_m=50"]
+    args += ["--set", "horizon_m=1000"]
     result = run("simulate", *args, "--check-convergence", "--out", out)
     assert result.exit_code == 0, result.stderr
     return json.loads((out / "summary.json").read_text()), result.stdout, out
@@ -44,11 +47,20 @@ def test_the_halved_runs_are_the_mpc_at_half_delta_and_half_stage_with_q2_and_th
         "half_stage": ["delta_kmh=0.4", "stage_m=25", "horizon_m=1000", "q_speed_below=7", "k_lim=8"],
     }
     for half, overrides in expected.items():
-        alone = simulate(road, load_run_config(overrides=overrides), "mpc").summary
+        alone = simulate(road, load_run_config(config_paths=["thesis"], overrides=overrides), "mpc").summary
         assert doc["convergence"][half]["fuel_kg"] == alone["fuel_kg"]
         assert doc["convergence"][half]["time_s"] == alone["time_s"]
     assert doc["convergence"]["half_delta"]["delta_kmh"] == 0.2
     assert (doc["convergence"]["half_stage"]["stage_m"], doc["convergence"]["half_stage"]["k_lim"]) == (25.0, 8)
+
+
+def test_weights_given_per_kilometre_keep_their_value_per_kilometre_at_half_the_stage():
+    config = load_run_config(overrides=["stage_m=50"])
+    halves = halved_configs(config)
+    assert halves["half_stage"].settings.q_speed_below_weight == config.settings.q_speed_below_weight / 2
+    assert halves["half_stage"].settings.q_brake_weight == config.settings.q_brake_weight / 2
+    assert halves["half_delta"].settings.q_speed_below_weight == config.settings.q_speed_below_weight
+    assert halves["half_delta"].mpc.delta_kmh == config.mpc.delta_kmh / 2
 
 
 def test_each_move_is_the_halved_delta_minus_the_runs_delta_in_points(checked):
@@ -94,3 +106,38 @@ def test_the_check_needs_both_controllers(tmp_path):
     assert result.stderr.strip().count("\n") == 0 and "--check-convergence" in result.stderr
     assert "expected --controller both" in result.stderr
     assert not (tmp_path / "x").exists()
+
+
+# ---------------------------------------------------------------------------------------------
+# The default controller converges; the thesis's does not.
+
+ROADS = Path(__file__).resolve().parents[1] / "roads"
+SHARED_ROADS = Path(__file__).resolve().parents[1] / ".." / "shared" / "roads"
+TOLERANCE_POINTS = 0.15
+"""Issue 12's bar: Δfuel within 0.15 points of its value at half δ and at half S."""
+
+
+def fuel_moves(road_path: Path, *configs: str) -> tuple[float, float]:
+    """How far Δfuel moves at δ/2 and at S/2 [points] for the MPC with these --config overlays."""
+    road = load_road(road_path)
+    config = load_run_config(config_paths=configs)
+    results = {name: simulate(road, config, name) for name in ("pi", "mpc")}
+    halves = halved_configs(config)
+    doc = convergence_document(results, run_halves(road, halves), halves)
+    return doc["delta_fuel_pct_half_delta"], doc["delta_fuel_pct_half_stage"]
+
+
+@pytest.mark.parametrize("section", ["hill_L500_A-3", "hill_L500_A2"])
+def test_the_default_converges_on_a_descent_and_a_climb_where_the_thesis_preset_does_not(section):
+    path = ROADS / f"{section}.csv"
+    default = fuel_moves(path)
+    assert all(abs(move) <= TOLERANCE_POINTS for move in default), default
+    thesis = fuel_moves(path, "thesis")
+    assert max(abs(move) for move in thesis) > 0.3, thesis
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not SHARED_ROADS.is_dir(), reason="shared road profiles (../shared/roads) not present")
+def test_the_default_converges_on_the_vecto_long_haul_cycle():
+    moves = fuel_moves(SHARED_ROADS / "eu_vecto_longhaul_2015_108km.csv")
+    assert all(abs(move) <= TOLERANCE_POINTS for move in moves), moves

@@ -1,4 +1,5 @@
-"""The look-ahead controller's behaviour on the thesis's artificial sections (chapter 6), against PI.
+"""The thesis's look-ahead controller (the `thesis` preset) on the thesis's artificial sections
+(chapter 6), against PI.
 
 Settings are the thesis's detail-study ones (table 6.1: 1000 m horizon, S = 25 m, delta = 0.2 km/h,
 40 t, 85 km/h); each test states the behaviour of the figure it mirrors.
@@ -17,7 +18,7 @@ DETAIL = ["horizon_m=1000"]
 
 
 def run_both(road, *overrides):
-    config = load_run_config(overrides=[*DETAIL, *overrides])
+    config = load_run_config(config_paths=["thesis"], overrides=[*DETAIL, *overrides])
     return simulate(road, config, "pi"), simulate(road, config, "mpc")
 
 
@@ -102,7 +103,7 @@ def test_interpolated_neutral_rule_runs_and_saves_fuel():
 def test_mpc_on_the_test_track_keeps_the_figures_of_the_python_loop():
     # Recorded with the Python closed loop driving the Rust solver (before the receding horizon moved
     # to Rust): `truckmpc simulate --controller mpc` on the bundled test track, summary.json.
-    summary = simulate(default_test_track(), load_run_config(), "mpc").summary
+    summary = simulate(default_test_track(), load_run_config(config_paths=["thesis"]), "mpc").summary
     assert summary["distance_m"] == 8499.999999903843
     assert summary["fuel_kg"] == 2.5809409833255024
     assert summary["time_s"] == 361.5022925247021

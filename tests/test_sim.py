@@ -213,5 +213,6 @@ def test_the_rust_loop_returns_the_trace_columns_as_arrays(config):
     assert all(result.trace[c].dtype == np.float64 for c in TRACE_COLUMNS if c != "gear")
     assert result.summary["solves"] == 1000 / config.mpc.stage_m + 1
     settings = result.summary["settings"]
-    assert (settings["k_lim"], settings["q_speed_below"]) == (8, 7.0)  # 200 m / S; table 6.2 at delta 0.2
+    # 200 m / S; Q2 and Q5 per stage from their per-kilometre defaults at S 25 m.
+    assert (settings["k_lim"], settings["q_speed_below"], settings["q_brake"]) == (8, 5.0, 100.0)
     assert settings["horizon_m"] == config.mpc.horizon_m and settings["v_ref_kmh"] == config.cruise.v_ref_kmh

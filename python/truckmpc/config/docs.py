@@ -17,7 +17,8 @@ SECTION_TITLES = {
     "pi": "The PI cruise controller (section 2.5; gains table A.4, gear thresholds table A.3). Its error\n"
     "# signals are in km/h, so each integrator state is in km/h s, clamped to +-limit (the anti-windup).",
     "mpc": "The look-ahead DP-MPC (chapter 5; tables 5.2, 6.1, 6.2). The cost weighs fuel in grams and\n"
-    "# speeds in m/s: with these units table 6.2's weights give chapter 6's behaviour.",
+    "# speeds in m/s: with these units table 6.2's weights give chapter 6's behaviour. These defaults\n"
+    "# converge as delta_kmh and stage_m shrink; --config thesis is the controller as printed.",
     "sim": "How the closed loop is simulated and recorded.",
 }
 

@@ -125,8 +125,7 @@ pub fn intervals_from_stage(
     out.lo.push(v0_mps);
     out.hi.push(v0_mps);
     for (k, &slope) in slopes.iter().enumerate() {
-        // The third input says whether lo is a widened bound (every stage but the start's).
-        let input = [out.lo[k], out.hi[k], if k > 0 { 1.0 } else { 0.0 }];
+        let input = [out.lo[k], out.hi[k], 0.0];
         let [lo, hi] = match &mut memo {
             Some((stage, memo)) => {
                 memo.forward.get(*stage + k as u64, slope, input, |x| forward(vehicle, params, x, slope))
@@ -156,8 +155,8 @@ pub fn intervals_from_stage(
     }
 }
 
-/// One step of a pass: (inputs, slope) to outputs. Forward: [lo, hi, 1 if lo was widened below
-/// fuel cut else 0] of stage k to [lo, hi] of stage k + 1; backward: [lo, hi, lo of stage k + 1] of stage k to its new lo.
+/// One step of a pass: (inputs, slope) to outputs. Forward: [lo, hi, _] of stage k to [lo, hi] of
+/// stage k + 1; backward: [lo, hi, lo of stage k + 1] of stage k to its new lo.
 type StepFn<const N: usize> = fn(&Vehicle, &DpSettings, [f64; 3], f64) -> [f64; N];
 
 /// Steps of one pass remembered per absolute stage (a ring over the horizon's stages).
@@ -251,17 +250,16 @@ fn index_of(params: &DpSettings, v_mps: f64) -> i64 {
 /// stage k + 1 is the highest grid speed that full pedal reaches from the top of stage k. Rounding
 /// continuous bounds instead breaks the chain on long climbs: the last stage's bound (the end of
 /// the continuous full-pedal chain) then lies above what any grid path can reach.
-fn grid_forward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, widened]: [f64; 3], slope: f64) -> [f64; 2] {
+fn grid_forward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, _]: [f64; 3], slope: f64) -> [f64; 2] {
     let (v_min_mps, v_max_mps) = (params.v_min_mps(), params.v_max_mps());
     // Multiples of δ: index i is the speed i·δ [m/s].
     let grid = GridIndex { origin_mps: 0.0, delta_mps: params.delta_mps() };
     let top = grid.floor(v_max_mps);
     let (v_plus, v_plus_low) = full_pedal_speeds(vehicle, params, hi, slope);
-    // The slack widens each stage's bound once: the chain of bounds continues from the bound
-    // without it (else it would compound over the horizon). Only below: above, a final bound
-    // raised to v_ref on a climb would then lie beyond every grid path.
-    let slack = band_slack_mps(params);
-    let v_minus = lowest_speed(vehicle, params, lo + widened * slack, slope) - slack;
+    // Only below: above, slack would compound along the full-pedal chain over the horizon, and a
+    // final bound raised to v_ref on a climb would then lie beyond every grid path. Below it
+    // compounds too, which keeps every state's fuel-cut arc bracketed; the band's v_min cuts it.
+    let v_minus = lowest_speed(vehicle, params, lo, slope) - band_slack_mps(params);
     let hi = grid.floor(v_plus).min(top);
     let lo = if v_plus >= v_min_mps { grid.ceil(v_minus.max(v_min_mps)) } else { grid.floor(v_plus_low) };
     [grid.speed(lo.min(hi)), grid.speed(hi)]

@@ -1,5 +1,10 @@
 //! The look-ahead controller's parameters (tables 5.2, 6.1 and 6.2). Its cost weighs fuel in grams
 //! and speeds in m/s: with these units table 6.2's weights give chapter 6's behaviour.
+//!
+//! The defaults are a controller whose closed-loop result converges as δ and S shrink: a fixed
+//! grid, fuel cut and neutral as exact arcs joined by three-point interpolation, a pedal tolerance
+//! of half a grid step, and Q2 and Q5 per kilometre (5 and 100 per stage at S = 25 m, as table 6.2
+//! at δ < 0.15 km/h). [`MpcParams::thesis`] (the `thesis` preset) is the controller as printed.
 
 use super::{CruiseParams, Range};
 use crate::error::{CoreError, CoreResult};
@@ -55,9 +60,9 @@ declare_params! {
         /// Prediction horizon; N = round(horizon / S) stages.
         horizon_m: f64 = 1500.0, unit "m", range Range::positive_up_to(1e6);
         /// δ, step of the DP's speed grid.
-        delta_kmh: f64 = 0.2, unit "km/h", range Range::positive_up_to(100.0);
+        delta_kmh: f64 = 0.05, unit "km/h", range Range::positive_up_to(100.0);
         /// ε, pedal tolerance: levels in [-ε, 1 + ε] are accepted and clipped to [0, 1]; null = half a grid step δ of speed change.
-        epsilon: Option<f64> = Some(0.1), unit "-", range Range::between(0.0, 1.0);
+        epsilon: Option<f64> = None, unit "-", range Range::between(0.0, 1.0);
         /// Least number of stages between two gear shifts; null = 200 m / S (table 6.1).
         k_lim: Option<u32> = None, unit "stages", range Range::between(1.0, 1e6);
         /// Lowest engine speed of a usable gear (5.7).
@@ -71,21 +76,21 @@ declare_params! {
         /// Q2 per stage, weight per (m/s)² below v_ref at each stage's start; null = q_speed_below_per_km × S, or without it 5 if δ < 0.15 km/h else 7 (table 6.2).
         q_speed_below: Option<f64> = None, unit "1/(m/s)^2", range Range::between(0.0, 1e6);
         /// Q2 per kilometre driven, so that S is a resolution of one cost (used when q_speed_below is null).
-        q_speed_below_per_km: Option<f64> = None, unit "1/((m/s)^2 km)", range Range::between(0.0, 1e9);
+        q_speed_below_per_km: Option<f64> = Some(200.0), unit "1/((m/s)^2 km)", range Range::between(0.0, 1e9);
         /// Q3, weight per m/s of speed change over a stage.
         q_speed_change: f64 = 15.0, unit "1/(m/s)", range Range::between(0.0, 1e6);
         /// Q4, weight per gear shift.
         q_gear_shift: f64 = 15.0, unit "1/shift", range Range::between(0.0, 1e6);
         /// Q5 per stage, weight per unit brake level held over a stage; null = q_brake_per_km × S.
-        q_brake: Option<f64> = Some(100.0), unit "-", range Range::between(0.0, 1e6);
+        q_brake: Option<f64> = None, unit "-", range Range::between(0.0, 1e6);
         /// Q5 per kilometre, weight per unit brake level held over a kilometre (used when q_brake is null).
-        q_brake_per_km: Option<f64> = None, unit "1/km", range Range::between(0.0, 1e9);
+        q_brake_per_km: Option<f64> = Some(4000.0), unit "1/km", range Range::between(0.0, 1e9);
         /// Fuel cut in a forward gear is also an exact arc: its end speed off the grid, joined to the next stage's grid by neutral_rule (otherwise only the grid point above fuel cut, at a small pedal, or below it within ε).
-        fuel_cut_arcs: bool = false, unit "-", range Range::ANY;
+        fuel_cut_arcs: bool = true, unit "-", range Range::ANY;
         /// Neutral arcs end on the nearest grid point, or interpolate the cost-to-go linearly or through the three nearest points.
-        neutral_rule: NeutralRule = NeutralRule::Nearest, unit "-", range Range::ANY;
+        neutral_rule: NeutralRule = NeutralRule::Quadratic, unit "-", range Range::ANY;
         /// Speed grid anchored at each stage's lower bound (moving, 5.8) or on multiples of δ (fixed).
-        grid: GridAnchor = GridAnchor::Moving, unit "-", range Range::ANY;
+        grid: GridAnchor = GridAnchor::Fixed, unit "-", range Range::ANY;
         /// No admissible path: rescue (relaxed solve, then the PI's gear logic at full pedal) or hold the inputs (5.6).
         on_infeasible: OnInfeasible = OnInfeasible::Rescue, unit "-", range Range::ANY;
     }
