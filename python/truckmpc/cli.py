@@ -138,8 +138,12 @@ app.command("bench", help=BENCH_HELP)(bench_cmd)
 BOTH = "both"
 """``--controller both``: PI and MPC on the same road and vehicle, with Δfuel and Δtime."""
 
-ControllerChoice = enum.Enum("ControllerChoice", {name: name for name in [*CONTROLLERS, BOTH]}, type=str)  # type: ignore[misc]
-"""``--controller`` values: every controller registered in :data:`truckmpc.sim.CONTROLLERS`, and ``both``."""
+GROUPS = {BOTH: ("pi", "mpc"), "all": ("pi", "mpc", "optimal")}
+"""``--controller`` values that run several controllers: ``both`` (PI and MPC) and ``all`` (PI, MPC
+and the whole-road optimum, with the MPC's gap to it)."""
+
+ControllerChoice = enum.Enum("ControllerChoice", {name: name for name in [*CONTROLLERS, *GROUPS]}, type=str)  # type: ignore[misc]
+"""``--controller`` values: every controller registered in :data:`truckmpc.sim.CONTROLLERS`, and the groups."""
 
 
 class SectionKind(enum.StrEnum):
@@ -178,7 +182,10 @@ def simulate_cmd(
     ] = None,
     controller: Annotated[
         ControllerChoice | None,
-        typer.Option("--controller", help="Controller to run; both = PI and MPC compared (default: both)."),
+        typer.Option(
+            "--controller",
+            help="Controller to run; both = PI and MPC compared (default), all = PI, MPC and the whole-road optimum.",
+        ),
     ] = None,
     vehicle: VehicleOpt = None,
     config: ConfigOpt = None,
@@ -220,7 +227,7 @@ def simulate_cmd(
         profile = default_test_track() if road is None else load_road(road)
         profile = profile.reversed() if reverse else profile
         chosen = BOTH if controller is None else controller.value
-        names = ("pi", "mpc") if chosen == BOTH else (chosen,)
+        names = GROUPS.get(chosen, (chosen,))
         inputs = (_text(vehicle), tuple(map(str, config or ())), tuple(set_ or ()))
         request = RunRequest(_text(road), reverse, names, *inputs, check_convergence=check_convergence)
     halves = _halved_configs(request, run_config)
@@ -248,7 +255,7 @@ def _halved_configs(request: RunRequest, config: RunConfig) -> dict[str, RunConf
     """The configurations of `--check-convergence` (none without it); it needs the MPC and its baseline."""
     if not request.check_convergence:
         return {}
-    if set(request.controllers) != {"pi", "mpc"}:
+    if not {"pi", "mpc"} <= set(request.controllers):
         raise typer.BadParameter(
             f"expected --controller both (the mpc against the pi), got {','.join(request.controllers)}",
             param_hint="'--check-convergence'",

@@ -72,9 +72,18 @@ def summary_document(
         doc[f"delta_time_pct{suffix}"] = comparison.delta_time_pct
         if comparison.not_comparable is not None:
             doc[f"not_comparable{suffix}"] = comparison.not_comparable
+    if "mpc" in results and "optimal" in results:
+        doc["gap_to_optimal_pct"] = _gap_to_optimal(results["mpc"].summary, results["optimal"].summary)
     if run is not None:
         doc["run"] = dict(run)
     return doc
+
+
+def _gap_to_optimal(mpc: Mapping[str, Any], optimal: Mapping[str, Any]) -> float | None:
+    """How much more fuel the MPC burns than the whole-road optimum, in % of the optimum's fuel
+    (None when either stalled)."""
+    comparison = compare(optimal, mpc, "optimal", "mpc")
+    return comparison.delta_fuel_pct
 
 
 def trace_csv(result: RunResult) -> str:
@@ -168,6 +177,9 @@ _FIGURES = (
     ("rescue distance", "fallback_rescue_m", "m", ".0f"),
     ("solve time mean", "solve_ms_mean", "ms", ".3f"),
     ("solve time max", "solve_ms_max", "ms", ".3f"),
+    ("plan fuel", "plan_fuel_kg", "kg", ".3f"),
+    ("plan trip time", "plan_time_s", "s", ".1f"),
+    ("plan solve time", "plan_solve_s", "s", ".2f"),
 )
 
 
@@ -186,9 +198,9 @@ def format_table(
     width = label_width(_FIGURES)
     lines.append(" " * width + "".join(f"{name:>14}" for name in names))
     lines += figure_lines(_FIGURES, [results[name].summary for name in names], 14)
-    for key in ("delta_fuel_pct", "delta_time_pct"):
-        if doc.get(key) is not None:
-            lines.append(f"{key.replace('_pct', ' [%]').replace('_', ' '):<{width}}{doc[key]:>+14.2f}")
+    for key, value in doc.items():
+        if key.startswith(("delta_fuel_pct", "delta_time_pct", "gap_to_optimal_pct")) and value is not None:
+            lines.append(f"{key.replace('_pct', ' [%]').replace('_', ' '):<{width}}{value:>+14.2f}")
     lines += [text for key, text in doc.items() if key.startswith("not_comparable")]
     if convergence is not None:
         lines += convergence_lines(convergence, width)

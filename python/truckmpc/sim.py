@@ -6,7 +6,7 @@ fuel flow (B.2) in **time** with classic RK4 at a fixed step `plant_dt_s` (defau
 on the road's end. At the default step, halving it changes trip fuel and time on the bundled test
 track by far less than the 0.05 % / 0.01 % the project requires (`tests/test_sim.py` checks it).
 
-The built-in controllers (`"pi"`, `"mpc"`) run with the GIL released. A
+The built-in controllers (`"pi"`, `"mpc"`, `"optimal"`) run with the GIL released. A
 :class:`truckmpc.controller.Controller` written in Python runs in the same loop, which calls its
 `decide(state)` whenever its previous decision runs out: after one plant step, or on reaching a
 distance (a look-ahead controller holding its inputs over a stage). A truck whose speed falls below
@@ -48,9 +48,13 @@ TRACE_COLUMNS = (
 )
 """Trace columns, in CSV order. `fuel_g` and `brake_energy_kj` are cumulative."""
 
-CONTROLLERS: tuple[str, ...] = ("pi", "mpc")
-"""Built-in controllers selectable by name (`truckmpc simulate --controller`): the PI of section 2.5
-and the DP-MPC of chapter 5."""
+CONTROLLERS: tuple[str, ...] = ("pi", "mpc", "optimal")
+"""Built-in controllers selectable by name (`truckmpc simulate --controller`): the PI of section 2.5,
+the DP-MPC of chapter 5, and the whole-road optimum (the same DP solved once over the entire road,
+then driven from the measured state stage by stage against its stored cost-to-go)."""
+
+DP_CONTROLLERS = frozenset({"mpc", "optimal"})
+"""The built-in controllers that solve the DP (their summaries carry its settings and solves)."""
 
 
 @dataclass(frozen=True)
@@ -106,15 +110,17 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
         `compute_time_s` (wall time of the run), `realtime_ratio` (compute time / simulated time),
         `stalled`, `stall_distance_m` (None unless stalled), `message` (None unless stalled),
         `plant_dt_s`. The MPC adds `solves`, `infeasible_solves`, `solve_ms_mean`, `solve_ms_max`,
-        `states_per_solve`, `transitions_per_solve` and `settings` (its parameters with k_lim and
-        Q2 resolved); a Python controller with a `summary()` method adds its entries.
+        `states_per_solve`, `transitions_per_solve` and `settings` (its parameters with k_lim, Q2
+        and Q5 resolved); the whole-road optimum adds the plan's `plan_fuel_kg`, `plan_time_s` (by
+        the DP's own model), `plan_cost`, `plan_solve_s`, `plan_stages` and `plan_table_mb`; a
+        Python controller with a `summary()` method adds its entries.
     """
     altitude_m = np.ascontiguousarray(road.altitude_m, dtype=float)
     if isinstance(controller, str):
         if controller not in CONTROLLERS:
             raise ConfigError(f"controller: expected one of {', '.join(CONTROLLERS)}, got {controller!r}")
         out = _core.run(config.settings, road.core(), altitude_m, controller)
-        name, extra = controller, _mpc_settings(config) if controller == "mpc" else {}
+        name, extra = controller, _mpc_settings(config) if controller in DP_CONTROLLERS else {}
     else:
         out = _core.run_python(config.settings, road.core(), altitude_m, controller, road, PlantState)
         summary_of = getattr(controller, "summary", None)

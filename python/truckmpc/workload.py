@@ -60,6 +60,11 @@ DP_BYTES_PER_UNIT = 2.5
 """Memory of the DP [bytes] per stage × grid point²: peak resident memory on a flat 100 m road at
 the defaults less the 55 MB of the process was 2.2 bytes a unit at δ 0.01, 0.005 and 0.0025 km/h."""
 
+WHOLE_ROAD_BYTES_PER_POINT = 250.0
+"""Memory of the whole-road optimum [bytes] per stage × grid point: its decisions (every gear, 4
+bytes), its stored values (12 bytes a state) and the solver's buffers. On the 805 km road at δ 0.05
+km/h (32 184 stages × 201 points) the peak resident memory was 1.6 GB, 240 bytes a unit."""
+
 _PLANT_KEYS = ("plant_dt_s", "v_ref_kmh")
 _DP_KEYS = ("delta_kmh", "stage_m", "horizon_m", "v_inc_kmh", "v_dec_kmh")
 
@@ -88,11 +93,15 @@ def plant_steps(profile: RoadProfile, config: RunConfig) -> float:
     return profile.length_m / (float(get("v_ref_kmh")) / KMH_PER_MPS * float(get("plant_dt_s")))
 
 
+def grid_points(config: RunConfig) -> float:
+    """Speed-grid points across the band: (v_inc + v_dec) / δ + 1."""
+    get = config.settings.get
+    return (float(get("v_inc_kmh")) + float(get("v_dec_kmh"))) / float(get("delta_kmh")) + 1
+
+
 def solve_units(config: RunConfig) -> float:
     """DP units of one MPC solve: stages per solve × speed-grid points² per stage."""
-    get = config.settings.get
-    points = (float(get("v_inc_kmh")) + float(get("v_dec_kmh"))) / float(get("delta_kmh")) + 1
-    return config.settings.horizon_stages * points**2
+    return config.settings.horizon_stages * grid_points(config) ** 2
 
 
 def dp_units(profile: RoadProfile, config: RunConfig) -> float:
@@ -102,8 +111,14 @@ def dp_units(profile: RoadProfile, config: RunConfig) -> float:
 
 
 def run_work(profile: RoadProfile, config: RunConfig, controller: str) -> Work:
-    """Estimated seconds and DP memory of one run of `controller` ("pi" or "mpc") over `profile`."""
+    """Estimated seconds and DP memory of one run of `controller` ("pi", "mpc" or "optimal") over
+    `profile`. The whole-road optimum is one solve over all the road's stages (its rows not cached)
+    and a one-stage solve per stage, holding every stage's values."""
     plant_s = plant_steps(profile, config) * PLANT_STEP_S
+    if controller == "optimal":
+        stages = profile.length_m / float(config.settings.get("stage_m")) + 1
+        units = stages * grid_points(config) ** 2
+        return Work(plant_s, units * DP_UNIT_LARGE_S, stages * grid_points(config) * WHOLE_ROAD_BYTES_PER_POINT)
     if controller != "mpc":
         return Work(plant_s, 0.0)
     dp_bytes = solve_units(config) * DP_BYTES_PER_UNIT

@@ -57,6 +57,14 @@ fn summary_dict<'py>(py: Python<'py>, s: &RunSummary) -> PyResult<Bound<'py, PyD
         out.set_item("fallback_relaxed", solver.fallback_relaxed)?;
         out.set_item("fallback_rescues", solver.fallback_rescues)?;
         out.set_item("fallback_rescue_m", solver.fallback_rescue_m)?;
+        if let Some(plan) = &solver.plan {
+            out.set_item("plan_fuel_kg", plan.fuel_kg)?;
+            out.set_item("plan_time_s", plan.time_s)?;
+            out.set_item("plan_cost", plan.cost)?;
+            out.set_item("plan_solve_s", plan.solve_s)?;
+            out.set_item("plan_stages", plan.stages)?;
+            out.set_item("plan_table_mb", plan.table_bytes as f64 / 1e6)?;
+        }
     }
     Ok(out)
 }
@@ -77,13 +85,13 @@ fn trace_dict(py: Python<'_>, t: Trace) -> PyResult<Bound<'_, PyDict>> {
     Ok(out)
 }
 
-/// Drive `road` with the built-in controller `controller` ("pi" or "mpc") from its start to its end
+/// Drive `road` with the built-in controller `controller` ("pi", "mpc" or "optimal") from its start to its end
 /// (or a stall), the closed loop in Rust with the GIL released.
 ///
 /// Args:
 ///     settings: the run's settings (vehicle, cruise band, PI, MPC, simulation).
 ///     road: the road; `altitude_m` gives the trace's altitude at each of its profile points [m].
-///     controller: "pi" or "mpc".
+///     controller: "pi", "mpc" or "optimal" (the whole-road optimum).
 ///
 /// Returns:
 ///     RunOutput.
@@ -99,12 +107,16 @@ fn run(
     let vehicle = &settings.vehicle;
     let mut ctrl: Box<dyn Controller + Send> = match controller {
         "pi" => Box::new(PiController::new(vehicle.clone(), &s.pi, &s.cruise).map_err(to_py)?),
-        "mpc" => {
+        "mpc" | "optimal" => {
             let gears = GearLogic::new(vehicle, &s.pi).map_err(to_py)?;
             let dp = DpSettings::new(&s.mpc, &s.cruise).map_err(to_py)?;
-            Box::new(RecedingController::new(vehicle.clone(), dp, gears))
+            if controller == "optimal" {
+                Box::new(RecedingController::whole_road(vehicle.clone(), dp, gears))
+            } else {
+                Box::new(RecedingController::new(vehicle.clone(), dp, gears))
+            }
         }
-        other => return Err(bad_argument("controller", "'pi' or 'mpc'", format!("'{other}'"))),
+        other => return Err(bad_argument("controller", "'pi', 'mpc' or 'optimal'", format!("'{other}'"))),
     };
     let altitude_m = altitude_m.as_array().to_vec();
     let (road, start_kmh) = (&road.inner, s.start_speed_kmh());

@@ -10,7 +10,7 @@ pub mod receding;
 pub mod rescue;
 
 pub use pi::{GearLogic, PiController};
-pub use receding::{RecedingController, ShiftCounter, SolverStats};
+pub use receding::{PlanStats, RecedingController, ShiftCounter, SolverStats};
 pub use rescue::Rescue;
 
 use crate::plant::{Control, PlantState};

@@ -15,7 +15,8 @@ use std::time::Instant;
 use super::pi::GearLogic;
 use super::rescue::Rescue;
 use super::{Controller, Decision};
-use crate::dp::{horizon, DpSettings, InitialState, Solver};
+use crate::dp::{horizon, DpSettings, InitialState, Solver, ValueTable};
+use crate::levels::stage_fuel_g;
 use crate::levels::stationary;
 use crate::params::OnInfeasible;
 use crate::plant::{Control, PlantState};
@@ -68,6 +69,25 @@ pub struct SolverStats {
     pub fallback_rescues: u64,
     /// Distance driven on the rescue policy [m].
     pub fallback_rescue_m: f64,
+    /// The whole-road plan, for the whole-road optimum.
+    pub plan: Option<PlanStats>,
+}
+
+/// What the whole-road optimum planned before driving: its prediction over the road by the DP's
+/// own model and what the plan cost to compute.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PlanStats {
+    /// Fuel of the planned trajectory [kg] (one Euler stage per S, as the DP predicts it).
+    pub fuel_kg: f64,
+    /// Trip time of the planned trajectory [s] (S / v per stage).
+    pub time_s: f64,
+    /// The plan's optimal cost J_0.
+    pub cost: f64,
+    /// Wall time of the whole-road solve [s].
+    pub solve_s: f64,
+    /// Stages of the plan and bytes of its stored cost-to-go.
+    pub stages: u64,
+    pub table_bytes: u64,
 }
 
 impl SolverStats {
@@ -122,6 +142,15 @@ pub struct RecedingController {
     /// Position of the latest rescue decision [m].
     rescue_last_m: f64,
     stats: SolverStats,
+    /// The whole-road optimum's stored cost-to-go and stage grades; None for the receding horizon.
+    whole_road: Option<WholeRoad>,
+}
+
+/// The whole-road optimum's plan: every stage's cost-to-go and the road's stage grades.
+#[derive(Debug, Default)]
+struct WholeRoad {
+    table: ValueTable,
+    slopes: Vec<f64>,
 }
 
 /// Lowest speed [km/h] the relaxed solve may plan with.
@@ -150,7 +179,54 @@ impl RecedingController {
             rescue_from_m: 0.0,
             rescue_last_m: 0.0,
             stats: SolverStats::default(),
+            whole_road: None,
         }
+    }
+
+    /// The whole-road optimum: the same DP solved once over the entire road from the start (no
+    /// receding horizon; the final stage bound raised to v_ref at the road's end), its cost-to-go
+    /// kept for every stage; each stage's control is then chosen from the truck's state predicted
+    /// at the stage's start by a one-stage solve against the next stage's stored values. What it
+    /// does when a one-stage solve finds no admissible path follows `on_infeasible`, as the MPC.
+    pub fn whole_road(vehicle: Arc<Vehicle>, params: DpSettings, start_gears: GearLogic) -> Self {
+        RecedingController { whole_road: Some(WholeRoad::default()), ..Self::new(vehicle, params, start_gears) }
+    }
+
+    /// Plan the whole road from `start` at `s0_m`: the DP over every stage to the road's end.
+    fn plan_road(&mut self, road: &Road, s0_m: f64, start: InitialState) {
+        let Some(plan) = self.whole_road.as_mut() else { return };
+        let h = self.solver.params().stage_m;
+        let stages = (((road.end_m() - s0_m) / h) - 1e-9).ceil().max(1.0) as usize;
+        horizon::stage_slopes(road, s0_m, h, stages, &mut plan.slopes);
+        let began = Instant::now();
+        let solution = self.solver.solve_recording(&self.vehicle, start, &plan.slopes, &mut plan.table);
+        let solve_s = began.elapsed().as_secs_f64();
+        // The trajectory's point k holds the inputs of stage k and the speed at its start.
+        let (fuel_g, time_s) = solution.trajectory.iter().take(stages).fold((0.0, 0.0), |(fuel, time), point| {
+            (fuel + stage_fuel_g(&self.vehicle, point.v_mps, point.pedal, point.gear, h), time + h / point.v_mps)
+        });
+        self.stats.plan = Some(PlanStats {
+            fuel_kg: if solution.feasible { fuel_g / 1000.0 } else { f64::NAN },
+            time_s: if solution.feasible { time_s } else { f64::NAN },
+            cost: solution.cost,
+            solve_s,
+            stages: stages as u64,
+            table_bytes: plan.table.bytes() as u64,
+        });
+    }
+
+    /// The one-stage solve of the whole-road optimum at the stage starting at `s_m` (None when
+    /// `s_m` is no stage boundary of the plan: the receding horizon solves there instead).
+    fn solve_against_plan(&mut self, s_m: f64, start: InitialState) -> Option<crate::dp::Solution> {
+        let plan = self.whole_road.as_ref()?;
+        let stage_m = self.solver.params().stage_m;
+        let stages_in = (s_m - self.origin_m) / stage_m;
+        let k = stages_in.round();
+        if (stages_in - k).abs() * stage_m > 1e-6 || k < 0.0 || k as usize + 1 >= plan.table.stages.len() {
+            return None;
+        }
+        let k = k as usize;
+        Some(self.solver.solve_to_values(&self.vehicle, start, plan.slopes[k], &plan.table.stages[k + 1]))
     }
 
     fn rescues(&self) -> bool {
@@ -174,13 +250,19 @@ impl RecedingController {
 
     fn timed_solve(&mut self, road: &Road, s_m: f64, start: InitialState, relaxed: bool) -> Option<Control> {
         let began = Instant::now();
-        let solver = if relaxed {
-            let params = self.solver.params().relaxed(RELAXED_V_MIN_KMH);
-            self.relaxed.get_or_insert_with(|| Solver::new(params))
-        } else {
-            &mut self.solver
+        let planned = if relaxed { None } else { self.solve_against_plan(s_m, start) };
+        let solution = match planned {
+            Some(solution) => solution,
+            None => {
+                let solver = if relaxed {
+                    let params = self.solver.params().relaxed(RELAXED_V_MIN_KMH);
+                    self.relaxed.get_or_insert_with(|| Solver::new(params))
+                } else {
+                    &mut self.solver
+                };
+                horizon::solve_at(solver, &self.vehicle, road, s_m, start, &mut self.slopes)
+            }
         };
-        let solution = horizon::solve_at(solver, &self.vehicle, road, s_m, start, &mut self.slopes);
         let elapsed_s = began.elapsed().as_secs_f64();
         let stats = &mut self.stats;
         stats.solve_time_s += elapsed_s;
@@ -257,7 +339,11 @@ impl RecedingController {
 
 impl Controller for RecedingController {
     fn name(&self) -> &'static str {
-        "mpc"
+        if self.whole_road.is_some() {
+            "optimal"
+        } else {
+            "mpc"
+        }
     }
 
     /// Solve the first stage from the starting state.
@@ -267,6 +353,8 @@ impl Controller for RecedingController {
         self.gear = self.start_gears.steady_gear(state.v_mps);
         self.stats = SolverStats::default();
         self.rescuing = None;
+        let start = InitialState { v_mps: state.v_mps, gear: self.gear, stages_since_shift: self.shifts.stages() };
+        self.plan_road(road, state.s_m, start);
         let first = self.solve(road, state.s_m, state.v_mps, self.gear);
         self.rescue_next = first.is_none() && self.rescues();
         self.pending = first.unwrap_or_else(|| self.holding(state.v_mps, self.gear));

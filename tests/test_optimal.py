@@ -1,0 +1,75 @@
+"""The whole-road optimum (`--controller optimal`): one DP over the whole road, driven from the
+measured state stage by stage against its stored cost-to-go. Checked against the receding MPC's
+closed-loop trajectory priced by the same cost function, computed here from the MPC's trace."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from truckmpc import load_run_config, simulate
+from truckmpc.cli import app
+from truckmpc.road import default_test_track, make_section
+from truckmpc.units import KMH_PER_MPS
+
+runner = CliRunner()
+
+
+def trajectory_cost(result, config) -> float:
+    """The DP's cost (Q1 fuel, Q2 speed deficit at each stage start, Q3 speed change, Q4 shifts,
+    Q5 brake level per stage) of a closed-loop run, from its trace sampled at the stage boundaries."""
+    s = config.settings
+    stage_m = float(config.mpc.stage_m)
+    trace = result.trace
+    at = np.isclose(np.mod(trace["distance_m"] + 1e-6, stage_m), 1e-6, atol=1e-3)
+    v = trace["speed_kmh"][at] / KMH_PER_MPS
+    fuel_g = np.diff(trace["fuel_g"][at])
+    v_ref = float(config.cruise.v_ref_kmh) / KMH_PER_MPS
+    deficit = np.maximum(v_ref - v[:-1], 0.0)
+    shifts = np.count_nonzero(np.diff(trace["gear"][at]))
+    mpc = config.mpc
+    return float(
+        mpc.q_fuel * fuel_g.sum()
+        + s.q_speed_below_weight * (deficit**2).sum()
+        + mpc.q_speed_change * np.abs(np.diff(v)).sum()
+        + mpc.q_gear_shift * shifts
+        + s.q_brake_weight * trace["brake"][at][:-1].sum()
+    )
+
+
+@pytest.mark.parametrize(
+    "road", [default_test_track(), make_section("crest", 1500, 4.0)], ids=["test-track", "crest 4 %"]
+)
+def test_the_whole_road_plan_is_never_costlier_than_the_mpcs_closed_loop_trajectory(road):
+    config = load_run_config()
+    optimal = simulate(road, config, "optimal").summary
+    mpc = simulate(road, config, "mpc")
+    assert np.isfinite(optimal["plan_cost"]) and optimal["infeasible_solves"] == 0
+    # Within the grid's resolution and the plant's difference from the DP's one-step model.
+    assert optimal["plan_cost"] <= trajectory_cost(mpc, config) * 1.002
+
+
+def test_the_optimum_drives_close_to_its_plan_and_beats_the_pi():
+    config = load_run_config()
+    road = default_test_track()
+    optimal = simulate(road, config, "optimal").summary
+    pi = simulate(road, config, "pi").summary
+    assert optimal["fuel_kg"] == pytest.approx(optimal["plan_fuel_kg"], rel=0.01)
+    assert optimal["time_s"] == pytest.approx(optimal["plan_time_s"], rel=0.005)
+    assert optimal["fuel_kg"] < pi["fuel_kg"]
+    assert optimal["plan_stages"] == 8500 / 25 and optimal["plan_table_mb"] > 0
+
+
+def test_controller_all_reports_the_mpcs_gap_to_the_optimum(tmp_path):
+    result = runner.invoke(app, ["simulate", "--controller", "all", "--out", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.stderr
+    doc = json.loads((tmp_path / "out" / "summary.json").read_text())
+    mpc, optimal = doc["mpc"]["fuel_kg"], doc["optimal"]["fuel_kg"]
+    assert doc["gap_to_optimal_pct"] == pytest.approx((mpc - optimal) / optimal * 100, abs=1e-12)
+    for name in ("mpc", "optimal"):
+        assert f"delta_fuel_pct_{name}" in doc
+    assert "gap to optimal [%]" in result.stdout and "plan fuel [kg]" in result.stdout
+    assert (tmp_path / "out" / "trace-optimal.csv").is_file()
