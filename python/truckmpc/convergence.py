@@ -38,8 +38,8 @@ HALVES = ("half_delta", "half_stage")
 
 
 def halved_configs(config: RunConfig) -> dict[str, RunConfig]:
-    """The run's configuration at δ/2 and at S/2, Q2 held at the run's value and k_lim at its
-    spacing in metres."""
+    """The run's configuration at δ/2 and at S/2: weights given per kilometre kept, a Q2 given per
+    stage (or by table 6.2's δ rule) held at the run's value, k_lim kept at its spacing in metres."""
     settings = config.settings
     values = settings.values()
     # Q2 given per kilometre scales with S by itself; per stage (or by the δ rule) it is held.

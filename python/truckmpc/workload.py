@@ -61,9 +61,10 @@ DP_BYTES_PER_UNIT = 2.5
 the defaults less the 55 MB of the process was 2.2 bytes a unit at δ 0.01, 0.005 and 0.0025 km/h."""
 
 WHOLE_ROAD_BYTES_PER_POINT = 250.0
-"""Memory of the whole-road optimum [bytes] per stage × grid point: its decisions (every gear, 4
-bytes), its stored values (12 bytes a state) and the solver's buffers. On the 805 km road at δ 0.05
-km/h (32 184 stages × 201 points) the peak resident memory was 1.6 GB, 240 bytes a unit."""
+"""Memory of a whole-road optimum run [bytes] per road stage × grid point. On the 805 km road at δ
+0.05 km/h (32 184 stages × 201 points) the run peaked at 1.6 GB, 240 bytes a unit: the plan itself
+(its decisions for every gear and its stored values) 0.58 GB, the rest the relaxed solves of its
+rescue after the one-stage solves that found no admissible path."""
 
 _PLANT_KEYS = ("plant_dt_s", "v_ref_kmh")
 _DP_KEYS = ("delta_kmh", "stage_m", "horizon_m", "v_inc_kmh", "v_dec_kmh")
@@ -104,10 +105,14 @@ def solve_units(config: RunConfig) -> float:
     return config.settings.horizon_stages * grid_points(config) ** 2
 
 
+def road_stages(profile: RoadProfile, config: RunConfig) -> float:
+    """Stage boundaries along the road: one MPC solve at each, one stage of the whole-road plan."""
+    return profile.length_m / float(config.settings.get("stage_m")) + 1
+
+
 def dp_units(profile: RoadProfile, config: RunConfig) -> float:
     """DP units of an MPC run: solves × :func:`solve_units`."""
-    solves = profile.length_m / float(config.settings.get("stage_m")) + 1
-    return solves * solve_units(config)
+    return road_stages(profile, config) * solve_units(config)
 
 
 def run_work(profile: RoadProfile, config: RunConfig, controller: str) -> Work:
@@ -116,9 +121,8 @@ def run_work(profile: RoadProfile, config: RunConfig, controller: str) -> Work:
     and a one-stage solve per stage, holding every stage's values."""
     plant_s = plant_steps(profile, config) * PLANT_STEP_S
     if controller == "optimal":
-        stages = profile.length_m / float(config.settings.get("stage_m")) + 1
-        units = stages * grid_points(config) ** 2
-        return Work(plant_s, units * DP_UNIT_LARGE_S, stages * grid_points(config) * WHOLE_ROAD_BYTES_PER_POINT)
+        stages, points = road_stages(profile, config), grid_points(config)
+        return Work(plant_s, stages * points**2 * DP_UNIT_LARGE_S, stages * points * WHOLE_ROAD_BYTES_PER_POINT)
     if controller != "mpc":
         return Work(plant_s, 0.0)
     dp_bytes = solve_units(config) * DP_BYTES_PER_UNIT

@@ -16,8 +16,7 @@ use super::pi::GearLogic;
 use super::rescue::Rescue;
 use super::{Controller, Decision};
 use crate::dp::{horizon, DpSettings, InitialState, Solver, ValueTable};
-use crate::levels::stage_fuel_g;
-use crate::levels::stationary;
+use crate::levels::{stage_fuel_g, stationary};
 use crate::params::OnInfeasible;
 use crate::plant::{Control, PlantState};
 use crate::road::Road;
@@ -85,8 +84,9 @@ pub struct PlanStats {
     pub cost: f64,
     /// Wall time of the whole-road solve [s].
     pub solve_s: f64,
-    /// Stages of the plan and bytes of its stored cost-to-go.
+    /// Stages of the plan.
     pub stages: u64,
+    /// Memory of its stored cost-to-go [bytes].
     pub table_bytes: u64,
 }
 
@@ -219,14 +219,9 @@ impl RecedingController {
     /// `s_m` is no stage boundary of the plan: the receding horizon solves there instead).
     fn solve_against_plan(&mut self, s_m: f64, start: InitialState) -> Option<crate::dp::Solution> {
         let plan = self.whole_road.as_ref()?;
-        let stage_m = self.solver.params().stage_m;
-        let stages_in = (s_m - self.origin_m) / stage_m;
-        let k = stages_in.round();
-        if (stages_in - k).abs() * stage_m > 1e-6 || k < 0.0 || k as usize + 1 >= plan.table.stages.len() {
-            return None;
-        }
-        let k = k as usize;
-        Some(self.solver.solve_to_values(&self.vehicle, start, plan.slopes[k], &plan.table.stages[k + 1]))
+        let k = horizon::boundary_stage(self.origin_m, s_m, self.solver.params().stage_m)?;
+        let next = plan.table.stages.get(k + 1)?;
+        Some(self.solver.solve_to_values(&self.vehicle, start, plan.slopes[k], next))
     }
 
     fn rescues(&self) -> bool {

@@ -199,12 +199,12 @@ fn transpose(rows: &[(RowSpan, usize); LANES], row_costs: &[f64], costs: &mut Ve
     Block { first: first as i32, steps: steps as u32, offset: offset as u32, spans, reach }
 }
 
-/// A neutral arc (or a fuel-cut arc in a gear) from one source speed: where it ends and the part
-/// of its cost that does not depend on the cost-to-go (fuel and speed change). `repr(C)`: the solver loads four arcs as two
-/// pairs of (end speed, cost).
+/// A coasting arc from one source speed (neutral, or fuel cut in a forward gear): where it ends and
+/// the part of its cost that does not depend on the cost-to-go (fuel and speed change). `repr(C)`:
+/// the solver loads four arcs as two pairs of (end speed, cost).
 #[derive(Debug, Clone, Copy, Default)]
 #[repr(C)]
-pub struct NeutralArc {
+pub struct CoastArc {
     /// End speed after the stage [m/s].
     pub v_end_mps: f64,
     /// Q1·fuel + Q3·|Δv|.
@@ -231,15 +231,14 @@ impl StageKey {
     }
 }
 
-/// Everything one stage keeps: its key, its rows per target gear and its neutral arcs.
+/// Everything one stage keeps: its key, its rows per target gear and its coasting arcs.
 #[derive(Debug, Clone, Default)]
 pub struct StageRows {
     key: StageKey,
     /// Indexed by gear; entry 0 (neutral) is unused.
     gears: Vec<GearBlocks>,
-    pub neutral: Keyed<NeutralArc>,
-    /// Fuel-cut arcs per forward gear (entry 0 unused), when the settings use them.
-    cut: Vec<Keyed<NeutralArc>>,
+    /// Coasting arcs per gear: neutral at entry 0, fuel cut in the forward gears (when used).
+    arcs: Vec<Keyed<CoastArc>>,
 }
 
 impl StageRows {
@@ -250,19 +249,18 @@ impl StageRows {
             rows.blocks.clear();
             rows.costs.clear();
         }
-        self.neutral.clear();
-        for arcs in &mut self.cut {
+        for arcs in &mut self.arcs {
             arcs.clear();
         }
     }
 
-    /// The fuel-cut arcs in forward `gear`.
+    /// The coasting arcs in `gear` (neutral, or fuel cut in a forward gear).
     #[inline]
-    pub fn cut(&mut self, gear: usize) -> &mut Keyed<NeutralArc> {
-        if self.cut.len() <= gear {
-            self.cut.resize_with(gear + 1, Keyed::default);
+    pub fn arcs(&mut self, gear: usize) -> &mut Keyed<CoastArc> {
+        if self.arcs.len() <= gear {
+            self.arcs.resize_with(gear + 1, Keyed::default);
         }
-        &mut self.cut[gear]
+        &mut self.arcs[gear]
     }
 
     /// The row blocks towards forward `gear`.

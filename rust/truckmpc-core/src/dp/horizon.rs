@@ -37,8 +37,14 @@ pub fn solve_at(
 ) -> Solution {
     let stage_m = solver.params().stage_m;
     stage_slopes(road, s_m, stage_m, solver.params().stages(), slopes);
-    let stages_in = (s_m - road.start_m()) / stage_m;
-    let on_boundary = stages_in >= 0.0 && (stages_in - stages_in.round()).abs() * stage_m < 1e-6;
-    let first_stage = on_boundary.then(|| stages_in.round() as u64);
+    let first_stage = boundary_stage(road.start_m(), s_m, stage_m).map(|k| k as u64);
     solver.solve_from_stage(vehicle, start, slopes, first_stage)
+}
+
+/// The index of the stage boundary at `s_m` [m], stages of `stage_m` [m] counted from `origin_m`;
+/// None when `s_m` lies before `origin_m` or more than a micrometre off every boundary.
+pub fn boundary_stage(origin_m: f64, s_m: f64, stage_m: f64) -> Option<usize> {
+    let stages_in = (s_m - origin_m) / stage_m;
+    let on_boundary = stages_in >= 0.0 && (stages_in - stages_in.round()).abs() * stage_m < 1e-6;
+    on_boundary.then(|| stages_in.round() as usize)
 }

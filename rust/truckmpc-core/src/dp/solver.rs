@@ -15,7 +15,7 @@
 //! 1 + c ≥ k_lim, would let them come k_lim − 1 stages apart, contradicting the forward counter of
 //! (5.6).) Stages reached before the vehicle's own counter allows a shift keep the current gear.
 
-use super::cache::{Block, NeutralArc, RowCache, RowScratch, StageKey, StageRows, LANES, PAD};
+use super::cache::{Block, CoastArc, RowCache, RowScratch, StageKey, StageRows, LANES, PAD};
 use super::params::{DpSettings, GridAnchor, NeutralRule};
 use super::rows::{forward_row, inputs, GridIndex};
 use super::simd::{self, LaneMins};
@@ -367,23 +367,11 @@ impl Solver {
                 self.cost_next[g * stride_last + PAD + lo as usize..=g * stride_last + PAD + hi as usize].fill(0.0);
             }
         }
+        self.shift_next.clone_from(&self.cost_next);
         self.shift_same_next.clear();
         self.shift_same_next.resize(gears, true);
         if let Some(next) = terminal {
             self.load_terminal(next, gears);
-        }
-        self.shift_next.clone_from(&self.cost_next);
-        for g in 0..gears {
-            let block = g * stride_last..(g + 1) * stride_last;
-            for (value, &counter) in self.shift_next[block.clone()].iter_mut().zip(&self.counter_next[block]) {
-                if counter < self.params.k_lim {
-                    *value = INF;
-                }
-            }
-            self.shift_same_next[g] = self.shift_next[g * stride_last..(g + 1) * stride_last]
-                .iter()
-                .zip(&self.cost_next[g * stride_last..(g + 1) * stride_last])
-                .all(|(a, b)| a.to_bits() == b.to_bits());
         }
         self.shift_same_cur.clear();
         self.shift_same_cur.resize(gears, true);
@@ -428,7 +416,8 @@ impl Solver {
         values
     }
 
-    /// The horizon's end on the states of `next`: their cost-to-go and counters.
+    /// The horizon's end on the states of `next`: their cost-to-go and counters, and the costs of
+    /// those whose continuation allows a shift into them (+∞ elsewhere).
     fn load_terminal(&mut self, next: &StageValues, gears: usize) {
         let n = self.grids.len() - 1;
         let stride_last = stride(self.grids[n].count);
@@ -436,7 +425,12 @@ impl Solver {
             let (lo, hi) = self.gear_ranges[n * gears + g];
             for j in lo as usize..=hi as usize {
                 let at = g * stride_last + PAD + j;
-                (self.cost_next[at], self.counter_next[at]) = next.get(g, j).unwrap_or((INF, 0));
+                let (cost, counter) = next.get(g, j).unwrap_or((INF, 0));
+                (self.cost_next[at], self.counter_next[at]) = (cost, counter);
+                self.shift_next[at] = if counter >= self.params.k_lim { cost } else { INF };
+                if self.shift_next[at].to_bits() != cost.to_bits() {
+                    self.shift_same_next[g] = false;
+                }
             }
         }
     }
@@ -597,11 +591,12 @@ impl Solver {
             let (lo, hi) = self.gear_ranges[(k + 1) * gears + g];
             let out = g * ch.width;
             if g == NEUTRAL {
-                stage.neutral.fill(key_lo, key_hi, |key| neutral_arc(p, vehicle, here.index.speed(key), slope_torque));
+                let arcs = stage.arcs(NEUTRAL);
+                arcs.fill(key_lo, key_hi, |key| coast_arc(p, vehicle, here.index.speed(key), NEUTRAL, slope_torque));
                 let slot0 = (key_lo - ch.base_key) as usize;
-                let join = NeutralJoin::new(p, next, (lo, hi));
+                let join = ArcJoin::new(p, next, (lo, hi));
                 let (cost_next, counter_next) = (&self.cost_next[PAD..], &self.counter_next[PAD..]);
-                let arcs = stage.neutral.get(key_lo, key_hi);
+                let arcs = arcs.get(key_lo, key_hi);
                 let (slots, at) = (slot0..slot0 + arcs.len(), out + slot0..out + slot0 + arcs.len());
                 let (all_cost, all_j) = (&mut ch.all_cost[at.clone()], &mut ch.all_j[at.clone()]);
                 let (shift_cost, shift_j) = (&mut ch.shift_cost[at.clone()], &mut ch.shift_j[at]);
@@ -650,13 +645,15 @@ impl Solver {
             };
             transitions += gear_pass_dispatch(&pass, choices);
             if p.fuel_cut_arcs {
-                let arcs = stage.cut(g);
-                arcs.fill(key_lo, key_hi, |key| cut_arc(p, vehicle, here.index.speed(key), g, slope_torque));
+                let arcs = stage.arcs(g);
+                arcs.fill(key_lo, key_hi, |key| coast_arc(p, vehicle, here.index.speed(key), g, slope_torque));
                 let block = g * stride(next.count) + PAD;
                 let (cost_next, counter_next) = (&self.cost_next[block..], &self.counter_next[block..]);
-                let join = NeutralJoin::new(p, next, (lo, hi));
+                let join = ArcJoin::new(p, next, (lo, hi));
                 let slot0 = out + (key_lo - ch.base_key) as usize;
                 for (at, arc) in (slot0..).zip(arcs.get(key_lo, key_hi)) {
+                    // The counter of the grid point the path continues from, not the stencil's
+                    // smallest (the neutral state's rule): this arc's state is a forward gear's.
                     let (cost, j, _) = join.join(arc, cost_next, counter_next);
                     better_by_arc(cost, j, counter_next[j as usize] >= p.k_lim, ch, at);
                 }
@@ -991,21 +988,14 @@ unsafe fn decide_staying_avx2(input: &StateIn, out: &mut StateOut) -> (usize, bo
     (groups, _mm256_movemask_pd(blocked) != 0)
 }
 
-/// The single neutral arc from `v_i_mps` on a stage: where the physics ends it, and its fuel and
-/// speed-change cost.
-fn neutral_arc(p: &DpSettings, vehicle: &Vehicle, v_i_mps: f64, slope_torque: f64) -> NeutralArc {
+/// The coasting arc from `v_i_mps` in `gear` on a stage: zero pedal and brake, the speed where the
+/// physics ends it (engine drag braking in a forward gear, none in neutral), and its fuel (idle
+/// fuel in neutral, none at fuel cut) and speed-change cost.
+fn coast_arc(p: &DpSettings, vehicle: &Vehicle, v_i_mps: f64, gear: usize, slope_torque: f64) -> CoastArc {
     let h = p.stage_m;
-    let v_end_mps = brake_accel_on(vehicle, v_i_mps, NEUTRAL, slope_torque).step(v_i_mps, h, 0.0);
-    let fuel = stage_fuel_g(vehicle, v_i_mps, 0.0, NEUTRAL, h);
-    NeutralArc { v_end_mps, cost: p.q_fuel * fuel + p.q_speed_change * (v_i_mps - v_end_mps).abs() }
-}
-
-/// The fuel-cut arc from `v_i_mps` in forward `gear` on a stage: zero pedal and brake, the
-/// engine's drag braking; no fuel (as a row at zero pedal), the speed-change cost only.
-fn cut_arc(p: &DpSettings, vehicle: &Vehicle, v_i_mps: f64, gear: usize, slope_torque: f64) -> NeutralArc {
-    let v_end_mps = brake_accel_on(vehicle, v_i_mps, gear, slope_torque).step(v_i_mps, p.stage_m, 0.0);
-    let fuel = stage_fuel_g(vehicle, v_i_mps, 0.0, gear, p.stage_m);
-    NeutralArc { v_end_mps, cost: p.q_fuel * fuel + p.q_speed_change * (v_i_mps - v_end_mps).abs() }
+    let v_end_mps = brake_accel_on(vehicle, v_i_mps, gear, slope_torque).step(v_i_mps, h, 0.0);
+    let fuel = stage_fuel_g(vehicle, v_i_mps, 0.0, gear, h);
+    CoastArc { v_end_mps, cost: p.q_fuel * fuel + p.q_speed_change * (v_i_mps - v_end_mps).abs() }
 }
 
 /// Let a fuel-cut arc of cost `cost` (cost-to-go included) to grid point `j` take choice slot `at`
@@ -1020,9 +1010,9 @@ fn better_by_arc(cost: f64, j: u32, shiftable: bool, ch: &mut Choices, at: usize
     }
 }
 
-/// Joins neutral arcs to the next grid by the configured rule, within the neutral states' index
-/// range, with the stage's constants computed once.
-struct NeutralJoin {
+/// Joins coasting arcs to the next grid by the configured rule (`neutral_rule`), within the target
+/// gear's index range, with the stage's constants computed once.
+struct ArcJoin {
     rule: NeutralRule,
     /// Speed of next-grid index 0 [m/s].
     origin_mps: f64,
@@ -1031,15 +1021,15 @@ struct NeutralJoin {
     hi: u32,
 }
 
-impl NeutralJoin {
+impl ArcJoin {
     fn new(p: &DpSettings, next: StageGrid, (lo, hi): (u32, u32)) -> Self {
-        NeutralJoin { rule: p.neutral_rule, origin_mps: next.speed(0), delta_mps: p.delta_mps(), lo, hi }
+        ArcJoin { rule: p.neutral_rule, origin_mps: next.speed(0), delta_mps: p.delta_mps(), lo, hi }
     }
 
     /// (cost with the cost-to-go, next-grid index, counter of the continuation); cost +∞ when
     /// the arc ends off the states.
     #[inline]
-    fn join(&self, arc: &NeutralArc, cost_next: &[f64], counter_next: &[u32]) -> (f64, u32, u32) {
+    fn join(&self, arc: &CoastArc, cost_next: &[f64], counter_next: &[u32]) -> (f64, u32, u32) {
         const NONE: (f64, u32, u32) = (INF, 0, 0);
         let (lo, hi) = (self.lo, self.hi);
         let x = (arc.v_end_mps - self.origin_mps) / self.delta_mps;
@@ -1256,7 +1246,7 @@ unsafe fn rank_avx2(
     groups
 }
 
-/// [`NeutralJoin::join`] with the nearest rule (and the shiftable cost), four arcs at a time in
+/// [`ArcJoin::join`] with the nearest rule (and the shiftable cost), four arcs at a time in
 /// AVX2, as far as whole groups of four go and no end speed is NaN: returns the arcs done. The
 /// same operations as the scalar join: the division, the range tests, the truncation of x + 0.5
 /// (exact: x + 0.5 is in [0, 2^31) where it is used), the cost-to-go and counter read only where
@@ -1267,8 +1257,8 @@ unsafe fn rank_avx2(
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn join_nearest_avx2(
-    join: &NeutralJoin,
-    arcs: &[NeutralArc],
+    join: &ArcJoin,
+    arcs: &[CoastArc],
     (cost_next, counter_next): (&[f64], &[u32]),
     k_lim: u32,
     out: NeutralOut,
@@ -1499,9 +1489,10 @@ mod tests {
     }
 
     /// The quadratic rule is exact on a quadratic cost-to-go wherever three states surround the
-    /// end speed; its error on a cubic is third order in the grid step (a quarter when it halves,
-    /// where linear interpolation's is second order, a half); at the ends and next to a state with
-    /// no finite cost it interpolates between the two bracketing states; outside it finds none.
+    /// end speed; its error on a smooth cost-to-go is third order in the grid step (an eighth when
+    /// it halves, where linear interpolation's, second order, is a quarter); at the ends and next
+    /// to a state with no finite cost it interpolates between the two bracketing states; outside
+    /// it finds none.
     #[test]
     fn quadratic_neutral_join_is_exact_on_quadratics_and_third_order() {
         let quad = |x: f64| 3.0 + 0.7 * x - 0.04 * x * x;
@@ -1550,7 +1541,7 @@ mod tests {
         };
         for case in 0..300 {
             let (lo, hi) = (next(6) as u32, 6 + next(20) as u32);
-            let join = NeutralJoin {
+            let join = ArcJoin {
                 rule: NeutralRule::Nearest,
                 origin_mps: 20.0 + next(100) as f64 * 0.01,
                 delta_mps: 0.1 / 3.6,
@@ -1558,8 +1549,8 @@ mod tests {
                 hi,
             };
             let n = next(23) as usize;
-            let arcs: Vec<NeutralArc> = (0..n)
-                .map(|_| NeutralArc {
+            let arcs: Vec<CoastArc> = (0..n)
+                .map(|_| CoastArc {
                     // From well below to well above the states, with exact half steps.
                     v_end_mps: join.origin_mps
                         + (next(64) as f64 * 0.5 - 4.0) * join.delta_mps

@@ -61,9 +61,10 @@ impl StageValues {
         Some((self.cost[at], self.counter[at]))
     }
 
-    /// Bytes held.
+    /// Bytes held by the values: 8 of cost and 4 of counter a state, a range and an offset a gear.
     pub fn bytes(&self) -> usize {
-        self.cost.len() * 12 + self.ranges.len() * 24
+        self.cost.len() * (size_of::<f64>() + size_of::<u32>())
+            + self.ranges.len() * (size_of::<(u32, u32)>() + size_of::<usize>())
     }
 }
 

@@ -211,9 +211,10 @@ mod tests {
             let per_stage = MpcParams { q_speed_below: Some(3.0), q_brake: Some(7.0), ..mpc };
             assert_eq!((per_stage.q_speed_below_weight(), per_stage.q_brake_weight()), (3.0, 7.0));
         }
-        // Without either, Q2 follows table 6.2 and Q5 is an error naming q_brake.
-        let thesis = MpcParams { delta_kmh: 0.1, ..MpcParams::default() };
+        // Without either, Q2 follows table 6.2 (the thesis's rule) and Q5 is an error naming q_brake.
+        let thesis = MpcParams { delta_kmh: 0.1, ..MpcParams::thesis() };
         assert_eq!(thesis.q_speed_below_weight(), 5.0);
+        assert_eq!(MpcParams { delta_kmh: 0.2, ..thesis }.q_speed_below_weight(), 7.0);
         let neither = MpcParams { q_brake: None, q_brake_per_km: None, ..MpcParams::default() };
         let err = neither.check_with(&CruiseParams::default()).unwrap_err();
         assert!(err.to_string().contains("q_brake"), "{err}");
