@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use truckmpc_core::dp::{fuel_time, DpSettings};
 use truckmpc_core::params::{Kind, ParamSpec, Value};
 use truckmpc_core::{RunSettings, Vehicle};
 
@@ -171,5 +172,22 @@ impl PySettings {
     #[getter]
     fn q_brake_weight(&self) -> f64 {
         self.inner.mpc.q_brake_weight()
+    }
+
+    /// β [g/s] of the fuel_time cost as the MPC uses it (beta_g_per_s, else the β that makes
+    /// steady v_ref optimal on a flat road); None with the speed_penalty cost.
+    #[getter]
+    fn beta_g_per_s_resolved(&self) -> PyResult<Option<f64>> {
+        let dp = DpSettings::new(&self.inner.mpc, &self.inner.cruise).map_err(to_py)?;
+        Ok(dp.beta_for(&self.vehicle))
+    }
+
+    /// Grams of fuel per unit of ½v² [m²/s²] the engine adds in the cruise gear at v_ref (the
+    /// gear holding v_ref on a flat road with the least fuel): kinetic energy priced in fuel.
+    #[getter]
+    fn kinetic_fuel_g_per_half_v2(&self) -> f64 {
+        let (mpc, v_ref_mps) = (&self.inner.mpc, self.inner.cruise.v_ref_kmh / 3.6);
+        let gear = fuel_time::cruise_gear(&self.vehicle, v_ref_mps, mpc.n_min_rpm, mpc.n_max_rpm);
+        fuel_time::kinetic_fuel_g(&self.vehicle, gear)
     }
 }

@@ -161,6 +161,7 @@ impl RecedingController {
     /// in the gear `start_gears` settles in at the starting speed; it rescues with that gear logic
     /// below v_max.
     pub fn new(vehicle: Arc<Vehicle>, params: DpSettings, start_gears: GearLogic) -> Self {
+        let params = params.for_vehicle(&vehicle);
         let shifts = ShiftCounter::new(params.k_lim);
         let rescue = Rescue::new(start_gears.clone(), params.v_ref_kmh + params.v_inc_kmh);
         RecedingController {

@@ -2,6 +2,7 @@
 //! backward dynamic program.
 
 pub mod cache;
+pub mod fuel_time;
 pub mod horizon;
 pub mod params;
 pub mod rows;
@@ -10,6 +11,6 @@ pub mod solver;
 pub mod space;
 pub mod values;
 
-pub use params::{DpSettings, GridAnchor, NeutralRule};
+pub use params::{CostKind, DpSettings, GridAnchor, NeutralRule};
 pub use solver::{InitialState, Solution, Solver, TrajectoryPoint};
 pub use values::{StageValues, ValueTable};

@@ -3,10 +3,12 @@
 //! meanings are those of the declarations; the solver converts speeds to m/s through the methods
 //! below.
 
+pub use crate::params::{CostKind, GridAnchor, NeutralRule, OnInfeasible};
 use crate::params::{CruiseParams, MpcParams, ParamSet};
-pub use crate::params::{GridAnchor, NeutralRule, OnInfeasible};
 
+use super::fuel_time;
 use crate::error::CoreResult;
+use crate::vehicle::Vehicle;
 
 /// Resolved DP settings; build them with [`DpSettings::new`], which validates.
 #[derive(Debug, Clone, PartialEq)]
@@ -45,6 +47,23 @@ pub struct DpSettings {
     pub q_gear_shift: f64,
     /// Q5 per stage [-], resolved.
     pub q_brake: f64,
+    /// What is minimised; with [`CostKind::FuelTime`] Q2 is zero.
+    pub cost: CostKind,
+    /// β [g/s] as given (None: derived from v_ref by [`DpSettings::for_vehicle`]).
+    pub beta_g_per_s: Option<f64>,
+    /// Q1·β [1/s], charged per second of each stage (h / v_i); 0 until [`DpSettings::for_vehicle`]
+    /// resolves a fuel_time cost.
+    pub q_time_per_s: f64,
+    /// Q1 times the grams one unit of ½v² [m²/s²] costs in the cruise gear: the horizon's end is
+    /// charged this times ½(v_ref² − v²); 0 until [`DpSettings::for_vehicle`] resolves a fuel_time cost.
+    pub q_terminal_per_half_v2: f64,
+    /// Weight per (m/s)² of speed change over a stage: 0, except with the fuel_time cost, where
+    /// it is Q1 · (grams per unit of ½v²) · ½. The DP's explicit Euler stage v_j = v_i + (h/v_i)·a
+    /// adds h·a + ½(v_j − v_i)² to ½v², so a path that speeds up and slows down in turn would
+    /// gain ½Δv² of kinetic energy a stage for nothing; this charges it back at the engine's
+    /// marginal fuel cost (the speed_penalty cost leaves it out: its Q3·|Δv| is larger at any Δv a
+    /// stage can make).
+    pub q_speed_change_sq: f64,
     /// Neutral arcs' rule.
     pub neutral_rule: NeutralRule,
     /// Grid anchoring.
@@ -75,6 +94,7 @@ impl DpSettings {
     }
 
     fn resolve(mpc: &MpcParams, cruise: &CruiseParams) -> Self {
+        let fuel_time = mpc.cost == CostKind::FuelTime;
         DpSettings {
             stage_m: mpc.stage_m,
             horizon_m: mpc.horizon_m,
@@ -89,14 +109,47 @@ impl DpSettings {
             allow_neutral: mpc.allow_neutral,
             fuel_cut_arcs: mpc.fuel_cut_arcs,
             q_fuel: mpc.q_fuel,
-            q_speed_below: mpc.q_speed_below_weight(),
+            q_speed_below: if fuel_time { 0.0 } else { mpc.q_speed_below_weight() },
             q_speed_change: mpc.q_speed_change,
             q_gear_shift: mpc.q_gear_shift,
             q_brake: mpc.q_brake_weight(),
+            cost: mpc.cost,
+            beta_g_per_s: mpc.beta_g_per_s,
+            q_time_per_s: 0.0,
+            q_terminal_per_half_v2: 0.0,
+            q_speed_change_sq: 0.0,
             neutral_rule: mpc.neutral_rule,
             grid: mpc.grid,
             on_infeasible: mpc.on_infeasible,
         }
+    }
+
+    /// The settings with the fuel_time cost's weights resolved for `vehicle`: β (given, or the one
+    /// that makes steady v_ref optimal on a flat road) and the value of kinetic energy at the
+    /// horizon's end, both in the cruise gear at v_ref. The speed_penalty cost is returned as is.
+    pub fn for_vehicle(self, vehicle: &Vehicle) -> Self {
+        if self.cost != CostKind::FuelTime {
+            return self;
+        }
+        let gear = fuel_time::cruise_gear(vehicle, self.v_ref_mps(), self.n_min_rpm, self.n_max_rpm);
+        let beta = self.beta_for(vehicle).unwrap_or(0.0);
+        let kinetic = self.q_fuel * fuel_time::kinetic_fuel_g(vehicle, gear);
+        DpSettings {
+            q_time_per_s: self.q_fuel * beta,
+            q_terminal_per_half_v2: kinetic,
+            q_speed_change_sq: 0.5 * kinetic,
+            ..self
+        }
+    }
+
+    /// β [g/s] of the fuel_time cost as used with `vehicle` (given or derived); None for the
+    /// speed_penalty cost.
+    pub fn beta_for(&self, vehicle: &Vehicle) -> Option<f64> {
+        (self.cost == CostKind::FuelTime).then(|| {
+            let v_ref = self.v_ref_mps();
+            let gear = fuel_time::cruise_gear(vehicle, v_ref, self.n_min_rpm, self.n_max_rpm);
+            self.beta_g_per_s.unwrap_or_else(|| fuel_time::steady_beta_g_per_s(vehicle, v_ref, gear))
+        })
     }
 
     /// The same settings with the lower speed bound at `v_min_kmh` and no shift limit: the

@@ -102,11 +102,19 @@ fn maps(vehicle: &Vehicle, p: &DpSettings, v_i: f64, gear: usize, slope_torque: 
     }
 }
 
-/// Inputs and their stage cost (Q1·fuel + Q3·|Δv| + Q5·B) for one pair, None if inadmissible.
+/// The cost of a speed change `dv` [m/s] over a stage: Q3·|Δv| plus, with the fuel_time cost,
+/// the Euler stage's energy error priced in fuel ([`DpSettings::q_speed_change_sq`]).
+#[inline]
+pub fn change_cost(q_change: f64, q_change_sq: f64, dv: f64) -> f64 {
+    q_change * dv.abs() + q_change_sq * (dv * dv)
+}
+
+/// Inputs and their stage cost (Q1·fuel + Q3·|Δv| (+ Euler correction) + Q5·B) for one pair,
+/// None if inadmissible.
 #[inline]
 fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64) -> Option<(Inputs, f64)> {
     let h = p.stage_m;
-    let change = p.q_speed_change * (v_i - v_j).abs();
+    let change = change_cost(p.q_speed_change, p.q_speed_change_sq, v_i - v_j);
     if m.pedal.gain > 0.0 {
         let pedal = m.pedal.input_for(v_i, v_j, h);
         let (pedal_lo, pedal_hi) = p.pedal_band(v_i, m.pedal.gain);
@@ -166,14 +174,14 @@ pub fn forward_row(
         return (RowSpan { first: 0, len: 0 }, start);
     }
     // The terms of `pair`, evaluated in the same order.
-    let (q_change, q_brake) = (p.q_speed_change, p.q_brake);
+    let (q_change, q_change_sq, q_brake) = (p.q_speed_change, p.q_speed_change_sq, p.q_brake);
     let fuel_per_pedal = p.q_fuel * m.full_fuel_g;
     let window = p.delta_mps() * BRAKE_WINDOW;
     let (a_pedal, g_pedal) = (m.pedal.accel_at_zero, m.pedal.gain);
     let (a_brake, g_brake) = (m.brake.accel_at_zero, m.brake.gain);
     let cost = |index: i64| {
         let v_j = grid.speed(index);
-        let change = q_change * (v_i - v_j).abs();
+        let change = change_cost(q_change, q_change_sq, v_i - v_j);
         let demand = v_i * (v_j - v_i) / h;
         if pedal_on {
             let pedal = (demand - a_pedal) / g_pedal;
@@ -194,7 +202,8 @@ pub fn forward_row(
     };
     #[cfg(target_arch = "x86_64")]
     if pedal_on && std::arch::is_x86_feature_detected!("avx2") {
-        let row = PedalRow { v_i, h, grid, q_change, fuel_per_pedal, pedal_lo, pedal_hi, a_pedal, g_pedal };
+        let row =
+            PedalRow { v_i, h, grid, q_change, q_change_sq, fuel_per_pedal, pedal_lo, pedal_hi, a_pedal, g_pedal };
         // SAFETY: the CPU has AVX2 (checked just above).
         unsafe { pedal_row_avx2(&row, first, last, out, cost) };
     } else {
@@ -221,6 +230,7 @@ struct PedalRow {
     h: f64,
     grid: GridIndex,
     q_change: f64,
+    q_change_sq: f64,
     fuel_per_pedal: f64,
     pedal_lo: f64,
     pedal_hi: f64,
@@ -246,7 +256,8 @@ unsafe fn pedal_row_avx2(row: &PedalRow, first: i64, last: i64, out: &mut Vec<f6
     let dst = out.spare_capacity_mut().as_mut_ptr().cast::<f64>();
     let splat = _mm256_set1_pd;
     let (v_i, h, origin, delta) = (splat(row.v_i), splat(row.h), splat(row.grid.origin_mps), splat(row.grid.delta_mps));
-    let (q_change, fuel_per_pedal) = (splat(row.q_change), splat(row.fuel_per_pedal));
+    let (q_change, q_change_sq, fuel_per_pedal) =
+        (splat(row.q_change), splat(row.q_change_sq), splat(row.fuel_per_pedal));
     let (pedal_lo, pedal_hi, a_pedal, g_pedal) =
         (splat(row.pedal_lo), splat(row.pedal_hi), splat(row.a_pedal), splat(row.g_pedal));
     let (zero, one, inf, sign) = (splat(0.0), splat(1.0), splat(f64::INFINITY), splat(-0.0));
@@ -256,7 +267,11 @@ unsafe fn pedal_row_avx2(row: &PedalRow, first: i64, last: i64, out: &mut Vec<f6
         let index = first + t as i64;
         // Exact: small integers.
         let v_j = _mm256_add_pd(origin, _mm256_mul_pd(_mm256_add_pd(splat(index as f64), lanes), delta));
-        let change = _mm256_mul_pd(q_change, _mm256_andnot_pd(sign, _mm256_sub_pd(v_i, v_j)));
+        let dv = _mm256_sub_pd(v_i, v_j);
+        let change = _mm256_add_pd(
+            _mm256_mul_pd(q_change, _mm256_andnot_pd(sign, dv)),
+            _mm256_mul_pd(q_change_sq, _mm256_mul_pd(dv, dv)),
+        );
         let demand = _mm256_div_pd(_mm256_mul_pd(v_i, _mm256_sub_pd(v_j, v_i)), h);
         let pedal = _mm256_div_pd(_mm256_sub_pd(demand, a_pedal), g_pedal);
         let in_band =

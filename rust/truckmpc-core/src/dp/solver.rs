@@ -17,7 +17,7 @@
 
 use super::cache::{Block, CoastArc, RowCache, RowScratch, StageKey, StageRows, LANES, PAD};
 use super::params::{DpSettings, GridAnchor, NeutralRule};
-use super::rows::{forward_row, inputs, GridIndex};
+use super::rows::{change_cost, forward_row, inputs, GridIndex};
 use super::simd::{self, LaneMins};
 use super::space::{self, Grid, Intervals};
 use super::values::{StageValues, ValueTable};
@@ -355,7 +355,8 @@ impl Solver {
         }
         let states = self.gear_ranges.iter().map(|&(lo, hi)| if hi >= lo { (hi - lo + 1) as usize } else { 0 }).sum();
 
-        // Terminal cost 0; the counters of final states allow any shift before them.
+        // Terminal cost 0 (fuel_time: the kinetic energy's); the counters of final states allow
+        // any shift before them.
         let stride_last = stride(self.grids[n_stages].count);
         self.cost_next.clear();
         self.cost_next.resize(gears * stride_last, INF);
@@ -364,7 +365,18 @@ impl Solver {
         for g in 0..gears {
             let (lo, hi) = self.gear_ranges[n_stages * gears + g];
             if hi >= lo {
-                self.cost_next[g * stride_last + PAD + lo as usize..=g * stride_last + PAD + hi as usize].fill(0.0);
+                let at = g * stride_last + PAD;
+                let terminal = &mut self.cost_next[at + lo as usize..=at + hi as usize];
+                terminal.fill(0.0);
+                let weight = self.params.q_terminal_per_half_v2;
+                if weight > 0.0 {
+                    // The fuel_time cost values the speed left at the end: ½(v_ref² − v²) in fuel.
+                    let (grid, v_ref) = (self.grids[n_stages], self.params.v_ref_mps());
+                    for (cost, j) in terminal.iter_mut().zip(lo as usize..) {
+                        let v = grid.speed(j);
+                        *cost = weight * 0.5 * (v_ref * v_ref - v * v);
+                    }
+                }
             }
         }
         self.shift_next.clone_from(&self.cost_next);
@@ -714,6 +726,14 @@ impl Solver {
             let below = (v_ref - here.speed(i)).max(0.0);
             *slot = q_speed_below * below * below;
         }
+        // The fuel_time cost's time: h / v_i per stage, exact to second order in S along a path
+        // (the left sum differs from the trapezoid by the constant first term and half the last).
+        let q_time = self.params.q_time_per_s * self.params.stage_m;
+        if q_time > 0.0 {
+            for (slot, i) in ch.penalty[sources.clone()].iter_mut().zip(i_lo..) {
+                *slot += q_time / here.speed(i);
+            }
+        }
         let stride_n = stride(next.count);
         for &g_i in active_here {
             let (lo, hi) = self.gear_ranges[k * gears + g_i];
@@ -995,7 +1015,8 @@ fn coast_arc(p: &DpSettings, vehicle: &Vehicle, v_i_mps: f64, gear: usize, slope
     let h = p.stage_m;
     let v_end_mps = brake_accel_on(vehicle, v_i_mps, gear, slope_torque).step(v_i_mps, h, 0.0);
     let fuel = stage_fuel_g(vehicle, v_i_mps, 0.0, gear, h);
-    CoastArc { v_end_mps, cost: p.q_fuel * fuel + p.q_speed_change * (v_i_mps - v_end_mps).abs() }
+    let change = change_cost(p.q_speed_change, p.q_speed_change_sq, v_i_mps - v_end_mps);
+    CoastArc { v_end_mps, cost: p.q_fuel * fuel + change }
 }
 
 /// Let a fuel-cut arc of cost `cost` (cost-to-go included) to grid point `j` take choice slot `at`

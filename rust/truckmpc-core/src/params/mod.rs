@@ -16,7 +16,7 @@ mod value;
 mod vehicle;
 
 pub use cruise::CruiseParams;
-pub use mpc::{GridAnchor, MpcParams, NeutralRule, OnInfeasible};
+pub use mpc::{CostKind, GridAnchor, MpcParams, NeutralRule, OnInfeasible};
 pub use pi::PiParams;
 pub use settings::RunSettings;
 pub use sim::SimParams;

@@ -26,6 +26,18 @@ choice_enum! {
 }
 
 choice_enum! {
+    /// What the look-ahead controller minimises.
+    pub enum CostKind {
+        /// The thesis's criterion (5.1): Q1·fuel + Q2·(speed below v_ref)² + Q3·|speed change|
+        /// + Q4·shifts + Q5·brake.
+        SpeedPenalty = "speed_penalty",
+        /// Q1·(fuel + β·trip time) + Q4·shifts + Q5·brake, the speed band a hard bound and the
+        /// kinetic energy left at the horizon's end valued at the engine's marginal fuel cost.
+        FuelTime = "fuel_time",
+    }
+}
+
+choice_enum! {
     /// How each stage's velocity grid is anchored.
     pub enum GridAnchor {
         /// The thesis's grid (5.8): v_low, v_low + δ, ..., anchored at each stage's own lower bound.
@@ -85,6 +97,10 @@ declare_params! {
         q_brake: Option<f64> = None, unit "-", range Range::between(0.0, 1e6);
         /// Q5 per kilometre, weight per unit brake level held over a kilometre (used when q_brake is null).
         q_brake_per_km: Option<f64> = Some(4000.0), unit "1/km", range Range::between(0.0, 1e9);
+        /// What the controller minimises: the thesis's speed_penalty criterion, or fuel_time (fuel + β·trip time; q_speed_below and q_speed_change unused).
+        cost: CostKind = CostKind::SpeedPenalty, unit "-", range Range::ANY;
+        /// β of the fuel_time cost, the fuel worth one second of trip time; null = the β for which steady v_ref is optimal on a flat road.
+        beta_g_per_s: Option<f64> = None, unit "g/s", range Range::between(0.0, 1e4);
         /// Fuel cut in a forward gear is also an exact arc: its end speed off the grid, joined to the next stage's grid by neutral_rule (otherwise only the grid point above fuel cut, at a small pedal, or below it within ε).
         fuel_cut_arcs: bool = true, unit "-", range Range::ANY;
         /// Neutral arcs end on the nearest grid point, or interpolate the cost-to-go linearly or through the three nearest points.
