@@ -161,6 +161,10 @@ def test_rows_columns_and_deltas(descent, tmp_path, count_runs):
         assert float(row["delta_time_pct"]) == pytest.approx(100 * (mpc_time - pi_time) / pi_time, rel=1e-12)
         assert row["pi_stalled"] == row["mpc_stalled"] == "false"
         assert float(row["realtime_ratio"]) > 0
+        equal_fuel = float(row["equal_time_pi_fuel_kg"])
+        assert float(row["delta_fuel_equal_time_pct"]) == pytest.approx(100 * (mpc_fuel / equal_fuel - 1), rel=1e-12)
+        corrected = float(row["mpc_fuel_corrected_kg"]) / float(row["equal_time_pi_fuel_corrected_kg"])
+        assert float(row["delta_fuel_equal_time_corrected_pct"]) == pytest.approx(100 * (corrected - 1), rel=1e-12)
     assert untimed(result.rows) == untimed(rows)
     assert count_runs == {"pi": 1, "mpc": 4} and (result.pi_runs, result.mpc_runs) == (1, 4)
     # The same figures as simulate itself gives for one of the rows.

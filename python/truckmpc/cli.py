@@ -6,6 +6,9 @@ Commands::
                       [--set key=value ...] [--out DIR] [--reverse]
     truckmpc sweep --road FILE [--road FILE ...] [--grid KEY=SPEC ...] [--reverse] [--jobs N]
                    [--vehicle FILE] [--config FILE ...] [--set key=value ...] [--quiet] --out DIR
+    truckmpc pareto --road FILE [--road FILE ...] [--speeds SPEC] [--betas SPEC] [--curves LIST]
+                    [--reverse] [--jobs N] [--vehicle FILE] [--config FILE ...] [--set key=value ...]
+                    [--quiet] --out DIR
     truckmpc model stationary --speed-kmh V --slope-pct A [--gear G|neutral] [--vehicle FILE] [--json]
     truckmpc road make {flat,hill,crest,depression} --length-m L [--slope-pct A] [--lead-m X]
                        [--tail-m Y] -o FILE
@@ -35,6 +38,7 @@ from truckmpc import _core
 from truckmpc.bench import BENCH_HELP, bench_cmd
 from truckmpc.config import RunConfig, load_run_config
 from truckmpc.convergence import convergence_document, halved_configs, run_halves
+from truckmpc.equal_time import LOOK_AHEAD, equal_time_baselines
 from truckmpc.errors import ConfigError, TruckmpcError
 from truckmpc.record import RunRequest, load_replay, run_record
 from truckmpc.results import check_run_dir, format_table, write_outputs
@@ -43,7 +47,7 @@ from truckmpc.signals import Stopped, received_signal, stopping_on_signals
 from truckmpc.sim import CONTROLLERS, simulate
 from truckmpc.status import status_line
 from truckmpc.units import KMH_PER_MPS, M_PER_KM, PCT_PER_FRACTION
-from truckmpc.workload import check_runs, duration
+from truckmpc.workload import EQUAL_TIME_RUNS, check_runs, duration
 
 USAGE_EXIT_CODE = 2
 
@@ -231,7 +235,10 @@ def simulate_cmd(
         inputs = (_text(vehicle), tuple(map(str, config or ())), tuple(set_ or ()))
         request = RunRequest(_text(road), reverse, names, *inputs, check_convergence=check_convergence)
     halves = _halved_configs(request, run_config)
-    estimate_s = check_runs(profile, run_config, list(request.controllers), force=force, extra=halves.values())
+    # Each look-ahead run is also compared with the PI re-tuned to its trip time.
+    retuned = ["pi"] * EQUAL_TIME_RUNS * sum(name in LOOK_AHEAD for name in request.controllers)
+    runs = [*request.controllers, *retuned] if "pi" in request.controllers else list(request.controllers)
+    estimate_s = check_runs(profile, run_config, runs, force=force, extra=halves.values())
     out_dir = Path("out") / profile.name if out is None else out
     check_run_dir(out_dir)
     with stopping_on_signals():
@@ -240,14 +247,17 @@ def simulate_cmd(
             for name in request.controllers:
                 with status_line(f"{name}: driving {profile.name} (estimate for all: {duration(estimate_s)})"):
                     results[name] = simulate(profile, run_config, name)
+            with status_line(f"pi re-tuned to each look-ahead run's trip time: driving {profile.name}"):
+                equal_times = equal_time_baselines(profile, run_config, results)
             extra = {}
             if halves:
                 with status_line(f"mpc at half delta_kmh and half stage_m: driving {profile.name}"):
                     extra["convergence"] = convergence_document(results, run_halves(profile, halves), halves)
-            written = write_outputs(out_dir, profile, results, run_record(request, profile, run_config), extra)
+            record = run_record(request, profile, run_config)
+            written = write_outputs(out_dir, profile, results, record, extra, equal_times)
         except KeyboardInterrupt:
             raise Stopped("nothing written", received_signal()) from None
-    typer.echo(format_table(profile, results, run_config, extra.get("convergence")))
+    typer.echo(format_table(profile, results, run_config, extra.get("convergence"), equal_times))
     typer.echo("wrote " + ", ".join(str(p) for p in written))
 
 
@@ -331,6 +341,100 @@ def sweep_cmd(
         f"wrote {result.csv_path} ({len(result.rows)} rows: {result.mpc_runs} MPC and {result.pi_runs} PI runs, "
         f"{result.resumed_rows} rows resumed)"
     )
+
+
+@app.command("pareto")
+def pareto_cmd(
+    road: Annotated[list[Path], typer.Option("--road", metavar="FILE", help="Road profile CSV; repeatable.")],
+    out: Annotated[
+        Path,
+        typer.Option("--out", help="Output directory: pareto.csv, pareto.json, pareto.png."),
+    ],
+    speeds: Annotated[
+        str | None,
+        typer.Option(
+            "--speeds",
+            metavar="SPEC",
+            help="Set speeds [km/h], start:stop:step or v1,v2,... (default: v_ref -8 to +4 in steps of 2).",
+        ),
+    ] = None,
+    betas: Annotated[
+        str | None,
+        typer.Option(
+            "--betas",
+            metavar="SPEC",
+            help="beta values [g/s] for the fuel_time curve at the configured v_ref (default: the set speeds, "
+            "beta derived from each).",
+        ),
+    ] = None,
+    curves: Annotated[
+        str, typer.Option("--curves", help="Curves to run, comma-separated: pi, mpc, fuel_time.")
+    ] = "pi,mpc,fuel_time",
+    reverse: Annotated[bool, typer.Option("--reverse", help="Drive every road in the opposite direction.")] = False,
+    jobs: Annotated[
+        int | None, typer.Option("--jobs", min=1, help="Parallel processes (default: all cores); 1 runs in-process.")
+    ] = None,
+    vehicle: VehicleOpt = None,
+    config: ConfigOpt = None,
+    set_: SetOpt = None,
+    quiet: Annotated[bool, typer.Option("--quiet", help="No progress bar.")] = False,
+    force: ForceOpt = False,
+) -> None:
+    """Fuel against trip time: the PI over set speeds, the MPC over set speeds and the fuel-time MPC
+    over set speeds or beta; DIR/pareto.csv, and DIR/pareto.png with the saving at equal trip time.
+
+    Rerun the same command with the same --out to resume an interrupted study.
+    """
+    from truckmpc.pareto import equal_time_savings, plan_pareto, run_pareto
+    from truckmpc.sweep import SweepInterrupted, SweepWorkerDied, progress_bar
+
+    try:
+        with stopping_on_signals():
+            plan = plan_pareto(
+                road,
+                speeds_kmh=_numbers("--speeds", "v_ref_kmh", speeds),
+                betas_g_per_s=_numbers("--betas", "beta_g_per_s", betas),
+                curves=[c.strip() for c in curves.split(",") if c.strip()],
+                reverse=reverse,
+                vehicle_path=vehicle,
+                config_paths=tuple(config or ()),
+                overrides=tuple(set_ or ()),
+            )
+            with progress_bar(not quiet) as hook:
+                result = run_pareto(plan, out, jobs=jobs, progress=hook, force=force, notice=_notice)
+    except SweepInterrupted as stop:
+        kept = f"{stop.done} of {stop.total} points kept in {stop.partial_path}; run the same command again to resume"
+        raise Stopped(kept, received_signal()) from None
+    except KeyboardInterrupt:
+        raise Stopped("before any run started", received_signal()) from None
+    except SweepWorkerDied as err:
+        _fail(str(err), 1)
+    written = [result.csv_path]
+    savings = equal_time_savings(result.rows, plan.base_v_ref_kmh)
+    for road_name, by_controller in savings.items():
+        for name, saving in by_controller.items():
+            text = "outside its curve" if saving is None else f"{saving:+.2f} %"
+            typer.echo(f"{road_name}: {name} at the PI's trip time at v_ref {plan.base_v_ref_kmh:g} km/h: {text}")
+    try:
+        from truckmpc.plot.pareto import plot_pareto
+
+        written += plot_pareto(out, out / "pareto.png", plan.base_v_ref_kmh)
+    except TruckmpcError as err:  # no matplotlib: the CSV stands on its own
+        typer.echo(f"no figure: {err}", err=True)
+    typer.echo(f"wrote {', '.join(map(str, written))} ({result.runs} runs, {result.resumed} resumed)")
+
+
+def _numbers(option: str, key: str, spec: str | None) -> list[float] | None:
+    """The values of a --speeds or --betas SPEC (start:stop:step or v1,v2,...), all numbers."""
+    from truckmpc.sweep import parse_axis
+
+    if spec is None:
+        return None
+    values = parse_axis(f"{key}={spec}").values
+    bad = [v for v in values if isinstance(v, bool) or not isinstance(v, (int, float))]
+    if bad or not values:
+        raise typer.BadParameter(f"expected numbers, got {spec!r}", param_hint=f"'{option}'")
+    return [float(v) for v in values]
 
 
 def _notice(text: str) -> None:

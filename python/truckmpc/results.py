@@ -5,7 +5,16 @@
     {"road": <name>, "length_m": <m>,
      "pi": {<summary of the PI run>},
      "mpc": {...}, "delta_fuel_pct": ..., "delta_time_pct": ...,   # when both ran
+     "delta_fuel_corrected_pct": ...,            # both runs' end speeds brought back to their start speeds
+     "delta_fuel_equal_time_pct": ...,           # against the pi re-tuned to the mpc's trip time
+     "delta_fuel_equal_time_corrected_pct": ...,
+     "equal_time": {"pi_v_ref_kmh", "pi_time_s", "pi_fuel_kg", "pi_fuel_corrected_kg", "target_time_s",
+                    "time_error_pct", "pi_runs", "not_comparable" (only when the time was not reached)},
      "not_comparable": "not comparable: mpc stalled at km 0.98"}   # only when a delta is null
+
+With several look-ahead controllers (``--controller all``) each delta and ``equal_time`` key ends in
+``_<controller>``. The end-speed correction and the equal-time search are
+:mod:`truckmpc.equal_time`'s.
 
 The deltas follow the thesis (section 6.1): (x_mpc − x_pi) / x_pi in percent; they are null when a
 run stalled or the baseline is zero (:func:`truckmpc.compare.compare`). All files of a run are
@@ -25,8 +34,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from truckmpc.atomic import OutputDir
-from truckmpc.compare import compare
+from truckmpc.compare import compare, delta_pct
 from truckmpc.convergence import convergence_lines
+from truckmpc.equal_time import EqualTime
 from truckmpc.errors import ConfigError
 from truckmpc.sim import TRACE_COLUMNS, RunResult
 from truckmpc.table import figure_lines, label_width
@@ -55,10 +65,14 @@ _CSV_FORMATS = {
 
 
 def summary_document(
-    road: RoadProfile, results: Mapping[str, RunResult], run: Mapping[str, Any] | None = None
+    road: RoadProfile,
+    results: Mapping[str, RunResult],
+    run: Mapping[str, Any] | None = None,
+    equal_times: Mapping[str, EqualTime] | None = None,
 ) -> dict[str, Any]:
     """The ``summary.json`` content for runs of several controllers over ``road``; ``run`` is the
-    record of what was run (:func:`truckmpc.record.run_record`), kept under ``"run"``."""
+    record of what was run (:func:`truckmpc.record.run_record`), kept under ``"run"``;
+    ``equal_times`` the baseline driven to each look-ahead run's trip time."""
     doc: dict[str, Any] = {"road": road.name, "length_m": float(road.length_m)}
     for name, result in results.items():
         doc[name] = dict(result.summary)
@@ -72,10 +86,34 @@ def summary_document(
         doc[f"delta_time_pct{suffix}"] = comparison.delta_time_pct
         if comparison.not_comparable is not None:
             doc[f"not_comparable{suffix}"] = comparison.not_comparable
+            continue
+        doc.update(_time_fair_deltas(base.summary, result.summary, (equal_times or {}).get(name), suffix))
     if "mpc" in results and "optimal" in results:
         doc["gap_to_optimal_pct"] = _gap_to_optimal(results["mpc"].summary, results["optimal"].summary)
     if run is not None:
         doc["run"] = dict(run)
+    return doc
+
+
+def _time_fair_deltas(
+    base: Mapping[str, Any], run: Mapping[str, Any], equal: EqualTime | None, suffix: str
+) -> dict[str, Any]:
+    """Δfuel [%] with both runs' end speeds corrected, and against the baseline at equal trip time
+    (raw and corrected), with the ``equal_time`` object; null where the baseline did not reach the
+    time."""
+    doc: dict[str, Any] = {}
+    if base.get("fuel_corrected_kg") is not None and run.get("fuel_corrected_kg") is not None:
+        doc[f"delta_fuel_corrected_pct{suffix}"] = delta_pct(run["fuel_corrected_kg"], base["fuel_corrected_kg"])
+    if equal is None:
+        return doc
+    raw, corrected = equal.fuel_kg, equal.fuel_corrected_kg
+    reached = equal.reached and raw is not None and corrected is not None
+    own = run.get("fuel_corrected_kg")
+    doc[f"delta_fuel_equal_time_pct{suffix}"] = delta_pct(run["fuel_kg"], raw) if reached and raw else None
+    doc[f"delta_fuel_equal_time_corrected_pct{suffix}"] = (
+        delta_pct(own, corrected) if reached and corrected and own is not None else None
+    )
+    doc[f"equal_time{suffix}"] = equal.document()
     return doc
 
 
@@ -141,6 +179,7 @@ def write_outputs(
     results: Mapping[str, RunResult],
     run: Mapping[str, Any] | None = None,
     extra: Mapping[str, Any] | None = None,
+    equal_times: Mapping[str, EqualTime] | None = None,
 ) -> list[Path]:
     """Write ``summary.json`` and one ``trace-<controller>.csv`` per run into ``out_dir``, all or
     nothing, replacing any earlier run there whole (see :func:`check_run_dir`). `extra` adds
@@ -152,7 +191,7 @@ def write_outputs(
     check_run_dir(out)
     names = ["summary.json"] + [f"trace-{name}.csv" for name in results]
     with OutputDir(out, replace=True) as staging:
-        doc = {**summary_document(road, results, run), **(extra or {})}
+        doc = {**summary_document(road, results, run, equal_times), **(extra or {})}
         text = json.dumps(_clean(doc), indent=2, default=_json_default)
         (staging / "summary.json").write_text(text + "\n", encoding="utf-8")
         for name, result in results.items():
@@ -188,19 +227,26 @@ def format_table(
     results: Mapping[str, RunResult],
     config: RunConfig | None = None,
     convergence: Mapping[str, Any] | None = None,
+    equal_times: Mapping[str, EqualTime] | None = None,
 ) -> str:
     """A short plain-text table of the runs' main figures, one column per controller; with the
     configuration, its first line names the truck's mass, v_ref and the speed band; with a
     ``convergence`` object, how far the deltas move at half δ and half S."""
     names = list(results)
-    doc = summary_document(road, results)
+    doc = summary_document(road, results, equal_times=equal_times)
     lines = [f"road {road.name}: {road.length_m / M_PER_KM:.2f} km" + ("" if config is None else _setup(config))]
-    width = label_width(_FIGURES)
+    deltas = [
+        (key.replace("_pct", " [%]").replace("_", " "), value)
+        for key, value in doc.items()
+        if key.startswith(("delta_", "gap_to_optimal_pct")) and isinstance(value, float)
+    ]
+    width = max([label_width(_FIGURES), *(len(label) + 2 for label, _ in deltas)])
     lines.append(" " * width + "".join(f"{name:>14}" for name in names))
-    lines += figure_lines(_FIGURES, [results[name].summary for name in names], 14)
+    lines += figure_lines(_FIGURES, [results[name].summary for name in names], 14, width)
+    lines += [f"{label:<{width}}{value:>+14.2f}" for label, value in deltas]
     for key, value in doc.items():
-        if key.startswith(("delta_fuel_pct", "delta_time_pct", "gap_to_optimal_pct")) and value is not None:
-            lines.append(f"{key.replace('_pct', ' [%]').replace('_', ' '):<{width}}{value:>+14.2f}")
+        if key.startswith("equal_time") and isinstance(value, dict):
+            lines.append(_equal_time_line(key, value, width))
     lines += [text for key, text in doc.items() if key.startswith("not_comparable")]
     if convergence is not None:
         lines += convergence_lines(convergence, width)
@@ -208,6 +254,14 @@ def format_table(
         if results[name].message:
             lines.append(f"{name}: {results[name].message}")
     return "\n".join(lines)
+
+
+def _equal_time_line(key: str, equal: Mapping[str, Any], width: int) -> str:
+    """`equal time pi v_ref [km/h]   84.41  (4789.3 s, 6 runs)`, or why the time was not reached."""
+    label = f"{key.replace('_', ' ')} pi v_ref [km/h]"
+    if "not_comparable" in equal:
+        return f"{label}: {equal['not_comparable']}"
+    return f"{label:<{width}}{equal['pi_v_ref_kmh']:>14.2f}  ({equal['pi_time_s']:.1f} s, {equal['pi_runs']} runs)"
 
 
 def _setup(config: RunConfig) -> str:

@@ -27,6 +27,7 @@ import numpy as np
 
 from truckmpc import _core
 from truckmpc.controller import Controller, PlantState
+from truckmpc.equal_time import corrected_fuel_kg
 from truckmpc.errors import ConfigError
 
 if TYPE_CHECKING:
@@ -109,11 +110,13 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
         `start_speed_kmh`, `end_speed_kmh`, `gear_shifts`, `brake_energy_kj`, `neutral_distance_m`,
         `compute_time_s` (wall time of the run), `realtime_ratio` (compute time / simulated time),
         `stalled`, `stall_distance_m` (None unless stalled), `message` (None unless stalled),
-        `plant_dt_s`. The MPC adds `solves`, `infeasible_solves`, `solve_ms_mean`, `solve_ms_max`,
-        `states_per_solve`, `transitions_per_solve` and `settings` (its parameters with k_lim, Q2
-        and Q5 resolved); the whole-road optimum adds the plan's `plan_fuel_kg`, `plan_time_s` (by
-        the DP's own model), `plan_cost`, `plan_solve_s`, `plan_stages` and `plan_table_mb`; a
-        Python controller with a `summary()` method adds its entries.
+        `plant_dt_s`, `fuel_corrected_kg` (the fuel with the end speed brought back to the start
+        speed, :func:`truckmpc.equal_time.corrected_fuel_kg`; None if stalled). The MPC adds
+        `solves`, `infeasible_solves`, `solve_ms_mean`, `solve_ms_max`, `states_per_solve`,
+        `transitions_per_solve` and `settings` (its parameters with k_lim, Q2 and Q5 resolved, and
+        the fuel_time cost's β); the whole-road optimum adds the plan's `plan_fuel_kg`,
+        `plan_time_s` (by the DP's own model), `plan_cost`, `plan_solve_s`, `plan_stages` and
+        `plan_table_mb`; a Python controller with a `summary()` method adds its entries.
     """
     altitude_m = np.ascontiguousarray(road.altitude_m, dtype=float)
     if isinstance(controller, str):
@@ -125,7 +128,11 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
         out = _core.run_python(config.settings, road.core(), altitude_m, controller, road, PlantState)
         summary_of = getattr(controller, "summary", None)
         name, extra = controller.name, dict(summary_of()) if callable(summary_of) else {}
-    return RunResult(name=name, road=road.name, summary={**out.summary, **extra}, trace=dict(out.trace))
+    summary = {**out.summary, **extra}
+    summary["fuel_corrected_kg"] = (
+        None if summary["stalled"] else corrected_fuel_kg(summary, config.settings.kinetic_fuel_g_per_half_v2)
+    )
+    return RunResult(name=name, road=road.name, summary=summary, trace=dict(out.trace))
 
 
 def _mpc_settings(config: RunConfig) -> dict[str, Any]:
@@ -134,4 +141,5 @@ def _mpc_settings(config: RunConfig) -> dict[str, Any]:
     params["k_lim"] = config.settings.k_lim_stages
     params["q_speed_below"] = config.settings.q_speed_below_weight
     params["q_brake"] = config.settings.q_brake_weight
+    params["beta_g_per_s"] = config.settings.beta_g_per_s_resolved
     return {"settings": params}

@@ -25,9 +25,12 @@ def format_value(value: Any, spec: str) -> str:
     return format(value, spec)
 
 
-def figure_lines(figures: Sequence[Figure], runs: Sequence[Mapping[str, Any]], cell_width: int) -> list[str]:
-    """One line per figure: its label, then the value of each run right-aligned in ``cell_width``."""
-    width = label_width(figures)
+def figure_lines(
+    figures: Sequence[Figure], runs: Sequence[Mapping[str, Any]], cell_width: int, width: int | None = None
+) -> list[str]:
+    """One line per figure: its label (in ``width``, default :func:`label_width`), then the value of
+    each run right-aligned in ``cell_width``."""
+    width = label_width(figures) if width is None else width
     lines = []
     for label, key, unit, spec in figures:
         head = f"{label} [{unit}]" if unit else label

@@ -14,3 +14,6 @@ M_PER_KM = 1000.0
 
 PCT_PER_FRACTION = 100.0
 """Percent per unit fraction: grades (0.01 = 1 %) and relative differences."""
+
+G_PER_KG = 1000.0
+"""Grams per kilogram."""

@@ -88,6 +88,10 @@ class Work:
         return self.plant_s + self.dp_s
 
 
+EQUAL_TIME_RUNS = 5
+"""Baseline runs a typical equal-time search makes (:mod:`truckmpc.equal_time`), for estimates."""
+
+
 def plant_steps(profile: RoadProfile, config: RunConfig) -> float:
     """Plant steps of a run: road length / (v_ref · plant_dt_s) (speeds stay near v_ref)."""
     get = config.settings.get

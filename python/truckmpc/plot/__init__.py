@@ -9,6 +9,9 @@
   and Δtime [%] against the prediction horizon, one line per (S, δ), one column per road and
   direction (figures 6.16–6.18; ``allow_neutral = false`` dashed), and ``realtime.png``: the real-time
   ratio q against the horizon on a log scale (figure 6.19).
+- A **Pareto directory** (``pareto.csv``, as written by ``truckmpc pareto``) gives ``pareto.png``:
+  end-speed-corrected fuel against trip time, one curve per controller, the saving at the PI's trip
+  time at the reference set speed annotated.
 
 Modules: :mod:`~truckmpc.plot.run` (run pictures), :mod:`~truckmpc.plot.sweep` (sweep pictures),
 :mod:`~truckmpc.plot.figures` (matplotlib and saving).
@@ -24,6 +27,7 @@ import os
 from pathlib import Path
 
 from truckmpc.plot.figures import MISSING_MATPLOTLIB, PlotError
+from truckmpc.plot.pareto import pareto_v_ref_kmh, plot_pareto
 from truckmpc.plot.run import MAX_POINTS, decimate, plot_run
 from truckmpc.plot.sweep import plot_sweep
 
@@ -41,10 +45,14 @@ def plot_dir(
     also name the ``summary.json`` or ``sweep.csv`` itself.
     """
     source = Path(directory)
-    if source.is_file() and source.name in ("summary.json", "sweep.csv"):
+    if source.is_file() and source.name in ("summary.json", "sweep.csv", "pareto.csv"):
         source = source.parent
     if not source.is_dir():
         raise PlotError(f"{source}: not a directory (expected a run directory or a sweep directory)")
+    if (source / "pareto.csv").is_file():
+        target = source / "pareto.png" if out is None else Path(out)
+        target = target / "pareto.png" if target.is_dir() else target
+        return plot_pareto(source, target, pareto_v_ref_kmh(source), svg=svg)
     is_run = (source / "summary.json").is_file()
     is_sweep = (source / "sweep.csv").is_file()
     if not (is_run or is_sweep):

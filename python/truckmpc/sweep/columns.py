@@ -1,8 +1,9 @@
 """The result columns of ``sweep.csv`` and the text of its cells.
 
 After ``road``, ``direction`` and one column per axis come the PI figures, the MPC figures (the
-solver's without a prefix), then the comparison: blank when either run stalled or the baseline is
-zero (:func:`truckmpc.compare.compare`).
+solver's and the equal-time baseline's without a prefix), then the comparisons: blank when either
+run stalled or the baseline is zero (:func:`truckmpc.compare.compare`), and the equal-time ones
+also where the PI could not be re-tuned to the MPC's trip time.
 """
 
 from __future__ import annotations
@@ -13,10 +14,13 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from truckmpc.compare import compare
+from truckmpc.compare import compare, delta_pct
 
-PI_FIELDS = ("fuel_kg", "time_s", "end_speed_kmh", "brake_energy_kj", "gear_shifts", "stalled")
+PI_FIELDS = ("fuel_kg", "fuel_corrected_kg", "time_s", "end_speed_kmh", "brake_energy_kj", "gear_shifts", "stalled")
 """Figures of a run's summary that go to the CSV for both controllers."""
+
+EQUAL_TIME_FIELDS = ("equal_time_pi_v_ref_kmh", "equal_time_pi_fuel_kg", "equal_time_pi_fuel_corrected_kg")
+"""The PI re-tuned to the MPC's trip time (:mod:`truckmpc.equal_time`): blank where it could not be."""
 
 MPC_FIELDS = (
     *PI_FIELDS,
@@ -26,15 +30,25 @@ MPC_FIELDS = (
     "solve_ms_max",
     "infeasible_solves",
     "transitions_per_solve",
+    *EQUAL_TIME_FIELDS,
 )
-"""Figures of the MPC run's summary that go to the CSV."""
+"""Figures of the MPC run's summary that go to the CSV (with its equal-time baseline's)."""
 
 _MPC_ONLY = frozenset(MPC_FIELDS) - frozenset(PI_FIELDS)
 _RESULT_SOURCES: tuple[tuple[str, str, str], ...] = (
     *(("pi", name, f"pi_{name}") for name in PI_FIELDS),
     *(("mpc", name, name if name in _MPC_ONLY else f"mpc_{name}") for name in MPC_FIELDS),
 )
-SWEEP_COLUMNS: tuple[str, ...] = (*(column for _, _, column in _RESULT_SOURCES), "delta_fuel_pct", "delta_time_pct")
+DELTA_COLUMNS = (
+    "delta_fuel_pct",
+    "delta_time_pct",
+    "delta_fuel_corrected_pct",
+    "delta_fuel_equal_time_pct",
+    "delta_fuel_equal_time_corrected_pct",
+)
+"""The comparisons, as in ``summary.json``."""
+
+SWEEP_COLUMNS: tuple[str, ...] = (*(column for _, _, column in _RESULT_SOURCES), *DELTA_COLUMNS)
 """Columns of ``sweep.csv`` after ``road``, ``direction`` and one column per axis."""
 
 
@@ -61,7 +75,17 @@ def result_cells(pi: Mapping[str, Any], mpc: Mapping[str, Any]) -> list[str]:
     values = {column: runs[run][name] for run, name, column in _RESULT_SOURCES}
     comparison = compare(pi, mpc)
     values["delta_fuel_pct"], values["delta_time_pct"] = comparison.delta_fuel_pct, comparison.delta_time_pct
+    values.update(dict.fromkeys(DELTA_COLUMNS[2:]))
+    if comparison.not_comparable is None:
+        values["delta_fuel_corrected_pct"] = _delta(mpc["fuel_corrected_kg"], pi["fuel_corrected_kg"])
+        values["delta_fuel_equal_time_pct"] = _delta(mpc["fuel_kg"], mpc["equal_time_pi_fuel_kg"])
+        corrected = (mpc["fuel_corrected_kg"], mpc["equal_time_pi_fuel_corrected_kg"])
+        values["delta_fuel_equal_time_corrected_pct"] = _delta(*corrected)
     return [cell(values[c]) for c in SWEEP_COLUMNS]
+
+
+def _delta(value: float | None, base: float | None) -> float | None:
+    return None if value is None or base is None else delta_pct(value, base)
 
 
 def parse_cell(text: str) -> Any:

@@ -1,5 +1,6 @@
 """The files of a sweep directory: ``sweep.json`` (which sweep it holds), ``sweep.partial.csv``
-(rows appended as they finish) and ``sweep.csv`` (all rows in grid order, written at the end).
+(rows appended as they finish) and ``sweep.csv`` (all rows in grid order, written at the end). A
+Pareto study keeps the same three files under the stem ``pareto``.
 
 ``sweep.json`` identifies the sweep by its roads (name, content hash, direction), its axes, its
 resolved base configuration and its columns; a directory holding another sweep is not resumed into.
@@ -21,6 +22,13 @@ from truckmpc.sweep.errors import SweepError
 
 CSV_NAME, PARTIAL_NAME, SETTINGS_NAME = "sweep.csv", "sweep.partial.csv", "sweep.json"
 
+
+def file_names(stem: str = "sweep") -> tuple[str, str, str]:
+    """The final CSV, the partial CSV and the settings file of a study named `stem` (``sweep``,
+    ``pareto``): they share this module's resume logic."""
+    return f"{stem}.csv", f"{stem}.partial.csv", f"{stem}.json"
+
+
 _IDENTITY = ("version", "roads", "grid", "base_config", "columns")
 """Settings that identify a sweep."""
 
@@ -31,30 +39,31 @@ def _identity(settings: Mapping[str, Any]) -> dict[str, Any]:
     return doc
 
 
-def check_out_dir(out: Path, settings: Mapping[str, Any]) -> None:
-    """Refuse to mix sweeps: an existing ``sweep.json`` in ``out`` must describe this one."""
-    path = out / SETTINGS_NAME
+def check_out_dir(out: Path, settings: Mapping[str, Any], stem: str = "sweep") -> None:
+    """Refuse to mix studies: an existing ``<stem>.json`` in ``out`` must describe this one."""
+    csv_name, partial_name, settings_name = file_names(stem)
+    path = out / settings_name
     try:
         old = json.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
-        if (out / PARTIAL_NAME).exists() or (out / CSV_NAME).exists():
+        if (out / partial_name).exists() or (out / csv_name).exists():
             raise SweepError(
-                f"{out}: holds sweep results without {SETTINGS_NAME}; use another --out or remove them"
+                f"{out}: holds {stem} results without {settings_name}; use another --out or remove them"
             ) from None
         return
     except (json.JSONDecodeError, UnicodeDecodeError):
-        raise SweepError(f"{path}: not a sweep settings file; use another --out or remove it") from None
+        raise SweepError(f"{path}: not a {stem} settings file; use another --out or remove it") from None
     mine, theirs = _identity(settings), _identity(old if isinstance(old, dict) else {})
     differ = [key for key in _IDENTITY if mine[key] != theirs[key]]
     if differ:
         raise SweepError(
-            f"{out} holds a different sweep (not the same: {', '.join(differ)}); use another --out or remove it"
+            f"{out} holds a different {stem} (not the same: {', '.join(differ)}); use another --out or remove it"
         )
 
 
-def write_settings(out: Path, settings: Mapping[str, Any], jobs: int) -> None:
-    """Write ``sweep.json``: the plan's settings and the number of processes of this run."""
-    atomic_write_text(out / SETTINGS_NAME, json.dumps({**settings, "jobs": jobs}, indent=2) + "\n")
+def write_settings(out: Path, settings: Mapping[str, Any], jobs: int, stem: str = "sweep") -> None:
+    """Write ``<stem>.json``: the plan's settings and the number of processes of this run."""
+    atomic_write_text(out / file_names(stem)[2], json.dumps({**settings, "jobs": jobs}, indent=2) + "\n")
 
 
 def csv_line(cells: Sequence[str]) -> str:
@@ -92,12 +101,12 @@ def read_rows(path: Path, columns: Sequence[str]) -> list[tuple[int, list[str]]]
     return rows
 
 
-def finished_rows(out: Path, columns: Sequence[str]) -> list[tuple[str, list[str]]]:
-    """The rows already in ``sweep.csv`` and ``sweep.partial.csv`` (possibly repeated), each with
+def finished_rows(out: Path, columns: Sequence[str], stem: str = "sweep") -> list[tuple[str, list[str]]]:
+    """The rows already in ``<stem>.csv`` and ``<stem>.partial.csv`` (possibly repeated), each with
     where it was read (``DIR/sweep.partial.csv:7``)."""
     return [
         (f"{out / name}:{number}", cells)
-        for name in (CSV_NAME, PARTIAL_NAME)
+        for name in file_names(stem)[:2]
         for number, cells in read_rows(out / name, columns)
     ]
 
@@ -119,9 +128,10 @@ class PartialFile:
         os.close(self._fd)
 
 
-def write_final(out: Path, header: str, rows: Sequence[Sequence[str]]) -> Path:
-    """Write ``sweep.csv`` in one step and remove the partial file; return the CSV's path."""
-    atomic_write_text(out / CSV_NAME, header + "".join(csv_line(cells) for cells in rows))
+def write_final(out: Path, header: str, rows: Sequence[Sequence[str]], stem: str = "sweep") -> Path:
+    """Write ``<stem>.csv`` in one step and remove the partial file; return the CSV's path."""
+    csv_name, partial_name, _ = file_names(stem)
+    atomic_write_text(out / csv_name, header + "".join(csv_line(cells) for cells in rows))
     with contextlib.suppress(FileNotFoundError):
-        os.unlink(out / PARTIAL_NAME)
-    return out / CSV_NAME
+        os.unlink(out / partial_name)
+    return out / csv_name

@@ -98,7 +98,7 @@ def plan_sweep(
     """Load the roads and validate the configuration of every combination; raise a one-line
     :class:`~truckmpc.errors.TruckmpcError` naming the road, the ``--set`` or the ``--grid`` axis."""
     checked = _checked_axes(axes, overrides)
-    profiles = _profiles(roads, reverse)
+    profiles = load_profiles(roads, reverse)
     base = _Base(
         None if vehicle_path is None else str(vehicle_path), tuple(str(p) for p in config_paths), tuple(overrides)
     )
@@ -151,7 +151,7 @@ def _checked_axes(
     return parsed
 
 
-def _profiles(roads: Sequence[RoadProfile | PathLike], reverse: bool) -> list[RoadProfile]:
+def load_profiles(roads: Sequence[RoadProfile | PathLike], reverse: bool) -> list[RoadProfile]:
     """The roads loaded, uniquely named, reversed if asked (keeping their names: rows are keyed by them)."""
     profiles = [load_road(road) if not isinstance(road, RoadProfile) else road for road in roads]
     if not profiles:

@@ -9,23 +9,27 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from concurrent.futures.process import BrokenProcessPool
 from typing import Any, NamedTuple
 
-from truckmpc.config import load_run_config
+from truckmpc import sim
+from truckmpc.config import RunConfig, load_run_config
+from truckmpc.equal_time import equal_time_baselines
 from truckmpc.road import RoadProfile
 from truckmpc.signals import received_signal
-from truckmpc.sim import simulate
-from truckmpc.sweep.columns import MPC_FIELDS, PI_FIELDS
+from truckmpc.sim import RunResult, simulate
+from truckmpc.sweep.columns import EQUAL_TIME_FIELDS, MPC_FIELDS, PI_FIELDS
 from truckmpc.sweep.errors import SweepWorkerDied
 
 
 class Task(NamedTuple):
     """One run: ``controller`` over road number ``road`` with ``overrides``, for plan row ``row``
-    (for a PI run: one of the rows sharing ``pi_key``)."""
+    (for a PI run: one of the rows sharing ``pi_key``). An MPC run is also compared with the PI at
+    equal trip time unless ``plain``."""
 
     controller: str
     road: int
     overrides: tuple[str, ...]
     row: int
     pi_key: str
+    plain: bool = False
 
 
 _WORKER: dict[str, Any] = {}
@@ -38,13 +42,34 @@ def _init_worker(roads: Sequence[RoadProfile], base: tuple[str | None, tuple[str
     _WORKER.update(roads=list(roads), base=base)
 
 
-def run_one(controller: str, road: int, overrides: Sequence[str]) -> dict[str, Any]:
-    """Run one controller over one road of the current worker's sweep; its figures by field name."""
+def run_one(controller: str, road: int, overrides: Sequence[str], plain: bool = False) -> dict[str, Any]:
+    """Run one controller over one road of the current worker's sweep; its figures by field name
+    (an MPC run's with its equal-time baseline's, unless ``plain``)."""
     vehicle_path, config_paths = _WORKER["base"]
     config = load_run_config(vehicle_path, config_paths, overrides)
-    summary = simulate(_WORKER["roads"][road], config, controller).summary
-    fields = PI_FIELDS if controller == "pi" else MPC_FIELDS
-    return {name: summary.get(name) for name in fields}
+    profile = _WORKER["roads"][road]
+    result = simulate(profile, config, controller)
+    if controller == "pi":
+        return {name: result.summary.get(name) for name in PI_FIELDS}
+    figures = {name: result.summary.get(name) for name in MPC_FIELDS}
+    if not plain:
+        figures.update(_equal_time_figures(profile, config, result))
+    return figures
+
+
+def _equal_time_figures(profile: RoadProfile, config: RunConfig, mpc: RunResult) -> dict[str, Any]:
+    """The PI re-tuned to the MPC run's trip time (it drives the PI at v_ref again to start from);
+    None each where the time was not reached."""
+    figures: dict[str, Any] = dict.fromkeys(EQUAL_TIME_FIELDS)
+    if mpc.stalled:
+        return figures
+    base = sim.simulate(profile, config, "pi")  # part of the search, not one of the sweep's PI tasks
+    found = equal_time_baselines(profile, config, {"pi": base, "mpc": mpc}).get("mpc")
+    if found is not None and found.reached:
+        figures["equal_time_pi_v_ref_kmh"] = found.v_ref_kmh
+        figures["equal_time_pi_fuel_kg"] = found.fuel_kg
+        figures["equal_time_pi_fuel_corrected_kg"] = found.fuel_corrected_kg
+    return figures
 
 
 class Runner:
@@ -75,7 +100,7 @@ class Runner:
         if self.jobs <= 1 or len(tasks) <= 1:
             _init_worker(self.roads, self.base, ignore_sigint=False)
             for task in tasks:
-                yield task, run_one(task.controller, task.road, task.overrides)
+                yield task, run_one(task.controller, task.road, task.overrides, task.plain)
             return
         # Workers are spawned (not forked: this process may run threads) while submitting; they
         # inherit an ignored SIGINT through exec, so Ctrl-C reaches only this process.
@@ -87,7 +112,7 @@ class Runner:
                 _init_worker,
                 (self.roads, self.base, True),
             )
-            futures = {self._pool.submit(run_one, t.controller, t.road, t.overrides): t for t in tasks}
+            futures = {self._pool.submit(run_one, t.controller, t.road, t.overrides, t.plain): t for t in tasks}
         finally:
             signal.signal(signal.SIGINT, previous)
         try:

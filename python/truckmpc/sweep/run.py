@@ -25,7 +25,7 @@ from truckmpc.sweep.files import (
 from truckmpc.sweep.grid import Axis
 from truckmpc.sweep.plan import Row, SweepPlan, plan_sweep
 from truckmpc.sweep.pool import Runner, Task
-from truckmpc.workload import MAX_WORK_S, WorkError, memory_limit_bytes, too_big, too_long
+from truckmpc.workload import EQUAL_TIME_RUNS, MAX_WORK_S, WorkError, memory_limit_bytes, too_big, too_long
 
 
 @dataclass(frozen=True)
@@ -137,7 +137,8 @@ def _check_work(plan: SweepPlan, tasks: Sequence[Task], jobs: int, force: bool) 
     if force or not tasks:
         return
     works = [(plan.rows[t.row].work, t.controller) for t in tasks]
-    costs = [work.plant_s if controller == "pi" else work.total_s for work, controller in works]
+    # An MPC row also re-tunes the PI to its trip time: some EQUAL_TIME_RUNS runs of the plant.
+    costs = [work.plant_s if c == "pi" else work.total_s + EQUAL_TIME_RUNS * work.plant_s for work, c in works]
     at_once = max(1, min(jobs, len(tasks)))
     where = "--grid" if plan.axes else "sweep"
     runs = f"for {len(tasks)} runs on {jobs} process{'es' if jobs > 1 else ''}"

@@ -1,0 +1,253 @@
+"""Comparisons that do not depend on trip time or end speed.
+
+**End-speed correction.** Two runs that end at different speeds leave different kinetic energy in
+the truck. At a fixed engine speed, engine torque and fuel rate are both affine in the pedal, so
+each unit of ½v² [m²/s²] the engine adds costs the same fuel whatever the speed and load (the core's
+``Settings.kinetic_fuel_g_per_half_v2``, in the cruise gear at v_ref: the gear that holds v_ref on a
+flat road with the least fuel; about 2.2 g per m²/s² for the 40 t truck, some 610 g for the whole of
+85 km/h). A run's end-speed-corrected fuel adds the fuel it would take to bring its end speed back
+to its start speed (negative when it ends slower)::
+
+    fuel_corrected_kg = fuel_kg + c · ½(v_end² − v_start²) / 1000
+
+**Equal trip time.** The baseline's set speed v_ref is adjusted, the speed band moving with it and
+the start speed kept, until its trip time equals the look-ahead controller's within
+:data:`TIME_TOLERANCE`; the search is regula falsi (Illinois) on the trip time as a function of
+v_ref, started from the mean-speed estimate v_ref · t_base / t_target. Each evaluation is a whole
+closed-loop run, and it stops on the time tolerance, not on a tolerance in v_ref. Where no v_ref in
+the search range reaches the time (the baseline stalls, or cannot go as fast), the result says so.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from truckmpc.compare import delta_pct
+from truckmpc.units import G_PER_KG, KMH_PER_MPS
+
+if TYPE_CHECKING:
+    from truckmpc.config import RunConfig
+    from truckmpc.road import RoadProfile
+    from truckmpc.sim import RunResult
+
+TIME_TOLERANCE = 1e-4
+"""Relative trip-time tolerance of the equal-time baseline (0.01 %)."""
+
+SEARCH_KMH = 15.0
+"""The equal-time search keeps v_ref within this many km/h of the run's v_ref [km/h]."""
+
+MAX_RUNS = 16
+"""Most baseline runs one equal-time search makes."""
+
+
+def kinetic_correction_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
+    """Fuel [kg] worth the kinetic energy a run gained from its start to its end speed:
+    c · ½(v_end² − v_start²), c in grams per m²/s²."""
+    v_start, v_end = summary["start_speed_kmh"] / KMH_PER_MPS, summary["end_speed_kmh"] / KMH_PER_MPS
+    return float(g_per_half_v2 * 0.5 * (v_end**2 - v_start**2) / G_PER_KG)
+
+
+def corrected_fuel_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
+    """A run's fuel [kg] with its end speed brought back to its start speed (negative correction
+    when it ends faster than it started)."""
+    return float(summary["fuel_kg"]) - kinetic_correction_kg(summary, g_per_half_v2)
+
+
+@dataclass
+class EqualTime:
+    """The baseline driven to a target trip time.
+
+    ``v_ref_kmh``, ``time_s``, ``fuel_kg`` and ``fuel_corrected_kg`` are those of the closest run
+    found; ``reached`` says whether it is within :data:`TIME_TOLERANCE`, and ``reason`` why not.
+    """
+
+    target_time_s: float
+    v_ref_kmh: float | None = None
+    time_s: float | None = None
+    fuel_kg: float | None = None
+    fuel_corrected_kg: float | None = None
+    runs: int = 0
+    reason: str | None = None
+    tried: list[tuple[float, float]] = field(default_factory=list)
+
+    @property
+    def reached(self) -> bool:
+        return self.reason is None and self.time_s is not None
+
+    def document(self) -> dict[str, Any]:
+        """The ``equal_time`` object of ``summary.json``."""
+        doc: dict[str, Any] = {
+            "pi_v_ref_kmh": self.v_ref_kmh,
+            "pi_time_s": self.time_s,
+            "pi_fuel_kg": self.fuel_kg,
+            "pi_fuel_corrected_kg": self.fuel_corrected_kg,
+            "target_time_s": self.target_time_s,
+            "pi_runs": self.runs,
+        }
+        if self.time_s is not None:
+            doc["time_error_pct"] = delta_pct(self.time_s, self.target_time_s)
+        if self.reason is not None:
+            doc["not_comparable"] = self.reason
+        return doc
+
+
+RunAt = Callable[[float], "RunResult"]
+"""Drive the baseline at a set speed [km/h]."""
+
+
+def baseline_runner(road: RoadProfile, config: RunConfig, controller: str = "pi") -> RunAt:
+    """A function driving `controller` over `road` at another v_ref, the band moving with it and
+    the start speed kept at the run's."""
+    from truckmpc.config import config_from_values
+    from truckmpc.sim import simulate
+
+    values = config.settings.values()
+    start_kmh = values["start_speed_kmh"] if values["start_speed_kmh"] is not None else values["v_ref_kmh"]
+
+    def run_at(v_ref_kmh: float) -> RunResult:
+        changed = {**values, "v_ref_kmh": v_ref_kmh, "start_speed_kmh": start_kmh}
+        return simulate(road, config_from_values(changed, "equal-time baseline"), controller)
+
+    return run_at
+
+
+def equal_time(
+    run_at: RunAt, v_ref_kmh: float, v_floor_kmh: float, first: RunResult, target_time_s: float, g_per_half_v2: float
+) -> EqualTime:
+    """Search v_ref in [max(v_ref − SEARCH, v_floor), v_ref + SEARCH] until the baseline's trip time
+    is within :data:`TIME_TOLERANCE` of `target_time_s`; `first` is the baseline already driven at
+    `v_ref_kmh`. `v_floor_kmh` is the lowest set speed the band allows (above v_dec)."""
+    search = _Search(EqualTime(target_time_s), g_per_half_v2, TIME_TOLERANCE * target_time_s)
+    lo_kmh, hi_kmh = max(v_ref_kmh - SEARCH_KMH, v_floor_kmh), v_ref_kmh + SEARCH_KMH
+    error = search.record(v_ref_kmh, first)
+    if error is None or search.done(error):
+        return search.found
+    # Trip time ∝ 1 / mean speed: the first guess scales v_ref by the time ratio.
+    v_next: float | None = min(max(v_ref_kmh * (error + target_time_s) / target_time_s, lo_kmh), hi_kmh)
+    while search.bracket() is None:
+        if v_next is None or search.found.runs >= MAX_RUNS:
+            return search.unreachable(lo_kmh, hi_kmh)
+        if search.done(search.record(v_next, run_at(v_next))):
+            return search.found
+        v_next = _extrapolate(search.points, lo_kmh, hi_kmh)
+    return search.illinois(run_at)
+
+
+@dataclass
+class _Search:
+    """The state of one equal-time search: the closest run so far and every (v_ref, time error)."""
+
+    found: EqualTime
+    g_per_half_v2: float
+    tolerance_s: float
+    points: list[tuple[float, float]] = field(default_factory=list)
+
+    def record(self, v_kmh: float, result: RunResult) -> float | None:
+        """Note a run at `v_kmh`; its time error [s] (time − target), None if it stalled."""
+        found = self.found
+        found.runs += 1
+        if result.stalled:
+            found.reason = f"not comparable: the pi stalls at v_ref {v_kmh:.2f} km/h ({result.message})"
+            return None
+        time_s = float(result.summary["time_s"])
+        error = time_s - found.target_time_s
+        if found.time_s is None or abs(error) < abs(found.time_s - found.target_time_s):
+            found.v_ref_kmh, found.time_s = v_kmh, time_s
+            found.fuel_kg = float(result.summary["fuel_kg"])
+            found.fuel_corrected_kg = corrected_fuel_kg(result.summary, self.g_per_half_v2)
+        self.points.append((v_kmh, error))
+        found.tried.append((v_kmh, time_s))
+        return error
+
+    def done(self, error: float | None) -> bool:
+        return error is None or abs(error) <= self.tolerance_s
+
+    def bracket(self) -> tuple[tuple[float, float], tuple[float, float]] | None:
+        """The tightest tried pair whose time errors differ in sign (slow end first), or None."""
+        slow = [p for p in self.points if p[1] > 0]
+        fast = [p for p in self.points if p[1] < 0]
+        if not slow or not fast:
+            return None
+        return max(slow, key=lambda p: p[0]), min(fast, key=lambda p: p[0])
+
+    def illinois(self, run_at: RunAt) -> EqualTime:
+        """False position inside the bracket; an end kept twice in a row has its error halved."""
+        bracket = self.bracket()
+        assert bracket is not None
+        (v_a, e_a), (v_b, e_b) = bracket
+        kept_last = 0
+        while self.found.runs < MAX_RUNS:
+            v = v_a - e_a * (v_b - v_a) / (e_b - e_a)
+            error = self.record(v, run_at(v))
+            if error is None or self.done(error):
+                return self.found
+            if error > 0:
+                (v_a, e_a), kept = (v, error), 1
+                e_b = e_b / 2 if kept_last == kept else e_b
+            else:
+                (v_b, e_b), kept = (v, error), -1
+                e_a = e_a / 2 if kept_last == kept else e_a
+            kept_last = kept
+        found = self.found
+        assert found.time_s is not None
+        found.reason = (
+            f"not comparable: the pi's trip time came no closer than {abs(found.time_s - found.target_time_s):.2f} s "
+            f"to {found.target_time_s:.1f} s in {MAX_RUNS} runs"
+        )
+        return found
+
+    def unreachable(self, lo_kmh: float, hi_kmh: float) -> EqualTime:
+        found = self.found
+        if found.reason is None:
+            slow = self.points[-1][1] > 0
+            found.reason = (
+                f"not comparable: the pi cannot reach the trip time {found.target_time_s:.1f} s with v_ref in "
+                f"{lo_kmh:.1f}-{hi_kmh:.1f} km/h (closest {found.time_s:.1f} s at {found.v_ref_kmh:.2f} km/h"
+                f"{', too slow' if slow else ', too fast'})"
+            )
+        return found
+
+
+def _extrapolate(points: list[tuple[float, float]], lo_kmh: float, hi_kmh: float) -> float | None:
+    """The secant step through the last two points towards the target, 10 % beyond so that the
+    next point is likely to bracket it, clamped to the search range; None when that end of the
+    range has been tried already."""
+    (v_a, e_a), (v_b, e_b) = points[-2], points[-1]
+    secant = e_b != e_a
+    v = v_b - 1.1 * e_b * (v_b - v_a) / (e_b - e_a) if secant else v_b + (1.0 if e_b > 0 else -1.0)
+    v = min(max(v, lo_kmh), hi_kmh)
+    if any(abs(v - tried) < 1e-9 for tried, _ in points):
+        return None
+    return v
+
+
+LOOK_AHEAD = ("mpc", "optimal")
+"""The controllers compared with the baseline at equal trip time."""
+
+
+def equal_time_baselines(
+    road: RoadProfile, config: RunConfig, results: Mapping[str, RunResult], baseline: str = "pi"
+) -> dict[str, EqualTime]:
+    """For every look-ahead run in `results` that did not stall, the baseline driven to its trip time
+    (the baseline's run at the configured v_ref is `results[baseline]`)."""
+    base = results.get(baseline)
+    if base is None:
+        return {}
+    run_at = baseline_runner(road, config, baseline)
+    cruise = config.cruise
+    # The band needs v_ref > v_dec (its lower end above zero): keep 1 km/h clear of it.
+    floor_kmh = cruise.v_dec_kmh + 1.0
+    out = {}
+    for name in LOOK_AHEAD:
+        result = results.get(name)
+        if result is None or result.stalled:
+            continue
+        if base.stalled:
+            out[name] = EqualTime(float(result.summary["time_s"]), reason=f"not comparable: {base.message}")
+            continue
+        target_s = float(result.summary["time_s"])
+        g_per_half_v2 = config.settings.kinetic_fuel_g_per_half_v2
+        out[name] = equal_time(run_at, cruise.v_ref_kmh, floor_kmh, base, target_s, g_per_half_v2)
+    return out

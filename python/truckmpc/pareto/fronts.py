@@ -1,0 +1,92 @@
+"""Fuel–time curves from ``pareto.csv`` rows, and the saving at equal trip time read off them.
+
+A curve is one controller's (trip time [s], end-speed-corrected fuel [kg]) points on one road,
+sorted by time; between points it is taken as linear. The equal-time saving of a curve is its fuel
+at the baseline's trip time at the reference set speed, against the baseline's corrected fuel
+there, in % (negative: it saves).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from truckmpc.sweep.columns import parse_cell
+
+BASELINE = "pi"
+
+
+@dataclass(frozen=True)
+class Curve:
+    """One controller's points on one road, by trip time: times [s], corrected fuels [kg], and the
+    parameter values (set speed or β) they were driven at."""
+
+    road: str
+    controller: str
+    time_s: np.ndarray
+    fuel_kg: np.ndarray
+    values: np.ndarray
+
+    def fuel_at(self, time_s: float) -> float | None:
+        """Corrected fuel [kg] at trip time `time_s` by linear interpolation; None outside the curve."""
+        if len(self.time_s) == 0 or not self.time_s[0] <= time_s <= self.time_s[-1]:
+            return None
+        return float(np.interp(time_s, self.time_s, self.fuel_kg))
+
+
+def curves(rows: Sequence[Mapping[str, str]]) -> dict[str, dict[str, Curve]]:
+    """Road -> controller -> curve, from ``pareto.csv`` rows (stalled runs left out)."""
+    points: dict[tuple[str, str], list[tuple[float, float, float]]] = {}
+    for row in rows:
+        if parse_cell(row["stalled"]) is not False:
+            continue
+        time_s, fuel_kg = parse_cell(row["time_s"]), parse_cell(row["fuel_corrected_kg"])
+        if time_s is None or fuel_kg is None:
+            continue
+        points.setdefault((row["road"], row["controller"]), []).append((time_s, fuel_kg, parse_cell(row["value"])))
+    out: dict[str, dict[str, Curve]] = {}
+    for (road, controller), found in points.items():
+        found.sort()
+        time_s, fuel_kg, values = (np.array(column, dtype=float) for column in zip(*found, strict=True))
+        out.setdefault(road, {})[controller] = Curve(road, controller, time_s, fuel_kg, values)
+    return out
+
+
+def reference_point(rows: Sequence[Mapping[str, str]], road: str, v_ref_kmh: float) -> tuple[float, float] | None:
+    """(trip time [s], corrected fuel [kg]) of the baseline at the reference set speed on `road`."""
+    for row in rows:
+        at_reference = abs(float(row["v_ref_kmh"]) - v_ref_kmh) < 1e-9
+        mine = row["road"] == road and row["controller"] == BASELINE and parse_cell(row["stalled"]) is False
+        if mine and at_reference:
+            return float(row["time_s"]), float(row["fuel_corrected_kg"])
+    return None
+
+
+def equal_time_savings(rows: Sequence[Mapping[str, str]], v_ref_kmh: float) -> dict[str, dict[str, float | None]]:
+    """Road -> look-ahead controller -> fuel saving [%] at the baseline's trip time at `v_ref_kmh`
+    (None where that time is outside the controller's curve)."""
+    out: dict[str, dict[str, float | None]] = {}
+    for road, by_controller in curves(rows).items():
+        reference = reference_point(rows, road, v_ref_kmh)
+        if reference is None:
+            continue
+        time_s, base_kg = reference
+        for controller, curve in by_controller.items():
+            if controller == BASELINE:
+                continue
+            fuel = curve.fuel_at(time_s)
+            out.setdefault(road, {})[controller] = None if fuel is None else 100 * (fuel / base_kg - 1)
+    return out
+
+
+def below(curve: Curve, other: Curve, samples: int = 50) -> tuple[bool, float]:
+    """Whether `curve` uses less fuel than `other` at every common trip time (sampled), and the
+    smallest margin [kg] found (other − curve)."""
+    lo, hi = max(curve.time_s[0], other.time_s[0]), min(curve.time_s[-1], other.time_s[-1])
+    if hi <= lo:
+        return False, float("nan")
+    grid = np.linspace(lo, hi, samples)
+    margin = np.interp(grid, other.time_s, other.fuel_kg) - np.interp(grid, curve.time_s, curve.fuel_kg)
+    return bool(np.all(margin > 0)), float(margin.min())

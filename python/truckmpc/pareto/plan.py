@@ -1,0 +1,185 @@
+"""The points of a fuel–time Pareto study: which controller runs with which set speed or β on which
+road, each configuration validated before anything runs.
+
+Curves:
+
+- ``pi``: the baseline over the set speeds;
+- ``mpc``: the configured look-ahead controller (the thesis's cost by default) over the set speeds;
+- ``fuel_time``: the look-ahead controller with the ``fuel_time`` preset, over the set speeds with β
+  derived from each, or over ``betas`` at the configured v_ref.
+
+The speed band moves with each set speed (``v_inc_kmh``/``v_dec_kmh`` are offsets); every run starts
+at the configured start speed, so the end-speed correction compares like with like.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from truckmpc.config import RunConfig, load_run_config
+from truckmpc.config.keys import PRESET_DIR
+from truckmpc.config.yamlfile import read_mapping
+from truckmpc.errors import ConfigError
+from truckmpc.road import PathLike, RoadProfile
+from truckmpc.sweep.columns import cell, yaml_text
+from truckmpc.sweep.errors import SweepError
+from truckmpc.sweep.plan import load_profiles
+from truckmpc.workload import Work, check_trace, run_work
+
+CURVES = ("pi", "mpc", "fuel_time")
+"""The curves of a Pareto study, in the order they are drawn."""
+
+SPEED_OFFSETS_KMH = (-8.0, -6.0, -4.0, -2.0, 0.0, 2.0, 4.0)
+"""Default set speeds: these offsets from the configured v_ref [km/h]."""
+
+PARETO_COLUMNS = (
+    "road",
+    "direction",
+    "controller",
+    "parameter",
+    "value",
+    "v_ref_kmh",
+    "beta_g_per_s",
+    "fuel_kg",
+    "fuel_corrected_kg",
+    "time_s",
+    "end_speed_kmh",
+    "stalled",
+)
+"""Columns of ``pareto.csv``; ``parameter`` names what the curve varies (``v_ref_kmh`` or
+``beta_g_per_s``) and ``value`` its value."""
+
+
+@dataclass(frozen=True)
+class Point:
+    """One run of a Pareto study: curve ``curve`` on road number ``road`` at ``parameter`` =
+    ``value`` (with its set speed and β), its ``key=value`` overrides and estimated work."""
+
+    index: int
+    road: int
+    curve: str
+    parameter: str
+    value: float
+    v_ref_kmh: float
+    beta_g_per_s: float | None
+    overrides: tuple[str, ...]
+    work: Work
+
+    @property
+    def controller(self) -> str:
+        """The built-in controller that drives the point."""
+        return "pi" if self.curve == "pi" else "mpc"
+
+
+@dataclass(frozen=True)
+class ParetoPlan:
+    """A validated Pareto study: roads (reversed when ``direction`` is reverse), the base files and
+    overrides, the points and the ``pareto.json`` settings."""
+
+    roads: tuple[RoadProfile, ...]
+    direction: str
+    vehicle_path: str | None
+    config_paths: tuple[str, ...]
+    base_v_ref_kmh: float
+    points: tuple[Point, ...]
+    settings: dict[str, Any]
+
+    columns = PARETO_COLUMNS
+
+    def point_key(self, point: Point) -> tuple[str, ...]:
+        """The cells that identify a point in the CSV."""
+        return (self.roads[point.road].name, self.direction, point.curve, point.parameter, cell(point.value))
+
+
+def plan_pareto(
+    roads: Sequence[RoadProfile | PathLike],
+    *,
+    speeds_kmh: Sequence[float] | None = None,
+    betas_g_per_s: Sequence[float] | None = None,
+    curves: Sequence[str] = CURVES,
+    reverse: bool = False,
+    vehicle_path: PathLike | None = None,
+    config_paths: Sequence[PathLike] = (),
+    overrides: Sequence[str] = (),
+) -> ParetoPlan:
+    """Load the roads and validate every point's configuration; errors are one line naming the key."""
+    unknown = [c for c in curves if c not in CURVES]
+    if unknown or not curves:
+        raise SweepError(f"--curves: expected some of {', '.join(CURVES)}, got {','.join(curves) or 'none'}")
+    profiles = load_profiles(roads, reverse)
+    vehicle = None if vehicle_path is None else str(vehicle_path)
+    configs = tuple(str(p) for p in config_paths)
+    base = load_run_config(vehicle, configs, tuple(overrides))
+    values = base.settings.values()
+    v_ref = float(values["v_ref_kmh"])
+    start = values["start_speed_kmh"] if values["start_speed_kmh"] is not None else v_ref
+    speeds = [v_ref + d for d in SPEED_OFFSETS_KMH] if speeds_kmh is None else list(speeds_kmh)
+    fixed = (*overrides, f"start_speed_kmh={yaml_text(start)}")
+    fuel_time = _preset_overrides("fuel_time")
+    specs: list[tuple[str, str, float, tuple[str, ...]]] = []
+    for curve in curves:
+        extra = fuel_time if curve == "fuel_time" else ()
+        if curve == "fuel_time" and betas_g_per_s is not None:
+            specs += [(curve, "beta_g_per_s", b, (*extra, f"beta_g_per_s={yaml_text(b)}")) for b in betas_g_per_s]
+        else:
+            specs += [(curve, "v_ref_kmh", v, (*extra, f"v_ref_kmh={yaml_text(v)}")) for v in speeds]
+    points: list[Point] = []
+    for r, profile in enumerate(profiles):
+        for curve, parameter, value, extra in specs:
+            config = _point_config(vehicle, configs, (*fixed, *extra), curve, parameter, value)
+            check_trace(profile, config)
+            controller = "pi" if curve == "pi" else "mpc"
+            beta = config.settings.beta_g_per_s_resolved if controller == "mpc" else None
+            v = float(config.cruise.v_ref_kmh)
+            work = run_work(profile, config, controller)
+            points.append(Point(len(points), r, curve, parameter, float(value), v, beta, (*fixed, *extra), work))
+    direction = "reverse" if reverse else "forward"
+    settings = _settings(profiles, direction, base, speeds, betas_g_per_s, curves, vehicle, configs, overrides)
+    return ParetoPlan(tuple(profiles), direction, vehicle, configs, v_ref, tuple(points), settings)
+
+
+def _preset_overrides(name: str) -> tuple[str, ...]:
+    """A packaged preset's keys as ``key=value`` overrides (they go last, so the curve is the preset's)."""
+    mapping, _where, _lines = read_mapping(PRESET_DIR / f"{name}.yaml")
+    return tuple(f"{key}={yaml_text(value)}" for key, value in mapping.items())
+
+
+def _point_config(
+    vehicle: str | None, configs: tuple[str, ...], overrides: tuple[str, ...], curve: str, parameter: str, value: float
+) -> RunConfig:
+    """The configuration of one point; its errors say which curve and parameter value."""
+    try:
+        return load_run_config(vehicle, configs, overrides)
+    except ConfigError as err:
+        raise SweepError(f"{curve} at {parameter}={cell(value)}: {err}") from None
+
+
+def _settings(
+    profiles: Sequence[RoadProfile],
+    direction: str,
+    base: RunConfig,
+    speeds: Sequence[float],
+    betas: Sequence[float] | None,
+    curves: Sequence[str],
+    vehicle: str | None,
+    configs: Sequence[str],
+    overrides: Sequence[str],
+) -> dict[str, Any]:
+    """The ``pareto.json`` document (without ``jobs``), as plain JSON values."""
+    config_doc = base.as_dict()
+    config_doc.pop("sources")
+    settings = {
+        "version": 1,
+        "roads": [{"name": p.name, "direction": direction, "sha256": p.sha256(), "path": p.source} for p in profiles],
+        "grid": {"curves": list(curves), "speeds_kmh": list(speeds), "betas_g_per_s": betas and list(betas)},
+        "base_config": config_doc,
+        "vehicle": vehicle,
+        "configs": list(configs),
+        "overrides": list(overrides),
+        "columns": list(PARETO_COLUMNS),
+    }
+    doc: dict[str, Any] = json.loads(json.dumps(settings))
+    return doc

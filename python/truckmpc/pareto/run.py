@@ -1,0 +1,128 @@
+"""Running (or resuming) a Pareto study into a directory, through the sweep's process pool and
+files: ``pareto.json`` (which study), ``pareto.partial.csv`` (points as they finish) and
+``pareto.csv`` (every point in plan order, written at the end)."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from truckmpc.pareto.plan import ParetoPlan, Point
+from truckmpc.road import PathLike
+from truckmpc.sweep.columns import cell, parse_cell
+from truckmpc.sweep.errors import SweepInterrupted
+from truckmpc.sweep.files import (
+    PartialFile,
+    check_out_dir,
+    csv_line,
+    file_names,
+    finished_rows,
+    write_final,
+    write_settings,
+)
+from truckmpc.sweep.pool import Runner, Task
+from truckmpc.sweep.run import ProgressHook
+from truckmpc.workload import MAX_WORK_S, WorkError, too_long
+
+STEM = "pareto"
+
+FIGURES = ("fuel_kg", "fuel_corrected_kg", "time_s", "end_speed_kmh", "stalled")
+"""The run's figures that go to ``pareto.csv``."""
+
+
+@dataclass(frozen=True)
+class ParetoResult:
+    """A finished study: its CSV and its rows (column -> cell text, plan order)."""
+
+    csv_path: Path
+    rows: list[dict[str, str]]
+    runs: int
+    resumed: int
+
+
+def run_pareto(
+    plan: ParetoPlan,
+    out: PathLike,
+    *,
+    jobs: int | None = None,
+    progress: ProgressHook | None = None,
+    force: bool = False,
+    notice: Callable[[str], None] | None = None,
+) -> ParetoResult:
+    """Run the points of `plan` not yet in `out`, longest first, on `jobs` processes (default: all
+    cores); append each to ``pareto.partial.csv`` as it finishes and write ``pareto.csv`` at the
+    end. Rerunning the same study into `out` resumes it; a different one is refused."""
+    out = Path(out)
+    jobs = max(1, jobs or os.cpu_count() or 1)
+    check_out_dir(out, plan.settings, STEM)
+    done = _resumed(plan, out, notice)
+    pending = sorted((p for p in plan.points if p.index not in done), key=lambda p: -p.work.total_s)
+    _check_work(pending, jobs, force)
+    out.mkdir(parents=True, exist_ok=True)
+    write_settings(out, plan.settings, jobs, STEM)
+    header = csv_line(plan.columns)
+    partial_path = out / file_names(STEM)[1]
+    partial = PartialFile(partial_path, header, [csv_line(cells) for _, cells in sorted(done.items())])
+    if progress:
+        progress(len(done), len(plan.points))
+    tasks = [Task(p.controller, p.road, p.overrides, p.index, "", plain=True) for p in pending]
+    try:
+        with Runner(plan.roads, (plan.vehicle_path, plan.config_paths), jobs) as runner:
+            for task, figures in runner.results(tasks):
+                cells = _cells(plan, plan.points[task.row], figures)
+                done[task.row] = cells
+                partial.append(csv_line(cells))
+                if progress:
+                    progress(len(done), len(plan.points))
+    except KeyboardInterrupt:
+        raise SweepInterrupted(len(done), len(plan.points), partial_path) from None
+    finally:
+        partial.close()
+    ordered = [done[p.index] for p in plan.points]
+    rows = [dict(zip(plan.columns, cells, strict=True)) for cells in ordered]
+    return ParetoResult(write_final(out, header, ordered, STEM), rows, len(tasks), len(plan.points) - len(tasks))
+
+
+def _cells(plan: ParetoPlan, point: Point, figures: dict[str, Any]) -> list[str]:
+    own = [cell(point.v_ref_kmh), cell(point.beta_g_per_s)]
+    return [*plan.point_key(point), *own, *(cell(figures.get(name)) for name in FIGURES)]
+
+
+def _resumed(plan: ParetoPlan, out: Path, notice: Callable[[str], None] | None) -> dict[int, list[str]]:
+    """Point index -> cells of the points already in `out`; a damaged line is dropped, to run again."""
+    by_key = {plan.point_key(p): p for p in plan.points}
+    done: dict[int, list[str]] = {}
+    dropped = []
+    for where, cells in finished_rows(out, plan.columns, STEM):
+        point = by_key.get(tuple(cells[:5]))
+        problem = "not a point of this study" if point is None else _damaged(cells)
+        if point is None or problem is not None:
+            dropped.append(f"{where}: {problem}")
+            continue
+        done.setdefault(point.index, cells)
+    if dropped and notice is not None:
+        notice(f"dropped {len(dropped)} damaged row(s), to run again ({dropped[0]})")
+    return done
+
+
+def _damaged(cells: list[str]) -> str | None:
+    if len(cells) != len(ParetoPlan.columns):
+        return f"expected {len(ParetoPlan.columns)} cells, got {len(cells)}"
+    *numbers, stalled = (parse_cell(c) for c in cells[5:])
+    if not isinstance(stalled, bool):
+        return f"column 'stalled': expected true or false, got {cells[-1]!r}"
+    bad = [c for c in numbers if c is not None and (isinstance(c, (bool, str)))]
+    return f"expected numbers or blanks, got {bad[0]!r}" if bad else None
+
+
+def _check_work(pending: list[Point], jobs: int, force: bool) -> None:
+    """Refuse, unless `force`, points whose estimated wall time on `jobs` processes is beyond the limit."""
+    if force or not pending:
+        return
+    costs = [p.work.total_s for p in pending]
+    wall_s = max(sum(costs) / max(1, min(jobs, len(costs))), max(costs))
+    if wall_s > MAX_WORK_S:
+        raise WorkError(f"pareto: {too_long(wall_s, f'for {len(costs)} runs on {jobs} processes')}")

@@ -1,0 +1,127 @@
+"""Comparisons at equal trip time and end speed: the PI re-tuned to a target trip time, the
+end-speed correction, and the fuel–time cost's derived β holding v_ref on a flat road."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from truckmpc import load_road, load_run_config, simulate
+from truckmpc.cli import app
+from truckmpc.equal_time import TIME_TOLERANCE, baseline_runner, equal_time, kinetic_correction_kg
+from truckmpc.road import make_section
+
+runner = CliRunner()
+SHARED_ROADS = Path(__file__).resolve().parents[1] / ".." / "shared" / "roads"
+EPA = SHARED_ROADS / "us_epa_gem_ph2_grade_20km.csv"
+
+
+def fake_run(length_m: float, offset_s: float = 0.0):
+    """A stand-in for a baseline run whose trip time is length / v_ref + offset: the root is known."""
+
+    def run_at(v_ref_kmh: float):
+        time_s = length_m / (v_ref_kmh / 3.6) + offset_s
+        summary = {"time_s": time_s, "fuel_kg": v_ref_kmh / 100, "start_speed_kmh": 85.0, "end_speed_kmh": v_ref_kmh}
+        return SimpleNamespace(stalled=False, message=None, summary=summary)
+
+    return run_at
+
+
+@pytest.mark.parametrize("true_v_kmh", [71.3, 84.2, 85.0001, 88.77, 99.0])
+def test_search_finds_a_known_set_speed(true_v_kmh: float) -> None:
+    """Against a trip time made by a known set speed (time = L / v + a fixed stop), the search ends
+    within the tolerance, at that set speed, in a handful of runs."""
+    run_at = fake_run(50_000.0, offset_s=120.0)
+    target_s = run_at(true_v_kmh).summary["time_s"]
+    found = equal_time(run_at, 85.0, 6.0, run_at(85.0), target_s, 2.0)
+    assert found.reached, found.reason
+    assert abs(found.time_s - target_s) <= TIME_TOLERANCE * target_s
+    assert found.v_ref_kmh == pytest.approx(true_v_kmh, abs=0.01)
+    assert found.runs <= 6
+
+
+def test_search_says_when_the_time_is_out_of_reach() -> None:
+    """A trip time that would need v_ref beyond the search range is not reached, and says why; no
+    number stands in for it."""
+    run_at = fake_run(50_000.0)
+    target_s = 50_000.0 / (120.0 / 3.6)  # 120 km/h: 35 above v_ref
+    found = equal_time(run_at, 85.0, 6.0, run_at(85.0), target_s, 2.0)
+    assert not found.reached
+    assert "cannot reach the trip time" in found.reason and "100.0 km/h" in found.reason
+    assert found.document()["not_comparable"] == found.reason
+
+
+@pytest.mark.skipif(not EPA.is_file(), reason="shared road profiles (../shared/roads) not present")
+def test_equal_time_pi_hits_a_time_made_by_another_set_speed() -> None:
+    """On a shared road (US EPA 20 km), the PI re-tuned to the trip time of the PI at 83.4 km/h
+    reaches it within 0.01 % and lands within 0.05 km/h of 83.4."""
+    road = load_road(EPA)
+    config = load_run_config()
+    run_at = baseline_runner(road, config)
+    target_s = run_at(83.4).summary["time_s"]
+    found = equal_time(run_at, 85.0, 6.0, simulate(road, config, "pi"), target_s, 2.0)
+    assert found.reached, found.reason
+    assert abs(found.time_s - target_s) <= TIME_TOLERANCE * target_s
+    assert found.v_ref_kmh == pytest.approx(83.4, abs=0.05)
+
+
+@pytest.mark.skipif(not EPA.is_file(), reason="shared road profiles (../shared/roads) not present")
+def test_simulate_reports_the_mpc_at_equal_time(tmp_path: Path) -> None:
+    """`truckmpc simulate` compares the MPC with the PI driven to the MPC's trip time: the PI's time
+    is within 0.01 % of the MPC's, and the equal-time delta is the fuel against that PI."""
+    result = runner.invoke(app, ["simulate", "--road", str(EPA), "--out", str(tmp_path / "run")])
+    assert result.exit_code == 0, result.output
+    doc = json.loads((tmp_path / "run" / "summary.json").read_text())
+    equal = doc["equal_time"]
+    assert abs(equal["pi_time_s"] / doc["mpc"]["time_s"] - 1) <= TIME_TOLERANCE
+    assert doc["delta_fuel_equal_time_pct"] == pytest.approx(100 * (doc["mpc"]["fuel_kg"] / equal["pi_fuel_kg"] - 1))
+    expected = 100 * (doc["mpc"]["fuel_corrected_kg"] / equal["pi_fuel_corrected_kg"] - 1)
+    assert doc["delta_fuel_equal_time_corrected_pct"] == pytest.approx(expected)
+    assert "equal time pi v_ref [km/h]" in result.output
+
+
+def test_end_speed_correction_prices_the_kinetic_energy_of_a_speed_up() -> None:
+    """A PI run that starts at 75 km/h and speeds up to 85 burns more fuel than one started at 85;
+    the difference is the kinetic energy gained, priced at the engine's marginal cost, within 10 %
+    (the rest is the drag saved while slower), and the corrected fuels agree to 0.3 %."""
+    road = make_section("flat", 6000.0, None)
+    slow = simulate(road, load_run_config(overrides=["start_speed_kmh=75"]), "pi")
+    steady = simulate(road, load_run_config(), "pi")
+    c = load_run_config().settings.kinetic_fuel_g_per_half_v2
+    extra_kg = slow.summary["fuel_kg"] - steady.summary["fuel_kg"]
+    priced_kg = kinetic_correction_kg(slow.summary, c)
+    assert priced_kg == pytest.approx(c * 0.5 * ((85 / 3.6) ** 2 - (75 / 3.6) ** 2) / 1000, rel=1e-3)
+    assert extra_kg == pytest.approx(priced_kg, rel=0.10)
+    assert slow.summary["fuel_corrected_kg"] == pytest.approx(steady.summary["fuel_corrected_kg"], rel=3e-3)
+
+
+def test_fuel_time_cost_with_the_derived_beta_holds_v_ref_on_a_flat_road() -> None:
+    """With β derived from v_ref, the fuel–time controller holds v_ref on a flat road (within
+    0.05 km/h, in one gear), at every set speed tried."""
+    road = make_section("flat", 4000.0, None)
+    for v_ref in (75.0, 85.0):
+        config = load_run_config(config_paths=["fuel_time"], overrides=[f"v_ref_kmh={v_ref}"])
+        result = simulate(road, config, "mpc")
+        speed = result.trace["speed_kmh"]
+        assert np.max(np.abs(speed - v_ref)) < 0.05, (v_ref, speed.min(), speed.max())
+        assert result.summary["gear_shifts"] == 0
+        assert result.summary["settings"]["beta_g_per_s"] > 0
+
+
+def test_a_larger_beta_buys_time_with_fuel() -> None:
+    """On a hilly section, raising β makes the fuel–time controller faster and thirstier: trip time
+    falls and fuel rises monotonically over β = 2, 5.6, 12 g/s."""
+    road = make_section("hill", 1500.0, 3.0)
+    runs = []
+    for beta in (2.0, 5.6, 12.0):
+        config = load_run_config(config_paths=["fuel_time"], overrides=[f"beta_g_per_s={beta}"])
+        runs.append(simulate(road, config, "mpc").summary)
+    times = [r["time_s"] for r in runs]
+    fuels = [r["fuel_corrected_kg"] for r in runs]
+    assert times[0] > times[1] > times[2], times
+    assert fuels[0] < fuels[1] < fuels[2], fuels

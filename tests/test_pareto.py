@@ -1,0 +1,93 @@
+"""Fuel–time Pareto studies (`truckmpc pareto`): curves, the saving at equal trip time, resume."""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from truckmpc.cli import app
+from truckmpc.pareto import below, curves, equal_time_savings, plan_pareto, run_pareto
+from truckmpc.road import default_test_track
+
+runner = CliRunner()
+
+
+@pytest.fixture(scope="module")
+def study(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, list[dict[str, str]]]:
+    """The three curves on the bundled test track (hilly: grades up to ±4 %) at four set speeds."""
+    out = tmp_path_factory.mktemp("pareto")
+    result = runner.invoke(
+        app, ["pareto", "--road", "roads/test-track.csv", "--speeds", "79,82,85,88", "--jobs", "2", "--out", str(out)]
+    )
+    assert result.exit_code == 0, result.output
+    with (out / "pareto.csv").open(newline="") as handle:
+        return out, list(csv.DictReader(handle))
+
+
+def test_every_look_ahead_curve_lies_below_the_pi_on_a_hilly_road(study) -> None:
+    """At every trip time both the PI and a look-ahead controller reach, the look-ahead controller
+    uses less fuel (end speed corrected), by at least 0.5 % of the PI's."""
+    _, rows = study
+    by_controller = curves(rows)["test-track"]
+    pi = by_controller["pi"]
+    for name in ("mpc", "fuel_time"):
+        under, margin_kg = below(by_controller[name], pi)
+        assert under, (name, margin_kg)
+        assert margin_kg > 0.005 * pi.fuel_kg.min(), (name, margin_kg)
+
+
+def test_csv_figure_and_equal_time_saving(study) -> None:
+    """One row per (curve, set speed), β given for the fuel_time curve and rising with the set
+    speed; the printed saving at equal time is the curve's fuel interpolated at the PI's time."""
+    out, rows = study
+    assert (out / "pareto.png").stat().st_size > 0
+    assert [(r["controller"], float(r["value"])) for r in rows] == [
+        (c, v) for c in ("pi", "mpc", "fuel_time") for v in (79.0, 82.0, 85.0, 88.0)
+    ]
+    betas = [float(r["beta_g_per_s"]) for r in rows if r["controller"] == "fuel_time"]
+    assert betas == sorted(betas) and betas[0] > 0
+    assert all(r["beta_g_per_s"] == "" for r in rows if r["controller"] != "fuel_time")
+    savings = equal_time_savings(rows, 85.0)["test-track"]
+    pi85 = next(r for r in rows if r["controller"] == "pi" and float(r["value"]) == 85.0)
+    mpc = curves(rows)["test-track"]["mpc"]
+    expected = 100 * (mpc.fuel_at(float(pi85["time_s"])) / float(pi85["fuel_corrected_kg"]) - 1)
+    assert savings["mpc"] == pytest.approx(expected)
+    assert savings["mpc"] < 0 and savings["fuel_time"] < 0
+
+
+def test_rerun_resumes_and_a_different_study_is_refused(tmp_path: Path) -> None:
+    """Running the same study again into its directory runs nothing; points lost from the end of
+    the partial file run again; another study into it is refused with one line, exit 2."""
+    plan = plan_pareto([default_test_track()], speeds_kmh=[84.0, 86.0], curves=["pi"])
+    first = run_pareto(plan, tmp_path, jobs=1)
+    assert (first.runs, first.resumed) == (2, 0)
+    again = run_pareto(plan, tmp_path, jobs=1)
+    assert (again.runs, again.resumed) == (0, 2) and again.rows == first.rows
+    # An interrupted study: the CSV gone, one finished point in the partial file.
+    lines = (tmp_path / "pareto.csv").read_text().splitlines(keepends=True)
+    (tmp_path / "pareto.csv").unlink()
+    (tmp_path / "pareto.partial.csv").write_text(lines[0] + lines[2])
+    resumed = run_pareto(plan, tmp_path, jobs=1)
+    assert (resumed.runs, resumed.resumed) == (1, 1) and resumed.rows == first.rows
+    other = runner.invoke(
+        app, ["pareto", "--road", "roads/test-track.csv", "--speeds", "80", "--curves", "pi", "--out", str(tmp_path)]
+    )
+    assert other.exit_code == 2 and other.output.count("\n") == 1 and "different pareto" in other.output
+
+
+@pytest.mark.parametrize(
+    ("args", "expected"),
+    [
+        (["--curves", "pi,bogus"], "--curves: expected some of pi, mpc, fuel_time, got pi,bogus"),
+        (["--speeds", "abc"], "--speeds': expected numbers, got 'abc'"),
+        (["--set", "v_dec_kmh=90"], "v_dec_kmh"),
+    ],
+)
+def test_bad_input_is_one_line_and_exit_2(tmp_path: Path, args: list[str], expected: str) -> None:
+    result = runner.invoke(app, ["pareto", "--road", "roads/test-track.csv", "--out", str(tmp_path / "p"), *args])
+    assert result.exit_code == 2, result.output
+    assert result.output.startswith("error: ") and result.output.count("\n") == 1 and expected in result.output
+    assert not (tmp_path / "p").exists()
