@@ -23,11 +23,12 @@ traceback and no output files.
 
 from __future__ import annotations
 
+import contextlib
 import enum
 import importlib
 import json
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Annotated, Any, NoReturn
 
@@ -169,6 +170,12 @@ SetOpt = Annotated[
         "--set", metavar="KEY=VALUE", help="Override any vehicle, controller or simulation key: key=value; repeatable."
     ),
 ]
+RoadsOpt = Annotated[list[Path], typer.Option("--road", metavar="FILE", help="Road profile CSV; repeatable.")]
+ReverseAllOpt = Annotated[bool, typer.Option("--reverse", help="Drive every road in the opposite direction.")]
+JobsOpt = Annotated[
+    int | None, typer.Option("--jobs", min=1, help="Parallel processes (default: all cores); 1 runs in-process.")
+]
+QuietOpt = Annotated[bool, typer.Option("--quiet", help="No progress bar.")]
 ForceOpt = Annotated[
     bool, typer.Option("--force", help="Run even when the estimated work is beyond an hour (refused otherwise).")
 ]
@@ -285,7 +292,7 @@ def _text(path: Path | None) -> str | None:
 
 @app.command("sweep")
 def sweep_cmd(
-    road: Annotated[list[Path], typer.Option("--road", metavar="FILE", help="Road profile CSV; repeatable.")],
+    road: RoadsOpt,
     out: Annotated[
         Path,
         typer.Option("--out", help="Output directory: sweep.csv, sweep.json (and sweep.partial.csv while running)."),
@@ -296,42 +303,29 @@ def sweep_cmd(
             "--grid", metavar="KEY=SPEC", help="Axis KEY=start:stop:step or KEY=v1,v2,...; any config key; repeatable."
         ),
     ] = None,
-    reverse: Annotated[bool, typer.Option("--reverse", help="Drive every road in the opposite direction.")] = False,
-    jobs: Annotated[
-        int | None, typer.Option("--jobs", min=1, help="Parallel processes (default: all cores); 1 runs in-process.")
-    ] = None,
+    reverse: ReverseAllOpt = False,
+    jobs: JobsOpt = None,
     vehicle: VehicleOpt = None,
     config: ConfigOpt = None,
     set_: SetOpt = None,
-    quiet: Annotated[bool, typer.Option("--quiet", help="No progress bar.")] = False,
+    quiet: QuietOpt = False,
     force: ForceOpt = False,
 ) -> None:
     """Run PI and MPC on every road for every combination of the --grid axes; one row each in DIR/sweep.csv.
 
     Rerun the same command with the same --out to resume an interrupted sweep.
     """
-    from truckmpc.sweep import SweepInterrupted, SweepWorkerDied, plan_sweep, progress_bar, run_plan
+    from truckmpc.sweep import plan_sweep, progress_bar, run_plan
 
-    try:
-        with stopping_on_signals():
-            with status_line("checking every combination of the grid"):
-                plan = plan_sweep(
-                    road,
-                    tuple(grid or ()),
-                    reverse=reverse,
-                    vehicle_path=vehicle,
-                    config_paths=tuple(config or ()),
-                    overrides=tuple(set_ or ()),
-                )
-            with progress_bar(not quiet) as hook:
-                result = run_plan(plan, out, jobs=jobs, progress=hook, force=force, notice=_notice)
-    except SweepInterrupted as stop:
-        kept = f"{stop.done} of {stop.total} rows kept in {stop.partial_path}; run the same command again to resume"
-        raise Stopped(kept, received_signal()) from None
-    except KeyboardInterrupt:
-        raise Stopped("before any run started", received_signal()) from None
-    except SweepWorkerDied as err:
-        _fail(str(err), 1)
+    with _pooled_study("rows"):
+        with status_line("checking every combination of the grid"):
+            plan = plan_sweep(
+                road,
+                tuple(grid or ()),
+                **_study_inputs(reverse, vehicle, config, set_),
+            )
+        with progress_bar(not quiet) as hook:
+            result = run_plan(plan, out, jobs=jobs, progress=hook, force=force, notice=_notice)
     axes = [axis.key for axis in plan.axes]
     for row in result.rows:
         figures = " ".join(f"{key}={row[key]}" for key in axes)
@@ -345,7 +339,7 @@ def sweep_cmd(
 
 @app.command("pareto")
 def pareto_cmd(
-    road: Annotated[list[Path], typer.Option("--road", metavar="FILE", help="Road profile CSV; repeatable.")],
+    road: RoadsOpt,
     out: Annotated[
         Path,
         typer.Option("--out", help="Output directory: pareto.csv, pareto.json, pareto.png."),
@@ -370,14 +364,12 @@ def pareto_cmd(
     curves: Annotated[
         str, typer.Option("--curves", help="Curves to run, comma-separated: pi, mpc, fuel_time.")
     ] = "pi,mpc,fuel_time",
-    reverse: Annotated[bool, typer.Option("--reverse", help="Drive every road in the opposite direction.")] = False,
-    jobs: Annotated[
-        int | None, typer.Option("--jobs", min=1, help="Parallel processes (default: all cores); 1 runs in-process.")
-    ] = None,
+    reverse: ReverseAllOpt = False,
+    jobs: JobsOpt = None,
     vehicle: VehicleOpt = None,
     config: ConfigOpt = None,
     set_: SetOpt = None,
-    quiet: Annotated[bool, typer.Option("--quiet", help="No progress bar.")] = False,
+    quiet: QuietOpt = False,
     force: ForceOpt = False,
 ) -> None:
     """Fuel against trip time: the PI over set speeds, the MPC over set speeds and the fuel-time MPC
@@ -386,29 +378,18 @@ def pareto_cmd(
     Rerun the same command with the same --out to resume an interrupted study.
     """
     from truckmpc.pareto import equal_time_savings, plan_pareto, run_pareto
-    from truckmpc.sweep import SweepInterrupted, SweepWorkerDied, progress_bar
+    from truckmpc.sweep import progress_bar
 
-    try:
-        with stopping_on_signals():
-            plan = plan_pareto(
-                road,
-                speeds_kmh=_numbers("--speeds", "v_ref_kmh", speeds),
-                betas_g_per_s=_numbers("--betas", "beta_g_per_s", betas),
-                curves=[c.strip() for c in curves.split(",") if c.strip()],
-                reverse=reverse,
-                vehicle_path=vehicle,
-                config_paths=tuple(config or ()),
-                overrides=tuple(set_ or ()),
-            )
-            with progress_bar(not quiet) as hook:
-                result = run_pareto(plan, out, jobs=jobs, progress=hook, force=force, notice=_notice)
-    except SweepInterrupted as stop:
-        kept = f"{stop.done} of {stop.total} points kept in {stop.partial_path}; run the same command again to resume"
-        raise Stopped(kept, received_signal()) from None
-    except KeyboardInterrupt:
-        raise Stopped("before any run started", received_signal()) from None
-    except SweepWorkerDied as err:
-        _fail(str(err), 1)
+    with _pooled_study("points"):
+        plan = plan_pareto(
+            road,
+            speeds_kmh=_numbers("--speeds", "v_ref_kmh", speeds),
+            betas_g_per_s=_numbers("--betas", "beta_g_per_s", betas),
+            curves=[c.strip() for c in curves.split(",") if c.strip()],
+            **_study_inputs(reverse, vehicle, config, set_),
+        )
+        with progress_bar(not quiet) as hook:
+            result = run_pareto(plan, out, jobs=jobs, progress=hook, force=force, notice=_notice)
     written = [result.csv_path]
     savings = equal_time_savings(result.rows, plan.base_v_ref_kmh)
     for road_name, by_controller in savings.items():
@@ -422,6 +403,36 @@ def pareto_cmd(
     except TruckmpcError as err:  # no matplotlib: the CSV stands on its own
         typer.echo(f"no figure: {err}", err=True)
     typer.echo(f"wrote {', '.join(map(str, written))} ({result.runs} runs, {result.resumed} resumed)")
+
+
+def _study_inputs(
+    reverse: bool, vehicle: Path | None, config: list[Path] | None, set_: list[str] | None
+) -> dict[str, Any]:
+    """The base inputs of a sweep or Pareto study, as ``plan_sweep`` and ``plan_pareto`` take them."""
+    return {
+        "reverse": reverse,
+        "vehicle_path": vehicle,
+        "config_paths": tuple(config or ()),
+        "overrides": tuple(set_ or ()),
+    }
+
+
+@contextlib.contextmanager
+def _pooled_study(kept_what: str) -> Iterator[None]:
+    """A sweep or Pareto study's stops as one line each: Ctrl-C or SIGTERM says how many finished
+    `kept_what` (rows, points) stay for a resume; a dead worker process exits 1."""
+    from truckmpc.sweep import SweepInterrupted, SweepWorkerDied
+
+    try:
+        with stopping_on_signals():
+            yield
+    except SweepInterrupted as stop:
+        kept = f"{stop.done} of {stop.total} {kept_what} kept in {stop.partial_path}"
+        raise Stopped(f"{kept}; run the same command again to resume", received_signal()) from None
+    except KeyboardInterrupt:
+        raise Stopped("before any run started", received_signal()) from None
+    except SweepWorkerDied as err:
+        _fail(str(err), 1)
 
 
 def _numbers(option: str, key: str, spec: str | None) -> list[float] | None:

@@ -14,7 +14,6 @@ at the configured start speed, so the end-speed correction compares like with li
 
 from __future__ import annotations
 
-import json
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -26,7 +25,7 @@ from truckmpc.errors import ConfigError
 from truckmpc.road import PathLike, RoadProfile
 from truckmpc.sweep.columns import cell, yaml_text
 from truckmpc.sweep.errors import SweepError
-from truckmpc.sweep.plan import load_profiles
+from truckmpc.sweep.plan import load_profiles, study_settings
 from truckmpc.workload import Work, check_trace, run_work
 
 CURVES = ("pi", "mpc", "fuel_time")
@@ -137,7 +136,9 @@ def plan_pareto(
             work = run_work(profile, config, controller)
             points.append(Point(len(points), r, curve, parameter, float(value), v, beta, (*fixed, *extra), work))
     direction = "reverse" if reverse else "forward"
-    settings = _settings(profiles, direction, base, speeds, betas_g_per_s, curves, vehicle, configs, overrides)
+    grid = {"curves": list(curves), "speeds_kmh": speeds, "betas_g_per_s": betas_g_per_s and list(betas_g_per_s)}
+    inputs = _Inputs(vehicle, configs, tuple(overrides))
+    settings = study_settings(profiles, direction, grid, base, inputs, PARETO_COLUMNS)
     return ParetoPlan(tuple(profiles), direction, vehicle, configs, v_ref, tuple(points), settings)
 
 
@@ -157,29 +158,10 @@ def _point_config(
         raise SweepError(f"{curve} at {parameter}={cell(value)}: {err}") from None
 
 
-def _settings(
-    profiles: Sequence[RoadProfile],
-    direction: str,
-    base: RunConfig,
-    speeds: Sequence[float],
-    betas: Sequence[float] | None,
-    curves: Sequence[str],
-    vehicle: str | None,
-    configs: Sequence[str],
-    overrides: Sequence[str],
-) -> dict[str, Any]:
-    """The ``pareto.json`` document (without ``jobs``), as plain JSON values."""
-    config_doc = base.as_dict()
-    config_doc.pop("sources")
-    settings = {
-        "version": 1,
-        "roads": [{"name": p.name, "direction": direction, "sha256": p.sha256(), "path": p.source} for p in profiles],
-        "grid": {"curves": list(curves), "speeds_kmh": list(speeds), "betas_g_per_s": betas and list(betas)},
-        "base_config": config_doc,
-        "vehicle": vehicle,
-        "configs": list(configs),
-        "overrides": list(overrides),
-        "columns": list(PARETO_COLUMNS),
-    }
-    doc: dict[str, Any] = json.loads(json.dumps(settings))
-    return doc
+@dataclass(frozen=True)
+class _Inputs:
+    """The base inputs as given, for ``pareto.json``."""
+
+    vehicle_path: str | None
+    config_paths: tuple[str, ...]
+    overrides: tuple[str, ...]

@@ -247,17 +247,33 @@ def _settings(
     profiles: Sequence[RoadProfile], direction: str, axes: Sequence[Axis], base: _Base, base_config: RunConfig
 ) -> dict[str, Any]:
     """The ``sweep.json`` document (without ``jobs``), as plain JSON values."""
+    grid = [{"key": a.key, "spec": a.spec, "values": list(a.values)} for a in axes]
+    columns = ["road", "direction", *(a.key for a in axes), *SWEEP_COLUMNS]
+    return study_settings(profiles, direction, grid, base_config, base, columns)
+
+
+def study_settings(
+    profiles: Sequence[RoadProfile],
+    direction: str,
+    grid: Any,
+    base_config: RunConfig,
+    base: Any,
+    columns: Sequence[str],
+) -> dict[str, Any]:
+    """The settings file of a sweep or Pareto study (without ``jobs``), as plain JSON values: what
+    identifies it (roads, `grid`, the resolved base configuration, columns) and the inputs as given
+    (`base`: ``vehicle_path``, ``config_paths``, ``overrides``)."""
     config_doc = base_config.as_dict()
     config_doc.pop("sources")
     settings = {
         "version": 1,
         "roads": [{"name": p.name, "direction": direction, "sha256": p.sha256(), "path": p.source} for p in profiles],
-        "grid": [{"key": a.key, "spec": a.spec, "values": list(a.values)} for a in axes],
+        "grid": grid,
         "base_config": config_doc,
         "vehicle": base.vehicle_path,
         "configs": list(base.config_paths),
         "overrides": list(base.overrides),
-        "columns": ["road", "direction", *(a.key for a in axes), *SWEEP_COLUMNS],
+        "columns": list(columns),
     }
     doc: dict[str, Any] = json.loads(json.dumps(settings))
     return doc
