@@ -50,7 +50,7 @@ def test_csv_figure_and_equal_time_saving(study) -> None:
     betas = [float(r["beta_g_per_s"]) for r in rows if r["controller"] == "fuel_time"]
     assert betas == sorted(betas) and betas[0] > 0
     assert all(r["beta_g_per_s"] == "" for r in rows if r["controller"] != "fuel_time")
-    savings = equal_time_savings(rows, 85.0)["test-track"]
+    savings = {name: saving.pct for name, saving in equal_time_savings(rows, 85.0)["test-track"].items()}
     pi85 = next(r for r in rows if r["controller"] == "pi" and float(r["value"]) == 85.0)
     mpc = curves(rows)["test-track"]["mpc"]
     expected = 100 * (mpc.fuel_at(float(pi85["time_s"])) / float(pi85["fuel_corrected_kg"]) - 1)
@@ -81,7 +81,11 @@ def test_rerun_resumes_and_a_different_study_is_refused(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     ("args", "expected"),
     [
-        (["--curves", "pi,bogus"], "--curves: expected some of pi, mpc, fuel_time, got pi,bogus"),
+        (["--curves", "pi,bogus"], "--curves: expected some of pi, mpc, fuel_time, each once, got pi,bogus"),
+        (["--curves", "pi,pi"], "each once, got pi,pi"),
+        (["--speeds", "80,80.0"], "--speeds: expected each value once, got 80.0 twice"),
+        (["--speeds", "90:80:2"], "--speeds"),
+        (["--betas", "3,4", "--curves", "pi,mpc"], "--betas: expected the fuel_time curve"),
         (["--speeds", "abc"], "--speeds': expected numbers, got 'abc'"),
         (["--set", "v_dec_kmh=90"], "v_dec_kmh"),
     ],
@@ -90,4 +94,33 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path: Path, args: list[str], expec
     result = runner.invoke(app, ["pareto", "--road", "roads/test-track.csv", "--out", str(tmp_path / "p"), *args])
     assert result.exit_code == 2, result.output
     assert result.output.startswith("error: ") and result.output.count("\n") == 1 and expected in result.output
+    assert "--grid" not in result.output
     assert not (tmp_path / "p").exists()
+
+
+def test_a_stall_or_a_missing_reference_gives_no_saving(study) -> None:
+    """A look-ahead curve with a stalled run, or a study without the PI at the reference set speed,
+    gets a reason instead of a saving."""
+    _, rows = study
+    stalled = [dict(r) for r in rows]
+    for row in stalled:
+        if row["controller"] == "mpc" and row["value"] == "82.0":
+            row.update(stalled="true", time_s="", fuel_kg="", fuel_corrected_kg="")
+    savings = equal_time_savings(stalled, 85.0)["test-track"]
+    assert savings["mpc"].pct is None and "mpc stalled at 82.0" in savings["mpc"].reason
+    assert savings["fuel_time"].pct is not None
+    missing = equal_time_savings(rows, 86.0)["test-track"]
+    assert all(s.pct is None and "no pi run at v_ref 86" in s.reason for s in missing.values())
+
+
+def test_plot_refuses_a_damaged_pareto_csv(study, tmp_path: Path) -> None:
+    """A pareto.csv whose finished run lacks its trip time is refused with one line naming the line."""
+    out, _ = study
+    lines = (out / "pareto.csv").read_text().splitlines(keepends=True)
+    broken = lines[2].split(",")
+    broken[9] = ""  # time_s
+    (tmp_path / "pareto.csv").write_text(lines[0] + lines[1] + ",".join(broken))
+    (tmp_path / "pareto.json").write_text((out / "pareto.json").read_text())
+    result = runner.invoke(app, ["plot", str(tmp_path)])
+    assert result.exit_code == 2 and result.output.count("\n") == 1
+    assert f"{tmp_path / 'pareto.csv'}:3: column 'time_s': expected a number" in result.output

@@ -394,7 +394,7 @@ def pareto_cmd(
     savings = equal_time_savings(result.rows, plan.base_v_ref_kmh)
     for road_name, by_controller in savings.items():
         for name, saving in by_controller.items():
-            text = "outside its curve" if saving is None else f"{saving:+.2f} %"
+            text = saving.reason if saving.pct is None else f"{saving.pct:+.2f} %"
             typer.echo(f"{road_name}: {name} at the PI's trip time at v_ref {plan.base_v_ref_kmh:g} km/h: {text}")
     try:
         from truckmpc.plot.pareto import plot_pareto
@@ -437,11 +437,14 @@ def _pooled_study(kept_what: str) -> Iterator[None]:
 
 def _numbers(option: str, key: str, spec: str | None) -> list[float] | None:
     """The values of a --speeds or --betas SPEC (start:stop:step or v1,v2,...), all numbers."""
-    from truckmpc.sweep import parse_axis
+    from truckmpc.sweep import SweepError, parse_axis
 
     if spec is None:
         return None
-    values = parse_axis(f"{key}={spec}").values
+    try:
+        values = parse_axis(f"{key}={spec}").values
+    except SweepError as err:  # it speaks of the --grid axis it parsed
+        raise SweepError(str(err).replace(f"--grid {key}", option)) from None
     bad = [v for v in values if isinstance(v, bool) or not isinstance(v, (int, float))]
     if bad or not values:
         raise typer.BadParameter(f"expected numbers, got {spec!r}", param_hint=f"'{option}'")

@@ -3,15 +3,15 @@
 **End-speed correction.** Two runs that end at different speeds leave different kinetic energy in
 the truck. At a fixed engine speed, engine torque and fuel rate are both affine in the pedal, so
 each unit of ½v² [m²/s²] the engine adds costs the same fuel whatever the speed and load (the core's
-``Settings.kinetic_fuel_g_per_half_v2``, in the cruise gear at v_ref: the gear that holds v_ref on a
-flat road with the least fuel; about 2.2 g per m²/s² for the 40 t truck, some 610 g for the whole of
-85 km/h). A run's end-speed-corrected fuel adds the fuel it would take to bring its end speed back
-to its start speed (negative when it ends slower)::
+``Settings.kinetic_fuel_g_per_half_v2``, in the gear the PI's gear logic settles in at v_ref; about
+2.2 g per m²/s² for the 40 t truck, some 610 g for the whole of 85 km/h). A run's
+end-speed-corrected fuel is its fuel less the fuel worth the kinetic energy it gained from its
+start to its end speed (so it grows when the run ends slower than it started)::
 
-    fuel_corrected_kg = fuel_kg + c · ½(v_end² − v_start²) / 1000
+    fuel_corrected_kg = fuel_kg − c · ½(v_end² − v_start²) / 1000
 
 **Equal trip time.** The baseline's set speed v_ref is adjusted, the speed band moving with it and
-the start speed kept, until its trip time equals the look-ahead controller's within
+the start speed kept (clipped into the moved band), until its trip time equals the look-ahead controller's within
 :data:`TIME_TOLERANCE`; the search is regula falsi (Illinois) on the trip time as a function of
 v_ref, started from the mean-speed estimate v_ref · t_base / t_target. Each evaluation is a whole
 closed-loop run, and it stops on the time tolerance, not on a tolerance in v_ref. Where no v_ref in
@@ -77,17 +77,18 @@ class EqualTime:
         return self.reason is None and self.time_s is not None
 
     def document(self) -> dict[str, Any]:
-        """The ``equal_time`` object of ``summary.json``."""
+        """The ``equal_time`` object of ``summary.json``: the re-tuned PI's figures, null (with
+        ``not_comparable``) where the time was not reached."""
+        found = self.reached
         doc: dict[str, Any] = {
-            "pi_v_ref_kmh": self.v_ref_kmh,
-            "pi_time_s": self.time_s,
-            "pi_fuel_kg": self.fuel_kg,
-            "pi_fuel_corrected_kg": self.fuel_corrected_kg,
+            "pi_v_ref_kmh": self.v_ref_kmh if found else None,
+            "pi_time_s": self.time_s if found else None,
+            "pi_fuel_kg": self.fuel_kg if found else None,
+            "pi_fuel_corrected_kg": self.fuel_corrected_kg if found else None,
             "target_time_s": self.target_time_s,
+            "time_error_pct": delta_pct(self.time_s, self.target_time_s) if found and self.time_s else None,
             "pi_runs": self.runs,
         }
-        if self.time_s is not None:
-            doc["time_error_pct"] = delta_pct(self.time_s, self.target_time_s)
         if self.reason is not None:
             doc["not_comparable"] = self.reason
         return doc
@@ -99,7 +100,8 @@ RunAt = Callable[[float], "RunResult"]
 
 def baseline_runner(road: RoadProfile, config: RunConfig, controller: str = "pi") -> RunAt:
     """A function driving `controller` over `road` at another v_ref, the band moving with it and
-    the start speed kept at the run's."""
+    the start speed kept at the run's (clipped into the moved band: a truck starting above v_max
+    would only brake the difference away)."""
     from truckmpc.config import config_from_values
     from truckmpc.sim import simulate
 
@@ -107,7 +109,8 @@ def baseline_runner(road: RoadProfile, config: RunConfig, controller: str = "pi"
     start_kmh = values["start_speed_kmh"] if values["start_speed_kmh"] is not None else values["v_ref_kmh"]
 
     def run_at(v_ref_kmh: float) -> RunResult:
-        changed = {**values, "v_ref_kmh": v_ref_kmh, "start_speed_kmh": start_kmh}
+        band = (v_ref_kmh - values["v_dec_kmh"], v_ref_kmh + values["v_inc_kmh"])
+        changed = {**values, "v_ref_kmh": v_ref_kmh, "start_speed_kmh": min(max(start_kmh, band[0]), band[1])}
         return simulate(road, config_from_values(changed, "equal-time baseline"), controller)
 
     return run_at
@@ -127,7 +130,9 @@ def equal_time(
     # Trip time ∝ 1 / mean speed: the first guess scales v_ref by the time ratio.
     v_next: float | None = min(max(v_ref_kmh * (error + target_time_s) / target_time_s, lo_kmh), hi_kmh)
     while search.bracket() is None:
-        if v_next is None or search.found.runs >= MAX_RUNS:
+        if search.found.runs >= MAX_RUNS:
+            return search.no_bracket()
+        if v_next is None:
             return search.unreachable(lo_kmh, hi_kmh)
         if search.done(search.record(v_next, run_at(v_next))):
             return search.found
@@ -195,6 +200,14 @@ class _Search:
         found.reason = (
             f"not comparable: the pi's trip time came no closer than {abs(found.time_s - found.target_time_s):.2f} s "
             f"to {found.target_time_s:.1f} s in {MAX_RUNS} runs"
+        )
+        return found
+
+    def no_bracket(self) -> EqualTime:
+        found = self.found
+        found.reason = found.reason or (
+            f"not comparable: {MAX_RUNS} pi runs found no set speed on each side of the trip time "
+            f"{found.target_time_s:.1f} s"
         )
         return found
 

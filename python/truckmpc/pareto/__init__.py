@@ -6,7 +6,7 @@ Modules: :mod:`~truckmpc.pareto.plan` (the points, validated), :mod:`~truckmpc.p
 and resuming), :mod:`~truckmpc.pareto.fronts` (curves and the saving at equal trip time).
 """
 
-from truckmpc.pareto.fronts import Curve, below, curves, equal_time_savings
+from truckmpc.pareto.fronts import Curve, Saving, below, curves, equal_time_savings
 from truckmpc.pareto.plan import CURVES, PARETO_COLUMNS, ParetoPlan, plan_pareto
 from truckmpc.pareto.run import ParetoResult, run_pareto
 
@@ -16,6 +16,7 @@ __all__ = [
     "Curve",
     "ParetoPlan",
     "ParetoResult",
+    "Saving",
     "below",
     "curves",
     "equal_time_savings",

@@ -54,30 +54,47 @@ def curves(rows: Sequence[Mapping[str, str]]) -> dict[str, dict[str, Curve]]:
     return out
 
 
-def reference_point(rows: Sequence[Mapping[str, str]], road: str, v_ref_kmh: float) -> tuple[float, float] | None:
-    """(trip time [s], corrected fuel [kg]) of the baseline at the reference set speed on `road`."""
+@dataclass(frozen=True)
+class Saving:
+    """A look-ahead curve's fuel saving [%] at the baseline's trip time at the reference set speed
+    (negative: it saves), or why there is none."""
+
+    pct: float | None
+    reason: str | None = None
+
+
+def reference_point(rows: Sequence[Mapping[str, str]], road: str, v_ref_kmh: float) -> tuple[float, float] | str:
+    """(trip time [s], corrected fuel [kg]) of the baseline at the reference set speed on `road`,
+    or why there is none."""
     for row in rows:
-        at_reference = abs(float(row["v_ref_kmh"]) - v_ref_kmh) < 1e-9
-        mine = row["road"] == road and row["controller"] == BASELINE and parse_cell(row["stalled"]) is False
-        if mine and at_reference:
+        if row["road"] == road and row["controller"] == BASELINE and abs(float(row["v_ref_kmh"]) - v_ref_kmh) < 1e-9:
+            if parse_cell(row["stalled"]) is not False:
+                return f"not comparable: the pi stalled at v_ref {v_ref_kmh:g} km/h"
             return float(row["time_s"]), float(row["fuel_corrected_kg"])
-    return None
+    return f"not comparable: no pi run at v_ref {v_ref_kmh:g} km/h (the reference; add it to --speeds)"
 
 
-def equal_time_savings(rows: Sequence[Mapping[str, str]], v_ref_kmh: float) -> dict[str, dict[str, float | None]]:
-    """Road -> look-ahead controller -> fuel saving [%] at the baseline's trip time at `v_ref_kmh`
-    (None where that time is outside the controller's curve)."""
-    out: dict[str, dict[str, float | None]] = {}
-    for road, by_controller in curves(rows).items():
+def equal_time_savings(rows: Sequence[Mapping[str, str]], v_ref_kmh: float) -> dict[str, dict[str, Saving]]:
+    """Road -> look-ahead controller -> its saving at the baseline's trip time at `v_ref_kmh`; a
+    curve with a stalled run, or whose times do not reach the reference's, has none."""
+    out: dict[str, dict[str, Saving]] = {}
+    stalls = {(row["road"], row["controller"]): row["value"] for row in rows if parse_cell(row["stalled"]) is not False}
+    for road in dict.fromkeys(row["road"] for row in rows):
         reference = reference_point(rows, road, v_ref_kmh)
-        if reference is None:
-            continue
-        time_s, base_kg = reference
-        for controller, curve in by_controller.items():
+        by_controller = curves(rows).get(road, {})
+        for controller in dict.fromkeys(row["controller"] for row in rows if row["road"] == road):
             if controller == BASELINE:
                 continue
-            fuel = curve.fuel_at(time_s)
-            out.setdefault(road, {})[controller] = None if fuel is None else 100 * (fuel / base_kg - 1)
+            curve = by_controller.get(controller)
+            if isinstance(reference, str):
+                saving = Saving(None, reference)
+            elif (road, controller) in stalls:
+                saving = Saving(None, f"not comparable: {controller} stalled at {stalls[road, controller]}")
+            elif curve is None or (fuel := curve.fuel_at(reference[0])) is None:
+                saving = Saving(None, f"not comparable: the pi's trip time at v_ref is outside {controller}'s times")
+            else:
+                saving = Saving(100 * (fuel / reference[1] - 1))
+            out.setdefault(road, {})[controller] = saving
     return out
 
 

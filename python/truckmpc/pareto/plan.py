@@ -9,7 +9,9 @@ Curves:
   derived from each, or over ``betas`` at the configured v_ref.
 
 The speed band moves with each set speed (``v_inc_kmh``/``v_dec_kmh`` are offsets); every run starts
-at the configured start speed, so the end-speed correction compares like with like.
+at the configured start speed clipped into its band, and its end-speed-corrected fuel brings it
+back to that start speed. The ``fuel_time`` preset's keys come first, the user's ``--set`` over
+them, then each point's set speed or β.
 """
 
 from __future__ import annotations
@@ -105,36 +107,27 @@ def plan_pareto(
     overrides: Sequence[str] = (),
 ) -> ParetoPlan:
     """Load the roads and validate every point's configuration; errors are one line naming the key."""
-    unknown = [c for c in curves if c not in CURVES]
-    if unknown or not curves:
-        raise SweepError(f"--curves: expected some of {', '.join(CURVES)}, got {','.join(curves) or 'none'}")
+    _check_choices(curves, speeds_kmh, betas_g_per_s)
     profiles = load_profiles(roads, reverse)
     vehicle = None if vehicle_path is None else str(vehicle_path)
     configs = tuple(str(p) for p in config_paths)
     base = load_run_config(vehicle, configs, tuple(overrides))
-    values = base.settings.values()
-    v_ref = float(values["v_ref_kmh"])
-    start = values["start_speed_kmh"] if values["start_speed_kmh"] is not None else v_ref
+    v_ref = float(base.cruise.v_ref_kmh)
     speeds = [v_ref + d for d in SPEED_OFFSETS_KMH] if speeds_kmh is None else list(speeds_kmh)
-    fixed = (*overrides, f"start_speed_kmh={yaml_text(start)}")
-    fuel_time = _preset_overrides("fuel_time")
-    specs: list[tuple[str, str, float, tuple[str, ...]]] = []
-    for curve in curves:
-        extra = fuel_time if curve == "fuel_time" else ()
-        if curve == "fuel_time" and betas_g_per_s is not None:
-            specs += [(curve, "beta_g_per_s", b, (*extra, f"beta_g_per_s={yaml_text(b)}")) for b in betas_g_per_s]
-        else:
-            specs += [(curve, "v_ref_kmh", v, (*extra, f"v_ref_kmh={yaml_text(v)}")) for v in speeds]
+    specs = _specs(curves, speeds, betas_g_per_s, v_ref)
     points: list[Point] = []
     for r, profile in enumerate(profiles):
-        for curve, parameter, value, extra in specs:
-            config = _point_config(vehicle, configs, (*fixed, *extra), curve, parameter, value)
+        for curve, parameter, value, v in specs:
+            # The curve's preset first, the user's --set over it, then the point's own values.
+            preset = _preset_overrides("fuel_time") if curve == "fuel_time" else ()
+            own = (f"{parameter}={yaml_text(value)}", f"start_speed_kmh={yaml_text(_start_kmh(base, v))}")
+            extra = (*preset, *overrides, *own)
+            config = _point_config(vehicle, configs, extra, curve, parameter, value)
             check_trace(profile, config)
             controller = "pi" if curve == "pi" else "mpc"
             beta = config.settings.beta_g_per_s_resolved if controller == "mpc" else None
-            v = float(config.cruise.v_ref_kmh)
             work = run_work(profile, config, controller)
-            points.append(Point(len(points), r, curve, parameter, float(value), v, beta, (*fixed, *extra), work))
+            points.append(Point(len(points), r, curve, parameter, float(value), v, beta, extra, work))
     direction = "reverse" if reverse else "forward"
     grid = {"curves": list(curves), "speeds_kmh": speeds, "betas_g_per_s": betas_g_per_s and list(betas_g_per_s)}
     inputs = _Inputs(vehicle, configs, tuple(overrides))
@@ -142,8 +135,42 @@ def plan_pareto(
     return ParetoPlan(tuple(profiles), direction, vehicle, configs, v_ref, tuple(points), settings)
 
 
+def _check_choices(curves: Sequence[str], speeds: Sequence[float] | None, betas: Sequence[float] | None) -> None:
+    """Curves known and each given once, values each given once, --betas only with the fuel_time curve."""
+    unknown = [c for c in curves if c not in CURVES]
+    if unknown or not curves or len(set(curves)) < len(curves):
+        raise SweepError(f"--curves: expected some of {', '.join(CURVES)}, each once, got {','.join(curves) or 'none'}")
+    for option, values in (("--speeds", speeds), ("--betas", betas)):
+        twice = [v for i, v in enumerate(values or ()) if v in list(values or ())[:i]]
+        if twice:
+            raise SweepError(f"{option}: expected each value once, got {cell(float(twice[0]))} twice")
+    if betas is not None and "fuel_time" not in curves:
+        raise SweepError("--betas: expected the fuel_time curve in --curves (β is its parameter)")
+
+
+def _specs(
+    curves: Sequence[str], speeds: Sequence[float], betas: Sequence[float] | None, v_ref: float
+) -> list[tuple[str, str, float, float]]:
+    """(curve, parameter, value, set speed) of every point on one road."""
+    specs: list[tuple[str, str, float, float]] = []
+    for curve in curves:
+        if curve == "fuel_time" and betas is not None:
+            specs += [(curve, "beta_g_per_s", float(b), v_ref) for b in betas]
+        else:
+            specs += [(curve, "v_ref_kmh", float(v), float(v)) for v in speeds]
+    return specs
+
+
+def _start_kmh(base: RunConfig, v_ref_kmh: float) -> float:
+    """The start speed of a point driven at `v_ref_kmh`: the configured one (or v_ref) clipped into
+    that set speed's band, so that no run begins by braking away what it was given."""
+    cruise, start = base.cruise, base.sim.start_speed_kmh
+    start = cruise.v_ref_kmh if start is None else start
+    return float(min(max(start, v_ref_kmh - cruise.v_dec_kmh), v_ref_kmh + cruise.v_inc_kmh))
+
+
 def _preset_overrides(name: str) -> tuple[str, ...]:
-    """A packaged preset's keys as ``key=value`` overrides (they go last, so the curve is the preset's)."""
+    """A packaged preset's keys as ``key=value`` overrides."""
     mapping, _where, _lines = read_mapping(PRESET_DIR / f"{name}.yaml")
     return tuple(f"{key}={yaml_text(value)}" for key, value in mapping.items())
 

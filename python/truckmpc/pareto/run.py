@@ -98,7 +98,7 @@ def _resumed(plan: ParetoPlan, out: Path, notice: Callable[[str], None] | None) 
     dropped = []
     for where, cells in finished_rows(out, plan.columns, STEM):
         point = by_key.get(tuple(cells[:5]))
-        problem = "not a point of this study" if point is None else _damaged(cells)
+        problem = "not a point of this study" if point is None else damaged_row(cells)
         if point is None or problem is not None:
             dropped.append(f"{where}: {problem}")
             continue
@@ -108,14 +108,21 @@ def _resumed(plan: ParetoPlan, out: Path, notice: Callable[[str], None] | None) 
     return done
 
 
-def _damaged(cells: list[str]) -> str | None:
+def damaged_row(cells: list[str]) -> str | None:
+    """What is wrong with a ``pareto.csv`` row read back, or None: the study's number of cells, true
+    or false in ``stalled``, numbers in the figures (all of them when the run finished)."""
     if len(cells) != len(ParetoPlan.columns):
         return f"expected {len(ParetoPlan.columns)} cells, got {len(cells)}"
-    *numbers, stalled = (parse_cell(c) for c in cells[5:])
+    named = dict(zip(ParetoPlan.columns, cells, strict=True))
+    stalled = parse_cell(named["stalled"])
     if not isinstance(stalled, bool):
-        return f"column 'stalled': expected true or false, got {cells[-1]!r}"
-    bad = [c for c in numbers if c is not None and (isinstance(c, (bool, str)))]
-    return f"expected numbers or blanks, got {bad[0]!r}" if bad else None
+        return f"column 'stalled': expected true or false, got {named['stalled']!r}"
+    for column in ("value", "v_ref_kmh", "beta_g_per_s", *FIGURES[:-1]):
+        value = parse_cell(named[column])
+        required = column not in ("beta_g_per_s",) and not (stalled and column in FIGURES)
+        if (value is None and required) or isinstance(value, (bool, str)):
+            return f"column {column!r}: expected a number, got {named[column]!r}"
+    return None
 
 
 def _check_work(pending: list[Point], jobs: int, force: bool) -> None:

@@ -45,11 +45,12 @@ def plot_dir(
     also name the ``summary.json`` or ``sweep.csv`` itself.
     """
     source = Path(directory)
-    if source.is_file() and source.name in ("summary.json", "sweep.csv", "pareto.csv"):
+    named = source.name if source.is_file() else None
+    if named in ("summary.json", "sweep.csv", "pareto.csv"):
         source = source.parent
     if not source.is_dir():
         raise PlotError(f"{source}: not a directory (expected a run directory or a sweep directory)")
-    if (source / "pareto.csv").is_file():
+    if named == "pareto.csv" or (named is None and (source / "pareto.csv").is_file()):
         target = source / "pareto.png" if out is None else Path(out)
         target = target / "pareto.png" if target.is_dir() else target
         return plot_pareto(source, target, pareto_v_ref_kmh(source), svg=svg)

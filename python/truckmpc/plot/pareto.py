@@ -13,6 +13,8 @@ from pathlib import Path
 from typing import Any
 
 from truckmpc.pareto.fronts import Curve, curves, equal_time_savings, reference_point
+from truckmpc.pareto.plan import PARETO_COLUMNS
+from truckmpc.pareto.run import damaged_row
 from truckmpc.plot.figures import PlotError, figure_class, save
 
 _STYLES = {"pi": ("tab:gray", "o"), "mpc": ("tab:blue", "s"), "fuel_time": ("tab:red", "^")}
@@ -21,12 +23,21 @@ _S_PER_MIN = 60.0
 
 
 def read_rows(path: Path) -> list[dict[str, str]]:
-    """The rows of ``pareto.csv``."""
+    """The rows of ``pareto.csv``, each checked: the study's columns, numbers where a run finished."""
     try:
         with path.open(newline="", encoding="utf-8") as handle:
-            return list(csv.DictReader(handle))
-    except (OSError, UnicodeDecodeError) as err:
+            reader = csv.DictReader(handle)
+            rows = list(reader)
+            header = list(reader.fieldnames or ())
+    except (OSError, UnicodeDecodeError, csv.Error) as err:
         raise PlotError(f"{path}: cannot read it ({err})") from None
+    if header != list(PARETO_COLUMNS):
+        raise PlotError(f"{path}:1: expected the columns {','.join(PARETO_COLUMNS)}, got {','.join(header)}")
+    for line, row in enumerate(rows, start=2):
+        problem = damaged_row([row.get(c) or "" for c in PARETO_COLUMNS])
+        if problem is not None:
+            raise PlotError(f"{path}:{line}: {problem}")
+    return rows
 
 
 def pareto_v_ref_kmh(directory: Path) -> float:
@@ -46,7 +57,9 @@ def plot_pareto(
     by_road = curves(rows)
     if not by_road:
         raise PlotError(f"{directory}/pareto.csv: no run that finished the road")
-    savings = equal_time_savings(rows, v_ref_kmh)
+    savings = {
+        road: {c: saving.pct for c, saving in by.items()} for road, by in equal_time_savings(rows, v_ref_kmh).items()
+    }
     figure = figure_class()(figsize=(7.0, 4.8 * len(by_road)), layout="constrained")
     for i, (road, by_controller) in enumerate(by_road.items()):
         ax = figure.add_subplot(len(by_road), 1, i + 1)
@@ -71,7 +84,7 @@ def _draw_road(
         for x, y, value in zip(minutes, curve.fuel_kg, curve.values, strict=True):
             ax.annotate(f"{value:g}", (x, y), textcoords="offset points", xytext=(4, 3), fontsize=7, color=color)
     reference = reference_point(rows, road, v_ref_kmh)
-    if reference is not None:
+    if not isinstance(reference, str):
         time_s, fuel_kg = reference
         ax.axvline(time_s / _S_PER_MIN, color="black", linewidth=0.8, linestyle=":")
         ax.annotate(

@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use truckmpc_core::control::pi::GearLogic;
 use truckmpc_core::dp::{fuel_time, DpSettings};
 use truckmpc_core::params::{Kind, ParamSpec, Value};
 use truckmpc_core::{RunSettings, Vehicle};
@@ -123,6 +124,7 @@ impl PySettings {
         }
         let settings = RunSettings::from_values(pairs.iter().map(|(k, v)| (k.as_str(), v))).map_err(to_py)?;
         let vehicle = Vehicle::new(settings.vehicle.clone()).map_err(to_py)?;
+        DpSettings::new(&settings.mpc, &settings.cruise).and_then(|dp| dp.check_vehicle(&vehicle)).map_err(to_py)?;
         Ok(PySettings { inner: Arc::new(settings), vehicle: Arc::new(vehicle) })
     }
 
@@ -182,12 +184,13 @@ impl PySettings {
         Ok(dp.beta_for(&self.vehicle))
     }
 
-    /// Grams of fuel per unit of ½v² [m²/s²] the engine adds in the cruise gear at v_ref (the
-    /// gear holding v_ref on a flat road with the least fuel): kinetic energy priced in fuel.
+    /// Grams of fuel per unit of ½v² [m²/s²] the engine adds in the gear the PI's gear logic settles
+    /// in at v_ref: kinetic energy priced in fuel, for the end-speed correction (it depends on the
+    /// vehicle, the cruise and the PI settings only, not on the look-ahead controller's).
     #[getter]
-    fn kinetic_fuel_g_per_half_v2(&self) -> f64 {
-        let (mpc, v_ref_mps) = (&self.inner.mpc, self.inner.cruise.v_ref_kmh / 3.6);
-        let gear = fuel_time::cruise_gear(&self.vehicle, v_ref_mps, mpc.n_min_rpm, mpc.n_max_rpm);
-        fuel_time::kinetic_fuel_g(&self.vehicle, gear)
+    fn kinetic_fuel_g_per_half_v2(&self) -> PyResult<f64> {
+        let logic = GearLogic::new(&self.vehicle, &self.inner.pi).map_err(to_py)?;
+        let gear = logic.steady_gear(self.inner.cruise.v_ref_kmh / 3.6);
+        Ok(fuel_time::kinetic_fuel_g(&self.vehicle, gear))
     }
 }

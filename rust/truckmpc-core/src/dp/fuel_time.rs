@@ -42,12 +42,17 @@ pub fn cruise_gear(vehicle: &Vehicle, v_mps: f64, n_min_rpm: f64, n_max_rpm: f64
 }
 
 /// β [g/s] for which steady `v_mps` in `gear` is the cheapest steady speed on a flat road under
-/// fuel + β·time: v²·F'(v).
+/// fuel + β·time: v²·F'(v); NaN where the gear cannot hold the speeds around `v_mps`.
 pub fn steady_beta_g_per_s(vehicle: &Vehicle, v_mps: f64, gear: usize) -> f64 {
     let slope = (steady_fuel_g_per_m(vehicle, v_mps + DV_MPS, gear)
         - steady_fuel_g_per_m(vehicle, v_mps - DV_MPS, gear))
         / (2.0 * DV_MPS);
-    (v_mps * v_mps * slope).max(0.0)
+    let beta = v_mps * v_mps * slope;
+    if beta.is_finite() {
+        beta.max(0.0)
+    } else {
+        f64::NAN
+    }
 }
 
 /// Grams of fuel per unit of ½v² [m²/s²] gained with the engine in `gear` (the same at every

@@ -7,7 +7,7 @@ pub use crate::params::{CostKind, GridAnchor, NeutralRule, OnInfeasible};
 use crate::params::{CruiseParams, MpcParams, ParamSet};
 
 use super::fuel_time;
-use crate::error::CoreResult;
+use crate::error::{CoreError, CoreResult};
 use crate::vehicle::Vehicle;
 
 /// Resolved DP settings; build them with [`DpSettings::new`], which validates.
@@ -142,8 +142,23 @@ impl DpSettings {
         }
     }
 
-    /// β [g/s] of the fuel_time cost as used with `vehicle` (given or derived); None for the
-    /// speed_penalty cost.
+    /// Whether `vehicle` can drive this cost: with fuel_time and no β given, the truck must hold
+    /// v_ref on a flat road in a gear within [n_min, n_max] (β is derived there); the error names
+    /// beta_g_per_s.
+    pub fn check_vehicle(&self, vehicle: &Vehicle) -> CoreResult<()> {
+        match self.beta_for(vehicle) {
+            Some(beta) if !beta.is_finite() => Err(CoreError::invalid(
+                "beta_g_per_s",
+                "a value: the truck holds v_ref on a flat road in no gear within n_min_rpm..n_max_rpm, so β cannot be derived",
+            )
+            .got("null")
+            .related(&["v_ref_kmh", "n_min_rpm", "n_max_rpm"])),
+            _ => Ok(()),
+        }
+    }
+
+    /// β [g/s] of the fuel_time cost as used with `vehicle` (given or derived; NaN where it cannot
+    /// be derived, see [`DpSettings::check_vehicle`]); None for the speed_penalty cost.
     pub fn beta_for(&self, vehicle: &Vehicle) -> Option<f64> {
         (self.cost == CostKind::FuelTime).then(|| {
             let v_ref = self.v_ref_mps();

@@ -31,8 +31,10 @@ choice_enum! {
         /// The thesis's criterion (5.1): Q1·fuel + Q2·(speed below v_ref)² + Q3·|speed change|
         /// + Q4·shifts + Q5·brake.
         SpeedPenalty = "speed_penalty",
-        /// Q1·(fuel + β·trip time) + Q4·shifts + Q5·brake, the speed band a hard bound and the
-        /// kinetic energy left at the horizon's end valued at the engine's marginal fuel cost.
+        /// Q1·(fuel + β·trip time) + Q3·|speed change| + Q4·shifts + Q5·brake, the speed band a
+        /// hard bound, the kinetic energy left at the horizon's end valued at the engine's
+        /// marginal fuel cost, and the Euler stage's energy error charged back
+        /// ([`crate::dp::DpSettings::q_speed_change_sq`]).
         FuelTime = "fuel_time",
     }
 }
@@ -97,7 +99,7 @@ declare_params! {
         q_brake: Option<f64> = None, unit "-", range Range::between(0.0, 1e6);
         /// Q5 per kilometre, weight per unit brake level held over a kilometre (used when q_brake is null).
         q_brake_per_km: Option<f64> = Some(4000.0), unit "1/km", range Range::between(0.0, 1e9);
-        /// What the controller minimises: the thesis's speed_penalty criterion, or fuel_time (fuel + β·trip time; q_speed_below and q_speed_change unused).
+        /// What the controller minimises: the thesis's speed_penalty criterion, or fuel_time (fuel + β·trip time, Q3·|Δv|, Q4 and Q5; q_speed_below unused).
         cost: CostKind = CostKind::SpeedPenalty, unit "-", range Range::ANY;
         /// β of the fuel_time cost, the fuel worth one second of trip time; null = the β for which steady v_ref is optimal on a flat road.
         beta_g_per_s: Option<f64> = None, unit "g/s", range Range::between(0.0, 1e4);
