@@ -125,3 +125,20 @@ def test_a_larger_beta_buys_time_with_fuel() -> None:
     fuels = [r["fuel_corrected_kg"] for r in runs]
     assert times[0] > times[1] > times[2], times
     assert fuels[0] < fuels[1] < fuels[2], fuels
+
+
+def test_controller_list_and_comparisons(tmp_path: Path) -> None:
+    """`--controller pi,optimal` runs those two; `comparisons` lists each look-ahead controller
+    against the PI with the same figures as the top-level deltas; a bad list is one line, exit 2."""
+    result = runner.invoke(app, ["simulate", "--controller", "pi,optimal", "--out", str(tmp_path / "run")])
+    assert result.exit_code == 0, result.output
+    doc = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert {"pi", "optimal"} <= set(doc) and "mpc" not in doc
+    [entry] = doc["comparisons"]
+    assert entry["controller"] == "optimal" and entry["baseline"] == "pi"
+    for key in ("delta_fuel_pct", "delta_time_pct", "delta_fuel_equal_time_pct", "delta_fuel_corrected_pct"):
+        assert entry[key] == doc[key]
+    for bad in ("pi,bogus", "pi,pi", "mpc,both"):
+        failed = runner.invoke(app, ["simulate", "--controller", bad, "--out", str(tmp_path / "bad")])
+        assert failed.exit_code == 2 and failed.output.count("\n") == 1 and "--controller" in failed.output
+        assert not (tmp_path / "bad").exists()

@@ -147,8 +147,21 @@ GROUPS = {BOTH: ("pi", "mpc"), "all": ("pi", "mpc", "optimal")}
 """``--controller`` values that run several controllers: ``both`` (PI and MPC) and ``all`` (PI, MPC
 and the whole-road optimum, with the MPC's gap to it)."""
 
-ControllerChoice = enum.Enum("ControllerChoice", {name: name for name in [*CONTROLLERS, *GROUPS]}, type=str)  # type: ignore[misc]
-"""``--controller`` values: every controller registered in :data:`truckmpc.sim.CONTROLLERS`, and the groups."""
+
+def controller_names(text: str) -> tuple[str, ...]:
+    """The controllers of a ``--controller`` value: a group (``both``, ``all``) or a comma list of
+    controllers from :data:`truckmpc.sim.CONTROLLERS` (``pi,mpc,optimal``), each once, in that order."""
+    if text in GROUPS:
+        return GROUPS[text]
+    names = tuple(name.strip() for name in text.split(","))
+    known = [*CONTROLLERS, *GROUPS]
+    bad = [name for name in names if name not in CONTROLLERS]
+    if bad or len(set(names)) < len(names):
+        raise typer.BadParameter(
+            f"expected one of {', '.join(known)}, or a comma list of {', '.join(CONTROLLERS)} each once, got {text!r}",
+            param_hint="'--controller'",
+        )
+    return names
 
 
 class SectionKind(enum.StrEnum):
@@ -192,10 +205,11 @@ def simulate_cmd(
         Path | None, typer.Option("--road", metavar="FILE", help="Road profile CSV (default: the bundled test track).")
     ] = None,
     controller: Annotated[
-        ControllerChoice | None,
+        str | None,
         typer.Option(
             "--controller",
-            help="Controller to run; both = PI and MPC compared (default), all = PI, MPC and the whole-road optimum.",
+            help="Controllers to run: a comma list of pi, mpc, optimal (pi,mpc,optimal), or both = pi,mpc "
+            "(default), all = pi,mpc,optimal. Each look-ahead controller is compared with the pi.",
         ),
     ] = None,
     vehicle: VehicleOpt = None,
@@ -237,8 +251,7 @@ def simulate_cmd(
         run_config = _run_config(vehicle, config, set_)
         profile = default_test_track() if road is None else load_road(road)
         profile = profile.reversed() if reverse else profile
-        chosen = BOTH if controller is None else controller.value
-        names = GROUPS.get(chosen, (chosen,))
+        names = controller_names(BOTH if controller is None else controller)
         inputs = (_text(vehicle), tuple(map(str, config or ())), tuple(set_ or ()))
         request = RunRequest(_text(road), reverse, names, *inputs, check_convergence=check_convergence)
     halves = _halved_configs(request, run_config)

@@ -13,8 +13,10 @@
      "not_comparable": "not comparable: mpc stalled at km 0.98"}   # only when a delta is null
 
 With several look-ahead controllers (``--controller all``) each delta and ``equal_time`` key ends in
-``_<controller>``. The end-speed correction and the equal-time search are
-:mod:`truckmpc.equal_time`'s.
+``_<controller>``. ``"comparisons"`` lists the same per look-ahead controller:
+``[{"controller", "baseline", "delta_fuel_pct", "delta_time_pct", "delta_fuel_corrected_pct",
+"delta_fuel_equal_time_pct", "delta_fuel_equal_time_corrected_pct", "not_comparable"?}, ...]``.
+The end-speed correction and the equal-time search are :mod:`truckmpc.equal_time`'s.
 
 The deltas follow the thesis (section 6.1): (x_mpc − x_pi) / x_pi in percent; they are null when a
 run stalled or the baseline is zero (:func:`truckmpc.compare.compare`). All files of a run are
@@ -77,17 +79,28 @@ def summary_document(
     for name, result in results.items():
         doc[name] = dict(result.summary)
     base = results.get(BASELINE)
+    comparisons = []
     for name, result in results.items():
         if base is None or name == BASELINE:
             continue
         suffix = "" if len(results) == 2 else f"_{name}"
         comparison = compare(base.summary, result.summary, BASELINE, name)
-        doc[f"delta_fuel_pct{suffix}"] = comparison.delta_fuel_pct
-        doc[f"delta_time_pct{suffix}"] = comparison.delta_time_pct
+        figures: dict[str, Any] = {
+            "delta_fuel_pct": comparison.delta_fuel_pct,
+            "delta_time_pct": comparison.delta_time_pct,
+        }
         if comparison.not_comparable is not None:
-            doc[f"not_comparable{suffix}"] = comparison.not_comparable
-            continue
-        doc.update(_time_fair_deltas(base.summary, result.summary, (equal_times or {}).get(name), suffix))
+            figures["not_comparable"] = comparison.not_comparable
+        else:
+            figures.update(_time_fair_deltas(base.summary, result.summary, (equal_times or {}).get(name)))
+        doc.update({f"{key}{suffix}": value for key, value in figures.items()})
+        listed = {k: v for k, v in figures.items() if k != "equal_time"}
+        equal = figures.get("equal_time", {})
+        if "not_comparable" in equal:
+            listed.setdefault("not_comparable", equal["not_comparable"])
+        comparisons.append({"controller": name, "baseline": BASELINE, **listed})
+    if comparisons:
+        doc["comparisons"] = comparisons
     if "mpc" in results and "optimal" in results:
         doc["gap_to_optimal_pct"] = _gap_to_optimal(results["mpc"].summary, results["optimal"].summary)
     if run is not None:
@@ -95,25 +108,23 @@ def summary_document(
     return doc
 
 
-def _time_fair_deltas(
-    base: Mapping[str, Any], run: Mapping[str, Any], equal: EqualTime | None, suffix: str
-) -> dict[str, Any]:
+def _time_fair_deltas(base: Mapping[str, Any], run: Mapping[str, Any], equal: EqualTime | None) -> dict[str, Any]:
     """Δfuel [%] with both runs' end speeds corrected, and against the baseline at equal trip time
     (raw and corrected), with the ``equal_time`` object; null where the baseline did not reach the
     time."""
     doc: dict[str, Any] = {}
     if base.get("fuel_corrected_kg") is not None and run.get("fuel_corrected_kg") is not None:
-        doc[f"delta_fuel_corrected_pct{suffix}"] = delta_pct(run["fuel_corrected_kg"], base["fuel_corrected_kg"])
+        doc["delta_fuel_corrected_pct"] = delta_pct(run["fuel_corrected_kg"], base["fuel_corrected_kg"])
     if equal is None:
         return doc
     raw, corrected = equal.fuel_kg, equal.fuel_corrected_kg
     reached = equal.reached and raw is not None and corrected is not None
     own = run.get("fuel_corrected_kg")
-    doc[f"delta_fuel_equal_time_pct{suffix}"] = delta_pct(run["fuel_kg"], raw) if reached and raw else None
-    doc[f"delta_fuel_equal_time_corrected_pct{suffix}"] = (
+    doc["delta_fuel_equal_time_pct"] = delta_pct(run["fuel_kg"], raw) if reached and raw else None
+    doc["delta_fuel_equal_time_corrected_pct"] = (
         delta_pct(own, corrected) if reached and corrected and own is not None else None
     )
-    doc[f"equal_time{suffix}"] = equal.document()
+    doc["equal_time"] = equal.document()
     return doc
 
 
