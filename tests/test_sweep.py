@@ -344,3 +344,51 @@ def test_a_cell_reads_back_as_the_value_written(value):
 
 def test_cells_read_by_the_plot_too_tolerate_spaces_and_case():
     assert [parse_cell(t) for t in (" 12 ", "TRUE", "False", "  ", "road-1")] == [12, True, False, None, "road-1"]
+
+
+def test_check_convergence_adds_the_moves_as_columns(descent, tmp_path):
+    """`sweep --check-convergence` drives each MPC row again at half δ and half S; its four columns
+    are the moves `simulate --check-convergence` reports for the same settings."""
+    out = tmp_path / "conv"
+    result = CliRunner().invoke(
+        app,
+        [
+            "sweep",
+            "--road",
+            str(descent),
+            "--grid",
+            "delta_kmh=0.2",
+            "--check-convergence",
+            "--jobs",
+            "1",
+            "--out",
+            str(out),
+        ],
+    )
+    assert result.exit_code == 0, result.output
+    [row] = read_csv(out / "sweep.csv")
+    run = CliRunner().invoke(
+        app,
+        [
+            "simulate",
+            "--road",
+            str(descent),
+            "--set",
+            "delta_kmh=0.2",
+            "--check-convergence",
+            "--out",
+            str(tmp_path / "s"),
+        ],
+    )
+    assert run.exit_code == 0, run.output
+    convergence = json.loads((tmp_path / "s" / "summary.json").read_text())["convergence"]
+    for column in (
+        "delta_fuel_pct_half_delta",
+        "delta_fuel_pct_half_stage",
+        "delta_time_pct_half_delta",
+        "delta_time_pct_half_stage",
+    ):
+        assert float(row[column]) == pytest.approx(convergence[column], abs=1e-9), column
+    # Without the flag the columns are not there, and the two sweeps are not mixed in one directory.
+    again = CliRunner().invoke(app, ["sweep", "--road", str(descent), "--grid", "delta_kmh=0.2", "--out", str(out)])
+    assert again.exit_code == 2 and "different sweep" in again.output

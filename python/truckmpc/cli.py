@@ -5,7 +5,8 @@ Commands::
     truckmpc simulate [--road FILE] [--controller pi] [--vehicle FILE] [--config FILE ...]
                       [--set key=value ...] [--out DIR] [--reverse]
     truckmpc sweep --road FILE [--road FILE ...] [--grid KEY=SPEC ...] [--reverse] [--jobs N]
-                   [--vehicle FILE] [--config FILE ...] [--set key=value ...] [--quiet] --out DIR
+                   [--vehicle FILE] [--config FILE ...] [--set key=value ...] [--quiet]
+                   [--check-convergence] --out DIR
     truckmpc pareto --road FILE [--road FILE ...] [--speeds SPEC] [--betas SPEC] [--curves LIST]
                     [--reverse] [--jobs N] [--vehicle FILE] [--config FILE ...] [--set key=value ...]
                     [--quiet] --out DIR
@@ -323,6 +324,14 @@ def sweep_cmd(
     set_: SetOpt = None,
     quiet: QuietOpt = False,
     force: ForceOpt = False,
+    check_convergence: Annotated[
+        bool,
+        typer.Option(
+            "--check-convergence",
+            help="Also drive each MPC row at half the speed step and at half the stage length; add how far "
+            "delta fuel and delta time move as columns.",
+        ),
+    ] = False,
 ) -> None:
     """Run PI and MPC on every road for every combination of the --grid axes; one row each in DIR/sweep.csv.
 
@@ -336,6 +345,7 @@ def sweep_cmd(
                 road,
                 tuple(grid or ()),
                 **_study_inputs(reverse, vehicle, config, set_),
+                check_convergence=check_convergence,
             )
         with progress_bar(not quiet) as hook:
             result = run_plan(plan, out, jobs=jobs, progress=hook, force=force, notice=_notice)

@@ -49,6 +49,22 @@ DELTA_COLUMNS = (
 """The comparisons, as in ``summary.json``."""
 
 SWEEP_COLUMNS: tuple[str, ...] = (*(column for _, _, column in _RESULT_SOURCES), *DELTA_COLUMNS)
+
+CONVERGENCE_COLUMNS = (
+    "delta_fuel_pct_half_delta",
+    "delta_fuel_pct_half_stage",
+    "delta_time_pct_half_delta",
+    "delta_time_pct_half_stage",
+)
+"""With ``--check-convergence``: how far Δfuel and Δtime move [points] with the MPC at half δ and at
+half S (:mod:`truckmpc.convergence`); blank where a halved run is not comparable."""
+
+
+def result_columns(check_convergence: bool) -> tuple[str, ...]:
+    """The result columns of a sweep, with or without the convergence columns."""
+    return (*SWEEP_COLUMNS, *CONVERGENCE_COLUMNS) if check_convergence else SWEEP_COLUMNS
+
+
 """Columns of ``sweep.csv`` after ``road``, ``direction`` and one column per axis."""
 
 
@@ -69,8 +85,9 @@ def yaml_text(value: Any) -> str:
     return json.dumps(value) if isinstance(value, str) else ("null" if value is None else cell(value))
 
 
-def result_cells(pi: Mapping[str, Any], mpc: Mapping[str, Any]) -> list[str]:
-    """The result cells of one row (:data:`SWEEP_COLUMNS`) from the two runs' figures."""
+def result_cells(pi: Mapping[str, Any], mpc: Mapping[str, Any], check_convergence: bool = False) -> list[str]:
+    """The result cells of one row (:func:`result_columns`) from the two runs' figures (the MPC's
+    with its convergence moves when checked)."""
     runs = {"pi": pi, "mpc": mpc}
     values = {column: runs[run][name] for run, name, column in _RESULT_SOURCES}
     comparison = compare(pi, mpc)
@@ -81,7 +98,9 @@ def result_cells(pi: Mapping[str, Any], mpc: Mapping[str, Any]) -> list[str]:
         values["delta_fuel_equal_time_pct"] = _delta(mpc["fuel_kg"], mpc["equal_time_pi_fuel_kg"])
         corrected = (mpc["fuel_corrected_kg"], mpc["equal_time_pi_fuel_corrected_kg"])
         values["delta_fuel_equal_time_corrected_pct"] = _delta(*corrected)
-    return [cell(values[c]) for c in SWEEP_COLUMNS]
+    for column in CONVERGENCE_COLUMNS:
+        values[column] = mpc.get(column) if comparison.not_comparable is None else None
+    return [cell(values[c]) for c in result_columns(check_convergence)]
 
 
 def _delta(value: float | None, base: float | None) -> float | None:
@@ -103,13 +122,14 @@ def parse_cell(text: str) -> Any:
     return text
 
 
-def damaged_cell(cells: Sequence[str]) -> str | None:
+def damaged_cell(cells: Sequence[str], check_convergence: bool = False) -> str | None:
     """What is wrong with the result cells (:data:`SWEEP_COLUMNS`) of a row read back, or None when
     each is what :func:`cell` writes there: true or false for ``*stalled``, else a finite number or
     blank."""
-    if len(cells) != len(SWEEP_COLUMNS):
-        return f"expected {len(SWEEP_COLUMNS)} result cells, got {len(cells)}"
-    for column, text in zip(SWEEP_COLUMNS, cells, strict=True):
+    columns = result_columns(check_convergence)
+    if len(cells) != len(columns):
+        return f"expected {len(columns)} result cells, got {len(cells)}"
+    for column, text in zip(columns, cells, strict=True):
         value = parse_cell(text)
         if column.endswith("stalled"):
             if not isinstance(value, bool):

@@ -21,9 +21,10 @@ import yaml
 from truckmpc import _core
 from truckmpc.config import SPEC_BY_KEY, Origin, RunConfig, load_run_config
 from truckmpc.config.yamlfile import load_value
+from truckmpc.convergence import halved_configs
 from truckmpc.errors import ConfigError
 from truckmpc.road import PathLike, RoadProfile, load_road
-from truckmpc.sweep.columns import SWEEP_COLUMNS, cell, yaml_text
+from truckmpc.sweep.columns import cell, result_columns, yaml_text
 from truckmpc.sweep.errors import SweepError
 from truckmpc.sweep.grid import Axis, expand_grid, parse_axis
 from truckmpc.workload import Work, check_trace, run_work
@@ -64,10 +65,11 @@ class SweepPlan:
     overrides: tuple[str, ...]
     rows: tuple[Row, ...]
     settings: dict[str, Any]
+    check_convergence: bool = False
 
     @property
     def columns(self) -> tuple[str, ...]:
-        return ("road", "direction", *(axis.key for axis in self.axes), *SWEEP_COLUMNS)
+        return ("road", "direction", *(axis.key for axis in self.axes), *result_columns(self.check_convergence))
 
     def row_key(self, row: Row) -> tuple[str, ...]:
         """The cells that identify a row in the CSV: road, direction and the axis values."""
@@ -94,9 +96,12 @@ def plan_sweep(
     vehicle_path: PathLike | None = None,
     config_paths: Sequence[PathLike] = (),
     overrides: Sequence[str] = (),
+    check_convergence: bool = False,
 ) -> SweepPlan:
     """Load the roads and validate the configuration of every combination; raise a one-line
-    :class:`~truckmpc.errors.TruckmpcError` naming the road, the ``--set`` or the ``--grid`` axis."""
+    :class:`~truckmpc.errors.TruckmpcError` naming the road, the ``--set`` or the ``--grid`` axis.
+    With `check_convergence` every MPC row is also driven at half δ and half S (its work counts
+    them) and gets the convergence columns."""
     checked = _checked_axes(axes, overrides)
     profiles = load_profiles(roads, reverse)
     base = _Base(
@@ -114,12 +119,12 @@ def plan_sweep(
             check_trace(profile, config)
         combos.append((values, texts, config, _section_values(config)))
     rows = [
-        Row(len(combos) * r + i, r, values, texts, _pi_key(r, sections), run_work(profile, config, "mpc"))
+        Row(len(combos) * r + i, r, values, texts, _pi_key(r, sections), _mpc_work(profile, config, check_convergence))
         for r, profile in enumerate(profiles)
         for i, (values, texts, config, sections) in enumerate(combos)
     ]
     direction = "reverse" if reverse else "forward"
-    settings = _settings(profiles, direction, checked, base, base_config)
+    settings = _settings(profiles, direction, checked, base, base_config, check_convergence)
     return SweepPlan(
         tuple(profiles),
         direction,
@@ -129,7 +134,15 @@ def plan_sweep(
         base.overrides,
         tuple(rows),
         settings,
+        check_convergence,
     )
+
+
+def _mpc_work(profile: RoadProfile, config: RunConfig, check_convergence: bool) -> Work:
+    """The estimated work of a row's MPC run, with its runs at half δ and half S when checked."""
+    configs = [config, *(halved_configs(config).values() if check_convergence else ())]
+    works = [run_work(profile, c, "mpc") for c in configs]
+    return Work(sum(w.plant_s for w in works), sum(w.dp_s for w in works), max(w.dp_bytes for w in works))
 
 
 def _checked_axes(
@@ -244,11 +257,16 @@ def _pi_key(road: int, sections: Mapping[str, Mapping[str, Any]]) -> str:
 
 
 def _settings(
-    profiles: Sequence[RoadProfile], direction: str, axes: Sequence[Axis], base: _Base, base_config: RunConfig
+    profiles: Sequence[RoadProfile],
+    direction: str,
+    axes: Sequence[Axis],
+    base: _Base,
+    base_config: RunConfig,
+    check_convergence: bool,
 ) -> dict[str, Any]:
     """The ``sweep.json`` document (without ``jobs``), as plain JSON values."""
     grid = [{"key": a.key, "spec": a.spec, "values": list(a.values)} for a in axes]
-    columns = ["road", "direction", *(a.key for a in axes), *SWEEP_COLUMNS]
+    columns = ["road", "direction", *(a.key for a in axes), *result_columns(check_convergence)]
     return study_settings(profiles, direction, grid, base_config, base, columns)
 
 

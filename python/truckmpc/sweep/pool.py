@@ -11,18 +11,19 @@ from typing import Any, NamedTuple
 
 from truckmpc import sim
 from truckmpc.config import RunConfig, load_run_config
+from truckmpc.convergence import convergence_document, halved_configs, run_halves
 from truckmpc.equal_time import equal_time_baselines
 from truckmpc.road import RoadProfile
 from truckmpc.signals import received_signal
 from truckmpc.sim import RunResult, simulate
-from truckmpc.sweep.columns import EQUAL_TIME_FIELDS, MPC_FIELDS, PI_FIELDS
+from truckmpc.sweep.columns import CONVERGENCE_COLUMNS, EQUAL_TIME_FIELDS, MPC_FIELDS, PI_FIELDS
 from truckmpc.sweep.errors import SweepWorkerDied
 
 
 class Task(NamedTuple):
     """One run: ``controller`` over road number ``road`` with ``overrides``, for plan row ``row``
     (for a PI run: one of the rows sharing ``pi_key``). An MPC run is also compared with the PI at
-    equal trip time unless ``plain``."""
+    equal trip time unless ``plain``, and driven again at half δ and half S with ``convergence``."""
 
     controller: str
     road: int
@@ -30,6 +31,7 @@ class Task(NamedTuple):
     row: int
     pi_key: str
     plain: bool = False
+    convergence: bool = False
 
 
 _WORKER: dict[str, Any] = {}
@@ -42,9 +44,12 @@ def _init_worker(roads: Sequence[RoadProfile], base: tuple[str | None, tuple[str
     _WORKER.update(roads=list(roads), base=base)
 
 
-def run_one(controller: str, road: int, overrides: Sequence[str], plain: bool = False) -> dict[str, Any]:
+def run_one(
+    controller: str, road: int, overrides: Sequence[str], plain: bool = False, convergence: bool = False
+) -> dict[str, Any]:
     """Run one controller over one road of the current worker's sweep; its figures by field name
-    (an MPC run's with its equal-time baseline's, unless ``plain``)."""
+    (an MPC run's with its equal-time baseline's, unless ``plain``, and its convergence moves with
+    ``convergence``)."""
     vehicle_path, config_paths = _WORKER["base"]
     config = load_run_config(vehicle_path, config_paths, overrides)
     profile = _WORKER["roads"][road]
@@ -52,18 +57,25 @@ def run_one(controller: str, road: int, overrides: Sequence[str], plain: bool = 
     if controller == "pi":
         return {name: result.summary.get(name) for name in PI_FIELDS}
     figures = {name: result.summary.get(name) for name in MPC_FIELDS}
-    if not plain:
-        figures.update(_equal_time_figures(profile, config, result))
+    if plain:
+        return figures
+    # The PI at v_ref again, in this worker: the equal-time search starts from it and the
+    # convergence moves are measured against it (not one of the sweep's PI tasks).
+    base = sim.simulate(profile, config, "pi")
+    figures.update(_equal_time_figures(profile, config, base, result))
+    if convergence:
+        halves = halved_configs(config)
+        moves = convergence_document({"pi": base, "mpc": result}, run_halves(profile, halves), halves)
+        figures.update({column: moves[column] for column in CONVERGENCE_COLUMNS})
     return figures
 
 
-def _equal_time_figures(profile: RoadProfile, config: RunConfig, mpc: RunResult) -> dict[str, Any]:
-    """The PI re-tuned to the MPC run's trip time (it drives the PI at v_ref again to start from);
-    None each where the time was not reached."""
+def _equal_time_figures(profile: RoadProfile, config: RunConfig, base: RunResult, mpc: RunResult) -> dict[str, Any]:
+    """The PI re-tuned to the MPC run's trip time, starting from `base` (the PI at v_ref); None
+    each where the time was not reached."""
     figures: dict[str, Any] = dict.fromkeys(EQUAL_TIME_FIELDS)
     if mpc.stalled:
         return figures
-    base = sim.simulate(profile, config, "pi")  # part of the search, not one of the sweep's PI tasks
     found = equal_time_baselines(profile, config, {"pi": base, "mpc": mpc}).get("mpc")
     if found is not None and found.reached:
         figures["equal_time_pi_v_ref_kmh"] = found.v_ref_kmh
@@ -100,7 +112,7 @@ class Runner:
         if self.jobs <= 1 or len(tasks) <= 1:
             _init_worker(self.roads, self.base, ignore_sigint=False)
             for task in tasks:
-                yield task, run_one(task.controller, task.road, task.overrides, task.plain)
+                yield task, run_one(task.controller, task.road, task.overrides, task.plain, task.convergence)
             return
         # Workers are spawned (not forked: this process may run threads) while submitting; they
         # inherit an ignored SIGINT through exec, so Ctrl-C reaches only this process.
@@ -112,7 +124,9 @@ class Runner:
                 _init_worker,
                 (self.roads, self.base, True),
             )
-            futures = {self._pool.submit(run_one, t.controller, t.road, t.overrides, t.plain): t for t in tasks}
+            futures = {
+                self._pool.submit(run_one, t.controller, t.road, t.overrides, t.plain, t.convergence): t for t in tasks
+            }
         finally:
             signal.signal(signal.SIGINT, previous)
         try:

@@ -56,6 +56,7 @@ def run_sweep(
     jobs: int | None = None,
     progress: ProgressHook | None = None,
     force: bool = False,
+    check_convergence: bool = False,
 ) -> SweepResult:
     """Run (or resume) a sweep into directory ``out``: PI and MPC on every road for every
     combination of ``grid`` (``["horizon_m=250:3000:250", "delta_kmh=0.1,0.2"]`` or
@@ -64,7 +65,13 @@ def run_sweep(
     Every combination is validated before anything runs or ``out`` is created.
     """
     plan = plan_sweep(
-        roads, grid, reverse=reverse, vehicle_path=vehicle_path, config_paths=config_paths, overrides=overrides
+        roads,
+        grid,
+        reverse=reverse,
+        vehicle_path=vehicle_path,
+        config_paths=config_paths,
+        overrides=overrides,
+        check_convergence=check_convergence,
     )
     return run_plan(plan, out, jobs=jobs, progress=progress, force=force)
 
@@ -96,7 +103,7 @@ def run_plan(
     resumed = len(done)
     pending = [row for row in plan.rows if row.index not in done]
     pi_cache = _resumed_pi_figures(plan, done)
-    tasks = _tasks(pending, pi_cache)
+    tasks = _tasks(pending, pi_cache, plan.check_convergence)
     _check_work(plan, tasks, jobs, force)
     out.mkdir(parents=True, exist_ok=True)
     write_settings(out, plan.settings, jobs)
@@ -161,7 +168,8 @@ def _resumed_rows(plan: SweepPlan, out: Path, notice: Callable[[str], None]) -> 
     dropped: list[str] = []
     for where, cells in finished_rows(out, plan.columns):
         row = by_key.get(tuple(cells[:first_result]))
-        problem = "not a row of this sweep" if row is None else damaged_cell(cells[first_result:])
+        damage = None if row is None else damaged_cell(cells[first_result:], plan.check_convergence)
+        problem = "not a row of this sweep" if row is None else damage
         if problem is not None or row is None:
             dropped.append(f"{where}: {problem}")
             continue
@@ -182,13 +190,13 @@ def _resumed_pi_figures(plan: SweepPlan, done: Mapping[int, Sequence[str]]) -> d
     return pi_cache
 
 
-def _tasks(pending: Sequence[Row], pi_cache: Mapping[str, Any]) -> list[Task]:
+def _tasks(pending: Sequence[Row], pi_cache: Mapping[str, Any], check: bool = False) -> list[Task]:
     """The PI runs first (every row needs one), once per PI key not known yet, then the MPC runs
     longest first, so that a pool does not end on one long run while the other workers idle."""
     pi_rows = {row.pi_key: row for row in pending if row.pi_key not in pi_cache}
     tasks = [Task("pi", row.road, row.overrides, row.index, key) for key, row in pi_rows.items()]
     by_cost = sorted(pending, key=lambda r: -r.cost)
-    tasks += [Task("mpc", row.road, row.overrides, row.index, row.pi_key) for row in by_cost]
+    tasks += [Task("mpc", row.road, row.overrides, row.index, row.pi_key, convergence=check) for row in by_cost]
     return tasks
 
 
@@ -206,4 +214,5 @@ def _rows_as_they_finish(
             ready = [task.row] if task.pi_key in pi_cache else []
         for index in ready:
             row = plan.rows[index]
-            yield index, [*plan.row_key(row), *result_cells(pi_cache[row.pi_key], waiting.pop(index))]
+            cells = result_cells(pi_cache[row.pi_key], waiting.pop(index), plan.check_convergence)
+            yield index, [*plan.row_key(row), *cells]
