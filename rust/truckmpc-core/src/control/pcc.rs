@@ -140,9 +140,9 @@ impl PccController {
     }
 
     /// The brake limit [m/s]: v_ref + v_inc, raised on a descent by use case 3.
-    fn brake_limit_mps(&self, road: &Road, s_m: f64) -> f64 {
+    fn brake_limit_mps(&self, s_m: f64) -> f64 {
         let raised = (self.v_ref_mps * KMH_PER_MPS + self.p.pcc_overspeed_kmh) / KMH_PER_MPS;
-        if self.p.pcc_use_case_3 && self.descent_at(s_m).is_some() && road.end_m() > s_m {
+        if self.p.pcc_use_case_3 && self.descent_at(s_m).is_some() {
             self.v_max_mps.max(raised)
         } else {
             self.v_max_mps
@@ -252,7 +252,7 @@ impl Controller for PccController {
     }
 
     fn decide(&mut self, road: &Road, state: &PlantState) -> Decision {
-        let limit = self.brake_limit_mps(road, state.s_m);
+        let limit = self.brake_limit_mps(state.s_m);
         self.pi.set_brake_limit_kmh(limit * KMH_PER_MPS);
         match self.mode {
             Mode::Event { until_m, floor_mps, .. } => {
