@@ -112,7 +112,7 @@ class RunOutput:
     def trace(self) -> dict[str, npt.NDArray[Any]]: ...
 
 def run(settings: Settings, road: Road, altitude_m: npt.NDArray[np.float64], controller: str) -> RunOutput:
-    """Drive `road` with the built-in controller "pi", "mpc" or "optimal" (the GIL released)."""
+    """Drive `road` with the built-in controller "pi", "pcc", "mpc" or "optimal" (the GIL released)."""
 
 def run_python(
     settings: Settings,

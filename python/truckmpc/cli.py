@@ -40,7 +40,7 @@ from truckmpc import _core
 from truckmpc.bench import BENCH_HELP, bench_cmd
 from truckmpc.config import RunConfig, load_run_config
 from truckmpc.convergence import convergence_document, halved_configs, run_halves
-from truckmpc.equal_time import LOOK_AHEAD, equal_time_baselines
+from truckmpc.equal_time import LOOK_AHEAD, OPTIMISERS, equal_time_baselines
 from truckmpc.errors import ConfigError, TruckmpcError
 from truckmpc.record import RunRequest, load_replay, run_record
 from truckmpc.results import check_run_dir, format_table, write_outputs
@@ -258,6 +258,8 @@ def simulate_cmd(
     halves = _halved_configs(request, run_config)
     # Each look-ahead run is also compared with the PI re-tuned to its trip time.
     retuned = ["pi"] * EQUAL_TIME_RUNS * sum(name in LOOK_AHEAD for name in request.controllers)
+    if "pcc" in request.controllers:
+        retuned += ["pcc"] * EQUAL_TIME_RUNS * sum(name in OPTIMISERS for name in request.controllers)
     runs = [*request.controllers, *retuned] if "pi" in request.controllers else list(request.controllers)
     estimate_s = check_runs(profile, run_config, runs, force=force, extra=halves.values())
     out_dir = Path("out") / profile.name if out is None else out
@@ -270,6 +272,8 @@ def simulate_cmd(
                     results[name] = simulate(profile, run_config, name)
             with status_line(f"pi re-tuned to each look-ahead run's trip time: driving {profile.name}"):
                 equal_times = equal_time_baselines(profile, run_config, results)
+                against_pcc = equal_time_baselines(profile, run_config, results, baseline="pcc")
+                equal_times.update({f"{name}_vs_pcc": found for name, found in against_pcc.items()})
             extra = {}
             if halves:
                 with status_line(f"mpc at half delta_kmh and half stage_m: driving {profile.name}"):

@@ -76,18 +76,18 @@ class EqualTime:
     def reached(self) -> bool:
         return self.reason is None and self.time_s is not None
 
-    def document(self) -> dict[str, Any]:
-        """The ``equal_time`` object of ``summary.json``: the re-tuned PI's figures, null (with
-        ``not_comparable``) where the time was not reached."""
+    def document(self, baseline: str = "pi") -> dict[str, Any]:
+        """The ``equal_time`` object of ``summary.json``: the re-tuned baseline's figures (keys
+        prefixed with its name), null (with ``not_comparable``) where the time was not reached."""
         found = self.reached
         doc: dict[str, Any] = {
-            "pi_v_ref_kmh": self.v_ref_kmh if found else None,
-            "pi_time_s": self.time_s if found else None,
-            "pi_fuel_kg": self.fuel_kg if found else None,
-            "pi_fuel_corrected_kg": self.fuel_corrected_kg if found else None,
+            f"{baseline}_v_ref_kmh": self.v_ref_kmh if found else None,
+            f"{baseline}_time_s": self.time_s if found else None,
+            f"{baseline}_fuel_kg": self.fuel_kg if found else None,
+            f"{baseline}_fuel_corrected_kg": self.fuel_corrected_kg if found else None,
             "target_time_s": self.target_time_s,
             "time_error_pct": delta_pct(self.time_s, self.target_time_s) if found and self.time_s else None,
-            "pi_runs": self.runs,
+            f"{baseline}_runs": self.runs,
         }
         if self.reason is not None:
             doc["not_comparable"] = self.reason
@@ -236,15 +236,19 @@ def _extrapolate(points: list[tuple[float, float]], lo_kmh: float, hi_kmh: float
     return v
 
 
-LOOK_AHEAD = ("mpc", "optimal")
-"""The controllers compared with the baseline at equal trip time."""
+LOOK_AHEAD = ("pcc", "mpc", "optimal")
+"""The controllers compared with the PI at equal trip time."""
+
+OPTIMISERS = ("mpc", "optimal")
+"""The controllers also compared with the rule-based PCC (when it ran) at equal trip time."""
 
 
 def equal_time_baselines(
     road: RoadProfile, config: RunConfig, results: Mapping[str, RunResult], baseline: str = "pi"
 ) -> dict[str, EqualTime]:
     """For every look-ahead run in `results` that did not stall, the baseline driven to its trip time
-    (the baseline's run at the configured v_ref is `results[baseline]`)."""
+    (the baseline's run at the configured v_ref is `results[baseline]`): against the PI every
+    look-ahead controller, against the PCC the optimising ones."""
     base = results.get(baseline)
     if base is None:
         return {}
@@ -253,7 +257,7 @@ def equal_time_baselines(
     # The band needs v_ref > v_dec (its lower end above zero): keep 1 km/h clear of it.
     floor_kmh = cruise.v_dec_kmh + 1.0
     out = {}
-    for name in LOOK_AHEAD:
+    for name in LOOK_AHEAD if baseline == "pi" else OPTIMISERS:
         result = results.get(name)
         if result is None or result.stalled:
             continue

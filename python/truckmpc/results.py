@@ -83,22 +83,16 @@ def summary_document(
     for name, result in results.items():
         if base is None or name == BASELINE:
             continue
+        entry = _comparison(base, result, (equal_times or {}).get(name))
         suffix = "" if len(results) == 2 else f"_{name}"
-        comparison = compare(base.summary, result.summary, BASELINE, name)
-        figures: dict[str, Any] = {
-            "delta_fuel_pct": comparison.delta_fuel_pct,
-            "delta_time_pct": comparison.delta_time_pct,
-        }
-        if comparison.not_comparable is not None:
-            figures["not_comparable"] = comparison.not_comparable
-        else:
-            figures.update(_time_fair_deltas(base.summary, result.summary, (equal_times or {}).get(name)))
-        doc.update({f"{key}{suffix}": value for key, value in figures.items()})
-        listed = {k: v for k, v in figures.items() if k != "equal_time"}
-        equal = figures.get("equal_time", {})
-        if "not_comparable" in equal:
-            listed.setdefault("not_comparable", equal["not_comparable"])
-        comparisons.append({"controller": name, "baseline": BASELINE, **listed})
+        doc.update({f"{key}{suffix}": value for key, value in entry.items() if key not in ("controller", "baseline")})
+        comparisons.append({key: value for key, value in entry.items() if key != "equal_time"})
+    pcc = results.get("pcc")
+    for name in ("mpc", "optimal"):
+        if pcc is not None and name in results:
+            entry = _comparison(pcc, results[name], (equal_times or {}).get(f"{name}_vs_pcc"))
+            comparisons.append({key: value for key, value in entry.items() if key != "equal_time"})
+            doc[f"equal_time_{name}_vs_pcc"] = entry.get("equal_time")
     if comparisons:
         doc["comparisons"] = comparisons
     if "mpc" in results and "optimal" in results:
@@ -108,7 +102,28 @@ def summary_document(
     return doc
 
 
-def _time_fair_deltas(base: Mapping[str, Any], run: Mapping[str, Any], equal: EqualTime | None) -> dict[str, Any]:
+def _comparison(base: RunResult, run: RunResult, equal: EqualTime | None) -> dict[str, Any]:
+    """One entry of ``comparisons``: `run` against `base`, raw, end-speed corrected and at equal
+    trip time (`base` re-tuned to `run`'s time), with the equal-time search's figures."""
+    comparison = compare(base.summary, run.summary, base.name, run.name)
+    entry: dict[str, Any] = {
+        "controller": run.name,
+        "baseline": base.name,
+        "delta_fuel_pct": comparison.delta_fuel_pct,
+        "delta_time_pct": comparison.delta_time_pct,
+    }
+    if comparison.not_comparable is not None:
+        entry["not_comparable"] = comparison.not_comparable
+        return entry
+    entry.update(_time_fair_deltas(base.summary, run.summary, equal, base.name))
+    if "not_comparable" in entry.get("equal_time", {}):
+        entry["not_comparable"] = entry["equal_time"]["not_comparable"]
+    return entry
+
+
+def _time_fair_deltas(
+    base: Mapping[str, Any], run: Mapping[str, Any], equal: EqualTime | None, baseline: str
+) -> dict[str, Any]:
     """Δfuel [%] with both runs' end speeds corrected, and against the baseline at equal trip time
     (raw and corrected), with the ``equal_time`` object; null where the baseline did not reach the
     time."""
@@ -124,7 +139,7 @@ def _time_fair_deltas(base: Mapping[str, Any], run: Mapping[str, Any], equal: Eq
     doc["delta_fuel_equal_time_corrected_pct"] = (
         delta_pct(own, corrected) if reached and corrected and own is not None else None
     )
-    doc["equal_time"] = equal.document()
+    doc["equal_time"] = equal.document(baseline)
     return doc
 
 
@@ -251,6 +266,14 @@ def format_table(
         for key, value in doc.items()
         if key.startswith(("delta_", "gap_to_optimal_pct")) and isinstance(value, float)
     ]
+    for entry in doc.get("comparisons", []):
+        if entry["baseline"] != BASELINE:
+            who = f"{entry['controller']} vs {entry['baseline']}"
+            deltas += [
+                (f"{key.replace('_pct', ' [%]').replace('_', ' ')} {who}", value)
+                for key, value in entry.items()
+                if key.startswith("delta_") and isinstance(value, float)
+            ]
     width = max([label_width(_FIGURES), *(len(label) + 2 for label, _ in deltas)])
     lines.append(" " * width + "".join(f"{name:>14}" for name in names))
     lines += figure_lines(_FIGURES, [results[name].summary for name in names], 14, width)
@@ -269,10 +292,12 @@ def format_table(
 
 def _equal_time_line(key: str, equal: Mapping[str, Any], width: int) -> str:
     """`equal time pi v_ref [km/h]   84.41  (4789.3 s, 6 runs)`, or why the time was not reached."""
-    label = f"{key.replace('_', ' ')} pi v_ref [km/h]"
+    baseline = "pcc" if key.endswith("_vs_pcc") else "pi"
+    label = f"{key.replace('_vs_pcc', '').replace('_', ' ')} {baseline} v_ref [km/h]"
     if "not_comparable" in equal:
         return f"{label}: {equal['not_comparable']}"
-    return f"{label:<{width}}{equal['pi_v_ref_kmh']:>14.2f}  ({equal['pi_time_s']:.1f} s, {equal['pi_runs']} runs)"
+    v_ref, time_s, runs = (equal[f"{baseline}_{k}"] for k in ("v_ref_kmh", "time_s", "runs"))
+    return f"{label:<{width}}{v_ref:>14.2f}  ({time_s:.1f} s, {runs} runs)"
 
 
 def _setup(config: RunConfig) -> str:

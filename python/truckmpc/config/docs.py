@@ -19,6 +19,8 @@ SECTION_TITLES = {
     "mpc": "The look-ahead DP-MPC (chapter 5; tables 5.2, 6.1, 6.2). The cost weighs fuel in grams and\n"
     "# speeds in m/s: with these units table 6.2's weights give chapter 6's behaviour. These defaults\n"
     "# converge as delta_kmh and stage_m shrink; --config thesis is the controller as printed.",
+    "pcc": "VECTO's rule-based predictive cruise control (use cases 1-3) and eco-roll, on the PI: its\n"
+    "# declaration defaults. Drive it with --controller pcc.",
     "sim": "How the closed loop is simulated and recorded.",
 }
 

@@ -25,6 +25,7 @@ SECTION_FILES: dict[str, str] = {
     "cruise": "cruise.yaml",
     "pi": "pi.yaml",
     "mpc": "mpc.yaml",
+    "pcc": "pcc.yaml",
     "sim": "simulation.yaml",
 }
 """The packaged file holding each section's defaults (the vehicle's is a truck file)."""

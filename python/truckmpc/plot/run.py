@@ -23,7 +23,12 @@ from truckmpc.units import M_PER_KM
 MAX_POINTS = 20_000
 """Most points drawn per line of a run picture; longer traces are reduced to per-bucket min/max."""
 
-CONTROLLER_STYLE = {"pi": ("PI", "tab:blue"), "mpc": ("MPC", "tab:red")}
+CONTROLLER_STYLE = {
+    "pi": ("PI", "tab:blue"),
+    "pcc": ("PCC (VECTO)", "tab:green"),
+    "mpc": ("MPC", "tab:red"),
+    "optimal": ("whole-road optimum", "tab:purple"),
+}
 """Label and colour per controller, the same in every panel."""
 
 

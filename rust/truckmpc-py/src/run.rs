@@ -7,7 +7,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::time::Instant;
 
-use truckmpc_core::control::{Controller, Decision, GearLogic, PiController, RecedingController, SolverStats};
+use truckmpc_core::control::{
+    Controller, Decision, GearLogic, PccController, PiController, RecedingController, SolverStats,
+};
 use truckmpc_core::dp::DpSettings;
 use truckmpc_core::sim::{self, RunSummary, Trace};
 use truckmpc_core::{Control, PlantState, Road};
@@ -116,7 +118,8 @@ fn run(
                 Box::new(RecedingController::new(vehicle.clone(), dp, gears))
             }
         }
-        other => return Err(bad_argument("controller", "'pi', 'mpc' or 'optimal'", format!("'{other}'"))),
+        "pcc" => Box::new(PccController::new(vehicle.clone(), &s.pi, &s.cruise, &s.pcc).map_err(to_py)?),
+        other => return Err(bad_argument("controller", "'pi', 'pcc', 'mpc' or 'optimal'", format!("'{other}'"))),
     };
     let altitude_m = altitude_m.as_array().to_vec();
     let (road, start_kmh) = (&road.inner, s.start_speed_kmh());

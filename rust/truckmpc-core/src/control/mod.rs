@@ -5,10 +5,12 @@
 //! sampled controller running at the plant step), `Some(s)` until the truck reaches distance `s`
 //! [m] or the road's end (the look-ahead controller of chapter 5, once per stage).
 
+pub mod pcc;
 pub mod pi;
 pub mod receding;
 pub mod rescue;
 
+pub use pcc::{Descent, PccController};
 pub use pi::{GearLogic, PiController};
 pub use receding::{PlanStats, RecedingController, ShiftCounter, SolverStats};
 pub use rescue::Rescue;

@@ -145,6 +145,17 @@ impl PiController {
         &self.gears
     }
 
+    /// The gear the controller last chose (0 before its first decision).
+    pub fn gear(&self) -> usize {
+        self.gear
+    }
+
+    /// Move the speed above which the controller brakes [km/h] (v_ref + v_inc unless changed): a
+    /// controller built on this one raises it on descents.
+    pub fn set_brake_limit_kmh(&mut self, v_max_kmh: f64) {
+        self.v_max_kmh = v_max_kmh;
+    }
+
     /// Pedal and brake integrator states [km/h·s].
     pub fn integrators(&self) -> (f64, f64) {
         (self.pedal_integrator, self.brake_integrator)

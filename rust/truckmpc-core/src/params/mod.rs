@@ -8,6 +8,7 @@
 
 mod cruise;
 mod mpc;
+mod pcc;
 mod pi;
 mod settings;
 mod sim;
@@ -17,6 +18,7 @@ mod vehicle;
 
 pub use cruise::CruiseParams;
 pub use mpc::{CostKind, GridAnchor, MpcParams, NeutralRule, OnInfeasible};
+pub use pcc::PccParams;
 pub use pi::PiParams;
 pub use settings::RunSettings;
 pub use sim::SimParams;

@@ -1,6 +1,6 @@
 //! All the settings of a run, as one flat namespace of declared keys.
 
-use super::{CruiseParams, MpcParams, ParamSet, ParamSpec, PiParams, SimParams, Value, VehicleParams};
+use super::{CruiseParams, MpcParams, ParamSet, ParamSpec, PccParams, PiParams, SimParams, Value, VehicleParams};
 use crate::error::{CoreError, CoreResult};
 
 /// The vehicle, the cruise band, both controllers and the simulation.
@@ -14,14 +14,22 @@ pub struct RunSettings {
     pub pi: PiParams,
     /// The look-ahead controller.
     pub mpc: MpcParams,
+    /// The rule-based predictive cruise control.
+    pub pcc: PccParams,
     /// The closed-loop simulation.
     pub sim: SimParams,
 }
 
 impl RunSettings {
     /// The names of the sections, in order.
-    pub const SECTIONS: [&'static str; 5] =
-        [VehicleParams::SECTION, CruiseParams::SECTION, PiParams::SECTION, MpcParams::SECTION, SimParams::SECTION];
+    pub const SECTIONS: [&'static str; 6] = [
+        VehicleParams::SECTION,
+        CruiseParams::SECTION,
+        PiParams::SECTION,
+        MpcParams::SECTION,
+        PccParams::SECTION,
+        SimParams::SECTION,
+    ];
 
     /// Every declared parameter, section by section.
     pub fn specs() -> Vec<ParamSpec> {
@@ -29,6 +37,7 @@ impl RunSettings {
         specs.extend(CruiseParams::specs());
         specs.extend(PiParams::specs());
         specs.extend(MpcParams::specs());
+        specs.extend(PccParams::specs());
         specs.extend(SimParams::specs());
         specs
     }
@@ -39,6 +48,7 @@ impl RunSettings {
             || self.cruise.set(key, value)?
             || self.pi.set(key, value)?
             || self.mpc.set(key, value)?
+            || self.pcc.set(key, value)?
             || self.sim.set(key, value)?;
         if known {
             Ok(())
@@ -54,6 +64,7 @@ impl RunSettings {
             .or_else(|| self.cruise.get(key))
             .or_else(|| self.pi.get(key))
             .or_else(|| self.mpc.get(key))
+            .or_else(|| self.pcc.get(key))
             .or_else(|| self.sim.get(key))
     }
 
@@ -73,6 +84,7 @@ impl RunSettings {
         self.cruise.check_ranges()?;
         self.pi.check_ranges()?;
         self.mpc.check_ranges()?;
+        self.pcc.check_ranges()?;
         self.sim.check_ranges()?;
         self.vehicle.check_gearbox()?;
         self.pi.check_thresholds()?;

@@ -1,0 +1,31 @@
+//! The rule-based predictive cruise control of VECTO (the EU's certification tool for heavy
+//! trucks), with eco-roll: its declaration defaults. The controller is [`crate::control::PccController`].
+
+use super::Range;
+use crate::declare_params;
+
+declare_params! {
+    /// VECTO's predictive cruise control (use cases 1–3) and eco-roll on top of the PI cruise control.
+    pub struct PccParams in "pcc" {
+        /// Allowed underspeed: how far below v_ref a PCC event lets the speed fall before a descent (use case 1).
+        pcc_underspeed_kmh: f64 = 8.0, unit "km/h", range Range::between(0.0, 50.0);
+        /// Allowed overspeed while a descent is under way (use case 3): the brake limit is then v_ref plus this (never below v_ref + v_inc).
+        pcc_overspeed_kmh: f64 = 5.0, unit "km/h", range Range::between(0.0, 50.0);
+        /// PCC acts only where v_ref is at least this.
+        pcc_enabling_speed_kmh: f64 = 80.0, unit "km/h", range Range::between(0.0, 250.0);
+        /// Lowest speed at which use case 2 (regaining speed on a descent by gravity alone) starts.
+        pcc_minimum_speed_kmh: f64 = 50.0, unit "km/h", range Range::between(0.0, 250.0);
+        /// How far ahead of a descent use case 1 (crest coasting) may start.
+        pcc_preview_m: f64 = 1500.0, unit "m", range Range::between(0.0, 1e5);
+        /// How far ahead use case 2 looks for the end of the descent.
+        pcc_preview_uc2_m: f64 = 1000.0, unit "m", range Range::between(0.0, 1e5);
+        /// Whether use case 3 (dip coasting: the raised overspeed on a descent) is fitted.
+        pcc_use_case_3: bool = true, unit "-", range Range::ANY;
+        /// Eco-roll: coast in neutral (PCC events and gentle descents) instead of in gear at fuel cut.
+        eco_roll: bool = true, unit "-", range Range::ANY;
+        /// Lowest speed at which eco-roll engages.
+        eco_roll_min_speed_kmh: f64 = 60.0, unit "km/h", range Range::between(0.0, 250.0);
+        /// How long the conditions for eco-roll must hold before it engages.
+        eco_roll_delay_s: f64 = 2.0, unit "s", range Range::between(0.0, 600.0);
+    }
+}
