@@ -90,9 +90,16 @@ class Vehicle:
 
 @final
 class Road:
-    """A road profile: points and the grade of each segment; flat beyond its end."""
+    """A road profile: points, the grade and (optionally) the target speed [km/h] of each segment; flat beyond its end."""
 
-    def __new__(cls, distance_m: npt.NDArray[np.float64], slope: npt.NDArray[np.float64]) -> Road: ...
+    def __new__(
+        cls,
+        distance_m: npt.NDArray[np.float64],
+        slope: npt.NDArray[np.float64],
+        target_speed_kmh: npt.NDArray[np.float64] | None = None,
+    ) -> Road: ...
+    @property
+    def has_target_speeds(self) -> bool: ...
     @property
     def start_m(self) -> float: ...
     @property

@@ -5,8 +5,11 @@ constant slope Δh/ΔL (thesis section 1.2), so the slope of segment i is the di
 altitudes over the difference of the distances. Slopes are grades: 0.01 = 1 %, positive uphill.
 
 CSV format: `#` comment lines, blank lines ignored; a header naming `distance_m` and `altitude_m`
-and/or `grade`; other columns are ignored. With only `grade`, the grade on a row is that of the
-segment starting at the row, and the altitude is its integral. With both, the altitude is used.
+and/or `grade`, optionally `target_speed_kmh`; other columns are ignored. With only `grade`, the
+grade on a row is that of the segment starting at the row, and the altitude is its integral. With
+both, the altitude is used. A row's `target_speed_kmh` is the target speed [km/h] from that row to
+the next (a driving cycle's, or the speed limit): the cruise controllers' set speed and band then
+follow it along the road (the README's "Target speeds" says how).
 """
 
 from __future__ import annotations
@@ -44,6 +47,8 @@ __all__ = [
 ]
 
 PathLike = str | os.PathLike[str]
+MAX_TARGET_KMH = 250.0
+"""Highest accepted target speed [km/h]."""
 MAX_GRADE = 0.30
 """Largest accepted |grade| [-] (30 %); steeper roads are taken to be input errors."""
 
@@ -65,12 +70,15 @@ _REVERSED = "-reversed"
 @dataclass(frozen=True, eq=False)
 class RoadProfile:
     """A road: points `distance_m` [m] (strictly increasing, from wherever the road starts) with
-    their `altitude_m` [m] (relative). Arrays are float64 and read-only."""
+    their `altitude_m` [m] (relative) and, optionally, `target_speed_kmh` [km/h], the target speed
+    from each point to the next (the last point's is that beyond the end). Arrays are float64 and
+    read-only."""
 
     name: str
     distance_m: np.ndarray
     altitude_m: np.ndarray
     source: str | None = None
+    target_speed_kmh: np.ndarray | None = None
     _road: _core.Road | None = field(default=None, init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -97,6 +105,9 @@ class RoadProfile:
         if steep.size:
             i = int(steep[0])
             raise RoadError(f"{where}: slope {self.slope[i]:.4g} at {distance[i]:g} m exceeds |grade| <= {MAX_GRADE:g}")
+        if self.target_speed_kmh is not None:
+            targets = _checked_targets(where, _frozen_array(self.target_speed_kmh), distance)
+            object.__setattr__(self, "target_speed_kmh", targets)
 
     @property
     def slope(self) -> np.ndarray:
@@ -112,15 +123,19 @@ class RoadProfile:
         """The road for the Rust core (`_core.Road(distance_m, slope)`), built once."""
         road = self._road
         if road is None:
-            road = _core.Road(np.ascontiguousarray(self.distance_m), np.ascontiguousarray(self.slope))
+            targets = None if self.target_speed_kmh is None else np.ascontiguousarray(self.target_speed_kmh[:-1])
+            road = _core.Road(np.ascontiguousarray(self.distance_m), np.ascontiguousarray(self.slope), targets)
             object.__setattr__(self, "_road", road)
         return road
 
     def sha256(self) -> str:
-        """Hex SHA-256 of the profile's points (distances, then altitudes, as float64): the road's
-        identity in result files, whatever file or generator it came from."""
+        """Hex SHA-256 of the profile's points (distances, then altitudes, then the target speeds if
+        it has them, as float64): the road's identity in result files, whatever file or generator
+        it came from."""
         digest = hashlib.sha256(self.distance_m.tobytes())
         digest.update(self.altitude_m.tobytes())
+        if self.target_speed_kmh is not None:
+            digest.update(self.target_speed_kmh.tobytes())
         return digest.hexdigest()
 
     def reversed(self) -> RoadProfile:
@@ -128,7 +143,12 @@ class RoadProfile:
         range), altitudes unchanged; uphill becomes downhill."""
         start, end = self.distance_m[0], self.distance_m[-1]
         name = self.name.removesuffix(_REVERSED) if self.name.endswith(_REVERSED) else self.name + _REVERSED
-        return RoadProfile(name, (start + end) - self.distance_m[::-1], self.altitude_m[::-1], self.source)
+        targets = None
+        if self.target_speed_kmh is not None:
+            # Segment i of the reversed road is segment n - 1 - i of this one.
+            segments = self.target_speed_kmh[:-1][::-1]
+            targets = np.append(segments, segments[-1])
+        return RoadProfile(name, (start + end) - self.distance_m[::-1], self.altitude_m[::-1], self.source, targets)
 
     def resampled(self, step_m: float) -> RoadProfile:
         """The altitude linearly interpolated onto points every `step_m` metres from the start,
@@ -136,7 +156,36 @@ class RoadProfile:
         if not (math.isfinite(step_m) and step_m > 0):
             raise RoadError(f"{self.source or self.name}: resampling step: expected a number > 0 m, got {step_m!r}")
         grid = _grid(float(self.distance_m[0]), float(self.distance_m[-1]), step_m)
-        return RoadProfile(self.name, grid, np.interp(grid, self.distance_m, self.altitude_m), self.source)
+        targets = None
+        if self.target_speed_kmh is not None:
+            # Every change of target speed stays a point, so the targets keep their positions.
+            changes = self.distance_m[1:-1][np.diff(self.target_speed_kmh[:-1]) != 0]
+            grid = np.union1d(grid, changes)
+            targets = self.target_speed_at(grid)
+        altitude = np.interp(grid, self.distance_m, self.altitude_m)
+        return RoadProfile(self.name, grid, altitude, self.source, targets)
+
+    def target_speed_at(self, s_m: np.ndarray) -> np.ndarray:
+        """The target speed [km/h] at distances `s_m` [m] (that of the segment containing each; the
+        first segment's before the start, the last one's beyond the end)."""
+        if self.target_speed_kmh is None:
+            raise RoadError(f"{self.source or self.name}: the road has no target speeds")
+        segment = np.searchsorted(self.distance_m, s_m, side="right") - 1
+        return self.target_speed_kmh[:-1][np.clip(segment, 0, self.distance_m.size - 2)]
+
+
+def _checked_targets(where: str, targets: np.ndarray, distance: np.ndarray) -> np.ndarray:
+    """`targets` if it holds one target speed in (0, MAX_TARGET_KMH] km/h per point."""
+    if targets.shape != distance.shape:
+        raise RoadError(f"{where}: expected one target speed per point ({distance.size}), got {targets.size}")
+    bad = np.flatnonzero(~((targets > 0) & (targets <= MAX_TARGET_KMH)))
+    if bad.size:
+        i = int(bad[0])
+        raise RoadError(
+            f"{where}: target_speed_kmh at {distance[i]:g} m: expected a speed in (0, {MAX_TARGET_KMH:g}] km/h, "
+            f"got {targets[i]:g}"
+        )
+    return targets
 
 
 def _frozen_array(values: Any) -> np.ndarray:
@@ -167,10 +216,14 @@ def load_road(path: PathLike) -> RoadProfile:
     if not lines:
         raise RoadError(f"{where}: no header line (expected columns distance_m and altitude_m and/or grade)")
     columns = _header(where, *lines[0])
-    distance, altitude, grade = _rows(where, columns, lines[1:])
-    if altitude is None:
-        altitude = np.concatenate([[0.0], np.cumsum(grade[:-1] * np.diff(distance))])
-    return RoadProfile(path.stem, distance, altitude, where)
+    data = _rows(where, columns, lines[1:])
+    distance = np.array(data["distance_m"])
+    if "altitude_m" in data:
+        altitude = np.array(data["altitude_m"])
+    else:
+        altitude = np.concatenate([[0.0], np.cumsum(np.array(data["grade"])[:-1] * np.diff(distance))])
+    targets = np.array(data["target_speed_kmh"]) if "target_speed_kmh" in data else None
+    return RoadProfile(path.stem, distance, altitude, where, targets)
 
 
 def _header(where: str, number: int, line: str) -> list[str]:
@@ -183,11 +236,9 @@ def _header(where: str, number: int, line: str) -> list[str]:
     return columns
 
 
-def _rows(
-    where: str, columns: list[str], lines: list[tuple[int, str]]
-) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
-    """Distances, altitudes (None without that column) and grades (zeros without that column)."""
-    wanted = [name for name in ("distance_m", "altitude_m", "grade") if name in columns]
+def _rows(where: str, columns: list[str], lines: list[tuple[int, str]]) -> dict[str, list[float]]:
+    """The values of each known column present, checked row by row."""
+    wanted = [name for name in ("distance_m", "altitude_m", "grade", "target_speed_kmh") if name in columns]
     index = {name: columns.index(name) for name in wanted}
     data: dict[str, list[float]] = {name: [] for name in wanted}
     for number, line in lines:
@@ -199,10 +250,7 @@ def _rows(
         _check_row(where, number, data)
     if len(data["distance_m"]) < 2:
         raise RoadError(f"{where}: expected at least two data rows, got {len(data['distance_m'])}")
-    distance = np.array(data["distance_m"])
-    altitude = np.array(data["altitude_m"]) if "altitude_m" in data else None
-    grade = np.array(data["grade"]) if "grade" in data else np.zeros_like(distance)
-    return distance, altitude, grade
+    return data
 
 
 def _cell(where: str, number: int, name: str, text: str) -> float:
@@ -215,6 +263,10 @@ def _cell(where: str, number: int, name: str, text: str) -> float:
         raise RoadError(f"{where}:{number}: column {name!r}: expected a finite number, got {text!r}")
     if name == "distance_m" and abs(value) > MAX_ABS_DISTANCE_M:
         raise RoadError(f"{where}:{number}: column {name!r}: expected at most {MAX_ABS_DISTANCE_M:g} m, got {text!r}")
+    if name == "target_speed_kmh" and not 0 < value <= MAX_TARGET_KMH:
+        raise RoadError(
+            f"{where}:{number}: column {name!r}: expected a speed in (0, {MAX_TARGET_KMH:g}] km/h, got {text!r}"
+        )
     return value
 
 
@@ -249,16 +301,20 @@ def _check_row(where: str, number: int, data: dict[str, list[float]]) -> None:
 
 def write_road(profile: RoadProfile, path: PathLike, comments: Sequence[str] = ()) -> None:
     """Write `profile` atomically as CSV: `# comment` lines, then `distance_m,altitude_m,grade`
-    rows (%.3f m, %.6f m, %.6f); a row's grade is that of the segment starting there, the last
-    row repeats the previous one."""
+    rows (%.3f m, %.6f m, %.6f), plus `target_speed_kmh` (%.6g) if the road has target speeds; a
+    row's grade is that of the segment starting there, the last row repeats the previous one."""
     distance = [f"{d:.3f}" for d in profile.distance_m]
     if any(float(b) <= float(a) for a, b in itertools.pairwise(distance)):
         raise RoadError(f"{path}: points closer than 1 mm cannot be written with 1 mm resolution")
     grade = np.append(profile.slope, profile.slope[-1])
     lines = [f"# {line}".rstrip() for comment in comments for line in str(comment).splitlines() or [""]]
-    lines.append("distance_m,altitude_m,grade")
-    lines += [f"{d},{_fixed(h)},{_fixed(g)}" for d, h, g in zip(distance, profile.altitude_m, grade, strict=True)]
-    atomic_write_text(path, "\n".join(lines) + "\n")
+    rows = [f"{d},{_fixed(h)},{_fixed(g)}" for d, h, g in zip(distance, profile.altitude_m, grade, strict=True)]
+    if profile.target_speed_kmh is None:
+        lines.append("distance_m,altitude_m,grade")
+    else:
+        lines.append("distance_m,altitude_m,grade,target_speed_kmh")
+        rows = [f"{row},{v:.6g}" for row, v in zip(rows, profile.target_speed_kmh, strict=True)]
+    atomic_write_text(path, "\n".join(lines + rows) + "\n")
 
 
 def _fixed(value: float) -> str:
@@ -359,13 +415,18 @@ def concatenate(parts: Sequence[RoadProfile], name: str) -> RoadProfile:
     (distance and altitude shifted to join)."""
     if not parts:
         raise RoadError(f"{name}: expected at least one part to concatenate")
+    with_targets = [part.target_speed_kmh is not None for part in parts]
+    if any(with_targets) and not all(with_targets):
+        raise RoadError(f"{name}: expected target speeds on every part or on none")
     distance, altitude = [parts[0].distance_m], [parts[0].altitude_m]
+    targets = [part.target_speed_kmh[:-1] for part in parts if part.target_speed_kmh is not None]
     for part in parts[1:]:
         shift_m = distance[-1][-1] - part.distance_m[0]
         lift_m = altitude[-1][-1] - part.altitude_m[0]
         distance.append(part.distance_m[1:] + shift_m)
         altitude.append(part.altitude_m[1:] + lift_m)
-    return RoadProfile(name, np.concatenate(distance), np.concatenate(altitude), None)
+    joined = np.concatenate([*targets, targets[-1][-1:]]) if targets else None
+    return RoadProfile(name, np.concatenate(distance), np.concatenate(altitude), None, joined)
 
 
 def default_test_track() -> RoadProfile:

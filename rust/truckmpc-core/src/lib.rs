@@ -3,13 +3,15 @@
 //! - [`params`]: every parameter of a run, declared once (name with unit, type, default, range, doc);
 //! - [`vehicle`]: the truck model (thesis chapter 2, appendix B.1), the one source of the equations;
 //! - [`levels`]: pedal and brake levels joining two speeds (B.5, B.7) and stationary points (B.3);
-//! - [`road`]: a road profile with piecewise-constant slope;
+//! - [`road`]: a road profile with piecewise-constant slope (and target speeds, if it has them);
+//! - [`band`]: the speed band every cruise controller works to along a road;
 //! - [`plant`]: the truck integrated in time at a fine step, for closed-loop simulation;
 //! - [`dp`]: the look-ahead controller's search space and backward dynamic program (chapter 5);
 //! - [`control`]: the built-in cruise controllers, PI (section 2.5) and receding-horizon DP-MPC
 //!   (section 5.6);
 //! - [`sim`]: the closed loop driving the plant with a controller over a road, and its trace.
 
+pub mod band;
 pub mod control;
 pub mod dp;
 pub mod error;

@@ -1,6 +1,8 @@
 //! A road profile as the plant and the controller see it: a piecewise-linear altitude over
 //! distance, i.e. a constant slope on each segment between two profile points.
 //! Beyond its last point the road is taken to continue flat (the look-ahead needs slopes past the end).
+//! A road may carry a target speed per segment (a driving cycle's, or the speed limits), which
+//! holds from the segment's first point to the next; beyond the end the last one holds.
 
 use crate::error::{CoreError, CoreResult};
 
@@ -10,7 +12,12 @@ pub struct Road {
     distance_m: Vec<f64>,
     altitude_m: Vec<f64>,
     slope: Vec<f64>,
+    /// Target speed of each segment [km/h], if the road has them.
+    target_kmh: Option<Vec<f64>>,
 }
+
+/// Highest accepted target speed [km/h].
+pub const MAX_TARGET_KMH: f64 = 250.0;
 
 impl Road {
     /// Build from profile points `distance_m` (strictly increasing, ≥ 2 points) and the grade of each
@@ -35,7 +42,27 @@ impl Road {
         for (i, s) in slope.iter().enumerate() {
             altitude_m.push(altitude_m[i] + s * (distance_m[i + 1] - distance_m[i]));
         }
-        Ok(Road { distance_m, altitude_m, slope })
+        Ok(Road { distance_m, altitude_m, slope, target_kmh: None })
+    }
+
+    /// The same road with a target speed per segment `target_kmh` [km/h] (one per segment, each
+    /// in (0, 250]).
+    pub fn with_target_speeds(mut self, target_kmh: Vec<f64>) -> CoreResult<Self> {
+        if target_kmh.len() != self.slope.len() {
+            let expected = format!("{} segment target speeds", self.slope.len());
+            return Err(CoreError::invalid("target_speed_kmh", expected).got(target_kmh.len()));
+        }
+        if let Some(i) = target_kmh.iter().position(|v| !(*v > 0.0 && *v <= MAX_TARGET_KMH)) {
+            let expected = format!("a target speed in (0, {MAX_TARGET_KMH}] km/h on segment {i}");
+            return Err(CoreError::invalid("target_speed_kmh", expected).got(target_kmh[i]));
+        }
+        self.target_kmh = Some(target_kmh);
+        Ok(self)
+    }
+
+    /// The target speed of each segment [km/h], if the road has them.
+    pub fn target_speeds_kmh(&self) -> Option<&[f64]> {
+        self.target_kmh.as_deref()
     }
 
     /// Distance of the first profile point [m].

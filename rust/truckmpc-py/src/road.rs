@@ -8,8 +8,9 @@ use truckmpc_core::Road;
 
 use crate::errors::to_py;
 
-/// A road profile: points `distance_m` [m] (strictly increasing) and the grade of each segment
-/// between consecutive points (`len(slope) == len(distance_m) - 1`). Flat beyond its end.
+/// A road profile: points `distance_m` [m] (strictly increasing), the grade of each segment
+/// between consecutive points (`len(slope) == len(distance_m) - 1`) and, optionally, each
+/// segment's target speed [km/h]. Flat beyond its end.
 #[pyclass(name = "Road", module = "truckmpc._core", frozen)]
 pub struct PyRoad {
     pub inner: Arc<Road>,
@@ -18,9 +19,23 @@ pub struct PyRoad {
 #[pymethods]
 impl PyRoad {
     #[new]
-    fn new(distance_m: PyReadonlyArray1<'_, f64>, slope: PyReadonlyArray1<'_, f64>) -> PyResult<Self> {
-        let road = Road::new(distance_m.as_array().to_vec(), slope.as_array().to_vec()).map_err(to_py)?;
+    #[pyo3(signature = (distance_m, slope, target_speed_kmh=None))]
+    fn new(
+        distance_m: PyReadonlyArray1<'_, f64>,
+        slope: PyReadonlyArray1<'_, f64>,
+        target_speed_kmh: Option<PyReadonlyArray1<'_, f64>>,
+    ) -> PyResult<Self> {
+        let mut road = Road::new(distance_m.as_array().to_vec(), slope.as_array().to_vec()).map_err(to_py)?;
+        if let Some(targets) = target_speed_kmh {
+            road = road.with_target_speeds(targets.as_array().to_vec()).map_err(to_py)?;
+        }
         Ok(PyRoad { inner: Arc::new(road) })
+    }
+
+    /// Whether the road carries target speeds.
+    #[getter]
+    fn has_target_speeds(&self) -> bool {
+        self.inner.target_speeds_kmh().is_some()
     }
 
     /// Distance of the first point [m].

@@ -122,7 +122,7 @@ fn run(
         other => return Err(bad_argument("controller", "'pi', 'pcc', 'mpc' or 'optimal'", format!("'{other}'"))),
     };
     let altitude_m = altitude_m.as_array().to_vec();
-    let (road, start_kmh) = (&road.inner, s.start_speed_kmh());
+    let (road, start_kmh) = (&road.inner, s.start_speed_kmh(&road.inner));
     let mut watched = Interruptible { inner: ctrl.as_mut(), checked: Instant::now(), steps: 0, error: None };
     let output = py.detach(|| sim::run(vehicle, road, &altitude_m, &mut watched, &s.sim, start_kmh)).map_err(to_py)?;
     if let Some(err) = watched.error {
@@ -280,7 +280,8 @@ fn run_python(
     let s = &settings.inner;
     let altitude_m = altitude_m.as_array().to_vec();
     let output =
-        sim::run(&settings.vehicle, &road.inner, &altitude_m, &mut ctrl, &s.sim, s.start_speed_kmh()).map_err(to_py)?;
+        sim::run(&settings.vehicle, &road.inner, &altitude_m, &mut ctrl, &s.sim, s.start_speed_kmh(&road.inner))
+            .map_err(to_py)?;
     if let Some(err) = ctrl.error {
         return Err(err);
     }

@@ -66,8 +66,8 @@ pub struct PccController {
     pi: PiController,
     vehicle: Arc<Vehicle>,
     p: PccParams,
+    /// The cruise set speed [m/s]: the coasting grade and loss are those at it.
     v_ref_mps: f64,
-    v_max_mps: f64,
     /// The descents of the road, in order.
     descents: Vec<Descent>,
     /// Per descent, whether an event already ran there.
@@ -87,7 +87,6 @@ impl PccController {
             vehicle,
             p: pcc.clone(),
             v_ref_mps: cruise.v_ref_mps(),
-            v_max_mps: cruise.v_max_kmh() / KMH_PER_MPS,
             descents: Vec::new(),
             used: Vec::new(),
             mode: Mode::Cruise,
@@ -139,14 +138,21 @@ impl PccController {
         -self.vehicle.accel_mps2(self.v_ref_mps, 0.0, 0.0, self.coast_gear(), 0.0)
     }
 
-    /// The brake limit [m/s]: v_ref + v_inc, raised on a descent by use case 3.
+    /// The brake limit [m/s]: the band's top, raised on a descent by use case 3 to v_ref(s) plus
+    /// the allowed overspeed.
     fn brake_limit_mps(&self, s_m: f64) -> f64 {
-        let raised = (self.v_ref_mps * KMH_PER_MPS + self.p.pcc_overspeed_kmh) / KMH_PER_MPS;
+        let at = self.pi.band().at(s_m, &mut 0);
+        let raised = (at.v_ref_mps() * KMH_PER_MPS + self.p.pcc_overspeed_kmh) / KMH_PER_MPS;
         if self.p.pcc_use_case_3 && self.descent_at(s_m).is_some() {
-            self.v_max_mps.max(raised)
+            at.v_max_mps().max(raised)
         } else {
-            self.v_max_mps
+            at.v_max_mps()
         }
+    }
+
+    /// The set speed at `s_m` [m/s] (the band's v_ref there).
+    fn v_ref_at(&self, s_m: f64) -> f64 {
+        self.pi.band().at(s_m, &mut 0).v_ref_mps()
     }
 
     fn descent_at(&self, s_m: f64) -> Option<usize> {
@@ -167,25 +173,27 @@ impl PccController {
     /// A use case 1 or 2 event to start at `state`, if one should.
     fn event_to_start(&self, road: &Road, state: &PlantState) -> Option<Mode> {
         let (s, v) = (state.s_m, state.v_mps);
-        let v_low = (self.v_ref_mps * KMH_PER_MPS - self.p.pcc_underspeed_kmh) / KMH_PER_MPS;
         for (k, d) in self.descents.iter().enumerate() {
             if self.used[k] || s >= d.x_end_max_m {
                 continue;
             }
+            let v_ref = self.v_ref_at(s.max(d.x_low_m));
+            let v_low = (v_ref * KMH_PER_MPS - self.p.pcc_underspeed_kmh) / KMH_PER_MPS;
             if s < d.x_low_m {
                 // Use case 1: before the descent, within the preview.
                 if s < d.x_low_m - self.p.pcc_preview_m || v < v_low {
                     continue;
                 }
                 let x_end = (s + self.p.pcc_preview_m).min(d.x_end_max_m);
-                if self.coasts_to(road, s, v, d.x_low_m, v_low) && self.coasts_to(road, s, v, x_end, self.v_ref_mps) {
+                let v_end = self.v_ref_at(x_end);
+                if self.coasts_to(road, s, v, d.x_low_m, v_low) && self.coasts_to(road, s, v, x_end, v_end) {
                     return Some(Mode::Event { descent: k, until_m: x_end, floor_mps: v_low });
                 }
-            } else if v < self.v_ref_mps && v * KMH_PER_MPS >= self.p.pcc_minimum_speed_kmh {
+            } else if v < v_ref && v * KMH_PER_MPS >= self.p.pcc_minimum_speed_kmh {
                 // Use case 2: on the descent, below v_ref.
                 let x_end = (s + self.p.pcc_preview_uc2_m).min(d.x_end_max_m);
                 let floor = self.p.pcc_minimum_speed_kmh / KMH_PER_MPS;
-                if self.coasts_to(road, s, v, x_end, self.v_ref_mps) {
+                if self.coasts_to(road, s, v, x_end, self.v_ref_at(x_end)) {
                     return Some(Mode::Event { descent: k, until_m: x_end, floor_mps: floor });
                 }
             }
@@ -243,8 +251,10 @@ impl Controller for PccController {
 
     fn start(&mut self, road: &Road, state: &PlantState) {
         self.pi.start(road, state);
-        let enabled = self.v_ref_mps * KMH_PER_MPS >= self.p.pcc_enabling_speed_kmh;
-        self.descents = if enabled { descents(road, self.coasting_grade()) } else { Vec::new() };
+        let mut found = descents(road, self.coasting_grade());
+        // PCC acts only where the set speed is at least the enabling speed.
+        found.retain(|d| self.v_ref_at(d.x_low_m) * KMH_PER_MPS >= self.p.pcc_enabling_speed_kmh);
+        self.descents = found;
         self.used = vec![false; self.descents.len()];
         self.mode = Mode::Cruise;
         self.idle_since_s = None;
@@ -262,7 +272,7 @@ impl Controller for PccController {
                 self.resume_cruise(road, state);
             }
             Mode::EcoRoll => {
-                if state.v_mps >= self.v_ref_mps && state.v_mps <= limit {
+                if state.v_mps >= self.v_ref_at(state.s_m) && state.v_mps <= limit {
                     return self.coast();
                 }
                 self.resume_cruise(road, state);
@@ -279,7 +289,8 @@ impl Controller for PccController {
         }
         let decision = self.pi.decide(road, state);
         let idle = decision.control.pedal <= 0.0 && decision.control.brake <= 0.0;
-        let eco_speed = state.v_mps * KMH_PER_MPS >= self.p.eco_roll_min_speed_kmh && state.v_mps >= self.v_ref_mps;
+        let eco_speed =
+            state.v_mps * KMH_PER_MPS >= self.p.eco_roll_min_speed_kmh && state.v_mps >= self.v_ref_at(state.s_m);
         self.idle_since_s = if idle && eco_speed { self.idle_since_s.or(Some(state.t_s)) } else { None };
         if self.p.eco_roll && self.idle_since_s.is_some_and(|since| state.t_s - since >= self.p.eco_roll_delay_s) {
             self.mode = Mode::EcoRoll;

@@ -12,6 +12,10 @@ declare_params! {
         v_inc_kmh: f64 = 5.0, unit "km/h", range Range::between(0.0, 100.0);
         /// Allowed decrease below v_ref: v_min = v_ref - v_dec, a soft limit of the look-ahead controller.
         v_dec_kmh: f64 = 5.0, unit "km/h", range Range::between(0.0, 250.0);
+        /// On a road with target speeds: added to every stretch's set speed min(v_ref, target) (the equal-time search moves it there).
+        target_offset_kmh: f64 = 0.0, unit "km/h", range Range::between(-50.0, 50.0);
+        /// On a road with target speeds: the deceleration the band's top keeps to ahead of a lower target.
+        target_decel_mps2: f64 = 0.5, unit "m/s^2", range Range::positive_up_to(5.0);
     }
 }
 

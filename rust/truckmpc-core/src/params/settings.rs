@@ -1,7 +1,9 @@
 //! All the settings of a run, as one flat namespace of declared keys.
 
 use super::{CruiseParams, MpcParams, ParamSet, ParamSpec, PccParams, PiParams, SimParams, Value, VehicleParams};
+use crate::band::SpeedBand;
 use crate::error::{CoreError, CoreResult};
+use crate::road::Road;
 
 /// The vehicle, the cruise band, both controllers and the simulation.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -92,9 +94,12 @@ impl RunSettings {
         self.mpc.check_with(&self.cruise)
     }
 
-    /// The start speed [km/h]: `start_speed_kmh`, or v_ref when it is null.
-    pub fn start_speed_kmh(&self) -> f64 {
-        self.sim.start_speed_kmh.unwrap_or(self.cruise.v_ref_kmh)
+    /// The start speed [km/h] on `road`: `start_speed_kmh`, or when it is null the set speed at
+    /// the road's start (v_ref, or the band's on a road with target speeds).
+    pub fn start_speed_kmh(&self, road: &Road) -> f64 {
+        self.sim
+            .start_speed_kmh
+            .unwrap_or_else(|| SpeedBand::new(road, &self.cruise).at(road.start_m(), &mut 0).v_ref_kmh)
     }
 }
 
