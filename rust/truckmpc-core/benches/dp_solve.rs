@@ -19,7 +19,8 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
-use truckmpc_core::dp::horizon::{solve_at, stage_slopes};
+use truckmpc_core::band::SpeedBand;
+use truckmpc_core::dp::horizon::{self, solve_at, stage_slopes};
 use truckmpc_core::dp::{DpSettings, GridAnchor, InitialState, Solver};
 use truckmpc_core::{CruiseParams, MpcParams};
 use truckmpc_core::{Road, Vehicle, VehicleParams};
@@ -80,9 +81,12 @@ fn dp_solve(c: &mut Criterion) {
         for (label, grid) in [("rolling/moving", GridAnchor::Moving), ("rolling/fixed", GridAnchor::Fixed)] {
             let p = params(stage_m, delta_kmh, horizon_m, grid);
             let mut solver = Solver::new(p.clone());
-            let mut scratch = Vec::new();
+            let mut scratch = horizon::HorizonScratch::default();
+            let band = SpeedBand::uniform(&p.cruise());
             let total: usize = (0..ROLLING_STAGES)
-                .map(|k| solve_at(&mut solver, &vehicle, &road, k as f64 * p.stage_m, x0, &mut scratch).transitions)
+                .map(|k| {
+                    solve_at(&mut solver, &vehicle, (&road, &band), k as f64 * p.stage_m, x0, &mut scratch).transitions
+                })
                 .sum();
             group.throughput(Throughput::Elements((total / ROLLING_STAGES) as u64));
             let mut solver = Solver::new(p.clone());
@@ -91,7 +95,7 @@ fn dp_solve(c: &mut Criterion) {
                 b.iter(|| {
                     let s_m = (stage % ROLLING_STAGES) as f64 * p.stage_m;
                     stage += 1;
-                    black_box(solve_at(&mut solver, &vehicle, &road, s_m, x0, &mut scratch))
+                    black_box(solve_at(&mut solver, &vehicle, (&road, &band), s_m, x0, &mut scratch))
                 })
             });
         }

@@ -4,6 +4,7 @@
 //! (`distance_m` drives only that far from the road's start, e.g. 10000 for a short profiling run.)
 use std::sync::Arc;
 use std::time::Instant;
+use truckmpc_core::band::SpeedBand;
 use truckmpc_core::control::ShiftCounter;
 use truckmpc_core::dp::{horizon, DpSettings, GridAnchor, InitialState, Solver};
 use truckmpc_core::{Road, Vehicle, VehicleParams};
@@ -31,7 +32,8 @@ fn main() {
         ..DpSettings::thesis()
     };
     let mut solver = Solver::new(p.clone());
-    let mut scratch = Vec::new();
+    let mut scratch = horizon::HorizonScratch::default();
+    let band = SpeedBand::uniform(&p.cruise());
     let (mut v, mut gear, mut shifts) = (85.0 / 3.6, 12usize, ShiftCounter::new(p.k_lim));
     let (mut solves, mut transitions, mut infeasible, mut states) = (0u64, 0u64, 0u64, 0u64);
     // FNV-1a over every solve's first control and next speed: equal digests mean bit-identical traces.
@@ -44,7 +46,7 @@ fn main() {
         let sol = horizon::solve_at(
             &mut solver,
             &vehicle,
-            &road,
+            (&road, &band),
             s,
             InitialState { v_mps: v, gear, stages_since_shift: shifts.stages() },
             &mut scratch,

@@ -112,16 +112,18 @@ impl SpeedBand {
         }
         let i = self.stretch(s_m, hint);
         let own_top_kmh = self.set_kmh[i] + self.v_inc_kmh;
-        let mut top_mps = own_top_kmh / KMH_PER_MPS;
+        let mut top_kmh = own_top_kmh;
         for j in i + 1..self.starts_m.len() {
             let ahead_m = self.starts_m[j] - s_m;
             if ahead_m > self.reach_m {
                 break;
             }
             let top_j = (self.set_kmh[j] + self.v_inc_kmh) / KMH_PER_MPS;
-            top_mps = top_mps.min((top_j * top_j + 2.0 * self.decel_mps2 * ahead_m).sqrt());
+            let ramp_kmh = (top_j * top_j + 2.0 * self.decel_mps2 * ahead_m).sqrt() * KMH_PER_MPS;
+            if ramp_kmh < top_kmh {
+                top_kmh = ramp_kmh;
+            }
         }
-        let top_kmh = (top_mps * KMH_PER_MPS).min(own_top_kmh);
         let v_ref_kmh = if top_kmh < own_top_kmh { top_kmh - self.v_inc_kmh } else { self.set_kmh[i] };
         BandAt { v_ref_kmh, v_min_kmh: v_ref_kmh - self.v_dec_kmh, v_max_kmh: top_kmh }
     }

@@ -174,7 +174,7 @@ fn random_case(
 
 fn grids_of(vehicle: &Vehicle, p: &DpSettings, start: InitialState, slopes: &[f64]) -> Vec<Grid> {
     let mut iv = Intervals::default();
-    intervals(vehicle, p, start.v_mps, slopes, &mut iv);
+    intervals(vehicle, p, start.v_mps, slopes, &vec![p.band(); slopes.len() + 1], &mut iv);
     let mut grids = vec![Grid { first_mps: start.v_mps, count: 1 }];
     grids.extend((1..=slopes.len()).map(|k| grid(p, iv.lo[k], iv.hi[k])));
     grids

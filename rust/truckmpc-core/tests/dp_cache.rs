@@ -1,6 +1,7 @@
 //! The row cache changes nothing but speed: along a receding sequence of solves on a road, a
 //! fixed-grid solver with the cache returns bit-identical solutions to one without it.
 
+use truckmpc_core::band::SpeedBand;
 use truckmpc_core::control::ShiftCounter;
 use truckmpc_core::dp::{horizon, DpSettings, GridAnchor, InitialState, NeutralRule, Solver};
 use truckmpc_core::{Road, Vehicle, VehicleParams};
@@ -16,13 +17,14 @@ fn hilly_road() -> Road {
 fn run(params: &DpSettings, caching: bool, road: &Road, vehicle: &Vehicle) -> Vec<(bool, u64, u64, u64, usize, usize)> {
     let mut solver = Solver::new(params.clone());
     solver.set_caching(caching);
-    let mut scratch = Vec::new();
+    let mut scratch = horizon::HorizonScratch::default();
+    let band = SpeedBand::uniform(&params.cruise());
     let (mut v, mut gear, mut shifts) = (85.0 / 3.6, 12usize, ShiftCounter::new(params.k_lim));
     let mut out = Vec::new();
     for stage in 0..400 {
         let s = road.start_m() + stage as f64 * params.stage_m;
         let start = InitialState { v_mps: v, gear, stages_since_shift: shifts.stages() };
-        let sol = horizon::solve_at(&mut solver, vehicle, road, s, start, &mut scratch);
+        let sol = horizon::solve_at(&mut solver, vehicle, (road, &band), s, start, &mut scratch);
         out.push((
             sol.feasible,
             sol.cost.to_bits(),

@@ -47,7 +47,7 @@ fn fixed_grid_bounds_are_grid_speeds_below_v_max() {
     let delta = p.delta_mps();
     let slopes = climb(p.stages(), 70, 0.03);
     let mut iv = Intervals::default();
-    intervals(&vehicle, &p, 84.17 / 3.6, &slopes, &mut iv);
+    intervals(&vehicle, &p, 84.17 / 3.6, &slopes, &vec![p.band(); slopes.len() + 1], &mut iv);
     let on_grid = |v: f64| ((v / delta) - (v / delta).round()).abs() < 1e-9;
     for k in 1..=slopes.len() {
         assert!(on_grid(iv.lo[k]) && on_grid(iv.hi[k]), "stage {k}: bounds off the grid");
@@ -76,7 +76,7 @@ fn half_step_tolerance_keeps_the_grid_point_nearest_to_fuel_cut() {
                 let slope = -0.005;
                 let slopes = vec![slope; p.stages()];
                 let mut iv = Intervals::default();
-                intervals(&vehicle, &p, v0, &slopes, &mut iv);
+                intervals(&vehicle, &p, v0, &slopes, &vec![p.band(); slopes.len() + 1], &mut iv);
                 // Fuel cut in the gear with the most engine drag among those usable at v0.
                 let (lo, hi) = truckmpc_core::dp::space::usable_gears(&vehicle, v0, p.n_min_rpm, p.n_max_rpm).unwrap();
                 let cut = (lo..=hi)
@@ -108,11 +108,11 @@ fn one_stage_solves_against_the_stored_values_follow_the_whole_road_optimum() {
         let start = InitialState { v_mps: 84.3 / 3.6, gear: 12, stages_since_shift: p.k_lim };
         let mut solver = Solver::new(p.clone());
         let mut table = ValueTable::default();
-        let whole = solver.solve_recording(&vehicle, start, &slopes, &mut table);
+        let whole = solver.solve_recording(&vehicle, start, &slopes, None, &mut table);
         assert!(whole.feasible);
         assert_eq!(table.stages.len(), slopes.len() + 1);
         let mut one = Solver::new(p.clone());
-        let first = one.solve_to_values(&vehicle, start, slopes[0], &table.stages[1]);
+        let first = one.solve_to_values(&vehicle, start, slopes[0], None, &table.stages[1]);
         assert_eq!(first.cost.to_bits(), whole.cost.to_bits());
         assert_eq!((first.pedal, first.brake, first.gear), (whole.pedal, whole.brake, whole.gear));
         let mut since = if whole.gear != start.gear { 1 } else { (start.stages_since_shift + 1).min(p.k_lim) };
@@ -120,7 +120,7 @@ fn one_stage_solves_against_the_stored_values_follow_the_whole_road_optimum() {
             let point = whole.trajectory[k];
             let state =
                 InitialState { v_mps: point.v_mps, gear: whole.trajectory[k - 1].gear, stages_since_shift: since };
-            let step = one.solve_to_values(&vehicle, state, slope, &table.stages[k + 1]);
+            let step = one.solve_to_values(&vehicle, state, slope, None, &table.stages[k + 1]);
             assert!(step.feasible, "stage {k}");
             assert_eq!(step.gear, point.gear, "stage {k}");
             assert!((step.pedal - point.pedal).abs() < 1e-12 && (step.brake - point.brake).abs() < 1e-12, "stage {k}");

@@ -120,8 +120,8 @@ pub struct PiController {
     v_max_kmh: f64,
     /// A brake limit [km/h] set by a controller built on this one, instead of the band's.
     brake_limit_kmh: Option<f64>,
-    /// Coasting ahead of a lower stretch starting at this distance [m] (look-ahead coasting).
-    coasting_to_m: Option<f64>,
+    /// Coasting ahead of a lower stretch (look-ahead coasting): its start [m] and set speed [m/s].
+    coasting_to: Option<(f64, f64)>,
     pedal_kp: f64,
     pedal_ki: f64,
     brake_kp: f64,
@@ -151,7 +151,7 @@ impl PiController {
             v_ref_kmh: cruise.v_ref_kmh,
             v_max_kmh: cruise.v_ref_kmh + cruise.v_inc_kmh,
             brake_limit_kmh: None,
-            coasting_to_m: None,
+            coasting_to: None,
             pedal_kp: params.pedal_kp,
             pedal_ki: params.pedal_ki,
             brake_kp: params.brake_kp,
@@ -214,13 +214,11 @@ impl PiController {
     /// Start or end look-ahead coasting (see the module's documentation).
     fn look_ahead_coasting(&mut self, road: &Road, state: &PlantState) {
         let (s, v) = (state.s_m, state.v_mps);
-        if let Some(until_m) = self.coasting_to_m {
-            let mut hint = self.band_hint;
-            let set_mps = self.band.set_speed_kmh(s, &mut hint) / KMH_PER_MPS;
+        if let Some((until_m, set_mps)) = self.coasting_to {
             if s < until_m && v > set_mps {
                 return;
             }
-            self.coasting_to_m = None;
+            self.coasting_to = None;
             let mut hint = 0;
             let slope = road.slope_at(s, &mut hint);
             self.hold_pedal_at(self.v_ref_kmh, slope);
@@ -239,7 +237,7 @@ impl PiController {
         let needed_per_m = surplus / (start_m - s).max(1e-3);
         let resistance = -self.vehicle.accel_mps2(0.5 * (v + v_c), 0.0, 0.0, self.gear.max(1), 0.0);
         if needed_per_m >= lac_decision_factor(set_kmh, here_kmh - set_kmh) * resistance {
-            self.coasting_to_m = Some(start_m);
+            self.coasting_to = Some((start_m, v_c));
         }
     }
 
@@ -284,7 +282,7 @@ impl Controller for PiController {
     fn start(&mut self, road: &Road, state: &PlantState) {
         self.band = SpeedBand::new(road, &self.cruise);
         self.band_hint = 0;
-        self.coasting_to_m = None;
+        self.coasting_to = None;
         self.follow_band(state.s_m);
         self.reset(state.v_mps, road.slopes()[0], state.t_s);
     }
@@ -299,7 +297,7 @@ impl Controller for PiController {
         let v_kmh = state.v_mps * KMH_PER_MPS;
         let pedal_error = self.v_ref_kmh - v_kmh;
         let brake_error = v_kmh - self.v_max_kmh;
-        let coasting = self.coasting_to_m.is_some();
+        let coasting = self.coasting_to.is_some();
         if !coasting {
             self.pedal_integrator =
                 clamp(self.pedal_integrator + pedal_error * dt_s, -self.pedal_limit, self.pedal_limit);

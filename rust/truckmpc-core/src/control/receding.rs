@@ -15,6 +15,7 @@ use std::time::Instant;
 use super::pi::GearLogic;
 use super::rescue::Rescue;
 use super::{Controller, Decision};
+use crate::band::{BandAt, SpeedBand};
 use crate::dp::{horizon, DpSettings, InitialState, Solver, ValueTable};
 use crate::levels::{stage_fuel_g, stationary};
 use crate::params::OnInfeasible;
@@ -129,7 +130,10 @@ pub struct RecedingController {
     rescue: Rescue,
     /// The PI's gear logic, for the gear the truck starts in.
     start_gears: GearLogic,
-    slopes: Vec<f64>,
+    scratch: horizon::HorizonScratch,
+    /// The band along the road of the current run, for the solver and for the relaxed solver.
+    band: SpeedBand,
+    relaxed_band: SpeedBand,
     origin_m: f64,
     shifts: ShiftCounter,
     gear: usize,
@@ -151,6 +155,8 @@ pub struct RecedingController {
 struct WholeRoad {
     table: ValueTable,
     slopes: Vec<f64>,
+    /// The band at every stage boundary (empty on a road without target speeds).
+    bands: Vec<BandAt>,
 }
 
 /// Lowest speed [km/h] the relaxed solve may plan with.
@@ -163,14 +169,17 @@ impl RecedingController {
     pub fn new(vehicle: Arc<Vehicle>, params: DpSettings, start_gears: GearLogic) -> Self {
         let params = params.for_vehicle(&vehicle);
         let shifts = ShiftCounter::new(params.k_lim);
-        let rescue = Rescue::new(start_gears.clone(), params.v_ref_kmh + params.v_inc_kmh);
+        let band_params = params.clone();
+        let rescue = Rescue::new(start_gears.clone());
         RecedingController {
             vehicle,
             solver: Solver::new(params),
             relaxed: None,
             rescue,
             start_gears,
-            slopes: Vec::new(),
+            scratch: horizon::HorizonScratch::default(),
+            band: SpeedBand::uniform(&band_params.cruise()),
+            relaxed_band: SpeedBand::uniform(&band_params.relaxed(RELAXED_V_MIN_KMH).cruise()),
             origin_m: 0.0,
             shifts,
             gear: 0,
@@ -199,8 +208,13 @@ impl RecedingController {
         let h = self.solver.params().stage_m;
         let stages = (((road.end_m() - s0_m) / h) - 1e-9).ceil().max(1.0) as usize;
         horizon::stage_slopes(road, s0_m, h, stages, &mut plan.slopes);
+        plan.bands.clear();
+        if self.band.varies() {
+            horizon::stage_bands(&self.band, s0_m, h, stages, &mut plan.bands);
+        }
+        let bands = (!plan.bands.is_empty()).then_some(&plan.bands[..]);
         let began = Instant::now();
-        let solution = self.solver.solve_recording(&self.vehicle, start, &plan.slopes, &mut plan.table);
+        let solution = self.solver.solve_recording(&self.vehicle, start, &plan.slopes, bands, &mut plan.table);
         let solve_s = began.elapsed().as_secs_f64();
         // The trajectory's point k holds the inputs of stage k and the speed at its start.
         let (fuel_g, time_s) = solution.trajectory.iter().take(stages).fold((0.0, 0.0), |(fuel, time), point| {
@@ -222,7 +236,8 @@ impl RecedingController {
         let plan = self.whole_road.as_ref()?;
         let k = horizon::boundary_stage(self.origin_m, s_m, self.solver.params().stage_m)?;
         let next = plan.table.stages.get(k + 1)?;
-        Some(self.solver.solve_to_values(&self.vehicle, start, plan.slopes[k], next))
+        let bands = plan.bands.get(k..k + 2).map(|b| [b[0], b[1]]);
+        Some(self.solver.solve_to_values(&self.vehicle, start, plan.slopes[k], bands.as_ref(), next))
     }
 
     fn rescues(&self) -> bool {
@@ -236,7 +251,7 @@ impl RecedingController {
     fn solve(&mut self, road: &Road, s_m: f64, v_mps: f64, gear: usize) -> Option<Control> {
         let start = InitialState { v_mps, gear, stages_since_shift: self.shifts.stages() };
         let found = self.timed_solve(road, s_m, start, false);
-        if found.is_some() || !self.rescues() || v_mps < self.solver.params().v_min_mps() {
+        if found.is_some() || !self.rescues() || v_mps < self.band.at(s_m, &mut 0).v_min_mps() {
             return found;
         }
         let relaxed = self.timed_solve(road, s_m, start, true);
@@ -250,13 +265,13 @@ impl RecedingController {
         let solution = match planned {
             Some(solution) => solution,
             None => {
-                let solver = if relaxed {
+                let (solver, band) = if relaxed {
                     let params = self.solver.params().relaxed(RELAXED_V_MIN_KMH);
-                    self.relaxed.get_or_insert_with(|| Solver::new(params))
+                    (self.relaxed.get_or_insert_with(|| Solver::new(params)), &self.relaxed_band)
                 } else {
-                    &mut self.solver
+                    (&mut self.solver, &self.band)
                 };
-                horizon::solve_at(solver, &self.vehicle, road, s_m, start, &mut self.slopes)
+                horizon::solve_at(solver, &self.vehicle, (road, band), s_m, start, &mut self.scratch)
             }
         };
         let elapsed_s = began.elapsed().as_secs_f64();
@@ -305,8 +320,8 @@ impl RecedingController {
     fn rescue_step(&mut self, road: &Road, state: &PlantState) -> Decision {
         self.rescue_last_m = state.s_m;
         let stage = self.stage_at(state.s_m);
-        let p = self.solver.params();
-        let in_band = state.v_mps >= p.v_min_mps() && state.v_mps <= p.v_max_mps();
+        let at = self.band.at(state.s_m, &mut 0);
+        let in_band = state.v_mps >= at.v_min_mps() && state.v_mps <= at.v_max_mps();
         if in_band && self.rescuing.is_some_and(|tried| stage > tried) {
             self.rescuing = Some(stage);
             if let Some(u) = self.solve(road, state.s_m, state.v_mps, self.gear) {
@@ -318,7 +333,7 @@ impl RecedingController {
                 }
             }
         }
-        let u = self.rescue.step(self.gear, state.v_mps);
+        let u = self.rescue.step(self.gear, state.v_mps, at.v_max_kmh);
         self.shifts.record(self.gear, u.gear);
         self.gear = u.gear;
         Decision { control: u, until_m: None }
@@ -344,6 +359,9 @@ impl Controller for RecedingController {
 
     /// Solve the first stage from the starting state.
     fn start(&mut self, road: &Road, state: &PlantState) {
+        let params = self.solver.params();
+        self.band = SpeedBand::new(road, &params.cruise());
+        self.relaxed_band = SpeedBand::new(road, &params.relaxed(RELAXED_V_MIN_KMH).cruise());
         self.origin_m = state.s_m;
         self.shifts = ShiftCounter::new(self.solver.params().k_lim);
         self.gear = self.start_gears.steady_gear(state.v_mps);

@@ -18,19 +18,19 @@ const BRAKE_OFFSET_KMH: f64 = 1.0;
 #[derive(Debug, Clone)]
 pub struct Rescue {
     gears: GearLogic,
-    v_max_kmh: f64,
 }
 
 impl Rescue {
-    /// Rescue with the PI's gear logic below `v_max_kmh` [km/h].
-    pub fn new(gears: GearLogic, v_max_kmh: f64) -> Self {
-        Rescue { gears, v_max_kmh }
+    /// Rescue with the PI's gear logic.
+    pub fn new(gears: GearLogic) -> Self {
+        Rescue { gears }
     }
 
-    /// The inputs for one plant step from `gear` at `v_mps` [m/s].
-    pub fn step(&self, gear: usize, v_mps: f64) -> Control {
+    /// The inputs for one plant step from `gear` at `v_mps` [m/s] below the band's top
+    /// `v_max_kmh` [km/h] there.
+    pub fn step(&self, gear: usize, v_mps: f64, v_max_kmh: f64) -> Control {
         let gear = self.gears.next_gear(gear, v_mps);
-        let over_kmh = v_mps * KMH_PER_MPS - self.v_max_kmh;
+        let over_kmh = v_mps * KMH_PER_MPS - v_max_kmh;
         if over_kmh > -BRAKE_OFFSET_KMH {
             let brake = ((over_kmh + BRAKE_OFFSET_KMH) * BRAKE_PER_KMH).clamp(0.0, 1.0);
             Control { pedal: 0.0, brake, gear }

@@ -2,6 +2,7 @@
 //! and the prediction of the speed one stage ahead under the inputs being applied now.
 
 use super::solver::{InitialState, Solution, Solver};
+use crate::band::{BandAt, SpeedBand};
 use crate::levels::euler_step;
 use crate::plant::Control;
 use crate::road::Road;
@@ -17,6 +18,22 @@ pub fn stage_slopes(road: &Road, s0_m: f64, stage_m: f64, stages: usize, out: &m
     }));
 }
 
+/// The band at each of the `stages + 1` stage boundaries from `s0_m`, written into `out`. The DP
+/// bounds speeds at the boundaries only, so a boundary where a higher stretch begins keeps the
+/// band of the stage before it (the lower of the two tops): the truck enters the faster stretch at
+/// the slower one's speed rather than speeding up ahead of it.
+pub fn stage_bands(band: &SpeedBand, s0_m: f64, stage_m: f64, stages: usize, out: &mut Vec<BandAt>) {
+    out.clear();
+    let mut hint = 0;
+    let mut before = band.at(s0_m, &mut hint);
+    out.push(before);
+    for k in 1..=stages {
+        let here = band.at(s0_m + k as f64 * stage_m, &mut hint);
+        out.push(if before.v_max_kmh < here.v_max_kmh { before } else { here });
+        before = here;
+    }
+}
+
 /// Speed [m/s] one stage ahead of `s_m` with `u` held, by the controller's own model (one Euler
 /// stage of (5.4) on the stage's mean slope).
 pub fn predict_speed(vehicle: &Vehicle, road: &Road, s_m: f64, v_mps: f64, u: Control, stage_m: f64) -> f64 {
@@ -24,21 +41,33 @@ pub fn predict_speed(vehicle: &Vehicle, road: &Road, s_m: f64, v_mps: f64, u: Co
     euler_step(vehicle, v_mps, u.pedal, u.brake, u.gear, slope, stage_m)
 }
 
-/// Solve the DP for the horizon starting at `s_m` from `start`, reusing `slopes` as scratch. A
-/// horizon that starts on a stage boundary counted from the road's start gets its absolute stage
-/// index, so a fixed-grid solver can reuse transition costs from the solves before.
+/// Scratch buffers of [`solve_at`]: the horizon's slopes and bands.
+#[derive(Debug, Clone, Default)]
+pub struct HorizonScratch {
+    pub slopes: Vec<f64>,
+    pub bands: Vec<BandAt>,
+}
+
+/// Solve the DP for the horizon starting at `s_m` from `start` in `band` (which varies along a
+/// road with target speeds). A horizon that starts on a stage boundary counted from the road's
+/// start gets its absolute stage index, so a fixed-grid solver can reuse transition costs from
+/// the solves before.
 pub fn solve_at(
     solver: &mut Solver,
     vehicle: &Vehicle,
-    road: &Road,
+    (road, band): (&Road, &SpeedBand),
     s_m: f64,
     start: InitialState,
-    slopes: &mut Vec<f64>,
+    scratch: &mut HorizonScratch,
 ) -> Solution {
-    let stage_m = solver.params().stage_m;
-    stage_slopes(road, s_m, stage_m, solver.params().stages(), slopes);
+    let (stage_m, stages) = (solver.params().stage_m, solver.params().stages());
+    stage_slopes(road, s_m, stage_m, stages, &mut scratch.slopes);
     let first_stage = boundary_stage(road.start_m(), s_m, stage_m).map(|k| k as u64);
-    solver.solve_from_stage(vehicle, start, slopes, first_stage)
+    if !band.varies() {
+        return solver.solve_from_stage(vehicle, start, &scratch.slopes, first_stage);
+    }
+    stage_bands(band, s_m, stage_m, stages, &mut scratch.bands);
+    solver.solve_in_bands(vehicle, start, &scratch.slopes, &scratch.bands, first_stage)
 }
 
 /// The index of the stage boundary at `s_m` [m], stages of `stage_m` [m] counted from `origin_m`;

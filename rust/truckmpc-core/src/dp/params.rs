@@ -7,6 +7,7 @@ pub use crate::params::{CostKind, GridAnchor, NeutralRule, OnInfeasible};
 use crate::params::{CruiseParams, MpcParams, ParamSet};
 
 use super::fuel_time;
+use crate::band::BandAt;
 use crate::error::{CoreError, CoreResult};
 use crate::vehicle::Vehicle;
 
@@ -27,6 +28,10 @@ pub struct DpSettings {
     pub v_inc_kmh: f64,
     /// v_dec [km/h].
     pub v_dec_kmh: f64,
+    /// Offset added to a road's target speeds [km/h].
+    pub target_offset_kmh: f64,
+    /// Deceleration the band's top keeps to ahead of a lower target speed [m/s²].
+    pub target_decel_mps2: f64,
     /// k_lim [stages], resolved.
     pub k_lim: u32,
     /// N_min [rpm].
@@ -103,6 +108,8 @@ impl DpSettings {
             v_ref_kmh: cruise.v_ref_kmh,
             v_inc_kmh: cruise.v_inc_kmh,
             v_dec_kmh: cruise.v_dec_kmh,
+            target_offset_kmh: cruise.target_offset_kmh,
+            target_decel_mps2: cruise.target_decel_mps2,
             k_lim: mpc.k_lim_stages(),
             n_min_rpm: mpc.n_min_rpm,
             n_max_rpm: mpc.n_max_rpm,
@@ -194,6 +201,22 @@ impl DpSettings {
             None => 0.5 * self.delta_mps() * v_i_mps / (gain_mps2 * self.stage_m),
         };
         (-e, 1.0 + e)
+    }
+
+    /// The cruise band (the same at every stage on a road without target speeds).
+    pub fn band(&self) -> BandAt {
+        BandAt::uniform(&self.cruise())
+    }
+
+    /// The cruise parameters these settings were resolved from.
+    pub fn cruise(&self) -> CruiseParams {
+        CruiseParams {
+            v_ref_kmh: self.v_ref_kmh,
+            v_inc_kmh: self.v_inc_kmh,
+            v_dec_kmh: self.v_dec_kmh,
+            target_offset_kmh: self.target_offset_kmh,
+            target_decel_mps2: self.target_decel_mps2,
+        }
     }
 
     /// v_ref [m/s].

@@ -110,9 +110,9 @@ pub fn change_cost(q_change: f64, q_change_sq: f64, dv: f64) -> f64 {
 }
 
 /// Inputs and their stage cost (Q1·fuel + Q3·|Δv| (+ Euler correction) + Q5·B) for one pair,
-/// None if inadmissible.
+/// None if inadmissible; `v_max` [m/s] is the top of the next stage's band.
 #[inline]
-fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64) -> Option<(Inputs, f64)> {
+fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64, v_max: f64) -> Option<(Inputs, f64)> {
     let h = p.stage_m;
     let change = change_cost(p.q_speed_change, p.q_speed_change_sq, v_i - v_j);
     if m.pedal.gain > 0.0 {
@@ -128,7 +128,7 @@ fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64) -> Option<(Inputs, f64)
     }
     // No pedal level reaches v_j because even fuel cut ends faster: brake, but only next to v_max
     // (strictly closer than δ; a grid point exactly δ away does not qualify, whatever the rounding).
-    if (v_j - p.v_max_mps()).abs() < p.delta_mps() * BRAKE_WINDOW {
+    if (v_j - v_max).abs() < p.delta_mps() * BRAKE_WINDOW {
         let brake = m.brake.input_for(v_i, v_j, h);
         if (0.0..=1.0).contains(&brake) {
             return Some((Inputs { pedal: 0.0, brake }, p.q_brake * brake + change));
@@ -142,7 +142,8 @@ fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64) -> Option<(Inputs, f64)
 /// the span hold +∞; a row with no admissible target appends nothing (len 0).
 ///
 /// Each cost is computed by the same operations as [`pair`] (same bits); only the constants of
-/// the row are hoisted out of the loop.
+/// the row are hoisted out of the loop. `v_max_mps` is the top of the next stage's band.
+#[allow(clippy::too_many_arguments)]
 pub fn forward_row(
     vehicle: &Vehicle,
     p: &DpSettings,
@@ -150,6 +151,7 @@ pub fn forward_row(
     gear: usize,
     slope_torque: f64,
     grid: GridIndex,
+    v_max_mps: f64,
     out: &mut Vec<f64>,
 ) -> (RowSpan, usize) {
     let start = out.len();
@@ -164,7 +166,7 @@ pub fn forward_row(
     }
     // Brake points lie within δ of v_max and below the pedal band (`pair` decides which qualify);
     // only a band that starts above v_max − δ leaves room for them.
-    let v_max = p.v_max_mps();
+    let v_max = v_max_mps;
     let band_lo = if pedal_on { m.pedal.step(v_i, h, pedal_lo) } else { f64::INFINITY };
     if band_lo > v_max - p.delta_mps() {
         first = first.min(grid.floor(v_max - p.delta_mps()));
@@ -299,9 +301,16 @@ unsafe fn pedal_row_avx2(row: &PedalRow, first: i64, last: i64, out: &mut Vec<f6
     out.set_len(at + n);
 }
 
-/// The inputs of one admissible pair (the solver recomputes them for the path it keeps).
-pub fn inputs(vehicle: &Vehicle, p: &DpSettings, v_i: f64, v_j: f64, gear: usize, slope_torque: f64) -> Option<Inputs> {
-    pair(p, &maps(vehicle, p, v_i, gear, slope_torque), v_i, v_j).map(|(inputs, _)| inputs)
+/// The inputs of one admissible pair (the solver recomputes them for the path it keeps); `v_max`
+/// [m/s] is the top of the next stage's band.
+pub fn inputs(
+    vehicle: &Vehicle,
+    p: &DpSettings,
+    (v_i, v_j, v_max): (f64, f64, f64),
+    gear: usize,
+    slope_torque: f64,
+) -> Option<Inputs> {
+    pair(p, &maps(vehicle, p, v_i, gear, slope_torque), v_i, v_j, v_max).map(|(inputs, _)| inputs)
 }
 
 #[cfg(test)]
@@ -323,11 +332,13 @@ mod tests {
                     let v_i = p.v_max_mps() - 0.37 * step as f64 / 3.6;
                     let grid = GridIndex { origin_mps: 15.0 + 0.013 * s as f64, delta_mps: p.delta_mps() };
                     let before = out.len();
-                    let (span, at) = forward_row(&vehicle, &p, v_i, gear, torque, grid, &mut out);
+                    let (span, at) = forward_row(&vehicle, &p, v_i, gear, torque, grid, p.v_max_mps(), &mut out);
                     assert_eq!(out.len(), at + span.len);
                     assert!(at >= before);
                     let m = maps(&vehicle, &p, v_i, gear, torque);
-                    let reference = |index: i64| pair(&p, &m, v_i, grid.speed(index)).map_or(f64::INFINITY, |(_, c)| c);
+                    let reference = |index: i64| {
+                        pair(&p, &m, v_i, grid.speed(index), p.v_max_mps()).map_or(f64::INFINITY, |(_, c)| c)
+                    };
                     for (t, &c) in out[at..].iter().enumerate() {
                         assert_eq!(c.to_bits(), reference(span.first + t as i64).to_bits(), "v {v_i} gear {gear}");
                     }

@@ -21,6 +21,7 @@ use super::rows::{change_cost, forward_row, inputs, GridIndex};
 use super::simd::{self, LaneMins};
 use super::space::{self, Grid, Intervals};
 use super::values::{StageValues, ValueTable};
+use crate::band::BandAt;
 use crate::levels::{brake_accel_on, stage_fuel_g};
 use crate::vehicle::{Vehicle, NEUTRAL};
 
@@ -204,6 +205,8 @@ pub struct Solver {
     intervals: Intervals,
     grids: Vec<StageGrid>,
     slope_torques: Vec<f64>,
+    /// The speed band of each stage 0..=N of the solve under way.
+    bands: Vec<BandAt>,
     /// Per stage and gear, the inclusive range of grid indices j where a state of that gear exists
     /// (empty when lo > hi). Indexed [stage * gears + gear].
     gear_ranges: Vec<(u32, u32)>,
@@ -247,6 +250,7 @@ impl Solver {
             intervals: Intervals::default(),
             grids: Vec::new(),
             slope_torques: Vec::new(),
+            bands: Vec::new(),
             gear_ranges: Vec::new(),
             active: Vec::new(),
             cost_next: Vec::new(),
@@ -297,33 +301,50 @@ impl Solver {
         slopes: &[f64],
         first_stage: Option<u64>,
     ) -> Solution {
-        self.solve_inner(vehicle, start, slopes, first_stage, Ends::Horizon)
+        self.solve_inner(vehicle, start, slopes, None, first_stage, Ends::Horizon)
+    }
+
+    /// As [`Solver::solve_from_stage`], with a speed band per stage 0..=N (`bands.len() ==
+    /// slopes.len() + 1`) instead of the cruise band everywhere: a road with target speeds.
+    pub fn solve_in_bands(
+        &mut self,
+        vehicle: &Vehicle,
+        start: InitialState,
+        slopes: &[f64],
+        bands: &[BandAt],
+        first_stage: Option<u64>,
+    ) -> Solution {
+        self.solve_inner(vehicle, start, slopes, Some(bands), first_stage, Ends::Horizon)
     }
 
     /// Solve over a whole road's stages at once (one grade per stage) and keep every stage's
-    /// cost-to-go in `table` (stage k at index k), for one-stage solves against it later.
+    /// cost-to-go in `table` (stage k at index k), for one-stage solves against it later; `bands`
+    /// as for [`Solver::solve_in_bands`] (None: the cruise band everywhere).
     pub fn solve_recording(
         &mut self,
         vehicle: &Vehicle,
         start: InitialState,
         slopes: &[f64],
+        bands: Option<&[BandAt]>,
         table: &mut ValueTable,
     ) -> Solution {
         table.stages.clear();
         table.stages.resize_with(slopes.len() + 1, StageValues::default);
-        self.solve_inner(vehicle, start, slopes, None, Ends::Recording(table))
+        self.solve_inner(vehicle, start, slopes, bands, None, Ends::Recording(table))
     }
 
     /// One stage on grade `slope` from `start`, ending on the states of `next` with their
-    /// cost-to-go (a stage of a [`ValueTable`]) instead of the horizon's end.
+    /// cost-to-go (a stage of a [`ValueTable`]) instead of the horizon's end; `bands`: the bands
+    /// of the stage and the next (None: the cruise band).
     pub fn solve_to_values(
         &mut self,
         vehicle: &Vehicle,
         start: InitialState,
         slope: f64,
+        bands: Option<&[BandAt; 2]>,
         next: &StageValues,
     ) -> Solution {
-        self.solve_inner(vehicle, start, &[slope], None, Ends::Values(next))
+        self.solve_inner(vehicle, start, &[slope], bands.map(|b| &b[..]), None, Ends::Values(next))
     }
 
     fn solve_inner(
@@ -331,10 +352,19 @@ impl Solver {
         vehicle: &Vehicle,
         start: InitialState,
         slopes: &[f64],
+        bands: Option<&[BandAt]>,
         first_stage: Option<u64>,
         mut ends: Ends,
     ) -> Solution {
         let n_stages = slopes.len();
+        self.bands.clear();
+        match bands {
+            Some(given) => {
+                assert_eq!(given.len(), n_stages + 1, "one band per stage 0..=N");
+                self.bands.extend_from_slice(given);
+            }
+            None => self.bands.resize(n_stages + 1, self.params.band()),
+        }
         let gears = vehicle.forward_gears() + 1;
         self.slope_torques.clear();
         self.slope_torques.extend(slopes.iter().map(|&a| vehicle.slope_torque_nm(a)));
@@ -371,7 +401,7 @@ impl Solver {
                 let weight = self.params.q_terminal_per_half_v2;
                 if weight > 0.0 {
                     // The fuel_time cost values the speed left at the end: ½(v_ref² − v²) in fuel.
-                    let (grid, v_ref) = (self.grids[n_stages], self.params.v_ref_mps());
+                    let (grid, v_ref) = (self.grids[n_stages], self.bands[n_stages].v_ref_mps());
                     for (cost, j) in terminal.iter_mut().zip(lo as usize..) {
                         let v = grid.speed(j);
                         *cost = weight * 0.5 * (v_ref * v_ref - v * v);
@@ -460,7 +490,7 @@ impl Solver {
         // Absolute stages, when known, let the interval passes reuse steps of earlier solves.
         let p = &self.params;
         let memo = first_stage.filter(|_| self.caching).map(|stage| (stage, &mut self.interval_memo));
-        space::intervals_from_stage(vehicle, p, start.v_mps, slopes, memo, &mut self.intervals);
+        space::intervals_from_stage(vehicle, p, start.v_mps, slopes, &self.bands, memo, &mut self.intervals);
         let delta = p.delta_mps();
         self.grids.clear();
         self.grids.push(StageGrid {
@@ -587,6 +617,7 @@ impl Solver {
         let gears = vehicle.forward_gears() + 1;
         let (here, next) = (self.grids[k], self.grids[k + 1]);
         let p = &self.params;
+        let v_max_next = self.bands[k + 1].v_max_mps();
         let mut uncounted = 0;
         let (stage, computed): (&mut StageRows, &mut u64) = match abs_stage {
             Some(stage) if k > 0 => self.cache.stage(stage),
@@ -630,7 +661,7 @@ impl Solver {
             }
             let rows = stage.gear(g);
             *computed += rows.fill(key_lo, key_hi, &mut self.scratch, |key, buf| {
-                forward_row(vehicle, p, here.index.speed(key), g, slope_torque, next.index, buf)
+                forward_row(vehicle, p, here.index.speed(key), g, slope_torque, next.index, v_max_next, buf)
             });
             let values = g * stride(next.count)..(g + 1) * stride(next.count);
             let (blocks, first_key) = rows.get(key_lo, key_hi);
@@ -688,7 +719,7 @@ impl Solver {
     ) {
         let (here, next) = (self.grids[k], self.grids[k + 1]);
         let n = here.count;
-        let v_ref = self.params.v_ref_mps();
+        let v_ref = self.bands[k].v_ref_mps();
         let (q_speed_below, q4, k_lim) = (self.params.q_speed_below, self.params.q_gear_shift, self.params.k_lim);
         let ch = &mut self.choices;
         // Slot of source velocity i.
@@ -796,7 +827,8 @@ impl Solver {
             let (pedal, brake) = if next_g == NEUTRAL || d.arc != 0 {
                 (0.0, 0.0)
             } else {
-                let u = inputs(vehicle, &self.params, v, v_next, next_g, self.slope_torques[k])
+                let v_max = self.bands[k + 1].v_max_mps();
+                let u = inputs(vehicle, &self.params, (v, v_next, v_max), next_g, self.slope_torques[k])
                     .unwrap_or(super::rows::Inputs { pedal: 0.0, brake: 0.0 });
                 (u.pedal, u.brake)
             };
@@ -1419,13 +1451,14 @@ mod tests {
         let road = Road::new(distance, slopes).unwrap();
         let mut solver = Solver::new(params.clone());
         solver.set_caching(caching);
-        let mut scratch = Vec::new();
+        let mut scratch = super::super::horizon::HorizonScratch::default();
+        let band = crate::band::SpeedBand::uniform(&params.cruise());
         let (mut v, mut gear, mut since) = (85.0 / 3.6, 12usize, params.k_lim);
         let mut out = Vec::new();
         for stage in 0..300 {
             let s = road.start_m() + stage as f64 * params.stage_m;
             let start = InitialState { v_mps: v, gear, stages_since_shift: since };
-            let sol = super::super::horizon::solve_at(&mut solver, &vehicle, &road, s, start, &mut scratch);
+            let sol = super::super::horizon::solve_at(&mut solver, &vehicle, (&road, &band), s, start, &mut scratch);
             let next_v = sol.trajectory.get(1).map_or(0, |p| p.v_mps.to_bits());
             out.push((
                 sol.feasible,

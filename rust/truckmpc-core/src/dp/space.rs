@@ -4,6 +4,7 @@
 
 use super::params::{DpSettings, GridAnchor};
 use super::rows::GridIndex;
+use crate::band::BandAt;
 use crate::levels::{brake_accel, pedal_accel};
 use crate::vehicle::{Vehicle, NEUTRAL};
 
@@ -92,26 +93,37 @@ pub struct Intervals {
     pub hi: Vec<f64>,
 }
 
-/// Forward reachability from `v0_mps` cut to [v_min, v_max] (5.4.2), then the final stage's lower
-/// bound raised to v_ref and the backward pass removing speeds that cannot reach it. On a fixed
-/// grid the bounds are grid speeds found from grid speeds ([`grid_forward`], [`grid_backward`]).
-pub fn intervals(vehicle: &Vehicle, params: &DpSettings, v0_mps: f64, slopes: &[f64], out: &mut Intervals) {
-    intervals_from_stage(vehicle, params, v0_mps, slopes, None, out)
+/// Forward reachability from `v0_mps` cut to each stage's [v_min, v_max] (5.4.2; `bands` holds
+/// the band of stages 0..=N), then the final stage's lower bound raised to its v_ref and the
+/// backward pass removing speeds that cannot reach it. On a fixed grid the bounds are grid speeds
+/// found from grid speeds ([`grid_forward`], [`grid_backward`]).
+pub fn intervals(
+    vehicle: &Vehicle,
+    params: &DpSettings,
+    v0_mps: f64,
+    slopes: &[f64],
+    bands: &[BandAt],
+    out: &mut Intervals,
+) {
+    intervals_from_stage(vehicle, params, v0_mps, slopes, bands, None, out)
 }
 
 /// As [`intervals`], with the absolute index of the first stage and a memo kept across solves:
 /// each step of the forward and backward passes is a function of its stage's slope and its input
 /// bounds only, and successive receding horizons mostly repeat the same steps at the same road
 /// stages (the chains of bounds meet). A step whose stage, slope and inputs (bit for bit) are
-/// those of the memo returns the memo's output, which is what computing it would give.
+/// those of the memo returns the memo's output, which is what computing it would give (a stage's
+/// band is a function of its position, so of its absolute index, too).
 pub fn intervals_from_stage(
     vehicle: &Vehicle,
     params: &DpSettings,
     v0_mps: f64,
     slopes: &[f64],
+    bands: &[BandAt],
     memo: Option<(u64, &mut IntervalMemo)>,
     out: &mut Intervals,
 ) {
+    debug_assert_eq!(bands.len(), slopes.len() + 1);
     let (forward, backward): (StepFn<2>, StepFn<1>) = match params.grid {
         GridAnchor::Moving => (continuous_forward, continuous_backward),
         GridAnchor::Fixed => (grid_forward, grid_backward),
@@ -126,38 +138,42 @@ pub fn intervals_from_stage(
     out.hi.push(v0_mps);
     for (k, &slope) in slopes.iter().enumerate() {
         let input = [out.lo[k], out.hi[k], 0.0];
+        let band = &bands[k + 1];
         let [lo, hi] = match &mut memo {
             Some((stage, memo)) => {
-                memo.forward.get(*stage + k as u64, slope, input, |x| forward(vehicle, params, x, slope))
+                memo.forward.get(*stage + k as u64, slope, input, |x| forward(vehicle, params, band, x, slope))
             }
-            None => forward(vehicle, params, input, slope),
+            None => forward(vehicle, params, band, input, slope),
         };
         out.lo.push(lo);
         out.hi.push(hi);
     }
     let n = slopes.len();
+    let v_ref_end = bands[n].v_ref_mps();
     out.lo[n] = match params.grid {
-        GridAnchor::Moving => params.v_ref_mps().min(out.hi[n]),
+        GridAnchor::Moving => v_ref_end.min(out.hi[n]),
         GridAnchor::Fixed => {
             let grid = GridIndex { origin_mps: 0.0, delta_mps: params.delta_mps() };
-            grid.speed(grid.ceil(params.v_ref_mps()).min(index_of(params, out.hi[n])))
+            grid.speed(grid.ceil(v_ref_end).min(index_of(params, out.hi[n])))
         }
     };
     for k in (1..n).rev() {
         let input = [out.lo[k], out.hi[k], out.lo[k + 1]];
+        let band = &bands[k];
         let [lo] = match &mut memo {
-            Some((stage, memo)) => {
-                memo.backward.get(*stage + k as u64, slopes[k], input, |x| backward(vehicle, params, x, slopes[k]))
-            }
-            None => backward(vehicle, params, input, slopes[k]),
+            Some((stage, memo)) => memo
+                .backward
+                .get(*stage + k as u64, slopes[k], input, |x| backward(vehicle, params, band, x, slopes[k])),
+            None => backward(vehicle, params, band, input, slopes[k]),
         };
         out.lo[k] = lo;
     }
 }
 
-/// One step of a pass: (inputs, slope) to outputs. Forward: [lo, hi, _] of stage k to [lo, hi] of
-/// stage k + 1; backward: [lo, hi, lo of stage k + 1] of stage k to its new lo.
-type StepFn<const N: usize> = fn(&Vehicle, &DpSettings, [f64; 3], f64) -> [f64; N];
+/// One step of a pass: (band, inputs, slope) to outputs. Forward: [lo, hi, _] of stage k to
+/// [lo, hi] of stage k + 1 in that stage's band; backward: [lo, hi, lo of stage k + 1] of stage k
+/// to its new lo.
+type StepFn<const N: usize> = fn(&Vehicle, &DpSettings, &BandAt, [f64; 3], f64) -> [f64; N];
 
 /// Steps of one pass remembered per absolute stage (a ring over the horizon's stages).
 #[derive(Debug, Clone, Default)]
@@ -225,8 +241,14 @@ fn band_slack_mps(params: &DpSettings) -> f64 {
 }
 
 /// The thesis's forward step (5.4.2), bounds as continuous speeds [m/s].
-fn continuous_forward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, _]: [f64; 3], slope: f64) -> [f64; 2] {
-    let (v_min, v_max) = (params.v_min_mps(), params.v_max_mps());
+fn continuous_forward(
+    vehicle: &Vehicle,
+    params: &DpSettings,
+    band: &BandAt,
+    [lo, hi, _]: [f64; 3],
+    slope: f64,
+) -> [f64; 2] {
+    let (v_min, v_max) = (band.v_min_mps(), band.v_max_mps());
     let (v_plus, v_plus_low) = full_pedal_speeds(vehicle, params, hi, slope);
     let v_minus = lowest_speed(vehicle, params, lo, slope);
     let hi = v_plus.min(v_max);
@@ -235,7 +257,13 @@ fn continuous_forward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, _]: [f64;
 }
 
 /// The thesis's backward step: raise lo to the lowest speed that reaches the next stage's lo.
-fn continuous_backward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, target]: [f64; 3], slope: f64) -> [f64; 1] {
+fn continuous_backward(
+    vehicle: &Vehicle,
+    params: &DpSettings,
+    _band: &BandAt,
+    [lo, hi, target]: [f64; 3],
+    slope: f64,
+) -> [f64; 1] {
     let needed = min_speed_reaching(vehicle, params, lo, hi, slope, target);
     [lo.max(needed)]
 }
@@ -250,8 +278,8 @@ fn index_of(params: &DpSettings, v_mps: f64) -> i64 {
 /// stage k + 1 is the highest grid speed that full pedal reaches from the top of stage k. Rounding
 /// continuous bounds instead breaks the chain on long climbs: the last stage's bound (the end of
 /// the continuous full-pedal chain) then lies above what any grid path can reach.
-fn grid_forward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, _]: [f64; 3], slope: f64) -> [f64; 2] {
-    let (v_min_mps, v_max_mps) = (params.v_min_mps(), params.v_max_mps());
+fn grid_forward(vehicle: &Vehicle, params: &DpSettings, band: &BandAt, [lo, hi, _]: [f64; 3], slope: f64) -> [f64; 2] {
+    let (v_min_mps, v_max_mps) = (band.v_min_mps(), band.v_max_mps());
     // Multiples of δ: index i is the speed i·δ [m/s].
     let grid = GridIndex { origin_mps: 0.0, delta_mps: params.delta_mps() };
     let top = grid.floor(v_max_mps);
@@ -267,7 +295,13 @@ fn grid_forward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, _]: [f64; 3], s
 
 /// The backward step on a fixed grid: the lowest grid speed of the stage from which full pedal
 /// reaches the next stage's lowest one.
-fn grid_backward(vehicle: &Vehicle, params: &DpSettings, [lo, hi, target]: [f64; 3], slope: f64) -> [f64; 1] {
+fn grid_backward(
+    vehicle: &Vehicle,
+    params: &DpSettings,
+    _band: &BandAt,
+    [lo, hi, target]: [f64; 3],
+    slope: f64,
+) -> [f64; 1] {
     let grid = GridIndex { origin_mps: 0.0, delta_mps: params.delta_mps() };
     let (lo, hi) = (index_of(params, lo), index_of(params, hi));
     let target = index_of(params, target);
