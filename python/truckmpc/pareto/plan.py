@@ -27,7 +27,8 @@ from truckmpc.errors import ConfigError
 from truckmpc.road import PathLike, RoadProfile
 from truckmpc.sweep.columns import cell, yaml_text
 from truckmpc.sweep.errors import SweepError
-from truckmpc.sweep.plan import load_profiles, study_settings
+from truckmpc.sweep.inputs import load_profiles
+from truckmpc.sweep.plan import study_settings
 from truckmpc.workload import Work, check_trace, run_work
 
 CURVES = ("pi", "mpc", "fuel_time")
