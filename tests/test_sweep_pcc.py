@@ -1,5 +1,5 @@
 """`truckmpc sweep --controller`: the rule-based PCC in sweeps, alone or with the MPC, against the PI;
-its columns, comparisons, resume and errors."""
+its columns, comparisons, resume, errors and plot."""
 
 from __future__ import annotations
 
@@ -165,6 +165,34 @@ def test_a_bad_controller_is_one_line_exit_2_and_writes_nothing(descent, tmp_pat
     assert result.stderr.startswith("error: ") and result.stderr.count("\n") == 1, result.stderr
     assert expected in result.stderr
     assert not out.exists()
+
+
+def test_the_sweep_plot_draws_the_pcc_deltas(descent, tmp_path, monkeypatch):
+    """A PCC-only sweep plots without the MPC's real-time picture; the plot of a PCC and MPC sweep has
+    a PCC Δfuel panel whose line is the CSV's pcc_delta_fuel_pct against the horizon."""
+    pytest.importorskip("matplotlib")
+    import truckmpc.plot.sweep as plot_sweep
+
+    grid = ["--grid", "horizon_m=250,500"]
+    alone = tmp_path / "alone"
+    sweep(["--road", str(descent), "--controller", "pcc", *grid, "--jobs", "1", "--out", str(alone)])
+    result = runner.invoke(app, ["plot", str(alone)])
+    assert result.exit_code == 0, result.output
+    assert sorted(p.name for p in alone.glob("*.png")) == ["sweep.png"]
+    both = tmp_path / "both"
+    sweep(["--road", str(descent), "--controller", "pcc,mpc", *grid, "--jobs", "1", "--out", str(both)])
+    drawn = []
+
+    def kept(figures, svg):
+        drawn.extend(figures)
+        return [path for _, path in figures]
+
+    monkeypatch.setattr(plot_sweep, "save", kept)
+    plot_sweep.plot_sweep(both, both / "sweep.png")
+    axes = {ax.get_ylabel(): ax for ax in drawn[0][0].axes}
+    assert {"MPC Δfuel [%]", "MPC Δtime [%]", "PCC Δfuel [%]", "PCC Δtime [%]"} <= set(axes)
+    (line,) = [line for line in axes["PCC Δfuel [%]"].get_lines() if list(line.get_xdata()) == [250, 500]]
+    assert list(line.get_ydata()) == [float(row["pcc_delta_fuel_pct"]) for row in read_csv(both / "sweep.csv")]
 
 
 def test_the_default_sweep_keeps_its_columns():
