@@ -423,7 +423,7 @@ def pareto_cmd(
         ),
     ] = None,
     curves: Annotated[
-        str, typer.Option("--curves", help="Curves to run, comma-separated: pi, mpc, fuel_time.")
+        str, typer.Option("--curves", help="Curves to run, comma-separated: pi, pcc, mpc, fuel_time.")
     ] = "pi,mpc,fuel_time",
     reverse: ReverseAllOpt = False,
     jobs: JobsOpt = None,
@@ -433,8 +433,9 @@ def pareto_cmd(
     quiet: QuietOpt = False,
     force: ForceOpt = False,
 ) -> None:
-    """Fuel against trip time: the PI over set speeds, the MPC over set speeds and the fuel-time MPC
-    over set speeds or beta; DIR/pareto.csv, and DIR/pareto.png with the saving at equal trip time.
+    """Fuel against trip time: the PI over set speeds, the PCC and the MPC over set speeds and the
+    fuel-time MPC over set speeds or beta; DIR/pareto.csv, and DIR/pareto.png with the saving at equal
+    trip time.
 
     Rerun the same command with the same --out to resume an interrupted study.
     """
