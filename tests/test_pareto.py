@@ -8,9 +8,12 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
+from truckmpc import load_run_config, make_section, simulate
 from truckmpc.cli import app
 from truckmpc.pareto import below, curves, equal_time_savings, plan_pareto, run_pareto
-from truckmpc.road import default_test_track
+from truckmpc.pareto.run import FIGURES
+from truckmpc.road import default_test_track, write_road
+from truckmpc.sweep.columns import parse_cell
 
 runner = CliRunner()
 
@@ -81,7 +84,7 @@ def test_rerun_resumes_and_a_different_study_is_refused(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     ("args", "expected"),
     [
-        (["--curves", "pi,bogus"], "--curves: expected some of pi, mpc, fuel_time, each once, got pi,bogus"),
+        (["--curves", "pi,bogus"], "--curves: expected some of pi, pcc, mpc, fuel_time, each once, got pi,bogus"),
         (["--curves", "pi,pi"], "each once, got pi,pi"),
         (["--speeds", "80,80.0"], "--speeds: expected each value once, got 80.0 twice"),
         (["--speeds", "90:80:2"], "--speeds"),
@@ -124,3 +127,25 @@ def test_plot_refuses_a_damaged_pareto_csv(study, tmp_path: Path) -> None:
     result = runner.invoke(app, ["plot", str(tmp_path)])
     assert result.exit_code == 2 and result.output.count("\n") == 1
     assert f"{tmp_path / 'pareto.csv'}:3: column 'time_s': expected a number" in result.output
+
+
+def test_the_pcc_curve_is_simulates_pcc_at_each_set_speed(tmp_path: Path) -> None:
+    """`--curves pi,pcc`: one PCC point per set speed, each the figures of simulate(road, config,
+    "pcc") at that v_ref, starting at the configured v_ref (85 km/h, inside both bands); the figure
+    draws it and the command prints its saving."""
+    road = make_section("hill", 300, -3.0, lead_m=100, tail_m=100)
+    path = tmp_path / "descent.csv"
+    write_road(road, path)
+    out = tmp_path / "p"
+    args = ["pareto", "--road", str(path), "--speeds", "82,86", "--curves", "pi,pcc", "--jobs", "1", "--out", str(out)]
+    result = runner.invoke(app, args)
+    assert result.exit_code == 0, result.output
+    assert "descent: pcc at the PI's trip time" in result.output and (out / "pareto.png").stat().st_size > 0
+    with (out / "pareto.csv").open(newline="") as handle:
+        rows = [r for r in csv.DictReader(handle) if r["controller"] == "pcc"]
+    assert [float(r["v_ref_kmh"]) for r in rows] == [82.0, 86.0]
+    for row in rows:
+        config = load_run_config(overrides=(f"v_ref_kmh={row['v_ref_kmh']}", "start_speed_kmh=85"))
+        expected = simulate(road, config, "pcc").summary
+        for name in FIGURES:
+            assert parse_cell(row[name]) == expected[name], name

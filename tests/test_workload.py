@@ -15,7 +15,7 @@ from truckmpc import default_test_track, load_run_config, simulate
 from truckmpc.cli import app
 from truckmpc.sweep import expand_grid, parse_axis
 from truckmpc.sweep.columns import yaml_text
-from truckmpc.sweep.plan import _Base, _Combinations
+from truckmpc.sweep.inputs import Base, Combinations
 
 runner = CliRunner()
 REPO = Path(__file__).resolve().parents[1]
@@ -156,8 +156,8 @@ def test_a_sweep_of_many_combinations_is_validated_quickly_and_refused_with_its_
 )
 def test_each_combination_has_the_configuration_load_run_config_gives(grid):
     axes = [parse_axis(text) for text in grid]
-    base = _Base(None, (), ("v_inc_kmh=6",))
-    combinations = _Combinations(base, base.config(), axes)
+    base = Base(None, (), ("v_inc_kmh=6",))
+    combinations = Combinations(base, base.config(), axes)
     for values in expand_grid(axes):
         texts = tuple(f"{axis.key}={yaml_text(v)}" for axis, v in zip(axes, values, strict=True))
         expected = load_run_config(overrides=("v_inc_kmh=6", *texts)).settings.values()

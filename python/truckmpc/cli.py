@@ -29,7 +29,7 @@ import enum
 import importlib
 import json
 import sys
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Annotated, Any, NoReturn
 
@@ -321,6 +321,14 @@ def sweep_cmd(
             "--grid", metavar="KEY=SPEC", help="Axis KEY=start:stop:step or KEY=v1,v2,...; any config key; repeatable."
         ),
     ] = None,
+    controller: Annotated[
+        str,
+        typer.Option(
+            "--controller",
+            help="Look-ahead controllers to run on each row, a comma list of pcc, mpc; the pi always runs, "
+            "as the baseline.",
+        ),
+    ] = "mpc",
     reverse: ReverseAllOpt = False,
     jobs: JobsOpt = None,
     vehicle: VehicleOpt = None,
@@ -337,12 +345,14 @@ def sweep_cmd(
         ),
     ] = False,
 ) -> None:
-    """Run PI and MPC on every road for every combination of the --grid axes; one row each in DIR/sweep.csv.
+    """Run the PI and the --controller list (default: the MPC) on every road for every combination of the
+    --grid axes; one row each in DIR/sweep.csv.
 
     Rerun the same command with the same --out to resume an interrupted sweep.
     """
     from truckmpc.sweep import plan_sweep, progress_bar, run_plan
 
+    controllers = _sweep_controllers(controller)
     with _pooled_study("rows"):
         with status_line("checking every combination of the grid"):
             plan = plan_sweep(
@@ -350,18 +360,42 @@ def sweep_cmd(
                 tuple(grid or ()),
                 **_study_inputs(reverse, vehicle, config, set_),
                 check_convergence=check_convergence,
+                controllers=controllers,
             )
         with progress_bar(not quiet) as hook:
             result = run_plan(plan, out, jobs=jobs, progress=hook, force=force, notice=_notice)
     axes = [axis.key for axis in plan.axes]
     for row in result.rows:
         figures = " ".join(f"{key}={row[key]}" for key in axes)
-        deltas = [f"{float(row[k]):+.2f}" if row[k] else "-" for k in ("delta_fuel_pct", "delta_time_pct")]
-        typer.echo(f"{row['road']} {row['direction']} {figures}: delta fuel {deltas[0]} %, delta time {deltas[1]} %")
+        typer.echo(f"{row['road']} {row['direction']} {figures}: {_sweep_deltas(row, plan.controllers)}")
+    runs = [f"{result.runs[name]} {name.upper()}" for name in (*plan.controllers, "pi")]
     typer.echo(
-        f"wrote {result.csv_path} ({len(result.rows)} rows: {result.mpc_runs} MPC and {result.pi_runs} PI runs, "
+        f"wrote {result.csv_path} ({len(result.rows)} rows: {', '.join(runs[:-1])} and {runs[-1]} runs, "
         f"{result.resumed_rows} rows resumed)"
     )
+
+
+def _sweep_controllers(text: str) -> tuple[str, ...]:
+    """The look-ahead controllers of ``sweep --controller`` (``pcc``, ``mpc``), in column order."""
+    from truckmpc.sweep.columns import check_controllers
+
+    try:
+        return check_controllers(text.split(","))
+    except ValueError as err:
+        raise typer.BadParameter(str(err), param_hint="'--controller'") from None
+
+
+def _sweep_deltas(row: Mapping[str, str], controllers: Sequence[str]) -> str:
+    """`delta fuel -1.23 %, delta time +0.45 %` of each look-ahead controller against the PI (named
+    when there are several), `-` where blank."""
+    from truckmpc.sweep.columns import delta_column
+
+    parts = []
+    for name in controllers:
+        shown = [f"{float(v):+.2f}" if v else "-" for v in (row[delta_column(name, k)] for k in ("fuel", "time"))]
+        named = f"{name} " if len(controllers) > 1 else ""
+        parts.append(f"{named}delta fuel {shown[0]} %, delta time {shown[1]} %")
+    return "; ".join(parts)
 
 
 @app.command("pareto")
@@ -389,7 +423,7 @@ def pareto_cmd(
         ),
     ] = None,
     curves: Annotated[
-        str, typer.Option("--curves", help="Curves to run, comma-separated: pi, mpc, fuel_time.")
+        str, typer.Option("--curves", help="Curves to run, comma-separated: pi, pcc, mpc, fuel_time.")
     ] = "pi,mpc,fuel_time",
     reverse: ReverseAllOpt = False,
     jobs: JobsOpt = None,
@@ -399,8 +433,9 @@ def pareto_cmd(
     quiet: QuietOpt = False,
     force: ForceOpt = False,
 ) -> None:
-    """Fuel against trip time: the PI over set speeds, the MPC over set speeds and the fuel-time MPC
-    over set speeds or beta; DIR/pareto.csv, and DIR/pareto.png with the saving at equal trip time.
+    """Fuel against trip time: the PI over set speeds, the PCC and the MPC over set speeds and the
+    fuel-time MPC over set speeds or beta; DIR/pareto.csv, and DIR/pareto.png with the saving at equal
+    trip time.
 
     Rerun the same command with the same --out to resume an interrupted study.
     """

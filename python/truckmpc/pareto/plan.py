@@ -4,6 +4,7 @@ road, each configuration validated before anything runs.
 Curves:
 
 - ``pi``: the baseline over the set speeds;
+- ``pcc``: VECTO's rule-based predictive cruise control (on the PI) over the set speeds;
 - ``mpc``: the configured look-ahead controller (the thesis's cost by default) over the set speeds;
 - ``fuel_time``: the look-ahead controller with the ``fuel_time`` preset, over the set speeds with β
   derived from each, or over ``betas`` at the configured v_ref.
@@ -27,11 +28,18 @@ from truckmpc.errors import ConfigError
 from truckmpc.road import PathLike, RoadProfile
 from truckmpc.sweep.columns import cell, yaml_text
 from truckmpc.sweep.errors import SweepError
-from truckmpc.sweep.plan import load_profiles, study_settings
+from truckmpc.sweep.inputs import load_profiles
+from truckmpc.sweep.plan import study_settings
 from truckmpc.workload import Work, check_trace, run_work
 
-CURVES = ("pi", "mpc", "fuel_time")
+CURVES = ("pi", "pcc", "mpc", "fuel_time")
 """The curves of a Pareto study, in the order they are drawn."""
+
+DEFAULT_CURVES = ("pi", "mpc", "fuel_time")
+"""The curves run when none are named."""
+
+CURVE_CONTROLLERS = {"pi": "pi", "pcc": "pcc", "mpc": "mpc", "fuel_time": "mpc"}
+"""The built-in controller that drives each curve."""
 
 SPEED_OFFSETS_KMH = (-8.0, -6.0, -4.0, -2.0, 0.0, 2.0, 4.0)
 """Default set speeds: these offsets from the configured v_ref [km/h]."""
@@ -72,7 +80,7 @@ class Point:
     @property
     def controller(self) -> str:
         """The built-in controller that drives the point."""
-        return "pi" if self.curve == "pi" else "mpc"
+        return CURVE_CONTROLLERS[self.curve]
 
 
 @dataclass(frozen=True)
@@ -100,7 +108,7 @@ def plan_pareto(
     *,
     speeds_kmh: Sequence[float] | None = None,
     betas_g_per_s: Sequence[float] | None = None,
-    curves: Sequence[str] = CURVES,
+    curves: Sequence[str] = DEFAULT_CURVES,
     reverse: bool = False,
     vehicle_path: PathLike | None = None,
     config_paths: Sequence[PathLike] = (),
@@ -124,7 +132,7 @@ def plan_pareto(
             extra = (*preset, *overrides, *own)
             config = _point_config(vehicle, configs, extra, curve, parameter, value)
             check_trace(profile, config)
-            controller = "pi" if curve == "pi" else "mpc"
+            controller = CURVE_CONTROLLERS[curve]
             beta = config.settings.beta_g_per_s_resolved if controller == "mpc" else None
             work = run_work(profile, config, controller)
             points.append(Point(len(points), r, curve, parameter, float(value), v, beta, extra, work))

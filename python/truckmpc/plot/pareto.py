@@ -17,8 +17,13 @@ from truckmpc.pareto.plan import PARETO_COLUMNS
 from truckmpc.pareto.run import damaged_row
 from truckmpc.plot.figures import PlotError, figure_class, save
 
-_STYLES = {"pi": ("tab:gray", "o"), "mpc": ("tab:blue", "s"), "fuel_time": ("tab:red", "^")}
-_LABELS = {"pi": "PI (set speed)", "mpc": "MPC, thesis cost (set speed)", "fuel_time": "MPC, fuel + β·time"}
+_STYLES = {"pi": ("tab:gray", "o"), "pcc": ("tab:green", "D"), "mpc": ("tab:blue", "s"), "fuel_time": ("tab:red", "^")}
+_LABELS = {
+    "pi": "PI (set speed)",
+    "pcc": "PCC, VECTO rules (set speed)",
+    "mpc": "MPC, thesis cost (set speed)",
+    "fuel_time": "MPC, fuel + β·time",
+}
 _S_PER_MIN = 60.0
 
 

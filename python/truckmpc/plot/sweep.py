@@ -1,14 +1,13 @@
-"""The pictures of a sweep: ``sweep.png``, Δfuel and Δtime [%] against the prediction horizon, one
-line per (S, δ), one column per road and direction (figures 6.16–6.18 of the thesis;
-``allow_neutral = false`` dashed), and ``realtime.png``, the real-time ratio q against the horizon on
-a log scale (figure 6.19). Without a horizon axis the numeric axis that varies most is used.
+"""The pictures of a sweep: ``sweep.png``, Δfuel and Δtime [%] of each look-ahead controller the
+sweep ran (MPC, PCC) against the PI, against the prediction horizon, one line per (S, δ), one column
+per road and direction (figures 6.16–6.18 of the thesis; ``allow_neutral = false`` dashed), and
+``realtime.png``, the MPC's real-time ratio q against the horizon on a log scale (figure 6.19).
+Without a horizon axis the numeric axis that varies most is used.
 """
 
 from __future__ import annotations
 
 import contextlib
-import csv
-import json
 import math
 import os
 from collections.abc import Mapping, Sequence
@@ -16,21 +15,13 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from truckmpc.config import KEYS
 from truckmpc.plot.figures import PlotError, figure_class, save
-from truckmpc.sweep.columns import SWEEP_COLUMNS, parse_cell
-
-RESULT_COLUMNS = frozenset({"road", "direction", *SWEEP_COLUMNS})
-"""Column names of sweep.csv that are not grid axes."""
-
-CONFIG_KEYS = frozenset(KEYS)
-"""Column names of sweep.csv that can be grid axes: any vehicle, controller or simulation key."""
+from truckmpc.plot.sweep_csv import compared_controllers, delta_metrics, grid_axes, read_sweep
 
 Row = Mapping[str, Any]
 Panel = tuple[Any, Any]
 """(road, direction) of one column of panels; None where the CSV has no such column."""
 
-_DELTAS = (("delta_fuel_pct", "Δfuel [%]"), ("delta_time_pct", "Δtime [%]"))
 _REALTIME = (("realtime_ratio", "real-time ratio q [-]\n(compute time / driven time)"),)
 _AXIS_LABELS = {"horizon_m": "prediction horizon [m]", "stage_m": "S", "delta_kmh": "δ"}
 _UNITS = (("_kmh", "km/h"), ("_rpm", "rpm"), ("_kg", "kg"), ("_pct", "%"), ("_m", "m"), ("_s", "s"))
@@ -46,72 +37,37 @@ class _Layout:
     x_axis: str
     line_axes: Sequence[str]
     neutral_axis: bool
+    subject: str = "MPC"
 
 
 def plot_sweep(directory: str | os.PathLike[str], out: str | os.PathLike[str], *, svg: bool = False) -> list[Path]:
     """Draw a sweep: Δfuel and Δtime against the horizon to ``out``, q against the horizon beside it."""
     directory = Path(directory)
     out = Path(out)
-    header, rows = _read_sweep(directory)
-    axes = _grid_axes(directory, header)
+    header, rows = read_sweep(directory)
+    compared = compared_controllers(header)
+    axes = grid_axes(directory, header)
     x_axis = _x_axis(rows, axes, directory / "sweep.csv")
+    subject = " and ".join(label for _, label in compared)
     layout = _Layout(
         rows,
         _panels(rows, header),
         x_axis,
         [a for a in axes if a != x_axis and a != "allow_neutral" and len(_varying(rows, a)) > 1],
         "allow_neutral" in axes and len(_varying(rows, "allow_neutral")) > 1,
+        subject,
     )
     fixed = [_line_label(a, _varying(rows, a)[0]) for a in axes if len(_varying(rows, a)) == 1]
     note = f" ({', '.join(fixed)})" if fixed else ""
+    look_ahead = compared[0][1] if len(compared) == 1 else "look-ahead"
     pictures: list[tuple[Sequence[tuple[str, str]], bool, str, Path]] = [
-        (_DELTAS, False, f"MPC against PI: (MPC − PI) / PI{note}", out)
+        (delta_metrics(compared), False, f"{subject} against PI: ({look_ahead} − PI) / PI{note}", out)
     ]
     if "realtime_ratio" in header:
         realtime = out.with_name(f"{out.stem}-realtime{out.suffix}" if out.name != "sweep.png" else "realtime.png")
         pictures.append((_REALTIME, True, f"MPC closed-loop real-time ratio{note}", realtime))
     Figure = figure_class()
     return save([(_sweep_figure(Figure, layout, m, log=log, title=t), path) for m, log, t, path in pictures], svg)
-
-
-def _read_sweep(directory: Path) -> tuple[list[str], list[dict[str, Any]]]:
-    """The header and the rows (column -> value) of ``sweep.csv``."""
-    path = directory / "sweep.csv"
-    try:
-        with path.open(newline="", encoding="utf-8") as handle:
-            reader = csv.DictReader(handle)
-            header = list(reader.fieldnames or [])
-            rows = [{k: parse_cell(v or "") for k, v in row.items() if k is not None} for row in reader]
-    except OSError as err:
-        raise PlotError(f"{path}: {err.strerror or err}") from err
-    for needed in ("delta_fuel_pct", "delta_time_pct"):
-        if needed not in header:
-            raise PlotError(f"{path}: no '{needed}' column")
-    if not rows:
-        raise PlotError(f"{path}: no rows to plot")
-    return header, rows
-
-
-def _grid_axes(directory: Path, header: Sequence[str]) -> list[str]:
-    """The grid-axis columns: config keys, and whatever ``sweep.json`` names as its grid."""
-    named: set[str] = set()
-    meta = directory / "sweep.json"
-    if meta.is_file():
-        try:
-            doc = json.loads(meta.read_text(encoding="utf-8"))
-        except (OSError, ValueError):
-            doc = {}
-        grid = doc.get("grid") if isinstance(doc, dict) else None
-        if isinstance(grid, dict):
-            named = set(grid)
-        elif isinstance(grid, list):
-            named = {_axis_name(g) for g in grid if isinstance(g, (str, dict))}
-    return [c for c in header if c not in RESULT_COLUMNS and (c in CONFIG_KEYS or c in named)]
-
-
-def _axis_name(entry: str | Mapping[str, Any]) -> str:
-    """The key of one ``grid`` entry of ``sweep.json`` (``{"key": ...}``, older ``{"name": ...}``)."""
-    return entry if isinstance(entry, str) else str(entry.get("key", entry.get("name")))
 
 
 def _is_number(value: Any) -> bool:
@@ -254,7 +210,7 @@ def _draw_lines(ax: Any, layout: _Layout, rows: Sequence[Row], metric: str, log:
             if not points:
                 continue
             xs, ys = zip(*points, strict=True)
-            label = ", ".join(_line_label(a, v) for a, v in combo) or "MPC"
+            label = ", ".join(_line_label(a, v) for a, v in combo) or layout.subject
             ax.plot(xs, ys, color=color, ls="-" if neutral in (None, True) else "--", marker="o", ms=3, lw=1.2)
             handles.setdefault(label, Line2D([], [], color=color, marker="o", ms=3, lw=1.2, label=label))
 

@@ -1,25 +1,30 @@
-"""Parameter sweeps: PI and MPC over every combination of a grid of config values (thesis chapter 6).
+"""Parameter sweeps: the PI and look-ahead controllers over every combination of a grid of config
+values (thesis chapter 6).
 
 A sweep is a list of roads (all driven forward, or all reversed) and a list of *axes*, each a config
 key with the values it takes (``horizon_m=250:3000:250``, ``delta_kmh=0.1,0.2``). Every combination
 is applied as ``key=value`` overrides on top of the base configuration (vehicle file, ``--config``
-overlays, ``--set``) and validated before anything runs. For each (road, combination) the PI and the
-MPC drive the same road with the same vehicle; one row per pair goes to ``DIR/sweep.csv``.
+overlays, ``--set``) and validated before anything runs. For each (road, combination) the PI and each
+controller of ``--controller`` (``pcc``, ``mpc``; default the MPC) drive the same road with the same
+vehicle; one row per pair goes to ``DIR/sweep.csv``.
 
-The PI run depends only on the road, the vehicle, the PI and the simulation settings, so it is keyed
-by those *resolved values* and computed once per distinct key: an axis over an MPC key reuses one PI
-run per road, an axis over ``v_ref_kmh`` or ``mass_kg`` reruns it per value.
+The PI run depends only on the road, the vehicle, the PI and the simulation settings (the PCC's on
+those and the ``pcc`` section), so it is keyed by those *resolved values* and computed once per
+distinct key: an axis over an MPC key reuses one PI run per road, an axis over ``v_ref_kmh`` or
+``mass_kg`` reruns it per value.
 
 Resuming: ``DIR/sweep.json`` identifies the sweep (roads by name, content hash and direction; axes;
 the resolved base configuration). Rows are appended to ``DIR/sweep.partial.csv`` one complete line
 at a time as they finish; when all are done ``DIR/sweep.csv`` is written atomically in grid order and
 the partial file removed. Running the same sweep again into the same directory skips the rows already
-there (and reuses their PI figures); a different sweep into it is refused.
+there (and reuses their PI and PCC figures); a different sweep into it is refused.
 
-Modules: :mod:`~truckmpc.sweep.grid` (axes), :mod:`~truckmpc.sweep.plan` (rows, PI keys,
-validation), :mod:`~truckmpc.sweep.columns` (CSV columns and cells), :mod:`~truckmpc.sweep.files`
-(the directory's files), :mod:`~truckmpc.sweep.pool` (the processes), :mod:`~truckmpc.sweep.run`
-(running and resuming), :mod:`~truckmpc.sweep.progress` (the progress bar).
+Modules: :mod:`~truckmpc.sweep.grid` (axes), :mod:`~truckmpc.sweep.inputs` (roads, axes and each
+combination's configuration, checked), :mod:`~truckmpc.sweep.plan` (rows, run keys),
+:mod:`~truckmpc.sweep.columns` (CSV columns and cells), :mod:`~truckmpc.sweep.files` (the
+directory's files), :mod:`~truckmpc.sweep.pool` (the processes), :mod:`~truckmpc.sweep.run`
+(running and resuming), :mod:`~truckmpc.sweep.waiting` (rows waiting for their runs),
+:mod:`~truckmpc.sweep.progress` (the progress bar).
 """
 
 from truckmpc.sweep.columns import SWEEP_COLUMNS, cell

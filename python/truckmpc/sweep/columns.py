@@ -1,26 +1,38 @@
 """The result columns of ``sweep.csv`` and the text of its cells.
 
-After ``road``, ``direction`` and one column per axis come the PI figures, the MPC figures (the
-solver's and the equal-time baseline's without a prefix), then the comparisons: blank when either
-run stalled or the baseline is zero (:func:`truckmpc.compare.compare`), and the equal-time ones
-also where the PI could not be re-tuned to the MPC's trip time.
+After ``road``, ``direction`` and one column per axis come the PI figures, then those of each
+look-ahead controller the sweep runs (``--controller``: the PCC's prefixed ``pcc_``; the MPC's
+prefixed ``mpc_``, its solver's and equal-time baseline's without a prefix, as before the PCC was
+added), then the comparisons of :data:`VERSUS` whose two controllers ran: blank when either run
+stalled or the baseline is zero (:func:`truckmpc.compare.compare`), and the equal-time ones also
+where the baseline could not be re-tuned to the other's trip time. One table per kind, so the
+columns of every selection follow from :data:`RUNS` and :data:`VERSUS`.
 """
 
 from __future__ import annotations
 
 import contextlib
+import functools
 import json
 import math
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 from truckmpc.compare import compare, delta_pct
 
 PI_FIELDS = ("fuel_kg", "fuel_corrected_kg", "time_s", "end_speed_kmh", "brake_energy_kj", "gear_shifts", "stalled")
-"""Figures of a run's summary that go to the CSV for both controllers."""
+"""Figures of a run's summary that go to the CSV for every controller."""
 
-EQUAL_TIME_FIELDS = ("equal_time_pi_v_ref_kmh", "equal_time_pi_fuel_kg", "equal_time_pi_fuel_corrected_kg")
-"""The PI re-tuned to the MPC's trip time (:mod:`truckmpc.equal_time`): blank where it could not be."""
+
+def equal_time_fields(baseline: str) -> tuple[str, ...]:
+    """The figures of `baseline` re-tuned to a run's trip time (:mod:`truckmpc.equal_time`): its
+    set speed [km/h], fuel and end-speed-corrected fuel [kg]; blank where it could not be."""
+    return tuple(f"equal_time_{baseline}_{name}" for name in ("v_ref_kmh", "fuel_kg", "fuel_corrected_kg"))
+
+
+EQUAL_TIME_FIELDS = equal_time_fields("pi")
+"""The PI re-tuned to a look-ahead run's trip time."""
 
 MPC_FIELDS = (
     *PI_FIELDS,
@@ -34,21 +46,90 @@ MPC_FIELDS = (
 )
 """Figures of the MPC run's summary that go to the CSV (with its equal-time baseline's)."""
 
-_MPC_ONLY = frozenset(MPC_FIELDS) - frozenset(PI_FIELDS)
-_RESULT_SOURCES: tuple[tuple[str, str, str], ...] = (
-    *(("pi", name, f"pi_{name}") for name in PI_FIELDS),
-    *(("mpc", name, name if name in _MPC_ONLY else f"mpc_{name}") for name in MPC_FIELDS),
-)
-DELTA_COLUMNS = (
-    "delta_fuel_pct",
-    "delta_time_pct",
-    "delta_fuel_corrected_pct",
-    "delta_fuel_equal_time_pct",
-    "delta_fuel_equal_time_corrected_pct",
-)
-"""The comparisons, as in ``summary.json``."""
+PCC_FIELDS = (*PI_FIELDS, "neutral_distance_m", *EQUAL_TIME_FIELDS)
+"""Figures of the PCC run's summary that go to the CSV (with its equal-time baseline's)."""
 
-SWEEP_COLUMNS: tuple[str, ...] = (*(column for _, _, column in _RESULT_SOURCES), *DELTA_COLUMNS)
+
+@dataclass(frozen=True)
+class RunColumns:
+    """How one controller's run goes to the CSV: its figures, each in the column ``<name>_<figure>``
+    but those in `bare`, written without the prefix."""
+
+    name: str
+    fields: tuple[str, ...]
+    bare: frozenset[str] = frozenset()
+
+    def column(self, field: str) -> str:
+        return field if field in self.bare else f"{self.name}_{field}"
+
+
+RUNS = {
+    "pi": RunColumns("pi", PI_FIELDS),
+    "pcc": RunColumns("pcc", PCC_FIELDS),
+    "mpc": RunColumns("mpc", MPC_FIELDS, frozenset(MPC_FIELDS) - frozenset(PI_FIELDS)),
+}
+"""Every controller a sweep can run, in column order."""
+
+LOOK_AHEAD = ("pcc", "mpc")
+"""The controllers ``sweep --controller`` takes (the PI always runs, as the baseline)."""
+
+DEFAULT_CONTROLLERS = ("mpc",)
+"""``sweep --controller`` when not given."""
+
+
+@dataclass(frozen=True)
+class Versus:
+    """One comparison of a row: `run` against `base`, each kind of Δ [%] (see :func:`deltas`) in
+    its column."""
+
+    run: str
+    base: str
+    columns: tuple[tuple[str, str], ...]
+
+    @property
+    def equal_time(self) -> bool:
+        """Whether `base` is re-tuned to `run`'s trip time for it (in `run`'s worker)."""
+        return any(kind.startswith("fuel_equal_time") for kind, _ in self.columns)
+
+
+VERSUS = (
+    Versus(
+        "mpc",
+        "pi",
+        (
+            ("fuel", "delta_fuel_pct"),
+            ("time", "delta_time_pct"),
+            ("fuel_corrected", "delta_fuel_corrected_pct"),
+            ("fuel_equal_time", "delta_fuel_equal_time_pct"),
+            ("fuel_equal_time_corrected", "delta_fuel_equal_time_corrected_pct"),
+        ),
+    ),
+    Versus(
+        "pcc",
+        "pi",
+        (
+            ("fuel", "pcc_delta_fuel_pct"),
+            ("time", "pcc_delta_time_pct"),
+            ("fuel_equal_time", "pcc_delta_fuel_equal_time_pct"),
+        ),
+    ),
+    Versus(
+        "mpc",
+        "pcc",
+        (("fuel", "delta_fuel_mpc_vs_pcc_pct"), ("fuel_equal_time", "delta_fuel_equal_time_mpc_vs_pcc_pct")),
+    ),
+)
+"""The comparisons of a row, in column order; each is there when both its controllers ran."""
+
+
+def delta_column(run: str, kind: str, base: str = "pi") -> str:
+    """The column of `run`'s Δ of `kind` (``fuel``, ``time``, ...) against `base`."""
+    versus = next(v for v in VERSUS if (v.run, v.base) == (run, base))
+    return dict(versus.columns)[kind]
+
+
+DELTA_COLUMNS = tuple(column for _, column in VERSUS[0].columns)
+"""The MPC against the PI, as in ``summary.json``."""
 
 CONVERGENCE_COLUMNS = (
     "delta_fuel_pct_half_delta",
@@ -60,12 +141,104 @@ CONVERGENCE_COLUMNS = (
 half S (:mod:`truckmpc.convergence`); blank where a halved run is not comparable."""
 
 
-def result_columns(check_convergence: bool) -> tuple[str, ...]:
-    """The result columns of a sweep, with or without the convergence columns."""
-    return (*SWEEP_COLUMNS, *CONVERGENCE_COLUMNS) if check_convergence else SWEEP_COLUMNS
+def deltas(base: Mapping[str, Any], run: Mapping[str, Any], base_name: str, run_name: str) -> dict[str, Any]:
+    """Δ [%] of `run` against `base` by kind: ``fuel`` and ``time`` (:func:`compare`); where those
+    are comparable also ``fuel_corrected`` (both end speeds corrected) and ``fuel_equal_time`` (raw
+    and ``_corrected``) against `base` re-tuned to `run`'s trip time (the ``equal_time_<base>_*``
+    figures of `run`); None where there is none."""
+    comparison = compare(base, run, base_name, run_name)
+    out: dict[str, Any] = {"fuel": comparison.delta_fuel_pct, "time": comparison.delta_time_pct}
+    if comparison.not_comparable is not None:
+        return out
+    _, equal_fuel, equal_corrected = equal_time_fields(base_name)
+    out["fuel_corrected"] = _delta(run["fuel_corrected_kg"], base.get("fuel_corrected_kg"))
+    out["fuel_equal_time"] = _delta(run["fuel_kg"], run.get(equal_fuel))
+    out["fuel_equal_time_corrected"] = _delta(run["fuel_corrected_kg"], run.get(equal_corrected))
+    return out
 
 
-"""Columns of ``sweep.csv`` after ``road``, ``direction`` and one column per axis."""
+def check_controllers(names: Sequence[str]) -> tuple[str, ...]:
+    """The look-ahead controllers of a sweep in column order; ValueError (the reason) unless each
+    is one of :data:`LOOK_AHEAD`, once."""
+    given = [name.strip() for name in names]
+    if not given or any(name not in LOOK_AHEAD for name in given) or len(set(given)) < len(given):
+        raise ValueError(
+            f"expected a comma list of {', '.join(LOOK_AHEAD)}, each once (the pi always runs, as the "
+            f"baseline), got {','.join(given)!r}"
+        )
+    return tuple(name for name in LOOK_AHEAD if name in given)
+
+
+@dataclass(frozen=True)
+class Layout:
+    """The result columns of a sweep of the PI and `controllers` (:data:`LOOK_AHEAD`, in that
+    order), with or without the convergence columns (which need the MPC)."""
+
+    controllers: tuple[str, ...] = DEFAULT_CONTROLLERS
+    check_convergence: bool = False
+
+    @functools.cached_property
+    def runs(self) -> tuple[str, ...]:
+        """The controllers of each row, the PI first."""
+        return ("pi", *self.controllers)
+
+    @functools.cached_property
+    def versus(self) -> tuple[Versus, ...]:
+        return tuple(v for v in VERSUS if v.run in self.runs and v.base in self.runs)
+
+    @functools.cached_property
+    def sources(self) -> tuple[tuple[str, str, str], ...]:
+        """(controller, figure, column) of every figure column."""
+        return tuple((name, field, RUNS[name].column(field)) for name in self.runs for field in RUNS[name].fields)
+
+    @functools.cached_property
+    def columns(self) -> tuple[str, ...]:
+        """The result columns (after ``road``, ``direction`` and the axes)."""
+        figures = tuple(column for _, _, column in self.sources)
+        compared = tuple(column for v in self.versus for _, column in v.columns)
+        return (*figures, *compared, *(CONVERGENCE_COLUMNS if self.check_convergence else ()))
+
+    def baselines(self, controller: str) -> tuple[str, ...]:
+        """The controllers re-tuned to `controller`'s trip time in its worker (its equal-time deltas)."""
+        return tuple(v.base for v in self.versus if v.run == controller and v.equal_time)
+
+    def cells(self, runs: Mapping[str, Mapping[str, Any]]) -> list[str]:
+        """The result cells of one row from each controller's figures (the MPC's with its
+        convergence moves when checked)."""
+        values = {column: runs[name][field] for name, field, column in self.sources}
+        for v in self.versus:
+            by_kind = deltas(runs[v.base], runs[v.run], v.base, v.run)
+            values.update({column: by_kind.get(kind) for kind, column in v.columns})
+        if self.check_convergence:  # the moves of the MPC's deltas against the PI
+            comparable = compare(runs["pi"], runs["mpc"]).not_comparable is None
+            values.update({c: runs["mpc"].get(c) if comparable else None for c in CONVERGENCE_COLUMNS})
+        return [cell(values[c]) for c in self.columns]
+
+    def figures(self, controller: str, cells: Sequence[str]) -> dict[str, Any]:
+        """`controller`'s figures read back from a row's result cells."""
+        named = dict(zip(self.columns, cells, strict=False))
+        return {field: parse_cell(named[RUNS[controller].column(field)]) for field in RUNS[controller].fields}
+
+    def damaged(self, cells: Sequence[str]) -> str | None:
+        """What is wrong with the result cells of a row read back, or None when each is what
+        :func:`cell` writes there: true or false for ``*stalled``, else a finite number or blank."""
+        if len(cells) != len(self.columns):
+            return f"expected {len(self.columns)} result cells, got {len(cells)}"
+        for column, text in zip(self.columns, cells, strict=True):
+            value = parse_cell(text)
+            if column.endswith("stalled"):
+                if not isinstance(value, bool):
+                    return f"column {column!r}: expected true or false, got {text!r}"
+            elif value is not None and (isinstance(value, (bool, str)) or not math.isfinite(value)):
+                return f"column {column!r}: expected a number or blank, got {text!r}"
+        return None
+
+
+SWEEP_COLUMNS: tuple[str, ...] = Layout().columns
+"""Result columns of the default sweep (PI and MPC)."""
+
+ALL_COLUMNS: tuple[str, ...] = Layout(LOOK_AHEAD, check_convergence=True).columns
+"""Every result column a sweep may have."""
 
 
 def cell(value: Any) -> str:
@@ -86,21 +259,8 @@ def yaml_text(value: Any) -> str:
 
 
 def result_cells(pi: Mapping[str, Any], mpc: Mapping[str, Any], check_convergence: bool = False) -> list[str]:
-    """The result cells of one row (:func:`result_columns`) from the two runs' figures (the MPC's
-    with its convergence moves when checked)."""
-    runs = {"pi": pi, "mpc": mpc}
-    values = {column: runs[run][name] for run, name, column in _RESULT_SOURCES}
-    comparison = compare(pi, mpc)
-    values["delta_fuel_pct"], values["delta_time_pct"] = comparison.delta_fuel_pct, comparison.delta_time_pct
-    values.update(dict.fromkeys(DELTA_COLUMNS[2:]))
-    if comparison.not_comparable is None:
-        values["delta_fuel_corrected_pct"] = _delta(mpc["fuel_corrected_kg"], pi["fuel_corrected_kg"])
-        values["delta_fuel_equal_time_pct"] = _delta(mpc["fuel_kg"], mpc["equal_time_pi_fuel_kg"])
-        corrected = (mpc["fuel_corrected_kg"], mpc["equal_time_pi_fuel_corrected_kg"])
-        values["delta_fuel_equal_time_corrected_pct"] = _delta(*corrected)
-    for column in CONVERGENCE_COLUMNS:
-        values[column] = mpc.get(column) if comparison.not_comparable is None else None
-    return [cell(values[c]) for c in result_columns(check_convergence)]
+    """The result cells of a PI and MPC row (:data:`SWEEP_COLUMNS`) from the two runs' figures."""
+    return Layout(DEFAULT_CONTROLLERS, check_convergence).cells({"pi": pi, "mpc": mpc})
 
 
 def _delta(value: float | None, base: float | None) -> float | None:
@@ -120,20 +280,3 @@ def parse_cell(text: str) -> Any:
         with contextlib.suppress(ValueError):
             return number(text)
     return text
-
-
-def damaged_cell(cells: Sequence[str], check_convergence: bool = False) -> str | None:
-    """What is wrong with the result cells (:data:`SWEEP_COLUMNS`) of a row read back, or None when
-    each is what :func:`cell` writes there: true or false for ``*stalled``, else a finite number or
-    blank."""
-    columns = result_columns(check_convergence)
-    if len(cells) != len(columns):
-        return f"expected {len(columns)} result cells, got {len(cells)}"
-    for column, text in zip(columns, cells, strict=True):
-        value = parse_cell(text)
-        if column.endswith("stalled"):
-            if not isinstance(value, bool):
-                return f"column {column!r}: expected true or false, got {text!r}"
-        elif value is not None and (isinstance(value, (bool, str)) or not math.isfinite(value)):
-            return f"column {column!r}: expected a number or blank, got {text!r}"
-    return None

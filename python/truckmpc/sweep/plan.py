@@ -1,54 +1,51 @@
-"""The plan of a sweep: its roads and rows, each row's overrides and PI key, all validated before
-anything runs.
+"""The plan of a sweep: its roads and rows, each row's overrides and run keys, all validated
+before anything runs.
 
-The PI run depends only on the road, the vehicle, the PI and the simulation settings, so each row
-carries a key made of those *resolved values*: rows with the same key share one PI run (an axis over
-an MPC key needs one PI run per road, an axis over ``v_ref_kmh`` or ``mass_kg`` one per value).
+The PI run depends only on the road, the vehicle, the PI and the simulation settings, and the PCC's
+on those and the ``pcc`` section, so each row carries, per controller, a key made of those *resolved
+values*: rows with the same key share one run (an axis over an MPC key needs one PI run and one PCC
+run per road, an axis over ``v_ref_kmh`` or ``mass_kg`` one per value). Each MPC run is its row's own.
 """
 
 from __future__ import annotations
 
-import dataclasses
+import functools
 import json
-import math
-import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-import yaml
-
-from truckmpc import _core
-from truckmpc.config import SPEC_BY_KEY, Origin, RunConfig, load_run_config
-from truckmpc.config.yamlfile import load_value
+from truckmpc.config import SPEC_BY_KEY, RunConfig
 from truckmpc.convergence import halved_configs
-from truckmpc.errors import ConfigError
-from truckmpc.road import PathLike, RoadProfile, load_road
-from truckmpc.sweep.columns import cell, result_columns, yaml_text
+from truckmpc.road import PathLike, RoadProfile
+from truckmpc.sweep.columns import DEFAULT_CONTROLLERS, Layout, cell, check_controllers, yaml_text
 from truckmpc.sweep.errors import SweepError
-from truckmpc.sweep.grid import Axis, expand_grid, parse_axis
+from truckmpc.sweep.grid import Axis, expand_grid
+from truckmpc.sweep.inputs import Base, Combinations, check_size, checked_axes, load_profiles
 from truckmpc.workload import Work, check_trace, run_work
-
-MAX_SWEEP_ROWS = 1_000_000
-"""Most rows (roads × combinations) a sweep may have: its CSV is then about 0.4 GB, and planning
-it takes about a minute; more is taken to be a typo in a range."""
 
 
 @dataclass(frozen=True)
 class Row:
-    """One (road, combination) of a sweep: its place in grid order, its overrides, its PI key and
-    the estimated work of its MPC run (:mod:`truckmpc.workload`; its PI run's is the plant part)."""
+    """One (road, combination) of a sweep: its place in grid order, its overrides, the key of each
+    of its runs (controller -> key; rows with the same key share the run) and the estimated work of
+    its look-ahead run (:mod:`truckmpc.workload`: the MPC's if it runs, else the PCC's; a PI or PCC
+    run's is the plant part)."""
 
     index: int
     road: int
     values: tuple[Any, ...]
     overrides: tuple[str, ...]
-    pi_key: str
+    keys: Mapping[str, str]
     work: Work
 
     @property
+    def pi_key(self) -> str:
+        return self.keys["pi"]
+
+    @property
     def cost(self) -> float:
-        """Estimated seconds of the row's MPC run [s] (the longest are scheduled first)."""
+        """Estimated seconds of the row's look-ahead run [s] (the longest are scheduled first)."""
         return self.work.total_s
 
 
@@ -66,26 +63,20 @@ class SweepPlan:
     rows: tuple[Row, ...]
     settings: dict[str, Any]
     check_convergence: bool = False
+    controllers: tuple[str, ...] = DEFAULT_CONTROLLERS
+
+    @functools.cached_property
+    def layout(self) -> Layout:
+        """The result columns and how a row's runs fill them."""
+        return Layout(self.controllers, self.check_convergence)
 
     @property
     def columns(self) -> tuple[str, ...]:
-        return ("road", "direction", *(axis.key for axis in self.axes), *result_columns(self.check_convergence))
+        return ("road", "direction", *(axis.key for axis in self.axes), *self.layout.columns)
 
     def row_key(self, row: Row) -> tuple[str, ...]:
         """The cells that identify a row in the CSV: road, direction and the axis values."""
         return (self.roads[row.road].name, self.direction, *(cell(v) for v in row.values))
-
-
-@dataclass(frozen=True)
-class _Base:
-    """The base configuration every combination is applied on top of."""
-
-    vehicle_path: str | None
-    config_paths: tuple[str, ...]
-    overrides: tuple[str, ...]
-
-    def config(self, extra: Sequence[str] = ()) -> RunConfig:
-        return load_run_config(self.vehicle_path, self.config_paths, (*self.overrides, *extra))
 
 
 def plan_sweep(
@@ -97,20 +88,23 @@ def plan_sweep(
     config_paths: Sequence[PathLike] = (),
     overrides: Sequence[str] = (),
     check_convergence: bool = False,
+    controllers: Sequence[str] = DEFAULT_CONTROLLERS,
 ) -> SweepPlan:
     """Load the roads and validate the configuration of every combination; raise a one-line
-    :class:`~truckmpc.errors.TruckmpcError` naming the road, the ``--set`` or the ``--grid`` axis.
-    With `check_convergence` every MPC row is also driven at half δ and half S (its work counts
-    them) and gets the convergence columns."""
-    checked = _checked_axes(axes, overrides)
+    :class:`~truckmpc.errors.TruckmpcError` naming the road, the ``--set``, the ``--grid`` axis or
+    the ``--controller``. Each row runs the PI and `controllers` (``pcc``, ``mpc``). With
+    `check_convergence` every MPC row is also driven at half δ and half S (its work counts them) and
+    gets the convergence columns."""
+    layout = _checked_layout(controllers, check_convergence)
+    checked = checked_axes(axes, overrides)
     profiles = load_profiles(roads, reverse)
-    base = _Base(
+    base = Base(
         None if vehicle_path is None else str(vehicle_path), tuple(str(p) for p in config_paths), tuple(overrides)
     )
-    _check_size(checked, len(profiles))
+    check_size(checked, len(profiles))
     base_config = base.config()  # errors in the base name their file or --set
     keys = [axis.key for axis in checked]
-    combinations = _Combinations(base, base_config, checked)
+    combinations = Combinations(base, base_config, checked)
     combos = []
     for values in expand_grid(checked):
         texts = tuple(f"{key}={yaml_text(v)}" for key, v in zip(keys, values, strict=True))
@@ -118,13 +112,9 @@ def plan_sweep(
         for profile in profiles:
             check_trace(profile, config)
         combos.append((values, texts, config, _section_values(config)))
-    rows = [
-        Row(len(combos) * r + i, r, values, texts, _pi_key(r, sections), _mpc_work(profile, config, check_convergence))
-        for r, profile in enumerate(profiles)
-        for i, (values, texts, config, sections) in enumerate(combos)
-    ]
+    rows = _rows(profiles, combos, layout)
     direction = "reverse" if reverse else "forward"
-    settings = _settings(profiles, direction, checked, base, base_config, check_convergence)
+    settings = _settings(profiles, direction, checked, base, base_config, layout)
     return SweepPlan(
         tuple(profiles),
         direction,
@@ -135,115 +125,61 @@ def plan_sweep(
         tuple(rows),
         settings,
         check_convergence,
+        layout.controllers,
     )
 
 
-def _mpc_work(profile: RoadProfile, config: RunConfig, check_convergence: bool) -> Work:
-    """The estimated work of a row's MPC run, with its runs at half δ and half S when checked."""
-    configs = [config, *(halved_configs(config).values() if check_convergence else ())]
+def _rows(
+    profiles: Sequence[RoadProfile],
+    combos: Sequence[tuple[tuple[Any, ...], tuple[str, ...], RunConfig, Mapping[str, Any]]],
+    layout: Layout,
+) -> list[Row]:
+    """The rows in grid order, road by road: each combination's (values, overrides, configuration,
+    section values) on each road."""
+    rows: list[Row] = []
+    for r, profile in enumerate(profiles):
+        for values, texts, config, sections in combos:
+            index = len(rows)
+            keys = _run_keys(r, index, sections, layout)
+            rows.append(Row(index, r, values, texts, keys, _look_ahead_work(profile, config, layout)))
+    return rows
+
+
+def _checked_layout(controllers: Sequence[str], check_convergence: bool) -> Layout:
+    """The columns of a sweep of `controllers`; a one-line :class:`SweepError` for a controller
+    that is not ``pcc`` or ``mpc``, or ``--check-convergence`` without the MPC."""
+    try:
+        names = check_controllers(controllers)
+    except ValueError as err:
+        raise SweepError(f"--controller: {err}") from None
+    if check_convergence and "mpc" not in names:
+        raise SweepError(
+            f"--check-convergence: expected mpc in --controller (it drives the MPC at half δ and half S), "
+            f"got {','.join(names)}"
+        )
+    return Layout(names, check_convergence)
+
+
+def _look_ahead_work(profile: RoadProfile, config: RunConfig, layout: Layout) -> Work:
+    """The estimated work of a row's MPC run, with its runs at half δ and half S when checked; a
+    PCC run's (the plant's) without the MPC."""
+    if "mpc" not in layout.controllers:
+        return run_work(profile, config, "pcc")
+    configs = [config, *(halved_configs(config).values() if layout.check_convergence else ())]
     works = [run_work(profile, c, "mpc") for c in configs]
     return Work(sum(w.plant_s for w in works), sum(w.dp_s for w in works), max(w.dp_bytes for w in works))
 
 
-def _checked_axes(
-    axes: Sequence[Axis | str] | Mapping[str, Sequence[Any]], overrides: Sequence[str]
-) -> tuple[Axis, ...]:
-    """The axes, parsed; each key once, not also a ``--set``, with at least one value."""
-    if isinstance(axes, Mapping):
-        axes = [Axis(key, tuple(values), ",".join(cell(v) for v in values)) for key, values in axes.items()]
-    parsed = tuple(parse_axis(a) if isinstance(a, str) else a for a in axes)
-    keys = [axis.key for axis in parsed]
-    set_keys = {text.partition("=")[0].strip() for text in overrides}
-    for axis in parsed:
-        if keys.count(axis.key) > 1:
-            raise SweepError(f"--grid {axis.key}: axis given twice")
-        if axis.key in set_keys:
-            raise SweepError(f"--grid {axis.key}: also set with --set {axis.key}; give it once")
-        if not axis.values:
-            raise SweepError(f"--grid {axis.key}: expected at least one value")
-    return parsed
+SHARED_SECTIONS = {"pi": ("vehicle", "cruise", "pi", "sim"), "pcc": ("vehicle", "cruise", "pi", "pcc", "sim")}
+"""The controllers whose runs rows share, and the config sections such a run depends on (the PCC is
+VECTO's rules on the PI: the PI's sections and its own)."""
 
-
-def load_profiles(roads: Sequence[RoadProfile | PathLike], reverse: bool) -> list[RoadProfile]:
-    """The roads loaded, uniquely named, reversed if asked (keeping their names: rows are keyed by them)."""
-    profiles = [load_road(road) if not isinstance(road, RoadProfile) else road for road in roads]
-    if not profiles:
-        raise SweepError("--road: expected at least one road")
-    names = [p.name for p in profiles]
-    for name in names:
-        if names.count(name) > 1:
-            raise SweepError(f"--road: two roads are named {name!r} (rows are keyed by road name)")
-    if reverse:
-        profiles = [p.reversed() for p in profiles]
-        profiles = [dataclasses.replace(p, name=n) for p, n in zip(profiles, names, strict=True)]
-    return profiles
-
-
-def _check_size(axes: Sequence[Axis], roads: int) -> None:
-    """Refuse more than :data:`MAX_SWEEP_ROWS` rows before expanding the grid."""
-    combinations = math.prod(len(axis.values) for axis in axes)
-    if combinations * roads > MAX_SWEEP_ROWS:
-        raise SweepError(
-            f"--grid: expected at most {MAX_SWEEP_ROWS} rows (combinations × roads), got {combinations} "
-            f"combinations × {roads} road{'s' if roads > 1 else ''}"
-        )
-
-
-class _Combinations:
-    """The configurations of a grid's combinations: the base's resolved values with the axis values
-    put in, validated by the core. Reading the files again per combination took 6.7 ms, most of a
-    sweep's planning; only a combination the core refuses is loaded again through the files, so
-    that its error names where each value came from exactly as ``load_run_config`` does."""
-
-    def __init__(self, base: _Base, base_config: RunConfig, axes: Sequence[Axis]) -> None:
-        self._base, self._axes = base, axes
-        self._values = base_config.settings.values()
-        self._origins = dict(base_config.origins)
-        self._rank = max((origin.rank for origin in self._origins.values()), default=0) + 1
-        self._parsed: dict[str, Any] = {}
-
-    def config(self, values: tuple[Any, ...], texts: tuple[str, ...]) -> RunConfig:
-        """The validated configuration of one combination (``texts``: its ``key=value`` overrides)."""
-        merged, origins = dict(self._values), dict(self._origins)
-        try:
-            for i, text in enumerate(texts):
-                key, _, raw = text.partition("=")
-                merged[key] = self._parse(raw)
-                origins[key] = Origin(f"--set {key}", self._rank + i)
-            settings = _core.Settings(merged)
-        except (yaml.YAMLError, _core.ParamError):
-            return _combination_config(self._base, self._axes, values, texts)
-        return RunConfig(settings=settings, origins=origins)
-
-    def _parse(self, raw: str) -> Any:
-        if raw not in self._parsed:
-            self._parsed[raw] = load_value(raw)
-        return self._parsed[raw]
-
-
-def _combination_config(
-    base: _Base, axes: Sequence[Axis], values: tuple[Any, ...], texts: tuple[str, ...]
-) -> RunConfig:
-    """The configuration of one combination; its errors blame the ``--grid`` axis, not a ``--set``."""
-    try:
-        return base.config(texts)
-    except ConfigError as err:
-        message = str(err)
-        named = [axis.key for axis in axes if re.search(rf"--set {re.escape(axis.key)}\b", message)]
-        for key in named:
-            message = re.sub(rf"--set {re.escape(key)}\b", f"--grid {key}", message)
-        if not named:  # a check across keys that blamed a base setting: say which combination
-            combo = " ".join(f"{axis.key}={cell(v)}" for axis, v in zip(axes, values, strict=True))
-            message = f"--grid combination {combo}: {message}"
-        raise SweepError(message) from None
-
-
-_PI_SECTIONS = ("vehicle", "cruise", "pi", "sim")
+_SHARED = tuple(dict.fromkeys(section for sections in SHARED_SECTIONS.values() for section in sections))
 
 
 def _section_values(config: RunConfig) -> dict[str, dict[str, Any]]:
-    """The values of the sections a PI run depends on, by section."""
-    sections: dict[str, dict[str, Any]] = {name: {} for name in _PI_SECTIONS}
+    """The values of the sections a shared run depends on, by section."""
+    sections: dict[str, dict[str, Any]] = {name: {} for name in _SHARED}
     for key, value in config.settings.values().items():
         section = SPEC_BY_KEY[key].section
         if section in sections:
@@ -251,22 +187,28 @@ def _section_values(config: RunConfig) -> dict[str, dict[str, Any]]:
     return sections
 
 
-def _pi_key(road: int, sections: Mapping[str, Mapping[str, Any]]) -> str:
-    """Everything the PI run depends on: road, vehicle, PI and simulation values (not the MPC's)."""
-    return json.dumps([road, *(sections[name] for name in _PI_SECTIONS)], sort_keys=True)
+def _run_keys(road: int, index: int, sections: Mapping[str, Mapping[str, Any]], layout: Layout) -> dict[str, str]:
+    """Controller -> the key of the row's run of it: for a shared run everything it depends on (the
+    road and its sections' values, not the MPC's), for the MPC the row itself."""
+    return {
+        name: json.dumps([road, *(sections[s] for s in SHARED_SECTIONS[name])], sort_keys=True)
+        if name in SHARED_SECTIONS
+        else f"row {index}"
+        for name in layout.runs
+    }
 
 
 def _settings(
     profiles: Sequence[RoadProfile],
     direction: str,
     axes: Sequence[Axis],
-    base: _Base,
+    base: Base,
     base_config: RunConfig,
-    check_convergence: bool,
+    layout: Layout,
 ) -> dict[str, Any]:
     """The ``sweep.json`` document (without ``jobs``), as plain JSON values."""
     grid = [{"key": a.key, "spec": a.spec, "values": list(a.values)} for a in axes]
-    columns = ["road", "direction", *(a.key for a in axes), *result_columns(check_convergence)]
+    columns = ["road", "direction", *(a.key for a in axes), *layout.columns]
     return study_settings(profiles, direction, grid, base_config, base, columns)
 
 

@@ -1,4 +1,4 @@
-"""Running a sweep's PI and MPC runs: in this process (one job) or in a pool of spawned processes."""
+"""Running a sweep's PI, PCC and MPC runs: in this process (one job) or in a pool of spawned processes."""
 
 from __future__ import annotations
 
@@ -16,22 +16,24 @@ from truckmpc.equal_time import equal_time_baselines
 from truckmpc.road import RoadProfile
 from truckmpc.signals import received_signal
 from truckmpc.sim import RunResult, simulate
-from truckmpc.sweep.columns import CONVERGENCE_COLUMNS, EQUAL_TIME_FIELDS, MPC_FIELDS, PI_FIELDS
+from truckmpc.sweep.columns import CONVERGENCE_COLUMNS, RUNS, equal_time_fields
 from truckmpc.sweep.errors import SweepWorkerDied
 
 
 class Task(NamedTuple):
     """One run: ``controller`` over road number ``road`` with ``overrides``, for plan row ``row``
-    (for a PI run: one of the rows sharing ``pi_key``). An MPC run is also compared with the PI at
-    equal trip time unless ``plain``, and driven again at half δ and half S with ``convergence``."""
+    (for a shared run: one of the rows whose run of ``controller`` has this ``key``). A look-ahead
+    run is also compared at equal trip time with each of ``baselines`` unless ``plain``, and an MPC
+    run driven again at half δ and half S with ``convergence``."""
 
     controller: str
     road: int
     overrides: tuple[str, ...]
     row: int
-    pi_key: str
+    key: str
     plain: bool = False
     convergence: bool = False
+    baselines: tuple[str, ...] = ("pi",)
 
 
 _WORKER: dict[str, Any] = {}
@@ -45,42 +47,46 @@ def _init_worker(roads: Sequence[RoadProfile], base: tuple[str | None, tuple[str
 
 
 def run_one(
-    controller: str, road: int, overrides: Sequence[str], plain: bool = False, convergence: bool = False
+    controller: str,
+    road: int,
+    overrides: Sequence[str],
+    plain: bool = False,
+    convergence: bool = False,
+    baselines: Sequence[str] = ("pi",),
 ) -> dict[str, Any]:
-    """Run one controller over one road of the current worker's sweep; its figures by field name
-    (an MPC run's with its equal-time baseline's, unless ``plain``, and its convergence moves with
-    ``convergence``)."""
+    """Run one controller (``pi``, ``pcc``, ``mpc``) over one road of the current worker's sweep;
+    its figures by field name (a look-ahead run's with each of `baselines` re-tuned to its trip
+    time, unless ``plain``, and an MPC run's convergence moves with ``convergence``)."""
     vehicle_path, config_paths = _WORKER["base"]
     config = load_run_config(vehicle_path, config_paths, overrides)
     profile = _WORKER["roads"][road]
     result = simulate(profile, config, controller)
-    if controller == "pi":
-        return {name: result.summary.get(name) for name in PI_FIELDS}
-    figures = {name: result.summary.get(name) for name in MPC_FIELDS}
-    if plain:
+    figures = {name: result.summary.get(name) for name in RUNS[controller].fields}
+    if controller == "pi" or plain:
         return figures
-    # The PI at v_ref again, in this worker: the equal-time search starts from it and the
-    # convergence moves are measured against it (not one of the sweep's PI tasks).
-    base = sim.simulate(profile, config, "pi")
-    figures.update(_equal_time_figures(profile, config, base, result))
+    # The baselines at v_ref again, in this worker: each equal-time search starts from its baseline's
+    # run and the convergence moves are measured against the PI's (not the sweep's shared runs).
+    bases = {name: sim.simulate(profile, config, name) for name in baselines}
+    for base in bases.values():
+        figures.update(_equal_time_figures(profile, config, base, result))
     if convergence:
         halves = halved_configs(config)
-        moves = convergence_document({"pi": base, "mpc": result}, run_halves(profile, halves), halves)
+        moves = convergence_document({"pi": bases["pi"], "mpc": result}, run_halves(profile, halves), halves)
         figures.update({column: moves[column] for column in CONVERGENCE_COLUMNS})
     return figures
 
 
-def _equal_time_figures(profile: RoadProfile, config: RunConfig, base: RunResult, mpc: RunResult) -> dict[str, Any]:
-    """The PI re-tuned to the MPC run's trip time, starting from `base` (the PI at v_ref); None
-    each where the time was not reached."""
-    figures: dict[str, Any] = dict.fromkeys(EQUAL_TIME_FIELDS)
-    if mpc.stalled:
+def _equal_time_figures(profile: RoadProfile, config: RunConfig, base: RunResult, run: RunResult) -> dict[str, Any]:
+    """`base`'s controller re-tuned to `run`'s trip time, starting from `base` (its run at v_ref):
+    ``equal_time_<base>_*`` (:func:`~truckmpc.sweep.columns.equal_time_fields`), None each where the
+    time was not reached."""
+    fields = equal_time_fields(base.name)
+    figures: dict[str, Any] = dict.fromkeys(fields)
+    if run.stalled:
         return figures
-    found = equal_time_baselines(profile, config, {"pi": base, "mpc": mpc}).get("mpc")
+    found = equal_time_baselines(profile, config, {base.name: base, run.name: run}, base.name).get(run.name)
     if found is not None and found.reached:
-        figures["equal_time_pi_v_ref_kmh"] = found.v_ref_kmh
-        figures["equal_time_pi_fuel_kg"] = found.fuel_kg
-        figures["equal_time_pi_fuel_corrected_kg"] = found.fuel_corrected_kg
+        figures.update(zip(fields, (found.v_ref_kmh, found.fuel_kg, found.fuel_corrected_kg), strict=True))
     return figures
 
 
@@ -112,7 +118,7 @@ class Runner:
         if self.jobs <= 1 or len(tasks) <= 1:
             _init_worker(self.roads, self.base, ignore_sigint=False)
             for task in tasks:
-                yield task, run_one(task.controller, task.road, task.overrides, task.plain, task.convergence)
+                yield task, run_one(*_arguments(task))
             return
         # Workers are spawned (not forked: this process may run threads) while submitting; they
         # inherit an ignored SIGINT through exec, so Ctrl-C reaches only this process.
@@ -124,9 +130,7 @@ class Runner:
                 _init_worker,
                 (self.roads, self.base, True),
             )
-            futures = {
-                self._pool.submit(run_one, t.controller, t.road, t.overrides, t.plain, t.convergence): t for t in tasks
-            }
+            futures = {self._pool.submit(run_one, *_arguments(t)): t for t in tasks}
         finally:
             signal.signal(signal.SIGINT, previous)
         try:
@@ -138,3 +142,8 @@ class Runner:
             raise SweepWorkerDied(
                 "a sweep worker process died (killed? out of memory?); run the same command again to resume"
             ) from None
+
+
+def _arguments(task: Task) -> tuple[Any, ...]:
+    """The arguments of :func:`run_one` for `task`."""
+    return task.controller, task.road, task.overrides, task.plain, task.convergence, task.baselines

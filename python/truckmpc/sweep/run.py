@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from truckmpc.road import PathLike, RoadProfile
-from truckmpc.sweep.columns import PI_FIELDS, damaged_cell, parse_cell, result_cells
+from truckmpc.sweep.columns import DEFAULT_CONTROLLERS
 from truckmpc.sweep.errors import SweepInterrupted
 from truckmpc.sweep.files import (
     PARTIAL_NAME,
@@ -23,21 +23,30 @@ from truckmpc.sweep.files import (
     write_settings,
 )
 from truckmpc.sweep.grid import Axis
-from truckmpc.sweep.plan import Row, SweepPlan, plan_sweep
+from truckmpc.sweep.plan import SHARED_SECTIONS, Row, SweepPlan, plan_sweep
 from truckmpc.sweep.pool import Runner, Task
-from truckmpc.workload import EQUAL_TIME_RUNS, MAX_WORK_S, WorkError, memory_limit_bytes, too_big, too_long
+from truckmpc.sweep.waiting import Run, Waiting
+from truckmpc.workload import EQUAL_TIME_RUNS, MAX_WORK_S, Work, WorkError, memory_limit_bytes, too_big, too_long
 
 
 @dataclass(frozen=True)
 class SweepResult:
-    """A finished sweep: its CSV, its rows (column -> cell text, grid order) and what ran."""
+    """A finished sweep: its CSV, its rows (column -> cell text, grid order) and what ran (runs by
+    controller, this time)."""
 
     csv_path: Path
     columns: tuple[str, ...]
     rows: list[dict[str, str]]
-    pi_runs: int
-    mpc_runs: int
+    runs: Mapping[str, int]
     resumed_rows: int
+
+    @property
+    def pi_runs(self) -> int:
+        return self.runs.get("pi", 0)
+
+    @property
+    def mpc_runs(self) -> int:
+        return self.runs.get("mpc", 0)
 
 
 ProgressHook = Callable[[int, int], None]
@@ -57,10 +66,12 @@ def run_sweep(
     progress: ProgressHook | None = None,
     force: bool = False,
     check_convergence: bool = False,
+    controllers: Sequence[str] = DEFAULT_CONTROLLERS,
 ) -> SweepResult:
-    """Run (or resume) a sweep into directory ``out``: PI and MPC on every road for every
-    combination of ``grid`` (``["horizon_m=250:3000:250", "delta_kmh=0.1,0.2"]`` or
-    ``{"horizon_m": [250, 500]}``); see :mod:`truckmpc.sweep` and :func:`run_plan`.
+    """Run (or resume) a sweep into directory ``out``: the PI and `controllers` (``pcc``, ``mpc``)
+    on every road for every combination of ``grid`` (``["horizon_m=250:3000:250",
+    "delta_kmh=0.1,0.2"]`` or ``{"horizon_m": [250, 500]}``); see :mod:`truckmpc.sweep` and
+    :func:`run_plan`.
 
     Every combination is validated before anything runs or ``out`` is created.
     """
@@ -72,6 +83,7 @@ def run_sweep(
         config_paths=config_paths,
         overrides=overrides,
         check_convergence=check_convergence,
+        controllers=controllers,
     )
     return run_plan(plan, out, jobs=jobs, progress=progress, force=force)
 
@@ -102,8 +114,8 @@ def run_plan(
     done = _resumed_rows(plan, out, notice or _to_stderr)
     resumed = len(done)
     pending = [row for row in plan.rows if row.index not in done]
-    pi_cache = _resumed_pi_figures(plan, done)
-    tasks = _tasks(pending, pi_cache, plan.check_convergence)
+    known = _resumed_runs(plan, done)
+    tasks = _tasks(plan, pending, known)
     _check_work(plan, tasks, jobs, force)
     out.mkdir(parents=True, exist_ok=True)
     write_settings(out, plan.settings, jobs)
@@ -113,7 +125,7 @@ def run_plan(
         progress(len(done), len(plan.rows))
     try:
         with Runner(plan.roads, (plan.vehicle_path, plan.config_paths), jobs) as runner:
-            for index, cells in _rows_as_they_finish(plan, runner.results(tasks), pi_cache):
+            for index, cells in _rows_as_they_finish(plan, pending, runner.results(tasks), known):
                 done[index] = cells
                 partial.append(csv_line(cells))
                 if progress:
@@ -127,8 +139,7 @@ def run_plan(
         write_final(out, header, ordered),
         plan.columns,
         [dict(zip(plan.columns, cells, strict=True)) for cells in ordered],
-        pi_runs=sum(task.controller == "pi" for task in tasks),
-        mpc_runs=len(pending),
+        runs={name: sum(task.controller == name for task in tasks) for name in plan.layout.runs},
         resumed_rows=resumed,
     )
 
@@ -144,8 +155,7 @@ def _check_work(plan: SweepPlan, tasks: Sequence[Task], jobs: int, force: bool) 
     if force or not tasks:
         return
     works = [(plan.rows[t.row].work, t.controller) for t in tasks]
-    # An MPC row also re-tunes the PI to its trip time: some EQUAL_TIME_RUNS runs of the plant.
-    costs = [work.plant_s if c == "pi" else work.total_s + EQUAL_TIME_RUNS * work.plant_s for work, c in works]
+    costs = [_cost(plan.rows[t.row].work, t) for t in tasks]
     at_once = max(1, min(jobs, len(tasks)))
     where = "--grid" if plan.axes else "sweep"
     runs = f"for {len(tasks)} runs on {jobs} process{'es' if jobs > 1 else ''}"
@@ -158,6 +168,16 @@ def _check_work(plan: SweepPlan, tasks: Sequence[Task], jobs: int, force: bool) 
         raise WorkError(f"{where}: {too_long(wall_s, runs)}")
 
 
+def _cost(work: Work, task: Task) -> float:
+    """Estimated seconds of a task [s] from its row's look-ahead `work`: a PI run the plant's; a PCC
+    run the plant's, an MPC run its DP's too, each with some EQUAL_TIME_RUNS runs of the plant per
+    baseline re-tuned to its trip time."""
+    if task.controller == "pi":
+        return work.plant_s
+    own_s = work.plant_s if task.controller == "pcc" else work.total_s
+    return own_s + len(task.baselines) * EQUAL_TIME_RUNS * work.plant_s
+
+
 def _resumed_rows(plan: SweepPlan, out: Path, notice: Callable[[str], None]) -> dict[int, list[str]]:
     """Row index -> cells of the plan's rows already in ``out`` (the first copy of each). A damaged
     row (a cell that is not what the sweep writes there, a wrong number of cells, axis values not in
@@ -168,7 +188,7 @@ def _resumed_rows(plan: SweepPlan, out: Path, notice: Callable[[str], None]) -> 
     dropped: list[str] = []
     for where, cells in finished_rows(out, plan.columns):
         row = by_key.get(tuple(cells[:first_result]))
-        damage = None if row is None else damaged_cell(cells[first_result:], plan.check_convergence)
+        damage = None if row is None else plan.layout.damaged(cells[first_result:])
         problem = "not a row of this sweep" if row is None else damage
         if problem is not None or row is None:
             dropped.append(f"{where}: {problem}")
@@ -180,39 +200,49 @@ def _resumed_rows(plan: SweepPlan, out: Path, notice: Callable[[str], None]) -> 
     return done
 
 
-def _resumed_pi_figures(plan: SweepPlan, done: Mapping[int, Sequence[str]]) -> dict[str, dict[str, Any]]:
-    """PI key -> the PI figures read back from finished rows, so their PI runs are not repeated."""
-    first_pi = len(plan.axes) + 2
-    pi_cache: dict[str, dict[str, Any]] = {}
+def _resumed_runs(plan: SweepPlan, done: Mapping[int, Sequence[str]]) -> dict[Run, dict[str, Any]]:
+    """The shared runs' figures read back from finished rows, so that those runs are not repeated."""
+    first_result = len(plan.axes) + 2
+    known: dict[Run, dict[str, Any]] = {}
     for index, cells in done.items():
-        figures = {k: parse_cell(c) for k, c in zip(PI_FIELDS, cells[first_pi:], strict=False)}
-        pi_cache.setdefault(plan.rows[index].pi_key, figures)
-    return pi_cache
+        for name, key in plan.rows[index].keys.items():
+            if name in SHARED_SECTIONS and (name, key) not in known:
+                known[name, key] = plan.layout.figures(name, cells[first_result:])
+    return known
 
 
-def _tasks(pending: Sequence[Row], pi_cache: Mapping[str, Any], check: bool = False) -> list[Task]:
-    """The PI runs first (every row needs one), once per PI key not known yet, then the MPC runs
-    longest first, so that a pool does not end on one long run while the other workers idle."""
-    pi_rows = {row.pi_key: row for row in pending if row.pi_key not in pi_cache}
-    tasks = [Task("pi", row.road, row.overrides, row.index, key) for key, row in pi_rows.items()]
+def _tasks(plan: SweepPlan, pending: Sequence[Row], known: Mapping[Run, Any]) -> list[Task]:
+    """The runs the pending rows need and `known` lacks: the shared runs first (the PI's, then the
+    PCC's; rows wait for them), once per key, then the rows' own runs longest first, so that a pool
+    does not end on one long run while the other workers idle."""
     by_cost = sorted(pending, key=lambda r: -r.cost)
-    tasks += [Task("mpc", row.road, row.overrides, row.index, row.pi_key, convergence=check) for row in by_cost]
-    return tasks
+    tasks: dict[Run, Task] = {}
+    for name in plan.layout.runs:
+        baselines = plan.layout.baselines(name)
+        convergence = plan.check_convergence and name == "mpc"
+        for row in pending if name in SHARED_SECTIONS else by_cost:
+            run = (name, row.keys[name])
+            if run not in known and run not in tasks:
+                tasks[run] = Task(name, row.road, row.overrides, row.index, run[1], False, convergence, baselines)
+    return list(tasks.values())
 
 
 def _rows_as_they_finish(
-    plan: SweepPlan, results: Iterable[tuple[Task, dict[str, Any]]], pi_cache: dict[str, dict[str, Any]]
+    plan: SweepPlan,
+    pending: Sequence[Row],
+    results: Iterable[tuple[Task, dict[str, Any]]],
+    known: Mapping[Run, dict[str, Any]],
 ) -> Iterator[tuple[int, list[str]]]:
-    """``(row index, cells)`` of each row as soon as both its MPC run and its PI run are done."""
-    waiting: dict[int, dict[str, Any]] = {}
+    """``(row index, cells)`` of each pending row as soon as all its runs are done (at once for a
+    row whose runs all are `known`)."""
+    waiting = Waiting(pending, known)
+    for index in waiting.ready():
+        yield index, _row_cells(plan, index, waiting)
     for task, figures in results:
-        if task.controller == "pi":
-            pi_cache[task.pi_key] = figures
-            ready = [i for i in waiting if plan.rows[i].pi_key == task.pi_key]
-        else:
-            waiting[task.row] = figures
-            ready = [task.row] if task.pi_key in pi_cache else []
-        for index in ready:
-            row = plan.rows[index]
-            cells = result_cells(pi_cache[row.pi_key], waiting.pop(index), plan.check_convergence)
-            yield index, [*plan.row_key(row), *cells]
+        for index in waiting.finished((task.controller, task.key), figures):
+            yield index, _row_cells(plan, index, waiting)
+
+
+def _row_cells(plan: SweepPlan, index: int, waiting: Waiting) -> list[str]:
+    """The cells of row `index`, whose runs are all done."""
+    return [*plan.row_key(plan.rows[index]), *plan.layout.cells(waiting.take(index))]

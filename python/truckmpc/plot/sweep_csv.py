@@ -1,0 +1,83 @@
+"""Reading a sweep directory for its pictures: the rows of ``sweep.csv``, its grid axes and the
+look-ahead controllers it compared with the PI."""
+
+from __future__ import annotations
+
+import csv
+import json
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+from truckmpc.config import KEYS
+from truckmpc.plot.figures import PlotError
+from truckmpc.sweep.columns import ALL_COLUMNS, delta_column, parse_cell
+
+RESULT_COLUMNS = frozenset({"road", "direction", *ALL_COLUMNS})
+"""Column names of sweep.csv that are not grid axes."""
+
+CONFIG_KEYS = frozenset(KEYS)
+"""Column names of sweep.csv that can be grid axes: any vehicle, controller or simulation key."""
+
+COMPARED = (("mpc", "MPC"), ("pcc", "PCC"))
+"""The look-ahead controllers a sweep may compare with the PI, in the order their Δ are drawn."""
+
+
+def read_sweep(directory: Path) -> tuple[list[str], list[dict[str, Any]]]:
+    """The header and the rows (column -> value) of ``sweep.csv``."""
+    path = directory / "sweep.csv"
+    try:
+        with path.open(newline="", encoding="utf-8") as handle:
+            reader = csv.DictReader(handle)
+            header = list(reader.fieldnames or [])
+            rows = [{k: parse_cell(v or "") for k, v in row.items() if k is not None} for row in reader]
+    except OSError as err:
+        raise PlotError(f"{path}: {err.strerror or err}") from err
+    if not compared_controllers(header):
+        needed = " or ".join(f"'{delta_column(name, 'fuel')}'" for name, _ in COMPARED)
+        raise PlotError(f"{path}: no {needed} column")
+    if not rows:
+        raise PlotError(f"{path}: no rows to plot")
+    return header, rows
+
+
+def compared_controllers(header: Sequence[str]) -> list[tuple[str, str]]:
+    """(controller, label) of each look-ahead controller whose Δfuel and Δtime against the PI are
+    columns of the sweep."""
+    return [
+        (name, label)
+        for name, label in COMPARED
+        if all(delta_column(name, kind) in header for kind in ("fuel", "time"))
+    ]
+
+
+def delta_metrics(compared: Sequence[tuple[str, str]]) -> list[tuple[str, str]]:
+    """(column, y label) of each Δ panel row: Δfuel and Δtime of each controller (named when several)."""
+    named = len(compared) > 1
+    return [
+        (delta_column(name, kind), f"{label + ' ' if named else ''}Δ{kind} [%]")
+        for name, label in compared
+        for kind in ("fuel", "time")
+    ]
+
+
+def grid_axes(directory: Path, header: Sequence[str]) -> list[str]:
+    """The grid-axis columns: config keys, and whatever ``sweep.json`` names as its grid."""
+    named: set[str] = set()
+    meta = directory / "sweep.json"
+    if meta.is_file():
+        try:
+            doc = json.loads(meta.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            doc = {}
+        grid = doc.get("grid") if isinstance(doc, dict) else None
+        if isinstance(grid, dict):
+            named = set(grid)
+        elif isinstance(grid, list):
+            named = {axis_name(g) for g in grid if isinstance(g, (str, dict))}
+    return [c for c in header if c not in RESULT_COLUMNS and (c in CONFIG_KEYS or c in named)]
+
+
+def axis_name(entry: str | Mapping[str, Any]) -> str:
+    """The key of one ``grid`` entry of ``sweep.json`` (``{"key": ...}``, older ``{"name": ...}``)."""
+    return entry if isinstance(entry, str) else str(entry.get("key", entry.get("name")))
