@@ -90,7 +90,7 @@ class Vehicle:
 
 @final
 class Road:
-    """A road profile: points, the grade and (optionally) the target speed [km/h] of each segment; flat beyond the end."""
+    """A road: points, the grade and (optionally) the target speed [km/h] of each segment; flat beyond the end."""
 
     def __new__(
         cls,
