@@ -118,8 +118,15 @@ class RunOutput:
     @property
     def trace(self) -> dict[str, npt.NDArray[Any]]: ...
 
-def run(settings: Settings, road: Road, altitude_m: npt.NDArray[np.float64], controller: str) -> RunOutput:
-    """Drive `road` with the built-in controller "pi", "pcc", "mpc" or "optimal" (the GIL released)."""
+def run(
+    settings: Settings,
+    road: Road,
+    altitude_m: npt.NDArray[np.float64],
+    controller: str,
+    controller_road: Road | None = None,
+) -> RunOutput:
+    """Drive `road` with the built-in controller "pi", "pcc", "mpc" or "optimal" (the GIL released),
+    the controller planning on `controller_road` if given."""
 
 def run_python(
     settings: Settings,

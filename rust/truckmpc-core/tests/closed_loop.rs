@@ -8,7 +8,8 @@ use truckmpc_core::sim::{run, RunOutput};
 use truckmpc_core::{CruiseParams, MpcParams, PiParams, SimParams};
 use truckmpc_core::{Road, Vehicle, VehicleParams};
 
-const SIM: SimParams = SimParams { plant_dt_s: 0.05, trace_step_m: 25.0, start_speed_kmh: None };
+const SIM: SimParams =
+    SimParams { plant_dt_s: 0.05, trace_step_m: 25.0, start_speed_kmh: None, controller_mass_kg: None };
 
 /// Flat lead-in of 500 m, a 1000 m hill of `slope`, a flat run-out of 500 m; altitudes per point.
 fn hill(slope: f64) -> (Arc<Road>, Vec<f64>) {
@@ -100,4 +101,29 @@ fn shift_counter_restarts_on_a_shift_and_saturates_at_k_lim() {
     assert_eq!(counter.stages(), 3);
     counter.record(11, 0);
     assert_eq!(counter.stages(), 1, "neutral counts as a shift");
+}
+
+/// The controller plans on its map while the plant drives the road: an MPC told of a 3 % hill on a
+/// flat road speeds up before it and slows down on it (a different run from the one on the true
+/// road, though the plant climbs nothing); its map must span the road.
+#[test]
+fn the_controller_plans_on_its_map_while_the_plant_drives_the_road() {
+    use truckmpc_core::sim::run_on_map;
+    let vehicle = Arc::new(Vehicle::new(VehicleParams::default()).unwrap());
+    let (flat, altitude) = hill(0.0);
+    let (map, _) = hill(0.03);
+    let mpc = MpcParams { horizon_m: 1000.0, delta_kmh: 0.2, ..MpcParams::thesis() };
+    let controller = || {
+        let gears = GearLogic::new(&vehicle, &PiParams::default()).unwrap();
+        RecedingController::new(vehicle.clone(), DpSettings::new(&mpc, &CruiseParams::default()).unwrap(), gears)
+    };
+    let truth = run(&vehicle, &flat, &altitude, &mut controller(), &SIM, 85.0).unwrap();
+    let fooled = run_on_map(&vehicle, &flat, &map, &altitude, &mut controller(), &SIM, 85.0).unwrap();
+    let top = |out: &RunOutput| out.trace.speed_kmh.iter().copied().fold(f64::MIN, f64::max);
+    assert!(top(&truth) < 85.5, "on the true flat road the MPC holds v_ref: {}", top(&truth));
+    assert!(top(&fooled) > 86.0, "told of a climb it gathers speed before it: {}", top(&fooled));
+    assert!(fooled.trace.altitude_m.iter().all(|&h| h == 0.0));
+    let short = Road::new(vec![0.0, 1000.0], vec![0.0]).unwrap();
+    let err = run_on_map(&vehicle, &flat, &short, &altitude, &mut controller(), &SIM, 85.0).unwrap_err();
+    assert!(err.to_string().contains("controller_road"), "{err}");
 }

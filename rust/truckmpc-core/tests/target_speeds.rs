@@ -10,7 +10,8 @@ use truckmpc_core::sim::{run, RunOutput};
 use truckmpc_core::{CruiseParams, MpcParams, PiParams, SimParams};
 use truckmpc_core::{Road, Vehicle, VehicleParams};
 
-const SIM: SimParams = SimParams { plant_dt_s: 0.05, trace_step_m: 10.0, start_speed_kmh: None };
+const SIM: SimParams =
+    SimParams { plant_dt_s: 0.05, trace_step_m: 10.0, start_speed_kmh: None, controller_mass_kg: None };
 
 fn vehicle() -> Arc<Vehicle> {
     Arc::new(Vehicle::new(VehicleParams::default()).unwrap())

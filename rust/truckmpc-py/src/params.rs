@@ -112,6 +112,8 @@ pub fn parameter_specs(py: Python<'_>) -> PyResult<Vec<PyParamSpec>> {
 pub struct PySettings {
     pub inner: Arc<RunSettings>,
     pub vehicle: Arc<Vehicle>,
+    /// The vehicle the controllers model (the truck's unless `controller_mass_kg` is set).
+    pub controller_vehicle: Arc<Vehicle>,
 }
 
 #[pymethods]
@@ -123,9 +125,15 @@ impl PySettings {
             pairs.push((key.extract::<String>()?, to_value(&value)?));
         }
         let settings = RunSettings::from_values(pairs.iter().map(|(k, v)| (k.as_str(), v))).map_err(to_py)?;
-        let vehicle = Vehicle::new(settings.vehicle.clone()).map_err(to_py)?;
-        DpSettings::new(&settings.mpc, &settings.cruise).and_then(|dp| dp.check_vehicle(&vehicle)).map_err(to_py)?;
-        Ok(PySettings { inner: Arc::new(settings), vehicle: Arc::new(vehicle) })
+        let vehicle = Arc::new(Vehicle::new(settings.vehicle.clone()).map_err(to_py)?);
+        let controller_vehicle = match settings.sim.controller_mass_kg {
+            Some(_) => Arc::new(Vehicle::new(settings.controller_vehicle_params()).map_err(to_py)?),
+            None => vehicle.clone(),
+        };
+        DpSettings::new(&settings.mpc, &settings.cruise)
+            .and_then(|dp| dp.check_vehicle(&controller_vehicle))
+            .map_err(to_py)?;
+        Ok(PySettings { inner: Arc::new(settings), vehicle, controller_vehicle })
     }
 
     /// Every key's value, in declaration order.

@@ -93,20 +93,24 @@ fn trace_dict(py: Python<'_>, t: Trace) -> PyResult<Bound<'_, PyDict>> {
 /// Args:
 ///     settings: the run's settings (vehicle, cruise band, PI, MPC, simulation).
 ///     road: the road; `altitude_m` gives the trace's altitude at each of its profile points [m].
-///     controller: "pi", "mpc" or "optimal" (the whole-road optimum).
+///     controller: "pi", "pcc", "mpc" or "optimal" (the whole-road optimum).
+///     controller_road: the road the controller plans on, if not `road` (the plant drives `road`).
 ///
 /// Returns:
 ///     RunOutput.
 #[pyfunction]
+#[pyo3(signature = (settings, road, altitude_m, controller, controller_road=None))]
 fn run(
     py: Python<'_>,
     settings: &PySettings,
     road: &PyRoad,
     altitude_m: PyReadonlyArray1<'_, f64>,
     controller: &str,
+    controller_road: Option<&PyRoad>,
 ) -> PyResult<PyRunOutput> {
     let s = &settings.inner;
-    let vehicle = &settings.vehicle;
+    // The controllers model the truck they are told of; the plant is the truck.
+    let vehicle = &settings.controller_vehicle;
     let mut ctrl: Box<dyn Controller + Send> = match controller {
         "pi" => Box::new(PiController::new(vehicle.clone(), &s.pi, &s.cruise).map_err(to_py)?),
         "mpc" | "optimal" => {
@@ -123,8 +127,11 @@ fn run(
     };
     let altitude_m = altitude_m.as_array().to_vec();
     let (road, start_kmh) = (&road.inner, s.start_speed_kmh(&road.inner));
+    let map = controller_road.map_or(road, |r| &r.inner);
     let mut watched = Interruptible { inner: ctrl.as_mut(), checked: Instant::now(), steps: 0, error: None };
-    let output = py.detach(|| sim::run(vehicle, road, &altitude_m, &mut watched, &s.sim, start_kmh)).map_err(to_py)?;
+    let plant = &settings.vehicle;
+    let output =
+        py.detach(|| sim::run_on_map(plant, road, map, &altitude_m, &mut watched, &s.sim, start_kmh)).map_err(to_py)?;
     if let Some(err) = watched.error {
         return Err(err);
     }

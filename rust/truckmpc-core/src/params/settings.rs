@@ -94,6 +94,15 @@ impl RunSettings {
         self.mpc.check_with(&self.cruise)
     }
 
+    /// The vehicle the controllers model: the truck's, with `controller_mass_kg` as its mass when
+    /// that is set.
+    pub fn controller_vehicle_params(&self) -> VehicleParams {
+        match self.sim.controller_mass_kg {
+            Some(mass_kg) => VehicleParams { mass_kg, ..self.vehicle.clone() },
+            None => self.vehicle.clone(),
+        }
+    }
+
     /// The start speed [km/h] on `road`: `start_speed_kmh`, or when it is null the set speed at
     /// the road's start (v_ref, or the band's on a road with target speeds).
     pub fn start_speed_kmh(&self, road: &Road) -> f64 {

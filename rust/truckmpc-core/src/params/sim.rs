@@ -12,5 +12,7 @@ declare_params! {
         trace_step_m: f64 = 25.0, unit "m", range Range::positive_up_to(1e5);
         /// Speed at the start of the road; null starts at v_ref.
         start_speed_kmh: Option<f64> = None, unit "km/h", range Range::positive_up_to(250.0);
+        /// The mass the controllers assume, when it is not the truck's (a load the controller does not know); null: mass_kg.
+        controller_mass_kg: Option<f64> = None, unit "kg", range Range::positive_up_to(1e6);
     }
 }

@@ -12,7 +12,7 @@ pub mod run;
 pub mod summary;
 pub mod trace;
 
-pub use run::{run, RunOutput};
+pub use run::{run, run_on_map, RunOutput};
 pub use summary::RunSummary;
 pub use trace::Trace;
 

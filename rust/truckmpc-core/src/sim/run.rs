@@ -33,16 +33,48 @@ pub fn run(
     sim: &SimParams,
     start_speed_kmh: f64,
 ) -> CoreResult<RunOutput> {
+    run_on_map(vehicle, road, road, altitude_m, controller, sim, start_speed_kmh)
+}
+
+/// As [`run`], with the controller planning on `map` while the plant drives `road`: a map that
+/// is not the road (a noisy import of it, a grade bias). The map must span the road's distances to
+/// within 2 % of its length (beyond its end the controller sees it flat, as on any road).
+pub fn run_on_map(
+    vehicle: &Arc<Vehicle>,
+    road: &Arc<Road>,
+    map: &Road,
+    altitude_m: &[f64],
+    controller: &mut dyn Controller,
+    sim: &SimParams,
+    start_speed_kmh: f64,
+) -> CoreResult<RunOutput> {
     let wall = Instant::now();
     check_inputs(road, altitude_m, sim, start_speed_kmh)?;
+    check_map(road, map)?;
     let mut closed = ClosedLoop::new(vehicle, road, sim, start_speed_kmh);
-    controller.start(road, &closed.state);
-    let last_u = closed.drive(road, controller);
+    controller.start(map, &closed.state);
+    let last_u = closed.drive(map, controller);
     closed.recorder.finish(&closed.state, last_u);
     let compute_time_s = wall.elapsed().as_secs_f64();
     let summary = RunSummary::new(&closed.state, &closed.outcome, compute_time_s, controller.solver_stats());
     let trace = closed.recorder.into_trace(road, altitude_m, vehicle);
     Ok(RunOutput { controller: controller.name(), summary, trace })
+}
+
+/// Share of the road's length by which the controller's map may differ at either end.
+const MAP_SLACK: f64 = 0.02;
+
+fn check_map(road: &Road, map: &Road) -> CoreResult<()> {
+    let slack_m = MAP_SLACK * (road.end_m() - road.start_m());
+    if (map.start_m() - road.start_m()).abs() > slack_m || (map.end_m() - road.end_m()).abs() > slack_m {
+        let expected = format!("a map spanning the road's {:.0}..{:.0} m to within 2 %", road.start_m(), road.end_m());
+        return Err(CoreError::invalid("controller_road", expected).got(format!(
+            "{:.0}..{:.0} m",
+            map.start_m(),
+            map.end_m()
+        )));
+    }
+    Ok(())
 }
 
 fn check_inputs(road: &Road, altitude_m: &[f64], sim: &SimParams, start_speed_kmh: f64) -> CoreResult<()> {
