@@ -36,13 +36,14 @@ from typing import Annotated, Any, NoReturn
 import typer
 from typer.core import TyperGroup
 
-from truckmpc import _core
+from truckmpc import _core, robustness
+from truckmpc.atomic import atomic_write_text
 from truckmpc.bench import BENCH_HELP, bench_cmd
 from truckmpc.config import RunConfig, load_run_config
 from truckmpc.convergence import convergence_document, halved_configs, run_halves
 from truckmpc.equal_time import LOOK_AHEAD, OPTIMISERS, equal_time_baselines
 from truckmpc.errors import ConfigError, TruckmpcError
-from truckmpc.record import RunRequest, load_replay, run_record
+from truckmpc.record import RunRequest, load_replay, run_record, with_controller_road
 from truckmpc.results import check_run_dir, format_table, write_outputs
 from truckmpc.road import COLUMNS_COMMENT, default_test_track, load_road, make_section, write_road, write_shipped_roads
 from truckmpc.signals import Stopped, received_signal, stopping_on_signals
@@ -223,6 +224,14 @@ def simulate_cmd(
         typer.Option("--replay", metavar="SUMMARY", help="Rerun exactly what a summary.json records (road, settings)."),
     ] = None,
     force: ForceOpt = False,
+    controller_road: Annotated[
+        Path | None,
+        typer.Option(
+            "--controller-road",
+            metavar="FILE",
+            help="A road the controllers plan on while the truck drives --road (a noisy import, a grade bias).",
+        ),
+    ] = None,
     check_convergence: Annotated[
         bool,
         typer.Option(
@@ -238,7 +247,7 @@ def simulate_cmd(
     A directory holding an earlier run is replaced whole.
     """
     if replay is not None:
-        options = (road, controller, vehicle, config, set_, reverse, check_convergence)
+        options = (road, controller, vehicle, config, set_, reverse, check_convergence, controller_road)
         given = [name for name, value in _run_options(*options) if value]
         if given:
             raise typer.BadParameter(
@@ -251,10 +260,11 @@ def simulate_cmd(
     else:
         run_config = _run_config(vehicle, config, set_)
         profile = default_test_track() if road is None else load_road(road)
-        profile = profile.reversed() if reverse else profile
+        profile = with_controller_road(profile.reversed() if reverse else profile, controller_road, reverse)
         names = controller_names(BOTH if controller is None else controller)
         inputs = (_text(vehicle), tuple(map(str, config or ())), tuple(set_ or ()))
-        request = RunRequest(_text(road), reverse, names, *inputs, check_convergence=check_convergence)
+        told = _text(controller_road)
+        request = RunRequest(_text(road), reverse, names, *inputs, check_convergence, controller_road_path=told)
     halves = _halved_configs(request, run_config)
     # Each look-ahead run is also compared with the PI re-tuned to its trip time.
     retuned = ["pi"] * EQUAL_TIME_RUNS * sum(name in LOOK_AHEAD for name in request.controllers)
@@ -300,12 +310,47 @@ def _halved_configs(request: RunRequest, config: RunConfig) -> dict[str, RunConf
 
 def _run_options(*values: object) -> list[tuple[str, object]]:
     """The simulate options that --replay replaces, with the values given."""
-    names = ("--road", "--controller", "--vehicle", "--config", "--set", "--reverse", "--check-convergence")
+    names = (
+        "--road",
+        "--controller",
+        "--vehicle",
+        "--config",
+        "--set",
+        "--reverse",
+        "--check-convergence",
+        "--controller-road",
+    )
     return list(zip(names, values, strict=True))
 
 
 def _text(path: Path | None) -> str | None:
     return None if path is None else str(path)
+
+
+@app.command("robustness")
+def robustness_cmd(
+    road: Annotated[Path, typer.Option("--road", metavar="FILE", help="Road profile the truck drives.")],
+    controller: Annotated[
+        str, typer.Option("--controller", help="The look-ahead controller studied: mpc, optimal or pcc.")
+    ] = "mpc",
+    seeds: Annotated[int, typer.Option("--seeds", min=1, help="Noisy maps per grade-noise level.")] = 2,
+    vehicle: VehicleOpt = None,
+    config: ConfigOpt = None,
+    set_: SetOpt = None,
+    out: Annotated[Path | None, typer.Option("--out", metavar="JSON", help="Also write the rows as JSON.")] = None,
+) -> None:
+    """How much of the controller's saving survives a mass it does not know (+-25 %) and a map with
+    grade noise (sigma 0.2, 0.5, 1 %): each case against the PI on the true truck and road."""
+    if controller not in ("mpc", "optimal", "pcc"):
+        raise typer.BadParameter(f"expected mpc, optimal or pcc, got {controller!r}", param_hint="'--controller'")
+    run_config = _run_config(vehicle, config, set_)
+    profile = load_road(road)
+    with stopping_on_signals(), status_line(f"robustness of {controller}: driving {profile.name}"):
+        rows = robustness.study(profile, run_config, controller, tuple(range(1, seeds + 1)))
+    typer.echo(robustness.format_study(rows, controller))
+    if out is not None:
+        atomic_write_text(out, json.dumps({"road": profile.name, "controller": controller, "rows": rows}, indent=2))
+        typer.echo(f"wrote {out}")
 
 
 @app.command("sweep")
@@ -336,6 +381,14 @@ def sweep_cmd(
     set_: SetOpt = None,
     quiet: QuietOpt = False,
     force: ForceOpt = False,
+    controller_road: Annotated[
+        Path | None,
+        typer.Option(
+            "--controller-road",
+            metavar="FILE",
+            help="A road the controllers plan on while the truck drives --road (a noisy import, a grade bias).",
+        ),
+    ] = None,
     check_convergence: Annotated[
         bool,
         typer.Option(

@@ -1,14 +1,17 @@
 """What was run, recorded in `summary.json` so that the run can be repeated exactly.
 
 The record names the program and its version, the road (name, file, length, SHA-256 of its points,
-direction), the controllers, the inputs as the user gave them (vehicle file, overlay files, `--set`
-overrides) and every resolved parameter. `truckmpc simulate --replay summary.json` rebuilds the run
-from the resolved parameters and the road file, checking that the road is still the one that was run.
+direction), the map the controllers planned on if it was another road, the controllers, the inputs
+as the user gave them (vehicle file, overlay files, `--set` overrides) and every resolved parameter.
+`truckmpc simulate --replay summary.json` rebuilds the run from the resolved parameters and the
+road file, checking that the road is still the one that was run.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import json
+import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from importlib.metadata import PackageNotFoundError, version
@@ -36,6 +39,8 @@ class RunRequest:
     overrides: tuple[str, ...] = ()
     check_convergence: bool = False
     """Whether the MPC also ran at half δ and half S (`--check-convergence`)."""
+    controller_road_path: str | None = None
+    """The road the controllers planned on, if not the road driven (`--controller-road`)."""
 
 
 def program_version() -> str:
@@ -61,6 +66,7 @@ def run_record(request: RunRequest, profile: RoadProfile, config: RunConfig) -> 
             "reverse": request.reverse,
         },
         "controllers": list(request.controllers),
+        "controller_road": _controller_road(request, profile),
         "check_convergence": request.check_convergence,
         "inputs": {
             "vehicle": request.vehicle_path,
@@ -69,6 +75,22 @@ def run_record(request: RunRequest, profile: RoadProfile, config: RunConfig) -> 
         },
         "settings": settings,
     }
+
+
+def _controller_road(request: RunRequest, profile: RoadProfile) -> dict[str, Any] | None:
+    """The `controller_road` record: the map the controllers planned on, or None."""
+    told = profile.controller_map
+    if told is None or request.controller_road_path is None:
+        return None
+    return {"path": str(Path(request.controller_road_path).resolve()), "sha256": told.sha256()}
+
+
+def with_controller_road(profile: RoadProfile, path: str | os.PathLike[str] | None, reverse: bool) -> RoadProfile:
+    """`profile` with the road read from `path` (driven the same way) as the controllers' map."""
+    if path is None:
+        return profile
+    told = load_road(path)
+    return dataclasses.replace(profile, controller_map=told.reversed() if reverse else told)
 
 
 def load_replay(path: Path) -> tuple[RunRequest, RoadProfile, RunConfig]:
@@ -90,6 +112,11 @@ def load_replay(path: Path) -> tuple[RunRequest, RoadProfile, RunConfig]:
     reverse = _field(road, "reverse", bool, f"{where}: run.road")
     profile = default_test_track() if road_path is None else load_road(road_path)
     profile = profile.reversed() if reverse else profile
+    told = run.get("controller_road")
+    told_path = _field(told, "path", str, f"{where}: run.controller_road") if told is not None else None
+    profile = with_controller_road(profile, told_path, reverse)
+    if told is not None and profile.controller_map is not None:
+        _check_hash(where, "run.controller_road", told, profile.controller_map, told_path)
     recorded = _field(road, "sha256", str, f"{where}: run.road")
     if profile.sha256() != recorded:
         raise ConfigError(
@@ -102,7 +129,19 @@ def load_replay(path: Path) -> tuple[RunRequest, RoadProfile, RunConfig]:
     check = run.get("check_convergence", False)
     if not isinstance(check, bool):
         raise ConfigError(f"{where}: run: key 'check_convergence': expected bool, got {type(check).__name__}")
-    return RunRequest(road_path, reverse, controllers, *given, check_convergence=check), profile, config
+    request = RunRequest(
+        road_path, reverse, controllers, *given, check_convergence=check, controller_road_path=told_path
+    )
+    return request, profile, config
+
+
+def _check_hash(where: str, key: str, record: Mapping[str, Any], profile: RoadProfile, path: str | None) -> None:
+    recorded = _field(record, "sha256", str, f"{where}: {key}")
+    if profile.sha256() != recorded:
+        raise ConfigError(
+            f"{where}: {key}.sha256: expected the road that was run ({recorded[:12]}...), "
+            f"got {profile.sha256()[:12]}... from {path}"
+        )
 
 
 def _field(doc: Mapping[str, Any], key: str, kind: type | tuple[type, ...], where: str) -> Any:

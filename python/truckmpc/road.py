@@ -72,13 +72,15 @@ class RoadProfile:
     """A road: points `distance_m` [m] (strictly increasing, from wherever the road starts) with
     their `altitude_m` [m] (relative) and, optionally, `target_speed_kmh` [km/h], the target speed
     from each point to the next (the last point's is that beyond the end). Arrays are float64 and
-    read-only."""
+    read-only. `controller_map`, if given, is the road the controllers are told of (they plan on
+    it while the truck drives this one): a noisy import of it, a grade bias."""
 
     name: str
     distance_m: np.ndarray
     altitude_m: np.ndarray
     source: str | None = None
     target_speed_kmh: np.ndarray | None = None
+    controller_map: RoadProfile | None = None
     _road: _core.Road | None = field(default=None, init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -148,7 +150,9 @@ class RoadProfile:
             # Segment i of the reversed road is segment n - 1 - i of this one.
             segments = self.target_speed_kmh[:-1][::-1]
             targets = np.append(segments, segments[-1])
-        return RoadProfile(name, (start + end) - self.distance_m[::-1], self.altitude_m[::-1], self.source, targets)
+        mirrored = None if self.controller_map is None else self.controller_map.reversed()
+        distance = (start + end) - self.distance_m[::-1]
+        return RoadProfile(name, distance, self.altitude_m[::-1], self.source, targets, mirrored)
 
     def resampled(self, step_m: float) -> RoadProfile:
         """The altitude linearly interpolated onto points every `step_m` metres from the start,

@@ -98,7 +98,7 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
     Parameters
     ----------
     road
-        The road profile.
+        The road profile (the controllers plan on its `controller_map` if it has one).
     config
         The run's settings (vehicle, cruise band, controllers, simulation).
     controller
@@ -123,9 +123,14 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
     if isinstance(controller, str):
         if controller not in CONTROLLERS:
             raise ConfigError(f"controller: expected one of {', '.join(CONTROLLERS)}, got {controller!r}")
-        out = _core.run(config.settings, road.core(), altitude_m, controller)
+        told = None if road.controller_map is None else road.controller_map.core()
+        out = _core.run(config.settings, road.core(), altitude_m, controller, told)
         name, extra = controller, _mpc_settings(config) if controller in DP_CONTROLLERS else {}
     else:
+        if road.controller_map is not None:
+            raise ConfigError(
+                f"controller_road: expected a built-in controller, got the Python controller {controller.name!r}"
+            )
         out = _core.run_python(config.settings, road.core(), altitude_m, controller, road, PlantState)
         summary_of = getattr(controller, "summary", None)
         name, extra = controller.name, dict(summary_of()) if callable(summary_of) else {}

@@ -1,0 +1,158 @@
+"""How much of a look-ahead controller's saving survives a wrong model of the world.
+
+A controller on a real truck knows neither its mass nor the road's slope exactly. Two kinds of
+error are studied, each against the PI on the same true truck and road (the PI does not look ahead,
+so a wrong map or mass does not change it):
+
+- **mass**: the truck weighs `mass_kg` × (1 ± error) while the controller assumes `mass_kg`
+  (`controller_mass_kg`); the reference is the same controller told the true mass;
+- **map**: the controller plans on the road with grade noise added (`controller_map`): an AR(1)
+  process sampled every `step_m`, standard deviation σ [% of grade] and correlation length
+  `correlation_m` (the error of a terrain model or a GPS import after smoothing), integrated to
+  altitude; the reference is the controller on the true map.
+
+For each case the table gives Δfuel and Δtime of the controller against the PI [%], Δfuel at equal
+trip time (the PI re-tuned to the controller's time), and the share of the reference's equal-time
+saving that is kept.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from truckmpc.compare import compare
+from truckmpc.config import RunConfig, config_from_values
+from truckmpc.equal_time import equal_time_baselines
+from truckmpc.road import RoadProfile
+from truckmpc.sim import simulate
+from truckmpc.units import PCT_PER_FRACTION
+
+MASS_ERRORS = (-0.25, 0.25)
+"""Relative errors of the truck's mass the controller does not know (the truck is 30 t or 50 t
+while the controller assumes 40 t)."""
+
+GRADE_SIGMAS_PCT = (0.2, 0.5, 1.0)
+"""Standard deviations of the map's grade noise [% of grade]."""
+
+CORRELATION_M = 100.0
+"""Correlation length of the grade noise [m]."""
+
+NOISE_STEP_M = 25.0
+"""Spacing of the noisy map's points [m]."""
+
+
+def noisy_map(road: RoadProfile, sigma_pct: float, seed: int, correlation_m: float = CORRELATION_M) -> RoadProfile:
+    """`road` with AR(1) grade noise of standard deviation `sigma_pct` [% of grade] and correlation
+    length `correlation_m` [m] added, on points every NOISE_STEP_M metres (and the end)."""
+    fine = road.resampled(NOISE_STEP_M)
+    step_m = np.diff(fine.distance_m)
+    rho = np.exp(-step_m / correlation_m)
+    shocks = np.random.default_rng(seed).standard_normal(step_m.size)
+    sigma = sigma_pct / PCT_PER_FRACTION
+    noise = np.empty(step_m.size)
+    noise[0] = sigma * shocks[0]
+    for i in range(1, step_m.size):
+        noise[i] = rho[i] * noise[i - 1] + sigma * math.sqrt(1.0 - rho[i] ** 2) * shocks[i]
+    altitude = fine.altitude_m + np.concatenate([[0.0], np.cumsum(noise * step_m)])
+    name = f"{road.name}-grade-noise-{sigma_pct:g}pct-seed{seed}"
+    return RoadProfile(name, fine.distance_m, altitude, road.source, fine.target_speed_kmh)
+
+
+@dataclass(frozen=True)
+class Case:
+    """One world: the truck's mass [kg], the mass the controller assumes [kg] and its map's grade
+    noise [% of grade, 0: the true road] with the noise's seed."""
+
+    label: str
+    mass_kg: float
+    controller_mass_kg: float
+    sigma_pct: float = 0.0
+    seed: int = 0
+
+
+def cases(mass_kg: float, seeds: Sequence[int]) -> list[Case]:
+    """The studied cases: the exact model, each mass error (with its own exact reference), each
+    grade noise level for each seed."""
+    out = [Case("exact", mass_kg, mass_kg)]
+    for error in MASS_ERRORS:
+        truck = mass_kg * (1.0 + error)
+        out.append(Case(f"truck {truck / 1000:g} t, told it (reference)", truck, truck))
+        out.append(Case(f"truck {truck / 1000:g} t, controller assumes {mass_kg / 1000:g} t", truck, mass_kg))
+    for sigma in GRADE_SIGMAS_PCT:
+        out += [Case(f"map grade noise {sigma:g} %, seed {seed}", mass_kg, mass_kg, sigma, seed) for seed in seeds]
+    return out
+
+
+def run_case(road: RoadProfile, config: RunConfig, case: Case, controller: str = "mpc") -> dict[str, Any]:
+    """Drive the PI and `controller` in `case`'s world; Δfuel, Δtime and Δfuel at equal time [%]."""
+    values = {**config.settings.values(), "mass_kg": case.mass_kg, "controller_mass_kg": case.controller_mass_kg}
+    world = config_from_values(values, case.label)
+    told = noisy_map(road, case.sigma_pct, case.seed) if case.sigma_pct > 0 else None
+    results = {"pi": simulate(road, world, "pi"), controller: simulate(_with_map(road, told), world, controller)}
+    deltas = compare(results["pi"].summary, results[controller].summary, "pi", controller)
+    found = equal_time_baselines(road, world, results).get(controller)
+    equal = None
+    if found is not None and found.reached and found.fuel_kg:
+        equal = PCT_PER_FRACTION * (results[controller].summary["fuel_kg"] - found.fuel_kg) / found.fuel_kg
+    return {
+        "case": case.label,
+        "mass_kg": case.mass_kg,
+        "controller_mass_kg": case.controller_mass_kg,
+        "grade_sigma_pct": case.sigma_pct,
+        "seed": case.seed,
+        "delta_fuel_pct": deltas.delta_fuel_pct,
+        "delta_time_pct": deltas.delta_time_pct,
+        "delta_fuel_equal_time_pct": equal,
+        "not_comparable": deltas.not_comparable,
+    }
+
+
+def _with_map(road: RoadProfile, told: RoadProfile | None) -> RoadProfile:
+    return road if told is None else dataclasses.replace(road, controller_map=told)
+
+
+def kept_shares(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Each row with `kept_pct`: its equal-time saving as a share of its reference's [%] (the exact
+    model at the same truck mass); None where either is missing or the reference saves nothing."""
+    exact = [row for row in rows if row["controller_mass_kg"] == row["mass_kg"] and not row["grade_sigma_pct"]]
+    reference = {row["mass_kg"]: row for row in exact}
+    out = []
+    for row in rows:
+        base = reference.get(row["mass_kg"])
+        mine, ref = row["delta_fuel_equal_time_pct"], None if base is None else base["delta_fuel_equal_time_pct"]
+        kept = None if mine is None or ref is None or ref >= 0 else PCT_PER_FRACTION * mine / ref
+        out.append({**row, "kept_pct": kept})
+    return out
+
+
+def study(
+    road: RoadProfile, config: RunConfig, controller: str = "mpc", seeds: Sequence[int] = (1, 2)
+) -> list[dict[str, Any]]:
+    """Every case of :func:`cases` for `road`, with the shares of the saving kept."""
+    rows = [run_case(road, config, case, controller) for case in cases(config.settings.values()["mass_kg"], seeds)]
+    return kept_shares(rows)
+
+
+def format_study(rows: list[dict[str, Any]], controller: str) -> str:
+    """The study as a text table: Δfuel, Δtime and Δfuel at equal time against the PI [%], and the
+    share of the reference's equal-time saving kept [%]."""
+    header = f"{'case':<44} {'dfuel %':>8} {'dtime %':>8} {'dfuel eq-t %':>13} {'kept %':>7}"
+    lines = [f"{controller} against the pi on the true truck and road", header]
+    for row in rows:
+        cells = [_cell(row[key], width) for key, width in _COLUMNS]
+        note = f"  ({row['not_comparable']})" if row["not_comparable"] else ""
+        lines.append(f"{row['case']:<44} " + " ".join(cells) + note)
+    return "\n".join(lines)
+
+
+_COLUMNS = (("delta_fuel_pct", 8), ("delta_time_pct", 8), ("delta_fuel_equal_time_pct", 13), ("kept_pct", 7))
+
+
+def _cell(value: float | None, width: int) -> str:
+    return f"{'n/a':>{width}}" if value is None else f"{value:>+{width}.2f}"
