@@ -90,7 +90,8 @@ class Vehicle:
 
 @final
 class Road:
-    """A road profile: points, the grade and (optionally) the target speed [km/h] of each segment; flat beyond its end."""
+    """A road profile: points, the grade and (optionally) the target speed [km/h] of each segment; flat beyond
+    its end."""
 
     def __new__(
         cls,
