@@ -6,10 +6,11 @@ altitudes over the difference of the distances. Slopes are grades: 0.01 = 1 %, p
 
 A profile may also carry a target speed [km/h] per segment (a driving cycle's, or the speed limit):
 the cruise controllers' set speed and band then follow it along the road; and stops (a driving
-cycle's standstills, each at a point of the road with its duration [s]).
+cycle's standstills, each at a point of the road with its duration [s]), which the simulation does
+not drive through: it drives the stop-free legs between them (:mod:`truckmpc.legs`).
 
-Files: :func:`load_road` reads a road CSV (:mod:`truckmpc.road_csv`, format there);
-:func:`write_road` writes it.
+Files: :func:`load_road` reads a road CSV (:mod:`truckmpc.road_csv`, format there) or a VECTO
+driving cycle `.vdri` (:mod:`truckmpc.vdri`); :func:`write_road` writes the CSV.
 """
 
 from __future__ import annotations
@@ -243,9 +244,12 @@ def _grid(start_m: float, end_m: float, step_m: float) -> np.ndarray:
 
 
 def load_road(path: PathLike) -> RoadProfile:
-    """Read a road CSV (:func:`truckmpc.road_csv.read_road_csv`); errors name the file and line."""
-    from . import road_csv
+    """Read a road file: a VECTO driving cycle if the name ends in `.vdri` (:func:`truckmpc.vdri.read_vdri`),
+    else a road CSV (:func:`truckmpc.road_csv.read_road_csv`); errors name the file and line."""
+    from . import road_csv, vdri
 
+    if Path(path).suffix.lower() == vdri.SUFFIX:
+        return vdri.read_vdri(path)
     return road_csv.read_road_csv(path)
 
 
