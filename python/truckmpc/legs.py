@@ -162,8 +162,10 @@ def merge_legs(road: RoadProfile, results: Sequence[RunResult], bounds: Sequence
     summary["stops_not_simulated"] = stops_document(road)
     if len(results) < len(bounds):
         skipped, next_m = len(bounds) - len(results), bounds[len(results)][0]
+        legs = "the later leg" if skipped == 1 else f"the {skipped} later legs"
         summary["message"] = (
-            f"{summary['message']}; the {skipped} later legs (from km {next_m / M_PER_KM:.2f}) were not driven"
+            f"{summary['message']}; {legs} (from km {next_m / M_PER_KM:.2f}) {'was' if skipped == 1 else 'were'} "
+            "not driven"
         )
     trace = _merged_trace([result.trace for result in results])
     return dataclasses.replace(results[0], road=road.name, summary=summary, trace=trace)
