@@ -14,7 +14,7 @@ from typer.testing import CliRunner
 from truckmpc import load_road, load_run_config, simulate
 from truckmpc.cli import app
 from truckmpc.equal_time import TIME_TOLERANCE, baseline_runner, equal_time, kinetic_correction_kg
-from truckmpc.road import make_section
+from truckmpc.road import RoadProfile, make_section
 
 runner = CliRunner()
 SHARED_ROADS = Path(__file__).resolve().parents[1] / ".." / "shared" / "roads"
@@ -142,3 +142,23 @@ def test_controller_list_and_comparisons(tmp_path: Path) -> None:
         failed = runner.invoke(app, ["simulate", "--controller", bad, "--out", str(tmp_path / "bad")])
         assert failed.exit_code == 2 and failed.output.count("\n") == 1 and "--controller" in failed.output
         assert not (tmp_path / "bad").exists()
+
+
+def test_on_a_road_with_target_speeds_the_search_moves_the_target_offset() -> None:
+    """On a road whose target (70 km/h) is below v_ref (85), v_ref only caps it: the equal-time
+    baseline moves target_offset_kmh instead (x = v_ref + offset). A trip time made at offset +1.3
+    is found there, and the document reports v_ref kept and the offset."""
+    road = RoadProfile("target-70", [0.0, 3000.0, 6000.0], [0.0, 0.0, 0.0], target_speed_kmh=[70.0] * 3)
+    config = load_run_config()
+    run_at = baseline_runner(road, config)
+    base = run_at(85.0)
+    assert base.summary["mean_speed_kmh"] == pytest.approx(70.0, abs=0.5)
+    assert run_at(87.0).summary["mean_speed_kmh"] == pytest.approx(72.0, abs=0.5)
+    target_s = run_at(86.3).summary["time_s"]
+    c = config.settings.kinetic_fuel_g_per_half_v2
+    found = equal_time(run_at, 85.0, 35.0, base, target_s, c, offset_from_kmh=85.0)
+    assert found.reached, found.reason
+    doc = found.document()
+    assert doc["pi_v_ref_kmh"] == 85.0
+    assert doc["pi_target_offset_kmh"] == pytest.approx(1.3, abs=0.05)
+    assert "pi_target_offset_kmh" not in equal_time(run_at, 85.0, 35.0, base, target_s, c).document()

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import hashlib
 import re
 from pathlib import Path
 
@@ -13,6 +14,8 @@ from hypothesis import strategies as st
 from truckmpc.road import (
     RoadError,
     RoadProfile,
+    Stop,
+    concatenate,
     default_test_track,
     load_road,
     make_section,
@@ -223,6 +226,79 @@ def test_write_then_load_round_trips(
     back = load_road(path)
     np.testing.assert_allclose(back.distance_m, road.distance_m, atol=5e-4)
     np.testing.assert_allclose(back.altitude_m, road.altitude_m, atol=5e-7)
+
+
+# --- stops ----------------------------------------------------------------------------------
+
+
+def stopped_road() -> RoadProfile:
+    """600 m with targets and stops at 200 m (30 s) and at the end (5 s)."""
+    return RoadProfile(
+        "stopped",
+        [0.0, 200.0, 450.0, 600.0],
+        [0.0, 2.0, 1.0, 1.0],
+        None,
+        [60.0, 80.0, 70.0, 70.0],
+        (Stop(200.0, 30.0), Stop(600.0, 5.0)),
+    )
+
+
+@pytest.mark.parametrize(
+    ("stops", "match"),
+    [
+        ((Stop(150.0, 30.0),), "expected it at a point"),
+        ((Stop(200.0, 0.0),), "duration > 0"),
+        ((Stop(450.0, 1.0), Stop(200.0, 1.0)), "increasing distance"),
+        (((200.0, 30.0),), "expected Stop"),
+    ],
+)
+def test_profile_checks_its_stops(stops: tuple, match: str) -> None:
+    with pytest.raises(RoadError, match=match):
+        RoadProfile("r", [0.0, 200.0, 450.0], [0.0, 0.0, 0.0], stops=stops)
+
+
+def test_stops_enter_the_hash_only_when_there_are_some() -> None:
+    road = stopped_road()
+    plain = RoadProfile("plain", road.distance_m, road.altitude_m, target_speed_kmh=road.target_speed_kmh)
+    digest = hashlib.sha256(road.distance_m.tobytes())
+    digest.update(road.altitude_m.tobytes())
+    digest.update(road.target_speed_kmh.tobytes())
+    assert plain.sha256() == digest.hexdigest()
+    assert road.sha256() != plain.sha256()
+
+
+def test_reversed_and_resampled_keep_the_stops() -> None:
+    road = stopped_road()
+    assert road.reversed().stops == (Stop(0.0, 5.0), Stop(400.0, 30.0))
+    assert road.reversed().reversed().stops == road.stops
+    resampled = road.resampled(75.0)
+    assert resampled.stops == road.stops
+    assert 200.0 in resampled.distance_m
+
+
+def test_concatenate_moves_stops_and_merges_those_meeting_at_a_join() -> None:
+    road = stopped_road()
+    twice = concatenate([road, road], "twice")
+    assert twice.stops == (Stop(200.0, 30.0), Stop(600.0, 5.0), Stop(800.0, 30.0), Stop(1200.0, 5.0))
+    starts = RoadProfile("starts", [0.0, 100.0], [0.0, 0.0], None, [50.0, 50.0], (Stop(0.0, 7.0),))
+    assert concatenate([road, starts], "joined").stops == (Stop(200.0, 30.0), Stop(600.0, 12.0))
+
+
+def test_stops_round_trip_through_the_csv(tmp_path: Path) -> None:
+    road = stopped_road()
+    write_road(road, tmp_path / "stopped.csv")
+    text = (tmp_path / "stopped.csv").read_text()
+    assert (
+        "distance_m,altitude_m,grade,target_speed_kmh,stop_s\n" in text
+        and "\n200.000,2.000000,-0.004000,80,30\n" in text
+    )
+    back = load_road(tmp_path / "stopped.csv")
+    assert back.stops == road.stops and back.sha256() == road.sha256()
+
+
+def test_a_negative_stop_time_in_a_csv_is_an_error(tmp_path: Path) -> None:
+    path = write(tmp_path, "distance_m,altitude_m,stop_s\n0,0,0\n100,0,-3\n")
+    road_error(path, ":3:", "stop_s", ">= 0 s")
 
 
 # --- generated sections ---------------------------------------------------------------------

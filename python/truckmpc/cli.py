@@ -14,6 +14,7 @@ Commands::
     truckmpc road make {flat,hill,crest,depression} --length-m L [--slope-pct A] [--lead-m X]
                        [--tail-m Y] -o FILE
     truckmpc road regenerate [--dir roads]
+    truckmpc road import vdri FILE -o FILE
     truckmpc bench [--json] [--road FILE] [--quick] [--set key=value ...]
     truckmpc plot DIR [--svg] [--out FILE_OR_DIR]
 
@@ -43,13 +44,23 @@ from truckmpc.config import RunConfig, load_run_config
 from truckmpc.convergence import convergence_document, halved_configs, run_halves
 from truckmpc.equal_time import LOOK_AHEAD, OPTIMISERS, equal_time_baselines
 from truckmpc.errors import ConfigError, TruckmpcError
+from truckmpc.legs import stops_line
 from truckmpc.record import RunRequest, load_replay, run_record, with_controller_road
 from truckmpc.results import check_run_dir, format_table, write_outputs
-from truckmpc.road import COLUMNS_COMMENT, default_test_track, load_road, make_section, write_road, write_shipped_roads
+from truckmpc.road import (
+    COLUMNS_COMMENT,
+    RoadProfile,
+    default_test_track,
+    load_road,
+    make_section,
+    write_road,
+    write_shipped_roads,
+)
 from truckmpc.signals import Stopped, received_signal, stopping_on_signals
 from truckmpc.sim import CONTROLLERS, simulate
 from truckmpc.status import status_line
 from truckmpc.units import KMH_PER_MPS, M_PER_KM, PCT_PER_FRACTION
+from truckmpc.vdri import cycle_summary, import_comments, read_vdri
 from truckmpc.workload import EQUAL_TIME_RUNS, check_runs, duration
 
 USAGE_EXIT_CODE = 2
@@ -133,7 +144,13 @@ app = typer.Typer(
     rich_markup_mode=None,
 )
 model_app = typer.Typer(help="Query the vehicle model.", no_args_is_help=True, rich_markup_mode=None)
-road_app = typer.Typer(help="Make and regenerate road profiles.", no_args_is_help=True, rich_markup_mode=None)
+road_app = typer.Typer(help="Make, import and regenerate road profiles.", no_args_is_help=True, rich_markup_mode=None)
+import_app = typer.Typer(
+    help="Convert road profiles and driving cycles from other formats into road CSVs.",
+    no_args_is_help=True,
+    rich_markup_mode=None,
+)
+road_app.add_typer(import_app, name="import")
 config_app = typer.Typer(
     help="The parameters: key tables and the packaged default files.", no_args_is_help=True, rich_markup_mode=None
 )
@@ -185,7 +202,9 @@ SetOpt = Annotated[
         "--set", metavar="KEY=VALUE", help="Override any vehicle, controller or simulation key: key=value; repeatable."
     ),
 ]
-RoadsOpt = Annotated[list[Path], typer.Option("--road", metavar="FILE", help="Road profile CSV; repeatable.")]
+RoadsOpt = Annotated[
+    list[Path], typer.Option("--road", metavar="FILE", help="Road profile CSV or VECTO .vdri cycle; repeatable.")
+]
 ReverseAllOpt = Annotated[bool, typer.Option("--reverse", help="Drive every road in the opposite direction.")]
 JobsOpt = Annotated[
     int | None, typer.Option("--jobs", min=1, help="Parallel processes (default: all cores); 1 runs in-process.")
@@ -204,7 +223,13 @@ def _run_config(vehicle: Path | None, config: list[Path] | None, set_: list[str]
 @app.command("simulate")
 def simulate_cmd(
     road: Annotated[
-        Path | None, typer.Option("--road", metavar="FILE", help="Road profile CSV (default: the bundled test track).")
+        Path | None,
+        typer.Option(
+            "--road",
+            metavar="FILE",
+            help="Road profile CSV or VECTO .vdri cycle (default: the bundled test track). A road with stops is "
+            "driven as its stop-free legs.",
+        ),
     ] = None,
     controller: Annotated[
         str | None,
@@ -415,6 +440,7 @@ def sweep_cmd(
                 check_convergence=check_convergence,
                 controllers=controllers,
             )
+        _stop_notes(plan.roads)
         with progress_bar(not quiet) as hook:
             result = run_plan(plan, out, jobs=jobs, progress=hook, force=force, notice=_notice)
     axes = [axis.key for axis in plan.axes]
@@ -503,6 +529,7 @@ def pareto_cmd(
             curves=[c.strip() for c in curves.split(",") if c.strip()],
             **_study_inputs(reverse, vehicle, config, set_),
         )
+        _stop_notes(plan.roads)
         with progress_bar(not quiet) as hook:
             result = run_pareto(plan, out, jobs=jobs, progress=hook, force=force, notice=_notice)
     written = [result.csv_path]
@@ -568,6 +595,13 @@ def _numbers(option: str, key: str, spec: str | None) -> list[float] | None:
 
 def _notice(text: str) -> None:
     typer.echo(text, err=True)
+
+
+def _stop_notes(roads: Sequence[RoadProfile]) -> None:
+    """One line per road with stops: they are not simulated, the road is driven as its legs."""
+    for road in roads:
+        if road.stops:
+            typer.echo(f"{road.name}: {stops_line(road)}")
 
 
 def _parse_gear(text: str | None, forward_gears: int) -> int | None:
@@ -654,6 +688,18 @@ def road_regenerate_cmd(
     """Rewrite the shipped example sections and the test track from their definitions."""
     written = write_shipped_roads(directory)
     typer.echo(f"wrote {len(written)} road files to {directory}")
+
+
+@import_app.command("vdri")
+def road_import_vdri_cmd(
+    cycle: Annotated[Path, typer.Argument(metavar="FILE", help="VECTO distance-based driving cycle (.vdri).")],
+    output: Annotated[Path, typer.Option("-o", "--output", help="Road CSV to write.")],
+) -> None:
+    """Convert a VECTO driving cycle into a road CSV: distance, altitude integrated from the grade,
+    target speed and stops (the stop_s column); prints its length, legs, stops and target speeds."""
+    profile = read_vdri(cycle)
+    write_road(profile, output, comments=import_comments(profile, f"truckmpc road import vdri {cycle} -o {output}"))
+    typer.echo(f"wrote {output} ({cycle_summary(profile)})")
 
 
 @app.command("plot")

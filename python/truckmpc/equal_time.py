@@ -16,6 +16,11 @@ the start speed kept (clipped into the moved band), until its trip time equals t
 v_ref, started from the mean-speed estimate v_ref · t_base / t_target. Each evaluation is a whole
 closed-loop run, and it stops on the time tolerance, not on a tolerance in v_ref. Where no v_ref in
 the search range reaches the time (the baseline stalls, or cannot go as fast), the result says so.
+
+On a road with target speeds v_ref only caps the targets (the set speed is min(v_ref, target) +
+target_offset_kmh), so raising it changes little: there the search moves `target_offset_kmh`
+instead, over x = v_ref + offset (the same search, the start speed kept as configured), and reports
+the offset found.
 """
 
 from __future__ import annotations
@@ -41,6 +46,10 @@ SEARCH_KMH = 15.0
 MAX_RUNS = 16
 """Most baseline runs one equal-time search makes."""
 
+TARGET_OFFSET_LIMIT_KMH = 50.0
+"""|target_offset_kmh| the configuration accepts [km/h]: the lower end of the search on a road with
+target speeds is v_ref − this."""
+
 
 def kinetic_correction_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
     """Fuel [kg] worth the kinetic energy a run gained from its start to its end speed:
@@ -55,12 +64,33 @@ def corrected_fuel_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float
     return float(summary["fuel_kg"]) - kinetic_correction_kg(summary, g_per_half_v2)
 
 
+def summary_corrected_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
+    """A run's corrected fuel [kg] (:func:`corrected_fuel_kg`); for a road driven in legs (a road
+    with stops, :mod:`truckmpc.legs`) the sum over its legs, each corrected to its own entry speed."""
+    legs = summary.get("legs")
+    if legs is None:
+        return corrected_fuel_kg(summary, g_per_half_v2)
+    return sum(
+        corrected_fuel_kg(
+            {
+                "fuel_kg": leg["fuel_kg"],
+                "start_speed_kmh": leg["entry_speed_kmh"],
+                "end_speed_kmh": leg["exit_speed_kmh"],
+            },
+            g_per_half_v2,
+        )
+        for leg in legs
+    )
+
+
 @dataclass
 class EqualTime:
     """The baseline driven to a target trip time.
 
     ``v_ref_kmh``, ``time_s``, ``fuel_kg`` and ``fuel_corrected_kg`` are those of the closest run
     found; ``reached`` says whether it is within :data:`TIME_TOLERANCE`, and ``reason`` why not.
+    With ``offset_from_kmh`` set (a road with target speeds), ``v_ref_kmh`` is the search variable
+    x = v_ref + target_offset_kmh and ``offset_from_kmh`` the v_ref [km/h] it counts from.
     """
 
     target_time_s: float
@@ -71,17 +101,29 @@ class EqualTime:
     runs: int = 0
     reason: str | None = None
     tried: list[tuple[float, float]] = field(default_factory=list)
+    offset_from_kmh: float | None = None
 
     @property
     def reached(self) -> bool:
         return self.reason is None and self.time_s is not None
 
+    def setting(self, x_kmh: float | None) -> str:
+        """What the search variable `x_kmh` sets, for messages: `v_ref 84.00 km/h` or `target offset +1.00 km/h`."""
+        if x_kmh is None:
+            return "no setting"
+        if self.offset_from_kmh is None:
+            return f"v_ref {x_kmh:.2f} km/h"
+        return f"target offset {x_kmh - self.offset_from_kmh:+.2f} km/h"
+
     def document(self, baseline: str = "pi") -> dict[str, Any]:
         """The ``equal_time`` object of ``summary.json``: the re-tuned baseline's figures (keys
-        prefixed with its name), null (with ``not_comparable``) where the time was not reached."""
+        prefixed with its name), null (with ``not_comparable``) where the time was not reached. On a
+        road with target speeds, ``<baseline>_v_ref_kmh`` is the v_ref kept and
+        ``<baseline>_target_offset_kmh`` the target offset found."""
         found = self.reached
+        v_ref_kmh = self.v_ref_kmh if self.offset_from_kmh is None else self.offset_from_kmh
         doc: dict[str, Any] = {
-            f"{baseline}_v_ref_kmh": self.v_ref_kmh if found else None,
+            f"{baseline}_v_ref_kmh": v_ref_kmh if found else None,
             f"{baseline}_time_s": self.time_s if found else None,
             f"{baseline}_fuel_kg": self.fuel_kg if found else None,
             f"{baseline}_fuel_corrected_kg": self.fuel_corrected_kg if found else None,
@@ -89,23 +131,34 @@ class EqualTime:
             "time_error_pct": delta_pct(self.time_s, self.target_time_s) if found and self.time_s else None,
             f"{baseline}_runs": self.runs,
         }
+        if self.offset_from_kmh is not None:
+            offset_kmh = None if self.v_ref_kmh is None else self.v_ref_kmh - self.offset_from_kmh
+            doc[f"{baseline}_target_offset_kmh"] = offset_kmh if found else None
         if self.reason is not None:
             doc["not_comparable"] = self.reason
         return doc
 
 
 RunAt = Callable[[float], "RunResult"]
-"""Drive the baseline at a set speed [km/h]."""
+"""Drive the baseline at a set speed [km/h] (on a road with target speeds: at x = v_ref + target offset)."""
 
 
 def baseline_runner(road: RoadProfile, config: RunConfig, controller: str = "pi") -> RunAt:
     """A function driving `controller` over `road` at another v_ref, the band moving with it and
     the start speed kept at the run's (clipped into the moved band: a truck starting above v_max
-    would only brake the difference away)."""
+    would only brake the difference away). On a road with target speeds it takes x = v_ref +
+    target_offset_kmh and moves the offset (x − v_ref), v_ref and the start speed kept as configured."""
     from truckmpc.config import config_from_values
     from truckmpc.sim import simulate
 
     values = config.settings.values()
+    if road.target_speed_kmh is not None:
+
+        def run_offset(x_kmh: float) -> RunResult:
+            changed = {**values, "target_offset_kmh": x_kmh - values["v_ref_kmh"]}
+            return simulate(road, config_from_values(changed, "equal-time baseline"), controller)
+
+        return run_offset
     start_kmh = values["start_speed_kmh"] if values["start_speed_kmh"] is not None else values["v_ref_kmh"]
 
     def run_at(v_ref_kmh: float) -> RunResult:
@@ -117,12 +170,21 @@ def baseline_runner(road: RoadProfile, config: RunConfig, controller: str = "pi"
 
 
 def equal_time(
-    run_at: RunAt, v_ref_kmh: float, v_floor_kmh: float, first: RunResult, target_time_s: float, g_per_half_v2: float
+    run_at: RunAt,
+    v_ref_kmh: float,
+    v_floor_kmh: float,
+    first: RunResult,
+    target_time_s: float,
+    g_per_half_v2: float,
+    offset_from_kmh: float | None = None,
 ) -> EqualTime:
     """Search v_ref in [max(v_ref − SEARCH, v_floor), v_ref + SEARCH] until the baseline's trip time
     is within :data:`TIME_TOLERANCE` of `target_time_s`; `first` is the baseline already driven at
-    `v_ref_kmh`. `v_floor_kmh` is the lowest set speed the band allows (above v_dec)."""
-    search = _Search(EqualTime(target_time_s), g_per_half_v2, TIME_TOLERANCE * target_time_s)
+    `v_ref_kmh`. `v_floor_kmh` is the lowest set speed the band allows (above v_dec). With
+    `offset_from_kmh` (a road with target speeds) the search variable is x = v_ref + target offset,
+    `v_ref_kmh` the configured x and `offset_from_kmh` the v_ref [km/h] the offset counts from."""
+    found = EqualTime(target_time_s, offset_from_kmh=offset_from_kmh)
+    search = _Search(found, g_per_half_v2, TIME_TOLERANCE * target_time_s)
     lo_kmh, hi_kmh = max(v_ref_kmh - SEARCH_KMH, v_floor_kmh), v_ref_kmh + SEARCH_KMH
     error = search.record(v_ref_kmh, first)
     if error is None or search.done(error):
@@ -154,14 +216,14 @@ class _Search:
         found = self.found
         found.runs += 1
         if result.stalled:
-            found.reason = f"not comparable: the pi stalls at v_ref {v_kmh:.2f} km/h ({result.message})"
+            found.reason = f"not comparable: the pi stalls at {found.setting(v_kmh)} ({result.message})"
             return None
         time_s = float(result.summary["time_s"])
         error = time_s - found.target_time_s
         if found.time_s is None or abs(error) < abs(found.time_s - found.target_time_s):
             found.v_ref_kmh, found.time_s = v_kmh, time_s
             found.fuel_kg = float(result.summary["fuel_kg"])
-            found.fuel_corrected_kg = corrected_fuel_kg(result.summary, self.g_per_half_v2)
+            found.fuel_corrected_kg = summary_corrected_kg(result.summary, self.g_per_half_v2)
         self.points.append((v_kmh, error))
         found.tried.append((v_kmh, time_s))
         return error
@@ -215,10 +277,16 @@ class _Search:
         found = self.found
         if found.reason is None:
             slow = self.points[-1][1] > 0
+            base = found.offset_from_kmh
+            searched = (
+                f"v_ref in {lo_kmh:.1f}-{hi_kmh:.1f} km/h"
+                if base is None
+                else (f"the target offset in {lo_kmh - base:+.1f}..{hi_kmh - base:+.1f} km/h")
+            )
+            closest = f"{found.v_ref_kmh:.2f} km/h" if base is None else found.setting(found.v_ref_kmh)
             found.reason = (
-                f"not comparable: the pi cannot reach the trip time {found.target_time_s:.1f} s with v_ref in "
-                f"{lo_kmh:.1f}-{hi_kmh:.1f} km/h (closest {found.time_s:.1f} s at {found.v_ref_kmh:.2f} km/h"
-                f"{', too slow' if slow else ', too fast'})"
+                f"not comparable: the pi cannot reach the trip time {found.target_time_s:.1f} s with {searched} "
+                f"(closest {found.time_s:.1f} s at {closest}{', too slow' if slow else ', too fast'})"
             )
         return found
 
@@ -255,7 +323,12 @@ def equal_time_baselines(
     run_at = baseline_runner(road, config, baseline)
     cruise = config.cruise
     # The band needs v_ref > v_dec (its lower end above zero): keep 1 km/h clear of it.
-    floor_kmh = cruise.v_dec_kmh + 1.0
+    floor_kmh, start_kmh, offset_from_kmh = cruise.v_dec_kmh + 1.0, cruise.v_ref_kmh, None
+    if road.target_speed_kmh is not None:
+        # x = v_ref + target offset; the core keeps every stretch's set speed at 1 km/h or more.
+        offset_from_kmh = cruise.v_ref_kmh
+        start_kmh = cruise.v_ref_kmh + cruise.target_offset_kmh
+        floor_kmh = cruise.v_ref_kmh - TARGET_OFFSET_LIMIT_KMH
     out = {}
     for name in LOOK_AHEAD if baseline == "pi" else OPTIMISERS:
         result = results.get(name)
@@ -266,5 +339,5 @@ def equal_time_baselines(
             continue
         target_s = float(result.summary["time_s"])
         g_per_half_v2 = config.settings.kinetic_fuel_g_per_half_v2
-        out[name] = equal_time(run_at, cruise.v_ref_kmh, floor_kmh, base, target_s, g_per_half_v2)
+        out[name] = equal_time(run_at, start_kmh, floor_kmh, base, target_s, g_per_half_v2, offset_from_kmh)
     return out

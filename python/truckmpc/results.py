@@ -40,6 +40,7 @@ from truckmpc.compare import compare, delta_pct
 from truckmpc.convergence import convergence_lines
 from truckmpc.equal_time import EqualTime
 from truckmpc.errors import ConfigError
+from truckmpc.legs import stops_line
 from truckmpc.sim import TRACE_COLUMNS, RunResult
 from truckmpc.table import figure_lines, label_width
 from truckmpc.units import M_PER_KM
@@ -261,6 +262,7 @@ def format_table(
     names = list(results)
     doc = summary_document(road, results, equal_times=equal_times)
     lines = [f"road {road.name}: {road.length_m / M_PER_KM:.2f} km" + ("" if config is None else _setup(config))]
+    lines += [stops_line(road)] if road.stops else []
     deltas = [
         (key.replace("_pct", " [%]").replace("_", " "), value)
         for key, value in doc.items()
@@ -291,13 +293,16 @@ def format_table(
 
 
 def _equal_time_line(key: str, equal: Mapping[str, Any], width: int) -> str:
-    """`equal time pi v_ref [km/h]   84.41  (4789.3 s, 6 runs)`, or why the time was not reached."""
+    """`equal time pi v_ref [km/h]   84.41  (4789.3 s, 6 runs)` (on a road with target speeds
+    `equal time pi target offset [km/h]   +1.20 ...`), or why the time was not reached."""
     baseline = "pcc" if key.endswith("_vs_pcc") else "pi"
-    label = f"{key.replace('_vs_pcc', '').replace('_', ' ')} {baseline} v_ref [km/h]"
+    moved = "target_offset_kmh" if f"{baseline}_target_offset_kmh" in equal else "v_ref_kmh"
+    what, spec = ("target offset", "+14.2f") if moved == "target_offset_kmh" else ("v_ref", "14.2f")
+    label = f"{key.replace('_vs_pcc', '').replace('_', ' ')} {baseline} {what} [km/h]"
     if "not_comparable" in equal:
         return f"{label}: {equal['not_comparable']}"
-    v_ref, time_s, runs = (equal[f"{baseline}_{k}"] for k in ("v_ref_kmh", "time_s", "runs"))
-    return f"{label:<{width}}{v_ref:>14.2f}  ({time_s:.1f} s, {runs} runs)"
+    value, time_s, runs = (equal[f"{baseline}_{k}"] for k in (moved, "time_s", "runs"))
+    return f"{label:<{width}}{value:{spec}}  ({time_s:.1f} s, {runs} runs)"
 
 
 def _setup(config: RunConfig) -> str:

@@ -1,21 +1,21 @@
-"""Road profiles: altitude along the road, read from CSV, written to CSV, or generated.
+"""Road profiles: altitude along the road, read from a file or generated.
 
 A profile is a list of points (distance [m], altitude [m]); the road between two points has the
 constant slope Δh/ΔL (thesis section 1.2), so the slope of segment i is the difference of the
 altitudes over the difference of the distances. Slopes are grades: 0.01 = 1 %, positive uphill.
 
-CSV format: `#` comment lines, blank lines ignored; a header naming `distance_m` and `altitude_m`
-and/or `grade`, optionally `target_speed_kmh`; other columns are ignored. With only `grade`, the
-grade on a row is that of the segment starting at the row, and the altitude is its integral. With
-both, the altitude is used. A row's `target_speed_kmh` is the target speed [km/h] from that row to
-the next (a driving cycle's, or the speed limit): the cruise controllers' set speed and band then
-follow it along the road (the README's "Target speeds" says how).
+A profile may also carry a target speed [km/h] per segment (a driving cycle's, or the speed limit):
+the cruise controllers' set speed and band then follow it along the road; and stops (a driving
+cycle's standstills, each at a point of the road with its duration [s]), which the simulation does
+not drive through: it drives the stop-free legs between them (:mod:`truckmpc.legs`).
+
+Files: :func:`load_road` reads a road CSV (:mod:`truckmpc.road_csv`, format there) or a VECTO
+driving cycle `.vdri` (:mod:`truckmpc.vdri`); :func:`write_road` writes the CSV.
 """
 
 from __future__ import annotations
 
 import hashlib
-import itertools
 import math
 import os
 from collections.abc import Sequence
@@ -26,8 +26,7 @@ from typing import Any
 import numpy as np
 
 from . import _core
-from .atomic import atomic_write_text
-from .errors import RoadError, read_user_text
+from .errors import RoadError
 from .units import PCT_PER_FRACTION
 
 __all__ = [
@@ -37,6 +36,7 @@ __all__ = [
     "MAX_LENGTH_M",
     "SECTION_KINDS",
     "RoadProfile",
+    "Stop",
     "concatenate",
     "default_test_track",
     "load_road",
@@ -52,9 +52,9 @@ MAX_TARGET_KMH = 250.0
 MAX_GRADE = 0.30
 """Largest accepted |grade| [-] (30 %); steeper roads are taken to be input errors."""
 
-# Slack on the limit check so that a profile at the limit survives being written (altitudes
-# rounded to 1 um) and read back.
-_GRADE_CHECK = MAX_GRADE + 1e-3
+GRADE_CHECK = MAX_GRADE + 1e-3
+"""The |grade| [-] a profile is checked against: MAX_GRADE with slack, so that a profile at the limit
+survives being written (altitudes rounded to 1 um) and read back."""
 
 MAX_LENGTH_M = 1e7
 """Longest accepted road [m] (10 000 km): longer than any drive a truck makes without stopping
@@ -67,19 +67,29 @@ far finer than the 1 mm a road file is written with, so a road may start at any 
 _REVERSED = "-reversed"
 
 
+@dataclass(frozen=True)
+class Stop:
+    """A standstill of a driving cycle: at `distance_m` [m] (a point of the road), for `duration_s` [s] > 0."""
+
+    distance_m: float
+    duration_s: float
+
+
 @dataclass(frozen=True, eq=False)
 class RoadProfile:
     """A road: points `distance_m` [m] (strictly increasing, from wherever the road starts) with
     their `altitude_m` [m] (relative) and, optionally, `target_speed_kmh` [km/h], the target speed
-    from each point to the next (the last point's is that beyond the end). Arrays are float64 and
-    read-only. `controller_map`, if given, is the road the controllers are told of (they plan on
-    it while the truck drives this one): a noisy import of it, a grade bias."""
+    from each point to the next (the last point's is that beyond the end), and `stops`, in order of
+    distance, each at a point of the road. Arrays are float64 and read-only. `controller_map`, if
+    given, is the road the controllers are told of (they plan on it while the truck drives this
+    one): a noisy import of it, a grade bias."""
 
     name: str
     distance_m: np.ndarray
     altitude_m: np.ndarray
     source: str | None = None
     target_speed_kmh: np.ndarray | None = None
+    stops: tuple[Stop, ...] = ()
     controller_map: RoadProfile | None = None
     _road: _core.Road | None = field(default=None, init=False, repr=False)
 
@@ -89,6 +99,14 @@ class RoadProfile:
         object.__setattr__(self, "distance_m", distance)
         object.__setattr__(self, "altitude_m", altitude)
         where = self.source or self.name
+        self._check_points(where, distance, altitude)
+        if self.target_speed_kmh is not None:
+            targets = _checked_targets(where, _frozen_array(self.target_speed_kmh), distance)
+            object.__setattr__(self, "target_speed_kmh", targets)
+        object.__setattr__(self, "stops", _checked_stops(where, tuple(self.stops), distance))
+
+    def _check_points(self, where: str, distance: np.ndarray, altitude: np.ndarray) -> None:
+        """Raise RoadError unless the points make a road: 1-D, finite, increasing, within the limits."""
         if distance.ndim != 1 or altitude.shape != distance.shape:
             raise RoadError(f"{where}: expected 1-D distance and altitude arrays of equal length")
         if distance.size < 2:
@@ -103,13 +121,10 @@ class RoadProfile:
         step = np.diff(distance)
         if not np.all(step > 0):
             raise RoadError(f"{where}: expected strictly increasing distances (point {int(np.argmin(step > 0)) + 1})")
-        steep = np.flatnonzero(np.abs(self.slope) > _GRADE_CHECK)
+        steep = np.flatnonzero(np.abs(self.slope) > GRADE_CHECK)
         if steep.size:
             i = int(steep[0])
             raise RoadError(f"{where}: slope {self.slope[i]:.4g} at {distance[i]:g} m exceeds |grade| <= {MAX_GRADE:g}")
-        if self.target_speed_kmh is not None:
-            targets = _checked_targets(where, _frozen_array(self.target_speed_kmh), distance)
-            object.__setattr__(self, "target_speed_kmh", targets)
 
     @property
     def slope(self) -> np.ndarray:
@@ -132,12 +147,14 @@ class RoadProfile:
 
     def sha256(self) -> str:
         """Hex SHA-256 of the profile's points (distances, then altitudes, then the target speeds if
-        it has them, as float64): the road's identity in result files, whatever file or generator
-        it came from."""
+        it has them, then the stops' (distance, duration) pairs if it has any, as float64): the road's
+        identity in result files, whatever file or generator it came from."""
         digest = hashlib.sha256(self.distance_m.tobytes())
         digest.update(self.altitude_m.tobytes())
         if self.target_speed_kmh is not None:
             digest.update(self.target_speed_kmh.tobytes())
+        if self.stops:
+            digest.update(np.array([(stop.distance_m, stop.duration_s) for stop in self.stops], np.float64).tobytes())
         return digest.hexdigest()
 
     def reversed(self) -> RoadProfile:
@@ -150,16 +167,18 @@ class RoadProfile:
             # Segment i of the reversed road is segment n - 1 - i of this one.
             segments = self.target_speed_kmh[:-1][::-1]
             targets = np.append(segments, segments[-1])
+        stops = tuple(Stop((start + end) - stop.distance_m, stop.duration_s) for stop in self.stops[::-1])
         mirrored = None if self.controller_map is None else self.controller_map.reversed()
         distance = (start + end) - self.distance_m[::-1]
-        return RoadProfile(name, distance, self.altitude_m[::-1], self.source, targets, mirrored)
+        return RoadProfile(name, distance, self.altitude_m[::-1], self.source, targets, stops, mirrored)
 
     def resampled(self, step_m: float) -> RoadProfile:
         """The altitude linearly interpolated onto points every `step_m` metres from the start,
-        plus the end point (so the length is kept)."""
+        plus the end point (so the length is kept); stops stay points, and keep their places."""
         if not (math.isfinite(step_m) and step_m > 0):
             raise RoadError(f"{self.source or self.name}: resampling step: expected a number > 0 m, got {step_m!r}")
         grid = _grid(float(self.distance_m[0]), float(self.distance_m[-1]), step_m)
+        grid = np.union1d(grid, [stop.distance_m for stop in self.stops])
         targets = None
         if self.target_speed_kmh is not None:
             # Every change of target speed stays a point, so the targets keep their positions.
@@ -167,7 +186,7 @@ class RoadProfile:
             grid = np.union1d(grid, changes)
             targets = self.target_speed_at(grid)
         altitude = np.interp(grid, self.distance_m, self.altitude_m)
-        return RoadProfile(self.name, grid, altitude, self.source, targets)
+        return RoadProfile(self.name, grid, altitude, self.source, targets, self.stops, self.controller_map)
 
     def target_speed_at(self, s_m: np.ndarray) -> np.ndarray:
         """The target speed [km/h] at distances `s_m` [m] (that of the segment containing each; the
@@ -192,6 +211,24 @@ def _checked_targets(where: str, targets: np.ndarray, distance: np.ndarray) -> n
     return targets
 
 
+def _checked_stops(where: str, stops: tuple[Stop, ...], distance: np.ndarray) -> tuple[Stop, ...]:
+    """`stops` if each is a Stop at a point of the road with a duration > 0 s, in increasing distance."""
+    previous_m = -math.inf
+    for stop in stops:
+        if not isinstance(stop, Stop):
+            raise RoadError(f"{where}: stops: expected Stop(distance_m, duration_s) entries, got {stop!r}")
+        if not (math.isfinite(stop.duration_s) and stop.duration_s > 0):
+            raise RoadError(
+                f"{where}: stop at {stop.distance_m:g} m: expected a duration > 0 s, got {stop.duration_s!r}"
+            )
+        if not np.any(distance == stop.distance_m):
+            raise RoadError(f"{where}: stop at {stop.distance_m!r} m: expected it at a point of the road")
+        if not stop.distance_m > previous_m:
+            raise RoadError(f"{where}: stop at {stop.distance_m:g} m: expected stops in increasing distance")
+        previous_m = stop.distance_m
+    return stops
+
+
 def _frozen_array(values: Any) -> np.ndarray:
     array = np.array(values, dtype=np.float64, copy=True)
     array.flags.writeable = False
@@ -207,124 +244,24 @@ def _grid(start_m: float, end_m: float, step_m: float) -> np.ndarray:
 
 
 # ---------------------------------------------------------------------------------------------
-# CSV files.
+# Files: the formats live in their own modules, which build RoadProfiles (so they import this one).
 
 
 def load_road(path: PathLike) -> RoadProfile:
-    """Read a road profile CSV (format in the module doc); errors name the file and line."""
-    path = Path(path)
-    where = str(path)
-    text = read_user_text(path, where, "a CSV file", RoadError, encoding="utf-8-sig")
-    lines = [(n, line.strip()) for n, line in enumerate(text.splitlines(), start=1)]
-    lines = [(n, line) for n, line in lines if line and not line.startswith("#")]
-    if not lines:
-        raise RoadError(f"{where}: no header line (expected columns distance_m and altitude_m and/or grade)")
-    columns = _header(where, *lines[0])
-    data = _rows(where, columns, lines[1:])
-    distance = np.array(data["distance_m"])
-    if "altitude_m" in data:
-        altitude = np.array(data["altitude_m"])
-    else:
-        altitude = np.concatenate([[0.0], np.cumsum(np.array(data["grade"])[:-1] * np.diff(distance))])
-    targets = np.array(data["target_speed_kmh"]) if "target_speed_kmh" in data else None
-    return RoadProfile(path.stem, distance, altitude, where, targets)
+    """Read a road file: a VECTO driving cycle if the name ends in `.vdri` (:func:`truckmpc.vdri.read_vdri`),
+    else a road CSV (:func:`truckmpc.road_csv.read_road_csv`); errors name the file and line."""
+    from . import road_csv, vdri
 
-
-def _header(where: str, number: int, line: str) -> list[str]:
-    columns = [name.strip().strip('"').strip() for name in line.split(",")]
-    if "distance_m" not in columns or not {"altitude_m", "grade"} & set(columns):
-        raise RoadError(
-            f"{where}:{number}: expected a header with columns distance_m and altitude_m and/or grade, "
-            f"got {line[:80]!r}"
-        )
-    return columns
-
-
-def _rows(where: str, columns: list[str], lines: list[tuple[int, str]]) -> dict[str, list[float]]:
-    """The values of each known column present, checked row by row."""
-    wanted = [name for name in ("distance_m", "altitude_m", "grade", "target_speed_kmh") if name in columns]
-    index = {name: columns.index(name) for name in wanted}
-    data: dict[str, list[float]] = {name: [] for name in wanted}
-    for number, line in lines:
-        cells = line.split(",")
-        if len(cells) != len(columns):
-            raise RoadError(f"{where}:{number}: expected {len(columns)} columns, got {len(cells)}")
-        for name in wanted:
-            data[name].append(_cell(where, number, name, cells[index[name]]))
-        _check_row(where, number, data)
-    if len(data["distance_m"]) < 2:
-        raise RoadError(f"{where}: expected at least two data rows, got {len(data['distance_m'])}")
-    return data
-
-
-def _cell(where: str, number: int, name: str, text: str) -> float:
-    text = text.strip()
-    try:
-        value = float(text)
-    except ValueError:
-        raise RoadError(f"{where}:{number}: column {name!r}: expected a number, got {text!r}") from None
-    if not math.isfinite(value):
-        raise RoadError(f"{where}:{number}: column {name!r}: expected a finite number, got {text!r}")
-    if name == "distance_m" and abs(value) > MAX_ABS_DISTANCE_M:
-        raise RoadError(f"{where}:{number}: column {name!r}: expected at most {MAX_ABS_DISTANCE_M:g} m, got {text!r}")
-    if name == "target_speed_kmh" and not 0 < value <= MAX_TARGET_KMH:
-        raise RoadError(
-            f"{where}:{number}: column {name!r}: expected a speed in (0, {MAX_TARGET_KMH:g}] km/h, got {text!r}"
-        )
-    return value
-
-
-def _check_row(where: str, number: int, data: dict[str, list[float]]) -> None:
-    """Checks of the newest row against the previous one: increasing distance, |slope| <= 30 %."""
-    distance = data["distance_m"]
-    uses_grade = "altitude_m" not in data
-    if uses_grade and abs(data["grade"][-1]) > _GRADE_CHECK:
-        raise RoadError(
-            f"{where}:{number}: column 'grade': expected |grade| <= {MAX_GRADE:g}, got {data['grade'][-1]:g}"
-        )
-    if len(distance) < 2:
-        return
-    if distance[-1] - distance[0] > MAX_LENGTH_M:
-        raise RoadError(
-            f"{where}:{number}: column 'distance_m': expected a road of at most {MAX_LENGTH_M:g} m from the first "
-            f"row's {distance[0]:g}, got {distance[-1]:g}"
-        )
-    if not distance[-1] > distance[-2]:
-        raise RoadError(
-            f"{where}:{number}: column 'distance_m': expected more than the previous row's {distance[-2]:g}, "
-            f"got {distance[-1]:g}"
-        )
-    if not uses_grade:
-        slope = (data["altitude_m"][-1] - data["altitude_m"][-2]) / (distance[-1] - distance[-2])
-        if abs(slope) > _GRADE_CHECK:
-            raise RoadError(
-                f"{where}:{number}: column 'altitude_m': slope from the previous row is {slope:.4g}, "
-                f"expected |slope| <= {MAX_GRADE:g}"
-            )
+    if Path(path).suffix.lower() == vdri.SUFFIX:
+        return vdri.read_vdri(path)
+    return road_csv.read_road_csv(path)
 
 
 def write_road(profile: RoadProfile, path: PathLike, comments: Sequence[str] = ()) -> None:
-    """Write `profile` atomically as CSV: `# comment` lines, then `distance_m,altitude_m,grade`
-    rows (%.3f m, %.6f m, %.6f), plus `target_speed_kmh` (%.6g) if the road has target speeds; a
-    row's grade is that of the segment starting there, the last row repeats the previous one."""
-    distance = [f"{d:.3f}" for d in profile.distance_m]
-    if any(float(b) <= float(a) for a, b in itertools.pairwise(distance)):
-        raise RoadError(f"{path}: points closer than 1 mm cannot be written with 1 mm resolution")
-    grade = np.append(profile.slope, profile.slope[-1])
-    lines = [f"# {line}".rstrip() for comment in comments for line in str(comment).splitlines() or [""]]
-    rows = [f"{d},{_fixed(h)},{_fixed(g)}" for d, h, g in zip(distance, profile.altitude_m, grade, strict=True)]
-    if profile.target_speed_kmh is None:
-        lines.append("distance_m,altitude_m,grade")
-    else:
-        lines.append("distance_m,altitude_m,grade,target_speed_kmh")
-        rows = [f"{row},{v:.6g}" for row, v in zip(rows, profile.target_speed_kmh, strict=True)]
-    atomic_write_text(path, "\n".join(lines + rows) + "\n")
+    """Write `profile` atomically as a road CSV with `# comment` lines (:func:`truckmpc.road_csv.write_road_csv`)."""
+    from . import road_csv
 
-
-def _fixed(value: float) -> str:
-    """`value` with 6 decimals, without a minus sign on zero."""
-    text = f"{value:.6f}"
-    return "0.000000" if text == "-0.000000" else text
+    road_csv.write_road_csv(profile, path, comments)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -416,7 +353,8 @@ def _section_name(kind: str, length_m: float, slope_pct: float | None, lead_m: f
 
 def concatenate(parts: Sequence[RoadProfile], name: str) -> RoadProfile:
     """One road made of `parts` driven in order, each continuing where the previous one ends
-    (distance and altitude shifted to join)."""
+    (distance and altitude shifted to join; stops move with their parts, and two stops meeting at a
+    join become one stop of their summed duration)."""
     if not parts:
         raise RoadError(f"{name}: expected at least one part to concatenate")
     with_targets = [part.target_speed_kmh is not None for part in parts]
@@ -424,13 +362,30 @@ def concatenate(parts: Sequence[RoadProfile], name: str) -> RoadProfile:
         raise RoadError(f"{name}: expected target speeds on every part or on none")
     distance, altitude = [parts[0].distance_m], [parts[0].altitude_m]
     targets = [part.target_speed_kmh[:-1] for part in parts if part.target_speed_kmh is not None]
+    stops = list(parts[0].stops)
     for part in parts[1:]:
-        shift_m = distance[-1][-1] - part.distance_m[0]
+        join_m = float(distance[-1][-1])
+        shift_m = join_m - part.distance_m[0]
         lift_m = altitude[-1][-1] - part.altitude_m[0]
         distance.append(part.distance_m[1:] + shift_m)
         altitude.append(part.altitude_m[1:] + lift_m)
+        stops = _joined_stops(stops, part.stops, join_m, float(part.distance_m[0]), shift_m)
     joined = np.concatenate([*targets, targets[-1][-1:]]) if targets else None
-    return RoadProfile(name, np.concatenate(distance), np.concatenate(altitude), None, joined)
+    return RoadProfile(name, np.concatenate(distance), np.concatenate(altitude), None, joined, tuple(stops))
+
+
+def _joined_stops(
+    stops: list[Stop], more: Sequence[Stop], join_m: float, part_start_m: float, shift_m: float
+) -> list[Stop]:
+    """`stops` followed by a part's `more`, shifted by `shift_m` [m]; a stop at the part's start
+    lands exactly on the join `join_m` [m] and merges with a stop already there."""
+    for stop in more:
+        at_m = join_m if stop.distance_m == part_start_m else float(stop.distance_m + shift_m)
+        if stops and stops[-1].distance_m == at_m:
+            stops[-1] = Stop(at_m, stops[-1].duration_s + stop.duration_s)
+        else:
+            stops.append(Stop(at_m, stop.duration_s))
+    return stops
 
 
 def default_test_track() -> RoadProfile:

@@ -16,6 +16,10 @@ the stall speed (gear 1 turning the engine slower than idle) stops the run: the 
 The trace is sampled every `trace_step_m` metres of distance (and at the final point) by linear
 interpolation between successive plant states; the inputs of a sample are those applied over the
 step that crosses it.
+
+A road with stops (a driving cycle's) is driven as its stop-free legs, each from its entry target
+speed, and reported as one run (:mod:`truckmpc.legs`): the stops themselves are not simulated, and
+the summary says so.
 """
 
 from __future__ import annotations
@@ -29,6 +33,7 @@ from truckmpc import _core
 from truckmpc.controller import Controller, PlantState
 from truckmpc.equal_time import corrected_fuel_kg
 from truckmpc.errors import ConfigError
+from truckmpc.legs import drive_legs
 
 if TYPE_CHECKING:
     from truckmpc.config import RunConfig
@@ -117,8 +122,17 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
         `transitions_per_solve` and `settings` (its parameters with k_lim, Q2 and Q5 resolved, and
         the fuel_time cost's β); the whole-road optimum adds the plan's `plan_fuel_kg`,
         `plan_time_s` (by the DP's own model), `plan_cost`, `plan_solve_s`, `plan_stages` and
-        `plan_table_mb`; a Python controller with a `summary()` method adds its entries.
+        `plan_table_mb`; a Python controller with a `summary()` method adds its entries. A road
+        with stops adds `legs` and `stops_not_simulated` (:func:`truckmpc.legs.merge_legs` says
+        how the legs' figures are joined).
     """
+    if road.stops:
+        return drive_legs(road, config, lambda leg, leg_config: _drive(leg, leg_config, controller))
+    return _drive(road, config, controller)
+
+
+def _drive(road: RoadProfile, config: RunConfig, controller: str | Controller) -> RunResult:
+    """One closed-loop run over a road without stops (see :func:`simulate`)."""
     altitude_m = np.ascontiguousarray(road.altitude_m, dtype=float)
     if isinstance(controller, str):
         if controller not in CONTROLLERS:

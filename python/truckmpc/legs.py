@@ -1,0 +1,220 @@
+"""A road with stops, driven as its stop-free legs and reported as one run.
+
+The vehicle model cannot launch from standstill (below the stall speed gear 1 turns the engine
+slower than idle) and the cruise controllers do not brake to a standstill, so a driving cycle's stops
+(:class:`truckmpc.road.Stop`) are not simulated: the road is cut at every stop inside it into legs,
+each leg is driven on its own from its entry target speed (the set speed at its start; with
+`start_speed_kmh` configured, the first leg starts at that), and the legs' results are joined into
+one :class:`~truckmpc.sim.RunResult`. The summary says so (`stops_not_simulated`) and lists the legs
+(`legs`: each one's start and end [m], entry and exit speed [km/h], fuel [kg] and time [s]); the
+trace runs on across the legs, with two samples at each stop (the end of one leg and the start of
+the next) and the cumulative columns continued.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+from collections.abc import Callable, Mapping, Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from truckmpc.config import config_from_values
+from truckmpc.errors import RoadError
+from truckmpc.road import RoadProfile
+from truckmpc.units import KMH_PER_MPS, M_PER_KM
+
+if TYPE_CHECKING:
+    from truckmpc.config import RunConfig
+    from truckmpc.sim import RunResult
+
+__all__ = [
+    "MIN_LEG_M",
+    "STOPS_NOTE",
+    "drive_legs",
+    "leg_bounds",
+    "leg_road",
+    "merge_legs",
+    "stops_document",
+    "stops_line",
+]
+
+MIN_LEG_M = 1.0
+"""Legs shorter than this [m] (two stops about at one place) are not driven."""
+
+STOPS_NOTE = (
+    "launches from standstill, braking to standstill and the stops themselves are not simulated; "
+    "each leg starts at its entry target speed"
+)
+"""What `stops_not_simulated.note` says."""
+
+SUMMED = (
+    "distance_m",
+    "fuel_kg",
+    "time_s",
+    "brake_energy_kj",
+    "neutral_distance_m",
+    "gear_shifts",
+    "compute_time_s",
+    "solves",
+    "infeasible_solves",
+    "fallback_relaxed",
+    "fallback_rescues",
+    "fallback_rescue_m",
+    "plan_fuel_kg",
+    "plan_time_s",
+    "plan_cost",
+    "plan_solve_s",
+    "plan_stages",
+    "fuel_corrected_kg",
+)
+"""Summary figures that add up over the legs."""
+
+LARGEST = ("solve_ms_max", "plan_table_mb")
+"""Summary figures whose largest leg value is the road's."""
+
+PER_SOLVE = ("solve_ms_mean", "states_per_solve", "transitions_per_solve")
+"""Summary means over solves: the legs' values weighted by their solves."""
+
+CUMULATIVE = ("time_s", "fuel_g", "brake_energy_kj")
+"""Trace columns counted from the start of the run, continued across the legs."""
+
+Drive = Callable[[RoadProfile, "RunConfig"], "RunResult"]
+"""Drive one stop-free road with a configuration."""
+
+
+def leg_bounds(road: RoadProfile) -> list[tuple[float, float]]:
+    """(start, end) [m] of each stop-free leg of `road`: cut at its stops, those shorter than
+    :data:`MIN_LEG_M` left out."""
+    start_m, end_m = float(road.distance_m[0]), float(road.distance_m[-1])
+    cuts = [start_m, *(stop.distance_m for stop in road.stops if start_m < stop.distance_m < end_m), end_m]
+    return [(a, b) for a, b in itertools.pairwise(cuts) if b - a >= MIN_LEG_M]
+
+
+def leg_road(road: RoadProfile, start_m: float, end_m: float, number: int) -> RoadProfile:
+    """The part of `road` from `start_m` to `end_m` [m] (points of the road, as stops are), without
+    stops, named `<road>-leg<number>`; its last point's target speed is its last segment's."""
+    keep = (road.distance_m >= start_m) & (road.distance_m <= end_m)
+    targets = None
+    if road.target_speed_kmh is not None:
+        segments = road.target_speed_kmh[keep][:-1]
+        targets = np.append(segments, segments[-1])
+    name = f"{road.name}-leg{number}"
+    told = None if road.controller_map is None else _map_part(road.controller_map, start_m, end_m)
+    return RoadProfile(name, road.distance_m[keep], road.altitude_m[keep], road.source, targets, (), told)
+
+
+def _map_part(told: RoadProfile, start_m: float, end_m: float) -> RoadProfile:
+    """The controllers' map from `start_m` to `end_m` [m]: its points inside, plus both ends."""
+    inside = told.distance_m[(told.distance_m > start_m) & (told.distance_m < end_m)]
+    distance = np.concatenate([[start_m], inside, [end_m]])
+    altitude = np.interp(distance, told.distance_m, told.altitude_m)
+    targets = None if told.target_speed_kmh is None else told.target_speed_at(distance)
+    return RoadProfile(told.name, distance, altitude, told.source, targets)
+
+
+def stops_document(road: RoadProfile) -> dict[str, Any]:
+    """The summary's `stops_not_simulated`: how many stops `road` has, their total duration [s], why."""
+    total_s = float(sum(stop.duration_s for stop in road.stops))
+    return {"count": len(road.stops), "total_stop_s": total_s, "note": STOPS_NOTE}
+
+
+def stops_line(road: RoadProfile) -> str:
+    """One line for the CLI on how a road's stops are driven (`road.stops` must not be empty)."""
+    legs = leg_bounds(road)
+    total_s = sum(stop.duration_s for stop in road.stops)
+    return (
+        f"stops not simulated: {len(road.stops)} stops ({total_s:g} s); driven as {len(legs)} stop-free legs, "
+        "each from its entry target speed (no launch, no braking to standstill)"
+    )
+
+
+def drive_legs(road: RoadProfile, config: RunConfig, drive: Drive) -> RunResult:
+    """Drive each stop-free leg of `road` with `drive` and join the results (:func:`merge_legs`);
+    after a leg that stalls (or ends short of its end) the later legs are not driven."""
+    bounds = leg_bounds(road)
+    if not bounds:
+        raise RoadError(f"{road.source or road.name}: no stop-free leg of at least {MIN_LEG_M:g} m between its stops")
+    results = []
+    for number, (start_m, end_m) in enumerate(bounds, start=1):
+        result = drive(leg_road(road, start_m, end_m, number), _leg_config(config, number))
+        results.append(result)
+        if result.message is not None:
+            break
+    return merge_legs(road, results, bounds)
+
+
+def _leg_config(config: RunConfig, number: int) -> RunConfig:
+    """The configuration of leg `number` (from 1): a configured start speed is the first leg's;
+    the others start at their entry set speed."""
+    values = config.settings.values()
+    if number == 1 or values["start_speed_kmh"] is None:
+        return config
+    return config_from_values({**values, "start_speed_kmh": None}, f"leg {number}")
+
+
+def merge_legs(road: RoadProfile, results: Sequence[RunResult], bounds: Sequence[tuple[float, float]]) -> RunResult:
+    """One result for `road` from the results of its first legs (`bounds`: every leg's (start, end)
+    [m]; fewer results than legs when one stalled)."""
+    summary = _merged_summary([result.summary for result in results])
+    summary["legs"] = [
+        {
+            "start_m": start_m,
+            "end_m": end_m,
+            "entry_speed_kmh": result.summary["start_speed_kmh"],
+            "exit_speed_kmh": result.summary["end_speed_kmh"],
+            "fuel_kg": result.summary["fuel_kg"],
+            "time_s": result.summary["time_s"],
+        }
+        for (start_m, end_m), result in zip(bounds, results, strict=False)
+    ]
+    summary["stops_not_simulated"] = stops_document(road)
+    if len(results) < len(bounds):
+        skipped, next_m = len(bounds) - len(results), bounds[len(results)][0]
+        legs = "the later leg" if skipped == 1 else f"the {skipped} later legs"
+        summary["message"] = (
+            f"{summary['message']}; {legs} (from km {next_m / M_PER_KM:.2f}) {'was' if skipped == 1 else 'were'} "
+            "not driven"
+        )
+    trace = _merged_trace([result.trace for result in results])
+    return dataclasses.replace(results[0], road=road.name, summary=summary, trace=trace)
+
+
+def _merged_summary(legs: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
+    """The legs' summaries as one: sums, maxima, solve-weighted means, ratios recomputed, the first
+    leg's start speed and settings, the last one's end speed, end and any other entry."""
+    merged = {**legs[0], **legs[-1]}
+    merged["start_speed_kmh"] = legs[0]["start_speed_kmh"]
+    for key in SUMMED:
+        values = [leg.get(key) for leg in legs]
+        if values[0] is not None and all(value is not None for value in values):
+            merged[key] = sum(values)
+    for key in LARGEST:
+        if key in merged:
+            merged[key] = max(leg[key] for leg in legs)
+    solves = sum(leg.get("solves") or 0 for leg in legs)
+    for key in PER_SOLVE:
+        if key in merged and solves:
+            merged[key] = sum(leg[key] * leg["solves"] for leg in legs) / solves
+    stalled = any(leg["stalled"] for leg in legs)
+    merged["stalled"] = stalled
+    merged["fuel_corrected_kg"] = None if stalled else merged.get("fuel_corrected_kg")
+    distance_m, time_s = merged["distance_m"], merged["time_s"]
+    merged["fuel_kg_per_100km"] = merged["fuel_kg"] / (distance_m / 1e5) if distance_m > 0 else None
+    merged["mean_speed_kmh"] = distance_m / time_s * KMH_PER_MPS if time_s > 0 else merged["start_speed_kmh"]
+    merged["realtime_ratio"] = merged["compute_time_s"] / time_s if time_s > 0 else None
+    return merged
+
+
+def _merged_trace(traces: Sequence[Mapping[str, np.ndarray]]) -> dict[str, np.ndarray]:
+    """The legs' traces one after the other (distances are the road's already), the cumulative
+    columns of each leg counted on from where the previous leg's ended."""
+    offsets = dict.fromkeys(CUMULATIVE, 0.0)
+    parts: dict[str, list[np.ndarray]] = {name: [] for name in traces[0]}
+    for trace in traces:
+        for name in parts:
+            column = np.asarray(trace[name])
+            parts[name].append(column + offsets[name] if name in offsets else column)
+        offsets = {name: float(parts[name][-1][-1]) for name in CUMULATIVE if name in parts}
+    return {name: np.concatenate(columns) for name, columns in parts.items()}
