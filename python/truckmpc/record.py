@@ -19,8 +19,11 @@ from pathlib import Path
 from typing import Any
 
 from truckmpc.config import RunConfig, config_from_values
-from truckmpc.errors import ConfigError, read_user_text
+from truckmpc.errors import ConfigError, RoadError, read_user_text
 from truckmpc.road import RoadProfile, default_test_track, load_road
+
+MAP_SLACK = 0.02
+"""Share of the road's length by which the controllers' map may differ at either end (the core's check)."""
 
 WALL_CLOCK_FIELDS = frozenset({"compute_time_s", "realtime_ratio", "solve_ms_mean", "solve_ms_max"})
 """Summary fields that measure the computer, not the truck: a replay reproduces every other field."""
@@ -90,6 +93,14 @@ def with_controller_road(profile: RoadProfile, path: str | os.PathLike[str] | No
     if path is None:
         return profile
     told = load_road(path)
+    slack_m = MAP_SLACK * profile.length_m
+    ends = (told.distance_m[0] - profile.distance_m[0], told.distance_m[-1] - profile.distance_m[-1])
+    if max(abs(end) for end in ends) > slack_m:
+        raise RoadError(
+            f"{path}: --controller-road: expected a road spanning the road driven "
+            f"({profile.distance_m[0]:.0f}..{profile.distance_m[-1]:.0f} m) to within 2 %, "
+            f"got {told.distance_m[0]:.0f}..{told.distance_m[-1]:.0f} m"
+        )
     return dataclasses.replace(profile, controller_map=told.reversed() if reverse else told)
 
 

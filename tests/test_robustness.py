@@ -1,0 +1,126 @@
+"""A controller told a wrong world: a mass it does not know, a map that is not the road.
+
+Truths constructed here: a map equal to the road (or a mass equal to the truck's) changes nothing
+bit for bit; the grade noise has the standard deviation and correlation length asked for; the plant
+drives the true road whatever the controller is told; `--controller-road` is recorded and replayed.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+
+import numpy as np
+from typer.testing import CliRunner
+
+from truckmpc import load_run_config, simulate
+from truckmpc import robustness as rb
+from truckmpc.cli import app
+from truckmpc.road import RoadProfile, concatenate, make_section, write_road
+
+COARSE = ("delta_kmh=0.2", "stage_m=50", "horizon_m=1000")
+runner = CliRunner()
+
+
+def _road() -> RoadProfile:
+    parts = [make_section("hill", 600, 3.0, lead_m=300, tail_m=300), make_section("hill", 600, -3.0, lead_m=0)]
+    return concatenate(parts, "up-down")
+
+
+def test_grade_noise_has_the_asked_spread_and_correlation():
+    flat = make_section("flat", 200_000)
+    told = rb.noisy_map(flat, 0.5, seed=3)
+    grade_pct = 100 * np.diff(told.altitude_m) / np.diff(told.distance_m)
+    assert abs(np.std(grade_pct) - 0.5) < 0.05
+    lag = round(rb.CORRELATION_M / rb.NOISE_STEP_M)
+    corr = np.corrcoef(grade_pct[:-lag], grade_pct[lag:])[0, 1]
+    assert abs(corr - math.exp(-1.0)) < 0.05
+    assert told.length_m == flat.length_m
+    assert np.array_equal(told.altitude_m, rb.noisy_map(flat, 0.5, seed=3).altitude_m)
+    assert not np.array_equal(told.altitude_m, rb.noisy_map(flat, 0.5, seed=4).altitude_m)
+
+
+def test_a_map_equal_to_the_road_and_the_true_mass_change_nothing():
+    road = _road()
+    config = load_run_config(overrides=COARSE)
+    plain = simulate(road, config, "mpc")
+    copy = RoadProfile("copy", road.distance_m, road.altitude_m)
+    told = simulate(dataclasses.replace(road, controller_map=copy), config, "mpc")
+    same_mass = simulate(road, load_run_config(overrides=(*COARSE, "controller_mass_kg=40000")), "mpc")
+    for other in (told, same_mass):
+        assert other.summary["fuel_kg"] == plain.summary["fuel_kg"]
+        assert np.array_equal(other.trace["speed_kmh"], plain.trace["speed_kmh"])
+
+
+def test_the_plant_drives_the_true_road_whatever_the_map_says():
+    road = _road()
+    config = load_run_config(overrides=COARSE)
+    biased = RoadProfile("biased", road.distance_m, road.altitude_m + 0.01 * (road.distance_m - road.distance_m[0]))
+    fooled = simulate(dataclasses.replace(road, controller_map=biased), config, "mpc")
+    truth = simulate(road, config, "mpc")
+    assert np.allclose(fooled.trace["altitude_m"], truth.trace["altitude_m"])
+    assert fooled.summary["fuel_kg"] != truth.summary["fuel_kg"]
+    # Told of a 1 % climb everywhere, the controller expects to need more power than it does.
+    assert not np.array_equal(fooled.trace["pedal"], truth.trace["pedal"])
+
+
+def test_a_lighter_truck_than_assumed_is_a_different_run():
+    road = _road()
+    light = ("mass_kg=30000", *COARSE)
+    told = simulate(road, load_run_config(overrides=light), "mpc")
+    untold = simulate(road, load_run_config(overrides=(*light, "controller_mass_kg=40000")), "mpc")
+    assert told.summary["fuel_kg"] != untold.summary["fuel_kg"]
+
+
+def test_the_study_has_every_case_and_its_references(tmp_path):
+    road = _road()
+    config = load_run_config(overrides=COARSE)
+    rows = rb.study(road, config, "mpc", seeds=(1,))
+    assert len(rows) == 1 + 2 * len(rb.MASS_ERRORS) + len(rb.GRADE_SIGMAS_PCT)
+    exact = rows[0]
+    assert exact["kept_pct"] == 100.0
+    pi = simulate(road, config, "pi").summary["fuel_kg"]
+    mpc = simulate(road, config, "mpc").summary["fuel_kg"]
+    assert math.isclose(exact["delta_fuel_pct"], 100 * (mpc - pi) / pi)
+    light = next(row for row in rows if row["mass_kg"] == 30000 and row["controller_mass_kg"] == 30000)
+    heavy_config = load_run_config(overrides=(*COARSE, "mass_kg=30000"))
+    pi_light = simulate(road, heavy_config, "pi").summary["fuel_kg"]
+    mpc_light = simulate(road, heavy_config, "mpc").summary["fuel_kg"]
+    assert math.isclose(light["delta_fuel_pct"], 100 * (mpc_light - pi_light) / pi_light)
+    text = rb.format_study(rows, "mpc")
+    assert text.count("\n") == len(rows) + 1 and "map grade noise 1 %" in text
+
+
+def test_controller_road_is_recorded_and_replayed(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    road = _road()
+    write_road(road, tmp_path / "road.csv")
+    told = rb.noisy_map(road, 1.0, seed=1)
+    write_road(told, tmp_path / "map.csv")
+    args = ["simulate", "--road", "road.csv", "--controller-road", "map.csv", "--out", "a", *_sets()]
+    first = runner.invoke(app, args)
+    assert first.exit_code == 0, first.output
+    doc = json.loads((tmp_path / "a" / "summary.json").read_text())
+    assert doc["run"]["controller_road"]["path"].endswith("map.csv")
+    again = runner.invoke(app, ["simulate", "--replay", "a/summary.json", "--out", "b"])
+    assert again.exit_code == 0, again.output
+    replayed = json.loads((tmp_path / "b" / "summary.json").read_text())
+    assert replayed["mpc"]["fuel_kg"] == doc["mpc"]["fuel_kg"]
+    plain = runner.invoke(app, ["simulate", "--road", "road.csv", "--out", "c", *_sets()])
+    assert plain.exit_code == 0, plain.output
+    assert json.loads((tmp_path / "c" / "summary.json").read_text())["mpc"]["fuel_kg"] != doc["mpc"]["fuel_kg"]
+
+
+def test_a_map_that_does_not_span_the_road_is_one_line_exit_2(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    write_road(_road(), tmp_path / "road.csv")
+    write_road(make_section("flat", 500), tmp_path / "short.csv")
+    result = runner.invoke(app, ["simulate", "--road", "road.csv", "--controller-road", "short.csv", *_sets()])
+    assert result.exit_code == 2
+    lines = result.output.strip().splitlines()
+    assert len(lines) == 1 and "--controller-road" in lines[0] and "short.csv" in lines[0]
+
+
+def _sets() -> list[str]:
+    return [arg for setting in COARSE for arg in ("--set", setting)]
