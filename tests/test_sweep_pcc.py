@@ -46,9 +46,9 @@ def core_runs(monkeypatch) -> list[str]:
     driven: list[str] = []
     real = _core.run
 
-    def recorded(settings, road, altitude, controller):
+    def recorded(settings, road, altitude, controller, controller_road=None):
         driven.append(controller)
-        return real(settings, road, altitude, controller)
+        return real(settings, road, altitude, controller, controller_road)
 
     monkeypatch.setattr(_core, "run", recorded)
     return driven
