@@ -406,14 +406,6 @@ def sweep_cmd(
     set_: SetOpt = None,
     quiet: QuietOpt = False,
     force: ForceOpt = False,
-    controller_road: Annotated[
-        Path | None,
-        typer.Option(
-            "--controller-road",
-            metavar="FILE",
-            help="A road the controllers plan on while the truck drives --road (a noisy import, a grade bias).",
-        ),
-    ] = None,
     check_convergence: Annotated[
         bool,
         typer.Option(

@@ -81,14 +81,20 @@ def _rows(where: str, columns: list[str], lines: list[tuple[int, str]]) -> dict[
     return data
 
 
-def _cell(where: str, number: int, name: str, text: str) -> float:
+def number_cell(where: str, number: int, column: str, text: str) -> float:
+    """The finite number in cell `text` of line `number`; errors name the file, line and `column`."""
     text = text.strip()
     try:
         value = float(text)
     except ValueError:
-        raise RoadError(f"{where}:{number}: column {name!r}: expected a number, got {text!r}") from None
+        raise RoadError(f"{where}:{number}: column {column}: expected a number, got {text!r}") from None
     if not math.isfinite(value):
-        raise RoadError(f"{where}:{number}: column {name!r}: expected a finite number, got {text!r}")
+        raise RoadError(f"{where}:{number}: column {column}: expected a finite number, got {text!r}")
+    return value
+
+
+def _cell(where: str, number: int, name: str, text: str) -> float:
+    value = number_cell(where, number, repr(name), text)
     if name == "distance_m" and abs(value) > MAX_ABS_DISTANCE_M:
         raise RoadError(f"{where}:{number}: column {name!r}: expected at most {MAX_ABS_DISTANCE_M:g} m, got {text!r}")
     if name == "target_speed_kmh" and not 0 < value <= MAX_TARGET_KMH:

@@ -18,7 +18,6 @@ an error (a standstill the cycle gives no duration for). How the legs are driven
 from __future__ import annotations
 
 import itertools
-import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -37,6 +36,7 @@ from .road import (
     RoadProfile,
     Stop,
 )
+from .road_csv import number_cell
 from .units import KMH_PER_MPS, M_PER_KM, PCT_PER_FRACTION
 
 __all__ = ["SUFFIX", "UNITS", "cycle_summary", "import_comments", "read_vdri"]
@@ -150,14 +150,7 @@ def _rows(where: str, columns: dict[str, _Column], lines: list[tuple[int, str]])
 
 
 def _cell(where: str, number: int, name: str, text: str) -> float:
-    text = text.strip()
-    try:
-        value = float(text)
-    except ValueError:
-        raise RoadError(f"{where}:{number}: column <{name}>: expected a number, got {text!r}") from None
-    if not math.isfinite(value):
-        raise RoadError(f"{where}:{number}: column <{name}>: expected a finite number, got {text!r}")
-    return value
+    return number_cell(where, number, f"<{name}>", text)
 
 
 def _check_row(where: str, number: int, values: dict[str, float], previous_m: float | None) -> None:
