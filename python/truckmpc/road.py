@@ -207,8 +207,13 @@ def _grid(start_m: float, end_m: float, step_m: float) -> np.ndarray:
 
 
 def load_road(path: PathLike) -> RoadProfile:
-    """Read a road profile CSV (format in the module doc); errors name the file and line."""
+    """Read a road profile CSV (format in the module doc), or a `.gpx` track imported with the
+    defaults of `truckmpc road import gpx`; errors name the file and line."""
     path = Path(path)
+    if path.suffix.lower() == ".gpx":
+        from .geo.files import gpx_road  # deferred: truckmpc.geo imports this module
+
+        return gpx_road(path)
     where = str(path)
     text = read_user_text(path, where, "a CSV file", RoadError, encoding="utf-8-sig")
     lines = [(n, line.strip()) for n, line in enumerate(text.splitlines(), start=1)]
