@@ -1,8 +1,8 @@
 """From a track (GPX or ``lat,lon,ele`` table) to a road profile.
 
 1. The points are checked (:func:`truckmpc.geo.track.checked`): a one-line error names the first bad point.
-2. Logged positions (GPX track points) are smoothed over 300 m to take out GPS jitter, which would
-   otherwise lengthen the road (:func:`~truckmpc.geo.track.smoothed_positions`); route points and
+2. Logged positions (GPX track points) are smoothed (a spline of 40 m bandwidth) to take out GPS
+   jitter, which would otherwise lengthen the road (:func:`~truckmpc.geo.track.smoothed_positions`); route points and
    table rows, drawn on a map, are kept as they are.
 3. Distance along the track is geodesic on WGS84 (:func:`~truckmpc.geo.track.cumulative_distance_m`).
 4. The elevation is interpolated onto a uniform grid no finer than the source: the step is the
@@ -27,7 +27,7 @@ import numpy as np
 from truckmpc.errors import RoadError
 from truckmpc.geo.options import DEFAULT_GRADE_LIMIT_PCT, DEFAULT_NOISE_M
 from truckmpc.geo.smooth import Smoothing
-from truckmpc.geo.track import POSITION_WINDOW_M, Track, checked, cumulative_distance_m, smoothed_positions
+from truckmpc.geo.track import POSITION_BANDWIDTH_M, Track, checked, cumulative_distance_m, smoothed_positions
 from truckmpc.road import RoadProfile
 from truckmpc.units import PCT_PER_FRACTION
 
@@ -70,23 +70,23 @@ def import_track(
     smoothing: Smoothing | None = None,
     step_m: float | None = None,
     grade_limit: float = DEFAULT_GRADE_LIMIT,
-    position_window_m: float | None = None,
+    position_bandwidth_m: float | None = None,
 ) -> ImportedRoad:
     """The road along `track` (see the module doc). `smoothing` defaults to
     :func:`default_smoothing`; `step_m` [m] must be no finer than the median point spacing (None:
-    that spacing); `position_window_m` [m] (None: 300 m for track points, 0 otherwise)."""
+    that spacing); `position_bandwidth_m` [m] (None: 40 m for track points, 0 otherwise)."""
     track = checked(track)
     smoothing = default_smoothing() if smoothing is None else smoothing
-    if position_window_m is None:
-        position_window_m = POSITION_WINDOW_M if track.kind == "track points" else 0.0
-    distance_m = cumulative_distance_m(*smoothed_positions(track.lat_deg, track.lon_deg, position_window_m))
+    if position_bandwidth_m is None:
+        position_bandwidth_m = POSITION_BANDWIDTH_M if track.kind == "track points" else 0.0
+    distance_m = cumulative_distance_m(*smoothed_positions(track.lat_deg, track.lon_deg, position_bandwidth_m))
     spacing_m = float(np.median(np.diff(distance_m)))
     grid_m = _grid_m(track, float(distance_m[-1]), spacing_m, step_m)
     grid_step_m = float(grid_m[1] - grid_m[0])
     raw_m = np.interp(grid_m, distance_m, track.ele_m)
     smooth_m = smoothing.apply(grid_step_m, raw_m)
     profile = RoadProfile(Path(track.where).stem, grid_m, smooth_m - smooth_m[0], track.where)
-    positions = f"quadratic Savitzky-Golay over {position_window_m:g} m" if position_window_m > 0 else "as given"
+    positions = f"smoothing spline of bandwidth {position_bandwidth_m:g} m" if position_bandwidth_m > 0 else "as given"
     notes = (
         f"source: {track.where} ({track.size} {track.kind})",
         f"length: {distance_m[-1]:.1f} m, geodesic on the WGS84 ellipsoid (pyproj.Geod)",

@@ -18,6 +18,8 @@ HISTOGRAM_EDGES_PCT = (-6.0, -4.0, -3.0, -2.0, -1.0, 1.0, 2.0, 3.0, 4.0, 6.0)
 STRETCH_M = 500.0
 """Length [m] of the stretches over which the steepest climbs and descents are found."""
 
+_STRETCH_STEP_M = 10.0
+
 
 @dataclass(frozen=True)
 class RoadInfo:
@@ -68,16 +70,17 @@ def _histogram(profile: RoadProfile) -> tuple[tuple[float | None, float | None, 
 
 def steepest_stretches(profile: RoadProfile, count: int, uphill: bool) -> list[tuple[float, float, float]]:
     """The `count` steepest non-overlapping climbs (or descents) of :data:`STRETCH_M` (the whole road
-    if shorter) as (start [m], end [m], mean grade [-]), steepest first; only those that do climb
-    (or descend)."""
+    if shorter), starting every 10 m, as (start [m], end [m], mean grade [-]), steepest first; only
+    those that do climb (or descend)."""
     window_m = min(STRETCH_M, profile.length_m)
-    start_m = profile.distance_m[profile.distance_m <= profile.distance_m[-1] - window_m + 1e-9]
+    start_m = np.arange(profile.distance_m[0], profile.distance_m[-1] - window_m + 1e-9, _STRETCH_STEP_M)
     rise_m = np.interp(start_m + window_m, profile.distance_m, profile.altitude_m) - np.interp(
         start_m, profile.distance_m, profile.altitude_m
     )
     grade = (rise_m if uphill else -rise_m) / window_m
     found: list[tuple[float, float, float]] = []
-    for i in np.argsort(-grade, kind="stable"):
+    # Steepest first; equal grades (to 1e-9) in road order, so a long even climb is cut from its start.
+    for i in np.lexsort((start_m, -np.round(grade, 9))):
         if len(found) == count or grade[i] <= 0:
             break
         if all(abs(start_m[i] - a) >= window_m for a, _, _ in found):
