@@ -28,6 +28,7 @@ import numpy as np
 from scipy.signal import fftconvolve
 
 from truckmpc.atomic import atomic_write_text
+from truckmpc.errors import RoadError
 from truckmpc.geo.track import WGS84
 from truckmpc.road import RoadProfile
 
@@ -155,6 +156,11 @@ def road_piece(road: RoadProfile, start_m: float, end_m: float) -> RoadProfile:
     ends interpolated), distances from 0, altitudes from 0, named ``NAME-kmA-B``."""
     first_m = road.distance_m[0] + start_m
     last_m = min(road.distance_m[0] + end_m, road.distance_m[-1])
+    if not (start_m >= 0 and last_m > first_m):
+        raise RoadError(
+            f"{road.source or road.name}: expected a part within the road's {road.length_m:g} m, "
+            f"got {start_m:g} m to {end_m:g} m"
+        )
     inside = road.distance_m[(road.distance_m > first_m + 1e-3) & (road.distance_m < last_m - 1e-3)]
     distance_m = np.concatenate([[first_m], inside, [last_m]])
     altitude_m = np.interp(distance_m, road.distance_m, road.altitude_m)
