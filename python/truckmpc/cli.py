@@ -15,6 +15,10 @@ Commands::
                        [--tail-m Y] -o FILE
     truckmpc road regenerate [--dir roads]
     truckmpc road import vdri FILE -o FILE
+    truckmpc road import {gpx,csv} FILE -o ROAD.csv [--method spline|savgol|none] [--noise-m S]
+                         [--smooth-m L] [--step-m D] [--grade-limit-pct G]
+    truckmpc road info FILE
+    truckmpc road plot FILE [-o OUT.png] [--svg]
     truckmpc bench [--json] [--road FILE] [--quick] [--set key=value ...]
     truckmpc plot DIR [--svg] [--out FILE_OR_DIR]
 
@@ -44,6 +48,7 @@ from truckmpc.config import RunConfig, load_run_config
 from truckmpc.convergence import convergence_document, halved_configs, run_halves
 from truckmpc.equal_time import LOOK_AHEAD, OPTIMISERS, equal_time_baselines
 from truckmpc.errors import ConfigError, TruckmpcError
+from truckmpc.geo import options as geo
 from truckmpc.legs import stops_line
 from truckmpc.record import RunRequest, load_replay, run_record, with_controller_road
 from truckmpc.results import check_run_dir, format_table, write_outputs
@@ -144,16 +149,16 @@ app = typer.Typer(
     rich_markup_mode=None,
 )
 model_app = typer.Typer(help="Query the vehicle model.", no_args_is_help=True, rich_markup_mode=None)
-road_app = typer.Typer(help="Make, import and regenerate road profiles.", no_args_is_help=True, rich_markup_mode=None)
-import_app = typer.Typer(
-    help="Convert road profiles and driving cycles from other formats into road CSVs.",
-    no_args_is_help=True,
-    rich_markup_mode=None,
-)
-road_app.add_typer(import_app, name="import")
+road_app = typer.Typer(help="Make, import, inspect and plot roads.", no_args_is_help=True, rich_markup_mode=None)
 config_app = typer.Typer(
     help="The parameters: key tables and the packaged default files.", no_args_is_help=True, rich_markup_mode=None
 )
+road_import_app = typer.Typer(
+    help="Make a road CSV from a GPS track, a track drawn on a map or a VECTO driving cycle.",
+    no_args_is_help=True,
+    rich_markup_mode=None,
+)
+road_app.add_typer(road_import_app, name="import")
 app.add_typer(model_app, name="model")
 app.add_typer(road_app, name="road")
 app.add_typer(config_app, name="config")
@@ -682,7 +687,7 @@ def road_regenerate_cmd(
     typer.echo(f"wrote {len(written)} road files to {directory}")
 
 
-@import_app.command("vdri")
+@road_import_app.command("vdri")
 def road_import_vdri_cmd(
     cycle: Annotated[Path, typer.Argument(metavar="FILE", help="VECTO distance-based driving cycle (.vdri).")],
     output: Annotated[Path, typer.Option("-o", "--output", help="Road CSV to write.")],
@@ -692,6 +697,67 @@ def road_import_vdri_cmd(
     profile = read_vdri(cycle)
     write_road(profile, output, comments=import_comments(profile, f"truckmpc road import vdri {cycle} -o {output}"))
     typer.echo(f"wrote {output} ({cycle_summary(profile)})")
+
+
+def _import(kind: str, file: Path, output: Path, *options: Any) -> None:
+    from truckmpc.geo.commands import ImportOptions, import_road
+
+    for line in import_road(kind, file, output, ImportOptions(*options)):
+        typer.echo(line)
+
+
+@road_import_app.command("gpx")
+def road_import_gpx_cmd(
+    file: geo.TrackArg,
+    output: geo.OutputOpt,
+    method: geo.MethodOpt = geo.Method.spline,
+    noise_m: geo.NoiseOpt = geo.DEFAULT_NOISE_M,
+    smooth_m: geo.SmoothOpt = None,
+    step_m: geo.StepOpt = None,
+    grade_limit_pct: geo.GradeLimitOpt = geo.DEFAULT_GRADE_LIMIT_PCT,
+) -> None:
+    """Make a road CSV from a GPX file's track points (else its route points): geodesic distance,
+    elevation resampled and smoothed, steep grades reported (README: Roads from GPS tracks)."""
+    _import("gpx", file, output, method, noise_m, smooth_m, step_m, grade_limit_pct)
+
+
+@road_import_app.command("csv")
+def road_import_csv_cmd(
+    file: geo.TrackArg,
+    output: geo.OutputOpt,
+    method: geo.MethodOpt = geo.Method.spline,
+    noise_m: geo.NoiseOpt = geo.DEFAULT_NOISE_M,
+    smooth_m: geo.SmoothOpt = None,
+    step_m: geo.StepOpt = None,
+    grade_limit_pct: geo.GradeLimitOpt = geo.DEFAULT_GRADE_LIMIT_PCT,
+) -> None:
+    """Make a road CSV from a plain lat,lon,ele table (degrees, metres; one point per row in travel
+    order), as road import gpx does."""
+    _import("csv", file, output, method, noise_m, smooth_m, step_m, grade_limit_pct)
+
+
+@road_app.command("info")
+def road_info_cmd(file: geo.RoadFileArg) -> None:
+    """Print a road's length, climb and descent, grade histogram, steepest stretches and, for an
+    imported road, how it was made (smoothing included)."""
+    from truckmpc.geo.commands import info_lines
+
+    for line in info_lines(file):
+        typer.echo(line)
+
+
+@road_app.command("plot")
+def road_plot_cmd(
+    file: geo.RoadFileArg,
+    out: Annotated[Path | None, typer.Option("-o", "--out", help="Picture to write (default: FILE.png).")] = None,
+    svg: Annotated[bool, typer.Option("--svg", help="Also write an SVG beside the PNG.")] = False,
+) -> None:
+    """Draw a road's altitude and grade over distance; for an imported road, the raw elevation under
+    the smoothed one. Needs matplotlib."""
+    from truckmpc.geo.commands import plot_road_file
+
+    written = plot_road_file(file, out, svg)
+    typer.echo("wrote " + ", ".join(str(p) for p in written))
 
 
 @app.command("plot")

@@ -249,8 +249,14 @@ def _grid(start_m: float, end_m: float, step_m: float) -> np.ndarray:
 
 def load_road(path: PathLike) -> RoadProfile:
     """Read a road file: a VECTO driving cycle if the name ends in `.vdri` (:func:`truckmpc.vdri.read_vdri`),
-    else a road CSV (:func:`truckmpc.road_csv.read_road_csv`); errors name the file and line."""
+    a `.gpx` track imported with the defaults of `truckmpc road import gpx`, else a road CSV
+    (:func:`truckmpc.road_csv.read_road_csv`); errors name the file and line."""
     from . import road_csv, vdri
+
+    if Path(path).suffix.lower() == ".gpx":
+        from .geo.files import gpx_road  # deferred: truckmpc.geo imports this module
+
+        return gpx_road(Path(path))
 
     if Path(path).suffix.lower() == vdri.SUFFIX:
         return vdri.read_vdri(path)
