@@ -124,3 +124,18 @@ def test_a_map_that_does_not_span_the_road_is_one_line_exit_2(tmp_path, monkeypa
 
 def _sets() -> list[str]:
     return [arg for setting in COARSE for arg in ("--set", setting)]
+
+
+def test_a_reversed_map_keeps_its_points_along_the_road_and_takes_the_roads_targets(tmp_path):
+    road = RoadProfile("r", np.array([0.0, 1000.0, 2000.0]), np.zeros(3), None, np.array([85.0, 60.0, 60.0]))
+    # A map 1 % longer than the road, with a bump at 500 m along it.
+    told = RoadProfile("m", np.array([0.0, 500.0, 2020.0]), np.array([0.0, 5.0, 0.0]))
+    write_road(told, tmp_path / "map.csv")
+    from truckmpc.record import with_controller_road
+
+    back = with_controller_road(road.reversed(), tmp_path / "map.csv", reverse=True)
+    assert back.controller_map is not None
+    # The bump at 500 m along the road is at 2000 - 500 = 1500 m driving back.
+    assert np.interp(1500.0, back.controller_map.distance_m, back.controller_map.altitude_m) == 5.0
+    assert back.controller_map.target_speed_kmh is not None
+    assert back.controller_map.target_speed_at(np.array([1500.0]))[0] == 85.0

@@ -186,6 +186,9 @@ def equal_time(
     found = EqualTime(target_time_s, offset_from_kmh=offset_from_kmh)
     search = _Search(found, g_per_half_v2, TIME_TOLERANCE * target_time_s)
     lo_kmh, hi_kmh = max(v_ref_kmh - SEARCH_KMH, v_floor_kmh), v_ref_kmh + SEARCH_KMH
+    if offset_from_kmh is not None:
+        # The offset is a key with a range: the search stays inside it.
+        hi_kmh = min(hi_kmh, offset_from_kmh + TARGET_OFFSET_LIMIT_KMH)
     error = search.record(v_ref_kmh, first)
     if error is None or search.done(error):
         return search.found

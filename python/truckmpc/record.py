@@ -101,7 +101,17 @@ def with_controller_road(profile: RoadProfile, path: str | os.PathLike[str] | No
             f"({profile.distance_m[0]:.0f}..{profile.distance_m[-1]:.0f} m) to within 2 %, "
             f"got {told.distance_m[0]:.0f}..{told.distance_m[-1]:.0f} m"
         )
-    return dataclasses.replace(profile, controller_map=told.reversed() if reverse else told)
+    if reverse:
+        told = told.mirrored(profile.distance_m[0] + profile.distance_m[-1])
+    return dataclasses.replace(profile, controller_map=map_with_targets_of(profile, told))
+
+
+def map_with_targets_of(profile: RoadProfile, told: RoadProfile) -> RoadProfile:
+    """The map `told` with the target speeds of the road driven (a map tells the grades; the
+    targets are the run's): without them the controllers would plan in the uniform band while the
+    truck follows the road's."""
+    targets = None if profile.target_speed_kmh is None else profile.target_speed_at(told.distance_m)
+    return dataclasses.replace(told, target_speed_kmh=targets, stops=())
 
 
 def load_replay(path: Path) -> tuple[RunRequest, RoadProfile, RunConfig]:

@@ -15,6 +15,7 @@ driving cycle `.vdri` (:mod:`truckmpc.vdri`); :func:`write_road` writes the CSV.
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import math
 import os
@@ -168,9 +169,18 @@ class RoadProfile:
             segments = self.target_speed_kmh[:-1][::-1]
             targets = np.append(segments, segments[-1])
         stops = tuple(Stop((start + end) - stop.distance_m, stop.duration_s) for stop in self.stops[::-1])
-        mirrored = None if self.controller_map is None else self.controller_map.reversed()
+        mirrored = None if self.controller_map is None else self.controller_map.mirrored(start + end)
         distance = (start + end) - self.distance_m[::-1]
         return RoadProfile(name, distance, self.altitude_m[::-1], self.source, targets, stops, mirrored)
+
+    def mirrored(self, ends_sum_m: float) -> RoadProfile:
+        """This road driven the other way, distances mirrored as `ends_sum_m` − d [m]: with the sum of
+        another road's ends, this road as a map of that one reversed (its points then stay where
+        they were along the other road, whatever its own ends)."""
+        back = self.reversed()
+        shift_m = ends_sum_m - (self.distance_m[0] + self.distance_m[-1])
+        stops = tuple(Stop(stop.distance_m + shift_m, stop.duration_s) for stop in back.stops)
+        return dataclasses.replace(back, distance_m=back.distance_m + shift_m, stops=stops)
 
     def resampled(self, step_m: float) -> RoadProfile:
         """The altitude linearly interpolated onto points every `step_m` metres from the start,

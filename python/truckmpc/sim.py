@@ -141,6 +141,11 @@ def _drive(road: RoadProfile, config: RunConfig, controller: str | Controller) -
         out = _core.run(config.settings, road.core(), altitude_m, controller, told)
         name, extra = controller, _mpc_settings(config) if controller in DP_CONTROLLERS else {}
     else:
+        if config.settings.values()["controller_mass_kg"] is not None:
+            raise ConfigError(
+                f"controller_mass_kg: expected null with the Python controller {controller.name!r} "
+                "(it is given the truck's state, not a model), got a mass"
+            )
         if road.controller_map is not None:
             raise ConfigError(
                 f"controller_road: expected a built-in controller, got the Python controller {controller.name!r}"

@@ -9,12 +9,15 @@
 //! i.e. at s it is the lowest over the stretches ahead of √(top_c² + 2·a·(c − s)) (speeds in m/s,
 //! c the stretch's start). A truck at the top can therefore reach every lower stretch by its start
 //! braking at that rate, never harder. The set speed follows the falling top (it stays v_inc below
-//! it), and v_min stays v_dec below the set speed.
+//! it), and v_min stays v_dec below the set speed, but not below 5 km/h.
 
 use crate::params::CruiseParams;
 use crate::road::Road;
 
 const KMH_PER_MPS: f64 = 3.6;
+
+/// Lowest v_min [km/h] a stretch's band takes (unless the cruise band's own is lower).
+pub const V_MIN_FLOOR_KMH: f64 = 5.0;
 
 /// The band at one position [km/h].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -125,7 +128,9 @@ impl SpeedBand {
             }
         }
         let v_ref_kmh = if top_kmh < own_top_kmh { top_kmh - self.v_inc_kmh } else { self.set_kmh[i] };
-        BandAt { v_ref_kmh, v_min_kmh: v_ref_kmh - self.v_dec_kmh, v_max_kmh: top_kmh }
+        // A low stretch must not take v_min to or below zero (a relaxed band's v_dec is v_ref − 5).
+        let floor_kmh = self.uniform.v_min_kmh.min(V_MIN_FLOOR_KMH);
+        BandAt { v_ref_kmh, v_min_kmh: (v_ref_kmh - self.v_dec_kmh).max(floor_kmh), v_max_kmh: top_kmh }
     }
 
     /// The set speed of the stretch at `s_m` [km/h], without the falling top: where the truck
@@ -208,6 +213,18 @@ mod tests {
         // Rising again, the band steps up at the stretch's start.
         assert_eq!(at(2000.0).v_ref_kmh, 85.0);
         assert_eq!(at(1999.0).v_ref_kmh, 60.0);
+    }
+
+    /// A stretch far below v_ref keeps v_min above zero: the relaxed band (v_dec = v_ref − 5 km/h)
+    /// at a 30 km/h stretch has v_min 5 km/h, not −50.
+    #[test]
+    fn a_low_stretch_keeps_v_min_above_zero() {
+        let relaxed = CruiseParams { v_dec_kmh: 80.0, ..CruiseParams::default() };
+        let band = SpeedBand::new(&road(vec![85.0, 30.0]), &relaxed);
+        assert_eq!(band.at(1500.0, &mut 0).v_min_kmh, V_MIN_FLOOR_KMH);
+        assert_eq!(band.at(10.0, &mut 0).v_min_kmh, 5.0);
+        let normal = SpeedBand::new(&road(vec![85.0, 30.0]), &CruiseParams::default());
+        assert_eq!(normal.at(1500.0, &mut 0).v_min_kmh, 25.0);
     }
 
     /// The cruise v_ref caps the targets; the offset moves every stretch.

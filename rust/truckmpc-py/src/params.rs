@@ -189,7 +189,7 @@ impl PySettings {
     #[getter]
     fn beta_g_per_s_resolved(&self) -> PyResult<Option<f64>> {
         let dp = DpSettings::new(&self.inner.mpc, &self.inner.cruise).map_err(to_py)?;
-        Ok(dp.beta_for(&self.vehicle))
+        Ok(dp.beta_for(&self.controller_vehicle))
     }
 
     /// Grams of fuel per unit of ½v² [m²/s²] the engine adds in the gear the PI's gear logic settles

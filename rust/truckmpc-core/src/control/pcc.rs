@@ -177,6 +177,9 @@ impl PccController {
             if self.used[k] || s >= d.x_end_max_m {
                 continue;
             }
+            if s < d.x_low_m - self.p.pcc_preview_m {
+                continue;
+            }
             let v_ref = self.v_ref_at(s.max(d.x_low_m));
             let v_low = (v_ref * KMH_PER_MPS - self.p.pcc_underspeed_kmh) / KMH_PER_MPS;
             if s < d.x_low_m {
@@ -203,8 +206,7 @@ impl PccController {
 
     /// Hand back to the PI: reset it to hold v_ref from the present state.
     fn resume_cruise(&mut self, road: &Road, state: &PlantState) {
-        let mut hint = 0;
-        self.pi.reset(state.v_mps, road.slope_at(state.s_m, &mut hint), state.t_s);
+        self.pi.resume(road, state);
         self.mode = Mode::Cruise;
         self.idle_since_s = None;
     }

@@ -187,6 +187,15 @@ impl PiController {
         &self.band
     }
 
+    /// Take over at `state` from another controller: the set speed and brake limit of the band at
+    /// its position, no look-ahead coasting under way, then [`PiController::reset`].
+    pub fn resume(&mut self, road: &Road, state: &PlantState) {
+        self.follow_band(state.s_m);
+        self.coasting_to = None;
+        let mut hint = 0;
+        self.reset(state.v_mps, road.slope_at(state.s_m, &mut hint), state.t_s);
+    }
+
     /// Pedal and brake integrator states [km/h·s].
     pub fn integrators(&self) -> (f64, f64) {
         (self.pedal_integrator, self.brake_integrator)

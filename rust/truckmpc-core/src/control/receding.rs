@@ -359,9 +359,15 @@ impl Controller for RecedingController {
 
     /// Solve the first stage from the starting state.
     fn start(&mut self, road: &Road, state: &PlantState) {
-        let params = self.solver.params();
+        let params = self.solver.params().clone();
         self.band = SpeedBand::new(road, &params.cruise());
         self.relaxed_band = SpeedBand::new(road, &params.relaxed(RELAXED_V_MIN_KMH).cruise());
+        // The row cache and interval memo are keyed by absolute stage within one road: a new run
+        // starts them afresh (a stage of another road, or of other target speeds, may differ).
+        let caching = self.solver.caching();
+        self.solver = Solver::new(params);
+        self.solver.set_caching(caching);
+        self.relaxed = None;
         self.origin_m = state.s_m;
         self.shifts = ShiftCounter::new(self.solver.params().k_lim);
         self.gear = self.start_gears.steady_gear(state.v_mps);

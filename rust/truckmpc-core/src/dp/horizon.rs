@@ -23,12 +23,19 @@ pub fn stage_slopes(road: &Road, s0_m: f64, stage_m: f64, stages: usize, out: &m
 /// band of the stage before it (the lower of the two tops): the truck enters the faster stretch at
 /// the slower one's speed rather than speeding up ahead of it.
 pub fn stage_bands(band: &SpeedBand, s0_m: f64, stage_m: f64, stages: usize, out: &mut Vec<BandAt>) {
+    bands_at(band, (0..=stages).map(|k| s0_m + k as f64 * stage_m), out);
+}
+
+/// The bands of [`stage_bands`] at the given boundary positions [m], in order.
+pub fn bands_at(band: &SpeedBand, positions: impl Iterator<Item = f64>, out: &mut Vec<BandAt>) {
     out.clear();
     let mut hint = 0;
-    let mut before = band.at(s0_m, &mut hint);
+    let mut positions = positions;
+    let Some(first_m) = positions.next() else { return };
+    let mut before = band.at(first_m, &mut hint);
     out.push(before);
-    for k in 1..=stages {
-        let here = band.at(s0_m + k as f64 * stage_m, &mut hint);
+    for s_m in positions {
+        let here = band.at(s_m, &mut hint);
         out.push(if before.v_max_kmh < here.v_max_kmh { before } else { here });
         before = here;
     }
@@ -66,7 +73,15 @@ pub fn solve_at(
     if !band.varies() {
         return solver.solve_from_stage(vehicle, start, &scratch.slopes, first_stage);
     }
-    stage_bands(band, s_m, stage_m, stages, &mut scratch.bands);
+    // On a boundary, positions come from the absolute index (as the cache's key does), so a
+    // stage's band cannot differ between solves by a rounding at a stretch's start.
+    match first_stage {
+        Some(first) => {
+            let positions = (first..=first + stages as u64).map(|j| road.start_m() + j as f64 * stage_m);
+            bands_at(band, positions, &mut scratch.bands);
+        }
+        None => stage_bands(band, s_m, stage_m, stages, &mut scratch.bands),
+    }
     solver.solve_in_bands(vehicle, start, &scratch.slopes, &scratch.bands, first_stage)
 }
 

@@ -277,6 +277,11 @@ impl Solver {
         self.caching = on;
     }
 
+    /// Whether the row cache is on.
+    pub fn caching(&self) -> bool {
+        self.caching
+    }
+
     /// The parameters.
     pub fn params(&self) -> &DpSettings {
         &self.params
