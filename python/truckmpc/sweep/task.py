@@ -1,30 +1,32 @@
-"""Running a sweep's PI, PCC and MPC runs: in this process (one job) or in a pool of spawned processes."""
+"""One run of a sweep or Pareto study, as a worker (a Dask worker process, or this process) runs it:
+a PI, PCC or MPC run over one road with one vehicle and its overrides, with the look-ahead runs'
+equal-time baselines and convergence moves. A run that raises comes back as its error, one line,
+so that the other runs go on."""
 
 from __future__ import annotations
 
-import multiprocessing
-import signal
 from collections.abc import Iterator, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
-from concurrent.futures.process import BrokenProcessPool
 from typing import Any, NamedTuple
 
 from truckmpc import sim
 from truckmpc.config import RunConfig, load_run_config
 from truckmpc.convergence import convergence_document, halved_configs, run_halves
 from truckmpc.equal_time import equal_time_baselines
+from truckmpc.errors import RoadError, TruckmpcError
 from truckmpc.road import RoadProfile
-from truckmpc.signals import received_signal
 from truckmpc.sim import RunResult, simulate
 from truckmpc.sweep.columns import CONVERGENCE_COLUMNS, RUNS, equal_time_fields
-from truckmpc.sweep.errors import SweepWorkerDied
+
+ERROR = "error"
+"""The key of a failed run's one-line error in its figures (which hold nothing else)."""
 
 
 class Task(NamedTuple):
-    """One run: ``controller`` over road number ``road`` with ``overrides``, for plan row ``row``
-    (for a shared run: one of the rows whose run of ``controller`` has this ``key``). A look-ahead
-    run is also compared at equal trip time with each of ``baselines`` unless ``plain``, and an MPC
-    run driven again at half δ and half S with ``convergence``."""
+    """One run: ``controller`` over road number ``road`` with vehicle number ``vehicle`` and
+    ``overrides``, for plan row ``row`` (for a shared run: one of the rows whose run of
+    ``controller`` has this ``key``). A look-ahead run is also compared at equal trip time with each
+    of ``baselines`` unless ``plain``, and an MPC run driven again at half δ and half S with
+    ``convergence``."""
 
     controller: str
     road: int
@@ -34,42 +36,69 @@ class Task(NamedTuple):
     plain: bool = False
     convergence: bool = False
     baselines: tuple[str, ...] = ("pi",)
+    vehicle: int = 0
 
 
-_WORKER: dict[str, Any] = {}
+class RunBase(NamedTuple):
+    """What every run of a study starts from: the vehicle files (one per ``Task.vehicle``; None:
+    the packaged truck) and the ``--config`` overlays, as absolute paths where a worker reads them."""
+
+    vehicles: tuple[str | None, ...]
+    config_paths: tuple[str, ...]
 
 
-def _init_worker(roads: Sequence[RoadProfile], base: tuple[str | None, tuple[str, ...]], ignore_sigint: bool) -> None:
-    """Per process: the roads (sent once) and the base files; workers leave Ctrl-C to the parent."""
-    if ignore_sigint:
-        signal.signal(signal.SIGINT, signal.SIG_IGN)
-    _WORKER.update(roads=list(roads), base=base)
+class BrokenRoad(NamedTuple):
+    """A road file of a fleet (found in a directory or by a glob) that could not be read: its rows
+    are planned, and each of their runs fails with ``message``."""
+
+    name: str
+    source: str
+    message: str
+    stops: tuple[()] = ()
+
+    def sha256(self) -> None:
+        """No content to identify the road by."""
+        return None
+
+    def reversed(self) -> BrokenRoad:
+        return self
 
 
-def run_one(
-    controller: str,
-    road: int,
-    overrides: Sequence[str],
-    plain: bool = False,
-    convergence: bool = False,
-    baselines: Sequence[str] = ("pi",),
-) -> dict[str, Any]:
-    """Run one controller (``pi``, ``pcc``, ``mpc``) over one road of the current worker's sweep;
-    its figures by field name (a look-ahead run's with each of `baselines` re-tuned to its trip
-    time, unless ``plain``, and an MPC run's convergence moves with ``convergence``)."""
-    vehicle_path, config_paths = _WORKER["base"]
-    config = load_run_config(vehicle_path, config_paths, overrides)
-    profile = _WORKER["roads"][road]
-    result = simulate(profile, config, controller)
-    figures = {name: result.summary.get(name) for name in RUNS[controller].fields}
-    if controller == "pi" or plain:
+Road = RoadProfile | BrokenRoad
+"""A road of a sweep: a profile, or a fleet's file that could not be read."""
+
+
+def run_task(road: Road, base: RunBase, task: Task) -> dict[str, Any]:
+    """The figures of `task` over `road` by field name, or ``{"error": one line}`` if it raised."""
+    try:
+        if isinstance(road, BrokenRoad):
+            raise RoadError(road.message)
+        config = load_run_config(base.vehicles[task.vehicle], base.config_paths, task.overrides)
+        return _figures(road, config, task)
+    except Exception as err:  # a failed run is reported in its rows, not raised
+        return {ERROR: error_line(err)}
+
+
+def error_line(err: BaseException) -> str:
+    """A run's error as one line: a user-facing error's message, else the exception's type and text."""
+    text = str(err) if isinstance(err, TruckmpcError) else f"{type(err).__name__}: {err}"
+    return " ".join(text.split())
+
+
+def _figures(profile: RoadProfile, config: RunConfig, task: Task) -> dict[str, Any]:
+    """Run one controller (``pi``, ``pcc``, ``mpc``) over `profile`; its figures by field name (a
+    look-ahead run's with each of the task's baselines re-tuned to its trip time, unless plain, and
+    an MPC run's convergence moves when asked)."""
+    result = simulate(profile, config, task.controller)
+    figures = {name: result.summary.get(name) for name in RUNS[task.controller].fields}
+    if task.controller == "pi" or task.plain:
         return figures
     # The baselines at v_ref again, in this worker: each equal-time search starts from its baseline's
     # run and the convergence moves are measured against the PI's (not the sweep's shared runs).
-    bases = {name: sim.simulate(profile, config, name) for name in baselines}
+    bases = {name: sim.simulate(profile, config, name) for name in task.baselines}
     for base in bases.values():
         figures.update(_equal_time_figures(profile, config, base, result))
-    if convergence:
+    if task.convergence:
         halves = halved_configs(config)
         moves = convergence_document({"pi": bases["pi"], "mpc": result}, run_halves(profile, halves), halves)
         figures.update({column: moves[column] for column in CONVERGENCE_COLUMNS})
@@ -90,60 +119,7 @@ def _equal_time_figures(profile: RoadProfile, config: RunConfig, base: RunResult
     return figures
 
 
-class Runner:
-    """Runs tasks in this process (jobs=1) or in a pool of spawned processes, yielding
-    ``(task, figures)`` as they finish. Leaving the block early (an error, Ctrl-C) stops the workers
-    at once, mid-run."""
-
-    def __init__(self, roads: Sequence[RoadProfile], base: tuple[str | None, tuple[str, ...]], jobs: int) -> None:
-        self.roads, self.base, self.jobs = roads, base, jobs
-        self._pool: ProcessPoolExecutor | None = None
-
-    def __enter__(self) -> Runner:
-        return self
-
-    def __exit__(self, exc_type: object, *exc: object) -> None:
-        pool, self._pool = self._pool, None
-        if pool is None:
-            return
-        if exc_type is not None:  # don't wait for runs nobody will read
-            if hasattr(pool, "terminate_workers"):  # Python >= 3.14
-                pool.terminate_workers()
-            else:
-                for process in list(getattr(pool, "_processes", {}).values()):
-                    process.terminate()
-        pool.shutdown(wait=True, cancel_futures=True)
-
-    def results(self, tasks: Sequence[Task]) -> Iterator[tuple[Task, dict[str, Any]]]:
-        if self.jobs <= 1 or len(tasks) <= 1:
-            _init_worker(self.roads, self.base, ignore_sigint=False)
-            for task in tasks:
-                yield task, run_one(*_arguments(task))
-            return
-        # Workers are spawned (not forked: this process may run threads) while submitting; they
-        # inherit an ignored SIGINT through exec, so Ctrl-C reaches only this process.
-        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
-        try:
-            self._pool = ProcessPoolExecutor(
-                min(self.jobs, len(tasks)),
-                multiprocessing.get_context("spawn"),
-                _init_worker,
-                (self.roads, self.base, True),
-            )
-            futures = {self._pool.submit(run_one, *_arguments(t)): t for t in tasks}
-        finally:
-            signal.signal(signal.SIGINT, previous)
-        try:
-            for future in as_completed(futures):
-                yield futures[future], future.result()
-        except BrokenProcessPool:
-            if received_signal() is not None:  # the signal reached the workers too (sent to the process group)
-                raise KeyboardInterrupt from None
-            raise SweepWorkerDied(
-                "a sweep worker process died (killed? out of memory?); run the same command again to resume"
-            ) from None
-
-
-def _arguments(task: Task) -> tuple[Any, ...]:
-    """The arguments of :func:`run_one` for `task`."""
-    return task.controller, task.road, task.overrides, task.plain, task.convergence, task.baselines
+def run_all(roads: Sequence[Road], base: RunBase, tasks: Sequence[Task]) -> Iterator[tuple[Task, dict[str, Any]]]:
+    """Each task's ``(task, figures)`` in this process, in order (one job, or a single run)."""
+    for task in tasks:
+        yield task, run_task(roads[task.road], base, task)
