@@ -227,12 +227,13 @@ def _resumed_rows(plan: SweepPlan, out: Path, notice: Callable[[str], None]) -> 
     failed: set[int] = set()
     for where, cells in finished_rows(out, plan.columns):
         row = by_key.get(tuple(cells[:first_result]))
+        if row is not None and plan.layout.failed(cells[first_result:]):
+            failed.add(row.index)
+            continue
         damage = None if row is None else plan.layout.damaged(cells[first_result:])
         problem = "not a row of this sweep" if row is None else damage
         if problem is not None or row is None:
             dropped.append(f"{where}: {problem}")
-        elif plan.layout.failed(cells[first_result:]):
-            failed.add(row.index)
         else:
             done.setdefault(row.index, cells)
     if dropped:
