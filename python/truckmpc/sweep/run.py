@@ -59,8 +59,8 @@ def run_sweep(
     grid: Sequence[Axis | str] | Mapping[str, Sequence[Any]],
     out: PathLike,
     *,
-    reverse: bool = False,
-    vehicle_path: PathLike | None = None,
+    reverse: bool | str = False,
+    vehicle_path: PathLike | Sequence[PathLike] | None = None,
     config_paths: Sequence[PathLike] = (),
     overrides: Sequence[str] = (),
     jobs: int | None = None,
@@ -72,8 +72,9 @@ def run_sweep(
 ) -> SweepResult:
     """Run (or resume) a sweep into directory ``out``: the PI and `controllers` (``pcc``, ``mpc``)
     on every road for every combination of ``grid`` (``["horizon_m=250:3000:250",
-    "delta_kmh=0.1,0.2"]`` or ``{"horizon_m": [250, 500]}``); see :mod:`truckmpc.sweep` and
-    :func:`run_plan`.
+    "delta_kmh=0.1,0.2"]`` or ``{"horizon_m": [250, 500]}``), each road reversed or both ways
+    (``reverse="both"``), with one vehicle file or several; see :mod:`truckmpc.sweep`,
+    :func:`~truckmpc.sweep.plan.plan_sweep` and :func:`run_plan`.
 
     Every combination is validated before anything runs or ``out`` is created.
     """
