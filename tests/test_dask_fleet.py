@@ -153,9 +153,15 @@ def test_bad_fleet_input_is_one_line_and_writes_nothing(tmp_path: Path, args: li
     assert not (tmp_path / "out").exists()
 
 
-def test_an_unreachable_scheduler_is_one_line_and_writes_nothing(tmp_path: Path, monkeypatch) -> None:
+@pytest.mark.parametrize("given", ["option", "environment"])
+def test_an_unreachable_scheduler_is_one_line_and_writes_nothing(tmp_path: Path, monkeypatch, given: str) -> None:
+    """--scheduler, or TRUCKMPC_SCHEDULER without it, names a scheduler nothing listens at."""
     monkeypatch.setattr(sweep_cluster, "CONNECT_TIMEOUT_S", 1.0)
-    args = ["sweep", "--road", "roads/hill_L300_A-3.csv", "--scheduler", "tcp://127.0.0.1:1", "--out", str(tmp_path)]
+    args = ["sweep", "--road", "roads/hill_L300_A-3.csv", "--out", str(tmp_path)]
+    if given == "option":
+        args += ["--scheduler", "tcp://127.0.0.1:1"]
+    else:
+        monkeypatch.setenv("TRUCKMPC_SCHEDULER", "tcp://127.0.0.1:1")
     result = runner.invoke(app, args)
     assert result.exit_code == 2, result.output
     assert result.stderr.startswith("error: --scheduler tcp://127.0.0.1:1: cannot reach a Dask scheduler there (")

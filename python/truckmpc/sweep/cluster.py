@@ -73,7 +73,7 @@ class Cluster:
         so; the embedded one's if bokeh, which draws it, is installed."""
         if self.local is not None and importlib.util.find_spec("bokeh") is None:
             return None
-        services = self.client.scheduler_info(n_workers=0).get("services", {})
+        services = self.client.scheduler_info().get("services", {})
         return str(self.client.dashboard_link) if "dashboard" in services else None
 
     def close(self, failed: bool = False) -> None:

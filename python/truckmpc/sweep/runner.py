@@ -14,7 +14,7 @@ from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 from truckmpc.signals import received_signal
-from truckmpc.sweep.cluster import Cluster
+from truckmpc.sweep.cluster import Cluster, scheduler_address
 from truckmpc.sweep.errors import SweepWorkerDied
 from truckmpc.sweep.task import ERROR, Road, RunBase, Task, run_all, run_task
 
@@ -38,11 +38,12 @@ class Runner:
         scheduler: str | None = None,
         notice: Notice | None = None,
     ) -> None:
-        """`jobs`: worker processes of the embedded cluster (1: this process); `scheduler`: the
-        address of a running cluster's scheduler instead (connected to at once)."""
-        self.roads, self.base, self.scheduler = roads, base, scheduler
+        """`jobs`: worker processes of the embedded cluster (1: this process); `scheduler` (default
+        ``$TRUCKMPC_SCHEDULER``): the address of a running cluster's scheduler instead (connected to
+        at once)."""
+        self.roads, self.base, self.scheduler = roads, base, scheduler_address(scheduler)
         self._jobs, self._notice = jobs, notice
-        self._cluster: Cluster | None = None if scheduler is None else Cluster(scheduler, 0)
+        self._cluster: Cluster | None = None if self.scheduler is None else Cluster(self.scheduler, 0)
 
     @property
     def jobs(self) -> int:
