@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-import truckmpc.sweep.pool as sweep_pool
+import truckmpc.sweep.task as sweep_task
 from truckmpc import load_road, load_run_config, make_section, run_sweep, simulate, write_road
 from truckmpc.cli import app
 from truckmpc.sweep import (
@@ -52,7 +52,7 @@ def count_runs(monkeypatch):
         counts[controller] += 1
         return simulate(road, config, controller)
 
-    monkeypatch.setattr(sweep_pool, "simulate", counted)
+    monkeypatch.setattr(sweep_task, "simulate", counted)
     return counts
 
 
@@ -275,7 +275,7 @@ def test_ctrl_c_keeps_finished_rows_and_says_how_to_resume(descent, tmp_path, mo
             raise KeyboardInterrupt
         return simulate(road, config, controller)
 
-    monkeypatch.setattr(sweep_pool, "simulate", interrupted)
+    monkeypatch.setattr(sweep_task, "simulate", interrupted)
     out = tmp_path / "out"
     result = runner.invoke(
         app, ["sweep", "--road", str(descent), "--grid", "horizon_m=250,500,750", "--jobs", "1", "--out", str(out)]

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-import truckmpc.sweep.pool as sweep_pool
+import truckmpc.sweep.task as sweep_task
 from truckmpc import _core, load_road, load_run_config, make_section, run_sweep, simulate, write_road
 from truckmpc.cli import app
 from truckmpc.sweep import PARTIAL_NAME, SWEEP_COLUMNS
@@ -135,7 +135,7 @@ def test_resume_reuses_the_pcc_runs_of_finished_rows(descent, tmp_path, monkeypa
         counts[controller] = counts.get(controller, 0) + 1
         return simulate(road, config, controller)
 
-    monkeypatch.setattr(sweep_pool, "simulate", counted)
+    monkeypatch.setattr(sweep_task, "simulate", counted)
     out, grid = tmp_path / "out", ["horizon_m=250,500"]
     full = run_sweep([descent], grid, out, jobs=1, controllers=["pcc", "mpc"])
     assert counts == {"pi": 1, "pcc": 1, "mpc": 2} and dict(full.runs) == counts
@@ -196,12 +196,14 @@ def test_the_sweep_plot_draws_the_pcc_deltas(descent, tmp_path, monkeypatch):
 
 
 def test_the_default_sweep_keeps_its_columns():
-    """Without --controller the columns are those of the sweep before the PCC was added."""
+    """Without --controller the columns are those of the sweep before the PCC was added, after the
+    error column (blank unless a run of the row failed)."""
     figures = ["fuel_kg", "fuel_corrected_kg", "time_s", "end_speed_kmh", "brake_energy_kj", "gear_shifts", "stalled"]
     mpc_own = ["neutral_distance_m", "realtime_ratio", "solve_ms_mean", "solve_ms_max", "infeasible_solves"]
     equal_time = ["equal_time_pi_v_ref_kmh", "equal_time_pi_fuel_kg", "equal_time_pi_fuel_corrected_kg"]
     deltas = ["fuel", "time", "fuel_corrected", "fuel_equal_time", "fuel_equal_time_corrected"]
     assert list(SWEEP_COLUMNS) == [
+        "error",
         *(f"pi_{name}" for name in figures),
         *(f"mpc_{name}" for name in figures),
         *mpc_own,

@@ -4,12 +4,12 @@ Commands::
 
     truckmpc simulate [--road FILE] [--controller pi] [--vehicle FILE] [--config FILE ...]
                       [--set key=value ...] [--out DIR] [--reverse]
-    truckmpc sweep --road FILE [--road FILE ...] [--grid KEY=SPEC ...] [--reverse] [--jobs N]
-                   [--vehicle FILE] [--config FILE ...] [--set key=value ...] [--quiet]
-                   [--check-convergence] --out DIR
-    truckmpc pareto --road FILE [--road FILE ...] [--speeds SPEC] [--betas SPEC] [--curves LIST]
-                    [--reverse] [--jobs N] [--vehicle FILE] [--config FILE ...] [--set key=value ...]
-                    [--quiet] --out DIR
+    truckmpc sweep --road FILE|DIR|GLOB [--road ...] [--grid KEY=SPEC ...] [--reverse|--both-ways]
+                   [--jobs N | --scheduler ADDRESS] [--vehicle FILE ...] [--config FILE ...]
+                   [--set key=value ...] [--quiet] [--check-convergence] [--parquet] --out DIR
+    truckmpc pareto --road FILE|DIR|GLOB [--road ...] [--speeds SPEC] [--betas SPEC] [--curves LIST]
+                    [--reverse] [--jobs N | --scheduler ADDRESS] [--vehicle FILE] [--config FILE ...]
+                    [--set key=value ...] [--quiet] --out DIR
     truckmpc model stationary --speed-kmh V --slope-pct A [--gear G|neutral] [--vehicle FILE] [--json]
     truckmpc road make {flat,hill,crest,depression} --length-m L [--slope-pct A] [--lead-m X]
                        [--tail-m Y] -o FILE
@@ -208,11 +208,29 @@ SetOpt = Annotated[
     ),
 ]
 RoadsOpt = Annotated[
-    list[Path], typer.Option("--road", metavar="FILE", help="Road profile CSV or VECTO .vdri cycle; repeatable.")
+    list[Path],
+    typer.Option(
+        "--road",
+        metavar="FILE",
+        help="Road profile CSV or VECTO .vdri cycle, a directory of them, or a glob (quoted); repeatable.",
+    ),
 ]
 ReverseAllOpt = Annotated[bool, typer.Option("--reverse", help="Drive every road in the opposite direction.")]
 JobsOpt = Annotated[
-    int | None, typer.Option("--jobs", min=1, help="Parallel processes (default: all cores); 1 runs in-process.")
+    int | None,
+    typer.Option(
+        "--jobs", min=1, help="Worker processes of the embedded Dask cluster (default: all cores); 1 runs in-process."
+    ),
+]
+SchedulerOpt = Annotated[
+    str | None,
+    typer.Option(
+        "--scheduler",
+        metavar="ADDRESS",
+        envvar="TRUCKMPC_SCHEDULER",
+        help="Send the runs to the running Dask cluster whose scheduler is at ADDRESS (tcp://host:8786) "
+        "instead of starting one here.",
+    ),
 ]
 QuietOpt = Annotated[bool, typer.Option("--quiet", help="No progress bar.")]
 ForceOpt = Annotated[
@@ -405,12 +423,26 @@ def sweep_cmd(
         ),
     ] = "mpc",
     reverse: ReverseAllOpt = False,
+    both_ways: Annotated[
+        bool, typer.Option("--both-ways", help="Drive every road in both directions (a row for each).")
+    ] = False,
     jobs: JobsOpt = None,
-    vehicle: VehicleOpt = None,
+    scheduler: SchedulerOpt = None,
+    vehicle: Annotated[
+        list[Path] | None,
+        typer.Option(
+            "--vehicle",
+            metavar="FILE",
+            help="Vehicle YAML file (default: packaged truck-40t.yaml); repeatable, for a fleet (a vehicle column).",
+        ),
+    ] = None,
     config: ConfigOpt = None,
     set_: SetOpt = None,
     quiet: QuietOpt = False,
     force: ForceOpt = False,
+    parquet: Annotated[
+        bool, typer.Option("--parquet", help="Also write DIR/sweep.parquet (needs pyarrow: truckmpc[parquet]).")
+    ] = False,
     check_convergence: Annotated[
         bool,
         typer.Option(
@@ -426,29 +458,43 @@ def sweep_cmd(
     Rerun the same command with the same --out to resume an interrupted sweep.
     """
     from truckmpc.sweep import plan_sweep, progress_bar, run_plan
+    from truckmpc.sweep.summary import check_parquet, fleet_outputs
 
     controllers = _sweep_controllers(controller)
+    if parquet:
+        check_parquet()
     with _pooled_study("rows"):
         with status_line("checking every combination of the grid"):
             plan = plan_sweep(
                 road,
                 tuple(grid or ()),
-                **_study_inputs(reverse, vehicle, config, set_),
+                **_study_inputs(_directions(reverse, both_ways), _vehicles(vehicle), config, set_),
                 check_convergence=check_convergence,
                 controllers=controllers,
             )
         _stop_notes(plan.roads)
         with progress_bar(not quiet) as hook:
-            result = run_plan(plan, out, jobs=jobs, progress=hook, force=force, notice=_notice)
+            result = run_plan(plan, out, jobs=jobs, progress=hook, force=force, notice=_notice, scheduler=scheduler)
     axes = [axis.key for axis in plan.axes]
     for row in result.rows:
-        figures = " ".join(f"{key}={row[key]}" for key in axes)
+        figures = " ".join(f"{key}={row[key]}" for key in ("vehicle", *axes) if key in row)
         typer.echo(f"{row['road']} {row['direction']} {figures}: {_sweep_deltas(row, plan.controllers)}")
     runs = [f"{result.runs[name]} {name.upper()}" for name in (*plan.controllers, "pi")]
+    lines, files = fleet_outputs(out, plan, result, parquet)
+    for line in lines:
+        typer.echo(line)
+    written = [result.csv_path, *files]
     typer.echo(
-        f"wrote {result.csv_path} ({len(result.rows)} rows: {', '.join(runs[:-1])} and {runs[-1]} runs, "
-        f"{result.resumed_rows} rows resumed)"
+        f"wrote {', '.join(map(str, written))} ({len(result.rows)} rows: {', '.join(runs[:-1])} and {runs[-1]} "
+        f"runs, {result.resumed_rows} rows resumed)"
     )
+
+
+def _directions(reverse: bool, both_ways: bool) -> bool | str:
+    """``plan_sweep``'s `reverse`: True, False or ``"both"``; not --reverse with --both-ways."""
+    if reverse and both_ways:
+        raise typer.BadParameter("expected --reverse or --both-ways, not both", param_hint="'--both-ways'")
+    return "both" if both_ways else reverse
 
 
 def _sweep_controllers(text: str) -> tuple[str, ...]:
@@ -503,6 +549,7 @@ def pareto_cmd(
     ] = "pi,mpc,fuel_time",
     reverse: ReverseAllOpt = False,
     jobs: JobsOpt = None,
+    scheduler: SchedulerOpt = None,
     vehicle: VehicleOpt = None,
     config: ConfigOpt = None,
     set_: SetOpt = None,
@@ -528,7 +575,7 @@ def pareto_cmd(
         )
         _stop_notes(plan.roads)
         with progress_bar(not quiet) as hook:
-            result = run_pareto(plan, out, jobs=jobs, progress=hook, force=force, notice=_notice)
+            result = run_pareto(plan, out, jobs=jobs, progress=hook, force=force, notice=_notice, scheduler=scheduler)
     written = [result.csv_path]
     savings = equal_time_savings(result.rows, plan.base_v_ref_kmh)
     for road_name, by_controller in savings.items():
@@ -544,8 +591,18 @@ def pareto_cmd(
     typer.echo(f"wrote {', '.join(map(str, written))} ({result.runs} runs, {result.resumed} resumed)")
 
 
+def _vehicles(given: list[Path] | None) -> Path | tuple[Path, ...] | None:
+    """``plan_sweep``'s `vehicle_path` from the --vehicle options: one file, several, or None."""
+    if not given:
+        return None
+    return given[0] if len(given) == 1 else tuple(given)
+
+
 def _study_inputs(
-    reverse: bool, vehicle: Path | None, config: list[Path] | None, set_: list[str] | None
+    reverse: bool | str,
+    vehicle: Path | tuple[Path, ...] | None,
+    config: list[Path] | None,
+    set_: list[str] | None,
 ) -> dict[str, Any]:
     """The base inputs of a sweep or Pareto study, as ``plan_sweep`` and ``plan_pareto`` take them."""
     return {
@@ -559,7 +616,7 @@ def _study_inputs(
 @contextlib.contextmanager
 def _pooled_study(kept_what: str) -> Iterator[None]:
     """A sweep or Pareto study's stops as one line each: Ctrl-C or SIGTERM says how many finished
-    `kept_what` (rows, points) stay for a resume; a dead worker process exits 1."""
+    `kept_what` (rows, points) stay for a resume; a lost Dask cluster exits 1."""
     from truckmpc.sweep import SweepInterrupted, SweepWorkerDied
 
     try:
@@ -594,10 +651,10 @@ def _notice(text: str) -> None:
     typer.echo(text, err=True)
 
 
-def _stop_notes(roads: Sequence[RoadProfile]) -> None:
+def _stop_notes(roads: Sequence[object]) -> None:
     """One line per road with stops: they are not simulated, the road is driven as its legs."""
     for road in roads:
-        if road.stops:
+        if isinstance(road, RoadProfile) and road.stops:
             typer.echo(f"{road.name}: {stops_line(road)}")
 
 

@@ -137,6 +137,11 @@ class RoadProfile:
         """Road length from the first to the last point [m]."""
         return float(self.distance_m[-1] - self.distance_m[0])
 
+    def __getstate__(self) -> dict[str, Any]:
+        """The profile for pickling (a Dask worker sends it to another): without the core road
+        built from it, which cannot be pickled and is built again where it is needed."""
+        return {**self.__dict__, "_road": None}
+
     def core(self) -> _core.Road:
         """The road for the Rust core (`_core.Road(distance_m, slope)`), built once."""
         road = self._road

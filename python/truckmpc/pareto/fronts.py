@@ -69,7 +69,8 @@ def reference_point(rows: Sequence[Mapping[str, str]], road: str, v_ref_kmh: flo
     for row in rows:
         if row["road"] == road and row["controller"] == BASELINE and abs(float(row["v_ref_kmh"]) - v_ref_kmh) < 1e-9:
             if parse_cell(row["stalled"]) is not False:
-                return f"not comparable: the pi stalled at v_ref {v_ref_kmh:g} km/h"
+                what = "failed" if row.get("error") else "stalled"
+                return f"not comparable: the pi {what} at v_ref {v_ref_kmh:g} km/h"
             return float(row["time_s"]), float(row["fuel_corrected_kg"])
     return f"not comparable: no pi run at v_ref {v_ref_kmh:g} km/h (the reference; add it to --speeds)"
 
@@ -78,7 +79,11 @@ def equal_time_savings(rows: Sequence[Mapping[str, str]], v_ref_kmh: float) -> d
     """Road -> look-ahead controller -> its saving at the baseline's trip time at `v_ref_kmh`; a
     curve with a stalled run, or whose times do not reach the reference's, has none."""
     out: dict[str, dict[str, Saving]] = {}
-    stalls = {(row["road"], row["controller"]): row["value"] for row in rows if parse_cell(row["stalled"]) is not False}
+    stalls = {
+        (row["road"], row["controller"]): ("failed" if row.get("error") else "stalled", row["value"])
+        for row in rows
+        if parse_cell(row["stalled"]) is not False
+    }
     for road in dict.fromkeys(row["road"] for row in rows):
         reference = reference_point(rows, road, v_ref_kmh)
         by_controller = curves(rows).get(road, {})
@@ -89,7 +94,8 @@ def equal_time_savings(rows: Sequence[Mapping[str, str]], v_ref_kmh: float) -> d
             if isinstance(reference, str):
                 saving = Saving(None, reference)
             elif (road, controller) in stalls:
-                saving = Saving(None, f"not comparable: {controller} stalled at {stalls[road, controller]}")
+                what, value = stalls[road, controller]
+                saving = Saving(None, f"not comparable: {controller} {what} at {value}")
             elif curve is None or (fuel := curve.fuel_at(reference[0])) is None:
                 saving = Saving(None, f"not comparable: the pi's trip time at v_ref is outside {controller}'s times")
             else:

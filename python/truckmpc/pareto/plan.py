@@ -57,9 +57,11 @@ PARETO_COLUMNS = (
     "time_s",
     "end_speed_kmh",
     "stalled",
+    "error",
 )
 """Columns of ``pareto.csv``; ``parameter`` names what the curve varies (``v_ref_kmh`` or
-``beta_g_per_s``) and ``value`` its value."""
+``beta_g_per_s``) and ``value`` its value; ``error`` why the run failed (its figures and ``stalled``
+blank), blank when it did not."""
 
 
 @dataclass(frozen=True)

@@ -1,5 +1,5 @@
-"""Running (or resuming) a Pareto study into a directory, through the sweep's process pool and
-files: ``pareto.json`` (which study), ``pareto.partial.csv`` (points as they finish) and
+"""Running (or resuming) a Pareto study into a directory, through the sweep's runner (a Dask
+cluster, or this process) and files: ``pareto.json`` (which study), ``pareto.partial.csv`` (points as they finish) and
 ``pareto.csv`` (every point in plan order, written at the end)."""
 
 from __future__ import annotations
@@ -23,8 +23,9 @@ from truckmpc.sweep.files import (
     write_final,
     write_settings,
 )
-from truckmpc.sweep.pool import Runner, Task
-from truckmpc.sweep.run import ProgressHook
+from truckmpc.sweep.run import ProgressHook, run_base
+from truckmpc.sweep.runner import Runner
+from truckmpc.sweep.task import ERROR, Task
 from truckmpc.workload import MAX_WORK_S, WorkError, too_long
 
 STEM = "pareto"
@@ -51,44 +52,48 @@ def run_pareto(
     progress: ProgressHook | None = None,
     force: bool = False,
     notice: Callable[[str], None] | None = None,
+    scheduler: str | None = None,
 ) -> ParetoResult:
-    """Run the points of `plan` not yet in `out`, longest first, on `jobs` processes (default: all
-    cores); append each to ``pareto.partial.csv`` as it finishes and write ``pareto.csv`` at the
-    end. Rerunning the same study into `out` resumes it; a different one is refused."""
+    """Run the points of `plan` not yet in `out` (or whose run failed), longest first, on `jobs`
+    worker processes of an embedded Dask cluster (default: all cores; 1: this process) or on the
+    running cluster at `scheduler`; append each to ``pareto.partial.csv`` as it finishes and write
+    ``pareto.csv`` at the end. A run that fails leaves its error in its row. Rerunning the same
+    study into `out` resumes it; a different one is refused."""
     out = Path(out)
-    jobs = max(1, jobs or os.cpu_count() or 1)
     check_out_dir(out, plan.settings, STEM)
     done = _resumed(plan, out, notice)
     pending = sorted((p for p in plan.points if p.index not in done), key=lambda p: -p.work.total_s)
-    _check_work(pending, jobs, force)
-    out.mkdir(parents=True, exist_ok=True)
-    write_settings(out, plan.settings, jobs, STEM)
-    header = csv_line(plan.columns)
-    partial_path = out / file_names(STEM)[1]
-    partial = PartialFile(partial_path, header, [csv_line(cells) for _, cells in sorted(done.items())])
-    if progress:
-        progress(len(done), len(plan.points))
     tasks = [Task(p.controller, p.road, p.overrides, p.index, "", plain=True) for p in pending]
-    try:
-        with Runner(plan.roads, (plan.vehicle_path, plan.config_paths), jobs) as runner:
-            for task, figures in runner.results(tasks):
+    base = run_base((plan.vehicle_path,), plan.config_paths)
+    partial_path = out / file_names(STEM)[1]
+    with Runner(plan.roads, base, max(1, jobs or os.cpu_count() or 1), scheduler, notice) as runner:
+        _check_work(pending, runner.jobs, force)
+        out.mkdir(parents=True, exist_ok=True)
+        write_settings(out, plan.settings, runner.jobs, STEM)
+        header = csv_line(plan.columns)
+        partial = PartialFile(partial_path, header, [csv_line(cells) for _, cells in sorted(done.items())])
+        if progress:
+            progress(0, len(tasks))
+        try:
+            for finished, (task, figures) in enumerate(runner.results(tasks), start=1):
                 cells = _cells(plan, plan.points[task.row], figures)
                 done[task.row] = cells
                 partial.append(csv_line(cells))
                 if progress:
-                    progress(len(done), len(plan.points))
-    except KeyboardInterrupt:
-        raise SweepInterrupted(len(done), len(plan.points), partial_path) from None
-    finally:
-        partial.close()
+                    progress(finished, len(tasks))
+        except KeyboardInterrupt:
+            raise SweepInterrupted(len(done), len(plan.points), partial_path) from None
+        finally:
+            partial.close()
     ordered = [done[p.index] for p in plan.points]
     rows = [dict(zip(plan.columns, cells, strict=True)) for cells in ordered]
     return ParetoResult(write_final(out, header, ordered, STEM), rows, len(tasks), len(plan.points) - len(tasks))
 
 
 def _cells(plan: ParetoPlan, point: Point, figures: dict[str, Any]) -> list[str]:
+    """A point's cells: its key, set speed and β, the run's figures (blank if it failed) and error."""
     own = [cell(point.v_ref_kmh), cell(point.beta_g_per_s)]
-    return [*plan.point_key(point), *own, *(cell(figures.get(name)) for name in FIGURES)]
+    return [*plan.point_key(point), *own, *(cell(figures.get(name)) for name in FIGURES), cell(figures.get(ERROR))]
 
 
 def _resumed(plan: ParetoPlan, out: Path, notice: Callable[[str], None] | None) -> dict[int, list[str]]:
@@ -101,8 +106,8 @@ def _resumed(plan: ParetoPlan, out: Path, notice: Callable[[str], None] | None) 
         problem = "not a point of this study" if point is None else damaged_row(cells)
         if point is None or problem is not None:
             dropped.append(f"{where}: {problem}")
-            continue
-        done.setdefault(point.index, cells)
+        elif not cells[-1].strip():  # a point whose run failed runs again
+            done.setdefault(point.index, cells)
     if dropped and notice is not None:
         notice(f"dropped {len(dropped)} damaged row(s), to run again ({dropped[0]})")
     return done
@@ -110,10 +115,14 @@ def _resumed(plan: ParetoPlan, out: Path, notice: Callable[[str], None] | None) 
 
 def damaged_row(cells: list[str]) -> str | None:
     """What is wrong with a ``pareto.csv`` row read back, or None: the study's number of cells, true
-    or false in ``stalled``, numbers in the figures (all of them when the run finished)."""
+    or false in ``stalled``, numbers in the figures (all of them when the run finished); a failed
+    run's row is its error and blank figures."""
     if len(cells) != len(ParetoPlan.columns):
         return f"expected {len(ParetoPlan.columns)} cells, got {len(cells)}"
     named = dict(zip(ParetoPlan.columns, cells, strict=True))
+    if named[ERROR].strip():
+        filled = [name for name in FIGURES if named[name].strip()]
+        return f"column {filled[0]!r}: expected blank in a failed run's row" if filled else None
     stalled = parse_cell(named["stalled"])
     if not isinstance(stalled, bool):
         return f"column 'stalled': expected true or false, got {named['stalled']!r}"

@@ -1,6 +1,7 @@
 """The result columns of ``sweep.csv`` and the text of its cells.
 
-After ``road``, ``direction`` and one column per axis come the PI figures, then those of each
+After ``road``, ``direction``, ``vehicle`` (when a sweep has several) and one column per axis
+come ``error`` (blank unless a run of the row failed), the PI figures, then those of each
 look-ahead controller the sweep runs (``--controller``: the PCC's prefixed ``pcc_``; the MPC's
 prefixed ``mpc_``, its solver's and equal-time baseline's without a prefix, as before the PCC was
 added), then the comparisons of :data:`VERSUS` whose two controllers ran: blank when either run
@@ -131,6 +132,10 @@ def delta_column(run: str, kind: str, base: str = "pi") -> str:
 DELTA_COLUMNS = tuple(column for _, column in VERSUS[0].columns)
 """The MPC against the PI, as in ``summary.json``."""
 
+ERROR_COLUMN = "error"
+"""The first result column: why a row's runs failed (``pi: ...; mpc: ...``), blank when they did
+not; the failed runs' figures and their comparisons are blank."""
+
 CONVERGENCE_COLUMNS = (
     "delta_fuel_pct_half_delta",
     "delta_fuel_pct_half_stage",
@@ -196,7 +201,7 @@ class Layout:
         """The result columns (after ``road``, ``direction`` and the axes)."""
         figures = tuple(column for _, _, column in self.sources)
         compared = tuple(column for v in self.versus for _, column in v.columns)
-        return (*figures, *compared, *(CONVERGENCE_COLUMNS if self.check_convergence else ()))
+        return (ERROR_COLUMN, *figures, *compared, *(CONVERGENCE_COLUMNS if self.check_convergence else ()))
 
     def baselines(self, controller: str) -> tuple[str, ...]:
         """The controllers re-tuned to `controller`'s trip time in its worker (its equal-time deltas)."""
@@ -204,14 +209,19 @@ class Layout:
 
     def cells(self, runs: Mapping[str, Mapping[str, Any]]) -> list[str]:
         """The result cells of one row from each controller's figures (the MPC's with its
-        convergence moves when checked)."""
-        values = {column: runs[name][field] for name, field, column in self.sources}
+        convergence moves when checked); a failed run (figures ``{"error": line}``) leaves its
+        figures and comparisons blank and its error in the ``error`` column."""
+        failed = {name: str(figures[ERROR_COLUMN]) for name, figures in runs.items() if ERROR_COLUMN in figures}
+        values: dict[str, Any] = {
+            column: None if name in failed else runs[name][field] for name, field, column in self.sources
+        }
         for v in self.versus:
-            by_kind = deltas(runs[v.base], runs[v.run], v.base, v.run)
+            by_kind = {} if {v.base, v.run} & set(failed) else deltas(runs[v.base], runs[v.run], v.base, v.run)
             values.update({column: by_kind.get(kind) for kind, column in v.columns})
         if self.check_convergence:  # the moves of the MPC's deltas against the PI
-            comparable = compare(runs["pi"], runs["mpc"]).not_comparable is None
+            comparable = not {"pi", "mpc"} & set(failed) and compare(runs["pi"], runs["mpc"]).not_comparable is None
             values.update({c: runs["mpc"].get(c) if comparable else None for c in CONVERGENCE_COLUMNS})
+        values[ERROR_COLUMN] = error_text(failed)
         return [cell(values[c]) for c in self.columns]
 
     def figures(self, controller: str, cells: Sequence[str]) -> dict[str, Any]:
@@ -219,12 +229,18 @@ class Layout:
         named = dict(zip(self.columns, cells, strict=False))
         return {field: parse_cell(named[RUNS[controller].column(field)]) for field in RUNS[controller].fields}
 
+    def failed(self, cells: Sequence[str]) -> bool:
+        """Whether a row read back has an error (it is run again on resume)."""
+        return len(cells) == len(self.columns) and cells[0].strip() != ""
+
     def damaged(self, cells: Sequence[str]) -> str | None:
         """What is wrong with the result cells of a row read back, or None when each is what
         :func:`cell` writes there: true or false for ``*stalled``, else a finite number or blank."""
         if len(cells) != len(self.columns):
             return f"expected {len(self.columns)} result cells, got {len(cells)}"
         for column, text in zip(self.columns, cells, strict=True):
+            if column == ERROR_COLUMN:
+                continue
             value = parse_cell(text)
             if column.endswith("stalled"):
                 if not isinstance(value, bool):
@@ -239,6 +255,15 @@ SWEEP_COLUMNS: tuple[str, ...] = Layout().columns
 
 ALL_COLUMNS: tuple[str, ...] = Layout(LOOK_AHEAD, check_convergence=True).columns
 """Every result column a sweep may have."""
+
+
+def error_text(failed: Mapping[str, str]) -> str | None:
+    """The ``error`` cell of a row from each failed run's error (``pi, mpc: line`` when they say
+    the same); None when none failed."""
+    by_line: dict[str, list[str]] = {}
+    for name, line in failed.items():
+        by_line.setdefault(line, []).append(name)
+    return "; ".join(f"{', '.join(names)}: {line}" for line, names in by_line.items()) or None
 
 
 def cell(value: Any) -> str:

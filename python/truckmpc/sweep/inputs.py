@@ -58,8 +58,11 @@ def checked_axes(
 
 
 def load_profiles(roads: Sequence[RoadProfile | PathLike], reverse: bool) -> list[RoadProfile]:
-    """The roads loaded, uniquely named, reversed if asked (keeping their names: rows are keyed by them)."""
-    profiles = [load_road(road) if not isinstance(road, RoadProfile) else road for road in roads]
+    """The roads loaded (directories and globs expanded, every file readable), uniquely named,
+    reversed if asked (keeping their names: rows are keyed by them)."""
+    from truckmpc.sweep.fleet import road_files
+
+    profiles = [road if isinstance(road, RoadProfile) else load_road(road) for road, _ in road_files(roads)]
     if not profiles:
         raise SweepError("--road: expected at least one road")
     names = [p.name for p in profiles]

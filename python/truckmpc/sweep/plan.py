@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import functools
 import json
+import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -20,17 +21,19 @@ from truckmpc.convergence import halved_configs
 from truckmpc.road import PathLike, RoadProfile
 from truckmpc.sweep.columns import DEFAULT_CONTROLLERS, Layout, cell, check_controllers, yaml_text
 from truckmpc.sweep.errors import SweepError
+from truckmpc.sweep.fleet import load_fleet, vehicle_names
 from truckmpc.sweep.grid import Axis, expand_grid
-from truckmpc.sweep.inputs import Base, Combinations, check_size, checked_axes, load_profiles
+from truckmpc.sweep.inputs import Base, Combinations, check_size, checked_axes
+from truckmpc.sweep.task import Road
 from truckmpc.workload import Work, check_trace, run_work
 
 
 @dataclass(frozen=True)
 class Row:
-    """One (road, combination) of a sweep: its place in grid order, its overrides, the key of each
-    of its runs (controller -> key; rows with the same key share the run) and the estimated work of
-    its look-ahead run (:mod:`truckmpc.workload`: the MPC's if it runs, else the PCC's; a PI or PCC
-    run's is the plant part)."""
+    """One (road and direction, vehicle, combination) of a sweep: its place in grid order, its
+    overrides, the key of each of its runs (controller -> key; rows with the same key share the run)
+    and the estimated work of its look-ahead run (:mod:`truckmpc.workload`: the MPC's if it runs,
+    else the PCC's; a PI or PCC run's is the plant part)."""
 
     index: int
     road: int
@@ -38,6 +41,7 @@ class Row:
     overrides: tuple[str, ...]
     keys: Mapping[str, str]
     work: Work
+    vehicle: int = 0
 
     @property
     def pi_key(self) -> str:
@@ -51,19 +55,21 @@ class Row:
 
 @dataclass(frozen=True)
 class SweepPlan:
-    """A validated sweep: roads (already reversed when ``direction`` is reverse), axes, the base
+    """A validated sweep: roads (each as driven in its direction of ``directions``: already reversed
+    for ``reverse``), axes, the vehicle files (None: the packaged truck) and their names, the base
     configuration files and overrides, the rows in grid order and the ``sweep.json`` settings."""
 
-    roads: tuple[RoadProfile, ...]
-    direction: str
+    roads: tuple[Road, ...]
+    directions: tuple[str, ...]
     axes: tuple[Axis, ...]
-    vehicle_path: str | None
+    vehicle_paths: tuple[str | None, ...]
     config_paths: tuple[str, ...]
     overrides: tuple[str, ...]
     rows: tuple[Row, ...]
     settings: dict[str, Any]
     check_convergence: bool = False
     controllers: tuple[str, ...] = DEFAULT_CONTROLLERS
+    vehicle_names: tuple[str, ...] = ("truck-40t",)
 
     @functools.cached_property
     def layout(self) -> Layout:
@@ -71,77 +77,114 @@ class SweepPlan:
         return Layout(self.controllers, self.check_convergence)
 
     @property
+    def direction(self) -> str:
+        """``forward``, ``reverse``, or ``both`` when the sweep drives its roads both ways."""
+        return self.directions[0] if len(set(self.directions)) == 1 else "both"
+
+    @property
+    def vehicle_path(self) -> str | None:
+        """The vehicle file of a sweep of one vehicle (the first one's of a fleet)."""
+        return self.vehicle_paths[0]
+
+    @property
+    def key_columns(self) -> tuple[str, ...]:
+        """The columns that identify a row: road, direction, vehicle (when there are several) and the axes."""
+        vehicle = ("vehicle",) if len(self.vehicle_paths) > 1 else ()
+        return ("road", "direction", *vehicle, *(axis.key for axis in self.axes))
+
+    @property
     def columns(self) -> tuple[str, ...]:
-        return ("road", "direction", *(axis.key for axis in self.axes), *self.layout.columns)
+        return (*self.key_columns, *self.layout.columns)
 
     def row_key(self, row: Row) -> tuple[str, ...]:
-        """The cells that identify a row in the CSV: road, direction and the axis values."""
-        return (self.roads[row.road].name, self.direction, *(cell(v) for v in row.values))
+        """The cells that identify a row in the CSV: road, direction, vehicle and the axis values."""
+        vehicle = (self.vehicle_names[row.vehicle],) if len(self.vehicle_paths) > 1 else ()
+        return (self.roads[row.road].name, self.directions[row.road], *vehicle, *(cell(v) for v in row.values))
 
 
 def plan_sweep(
     roads: Sequence[RoadProfile | PathLike],
     axes: Sequence[Axis | str] | Mapping[str, Sequence[Any]] = (),
     *,
-    reverse: bool = False,
-    vehicle_path: PathLike | None = None,
+    reverse: bool | str = False,
+    vehicle_path: PathLike | Sequence[PathLike] | None = None,
     config_paths: Sequence[PathLike] = (),
     overrides: Sequence[str] = (),
     check_convergence: bool = False,
     controllers: Sequence[str] = DEFAULT_CONTROLLERS,
 ) -> SweepPlan:
-    """Load the roads and validate the configuration of every combination; raise a one-line
-    :class:`~truckmpc.errors.TruckmpcError` naming the road, the ``--set``, the ``--grid`` axis or
-    the ``--controller``. Each row runs the PI and `controllers` (``pcc``, ``mpc``). With
+    """Load the roads (files, directories, globs: :mod:`~truckmpc.sweep.fleet`) and validate the
+    configuration of every combination with every vehicle (`vehicle_path`: one file, several, or
+    None for the packaged truck); raise a one-line :class:`~truckmpc.errors.TruckmpcError` naming
+    the road, the ``--set``, the ``--grid`` axis or the ``--controller``. `reverse`: drive the roads
+    reversed, or ``"both"`` ways. Each row runs the PI and `controllers` (``pcc``, ``mpc``). With
     `check_convergence` every MPC row is also driven at half δ and half S (its work counts them) and
     gets the convergence columns."""
     layout = _checked_layout(controllers, check_convergence)
     checked = checked_axes(axes, overrides)
-    profiles = load_profiles(roads, reverse)
-    base = Base(
-        None if vehicle_path is None else str(vehicle_path), tuple(str(p) for p in config_paths), tuple(overrides)
-    )
-    check_size(checked, len(profiles))
-    base_config = base.config()  # errors in the base name their file or --set
-    keys = [axis.key for axis in checked]
-    combinations = Combinations(base, base_config, checked)
-    combos = []
-    for values in expand_grid(checked):
-        texts = tuple(f"{key}={yaml_text(v)}" for key, v in zip(keys, values, strict=True))
-        config = combinations.config(values, texts)
-        for profile in profiles:
-            check_trace(profile, config)
-        combos.append((values, texts, config, _section_values(config)))
-    rows = _rows(profiles, combos, layout)
-    direction = "reverse" if reverse else "forward"
-    settings = _settings(profiles, direction, checked, base, base_config, layout)
+    profiles, directions = load_fleet(roads, reverse)
+    vehicles = _vehicle_paths(vehicle_path)
+    names = vehicle_names(vehicles)
+    bases = [Base(v, tuple(str(p) for p in config_paths), tuple(overrides)) for v in vehicles]
+    check_size(checked, len(profiles) * len(bases))
+    base_configs = [base.config() for base in bases]  # errors in the base name their file or --set
+    fleet = [_combos(base, config, checked, profiles) for base, config in zip(bases, base_configs, strict=True)]
+    rows = _rows(profiles, fleet, layout)
+    settings = _settings(profiles, directions, checked, bases, base_configs, layout, names)
     return SweepPlan(
         tuple(profiles),
-        direction,
+        tuple(directions),
         checked,
-        base.vehicle_path,
-        base.config_paths,
-        base.overrides,
+        vehicles,
+        bases[0].config_paths,
+        bases[0].overrides,
         tuple(rows),
         settings,
         check_convergence,
         layout.controllers,
+        names,
     )
 
 
-def _rows(
-    profiles: Sequence[RoadProfile],
-    combos: Sequence[tuple[tuple[Any, ...], tuple[str, ...], RunConfig, Mapping[str, Any]]],
-    layout: Layout,
-) -> list[Row]:
-    """The rows in grid order, road by road: each combination's (values, overrides, configuration,
-    section values) on each road."""
+Combo = tuple[tuple[Any, ...], tuple[str, ...], RunConfig, Mapping[str, Any]]
+"""A combination's axis values, overrides, configuration and the values of its shared sections."""
+
+
+def _vehicle_paths(given: PathLike | Sequence[PathLike] | None) -> tuple[str | None, ...]:
+    """The vehicle files of a sweep: one, several (at least one), or None (the packaged truck)."""
+    if given is None or isinstance(given, (str, os.PathLike)):
+        return (None if given is None else str(given),)
+    if not given:
+        raise SweepError("--vehicle: expected at least one vehicle file")
+    return tuple(str(path) for path in given)
+
+
+def _combos(base: Base, base_config: RunConfig, axes: Sequence[Axis], profiles: Sequence[Road]) -> list[Combo]:
+    """Every combination of `axes` on top of one vehicle's base, validated, each checked on every road."""
+    keys = [axis.key for axis in axes]
+    combinations = Combinations(base, base_config, axes)
+    combos: list[Combo] = []
+    for values in expand_grid(axes):
+        texts = tuple(f"{key}={yaml_text(v)}" for key, v in zip(keys, values, strict=True))
+        config = combinations.config(values, texts)
+        for profile in profiles:
+            if isinstance(profile, RoadProfile):
+                check_trace(profile, config)
+        combos.append((values, texts, config, _section_values(config)))
+    return combos
+
+
+def _rows(profiles: Sequence[Road], fleet: Sequence[Sequence[Combo]], layout: Layout) -> list[Row]:
+    """The rows in grid order, road by road and vehicle by vehicle: each combination of each vehicle
+    (`fleet`: a vehicle's combinations) on each road."""
     rows: list[Row] = []
     for r, profile in enumerate(profiles):
-        for values, texts, config, sections in combos:
-            index = len(rows)
-            keys = _run_keys(r, index, sections, layout)
-            rows.append(Row(index, r, values, texts, keys, _look_ahead_work(profile, config, layout)))
+        for v, combos in enumerate(fleet):
+            for values, texts, config, sections in combos:
+                index = len(rows)
+                keys = _run_keys(r, index, sections, layout)
+                work = _look_ahead_work(profile, config, layout) if isinstance(profile, RoadProfile) else Work(0, 0, 0)
+                rows.append(Row(index, r, values, texts, keys, work, v))
     return rows
 
 
@@ -199,41 +242,60 @@ def _run_keys(road: int, index: int, sections: Mapping[str, Mapping[str, Any]], 
 
 
 def _settings(
-    profiles: Sequence[RoadProfile],
-    direction: str,
+    profiles: Sequence[Road],
+    directions: Sequence[str],
     axes: Sequence[Axis],
-    base: Base,
-    base_config: RunConfig,
+    bases: Sequence[Base],
+    base_configs: Sequence[RunConfig],
     layout: Layout,
+    names: Sequence[str],
 ) -> dict[str, Any]:
-    """The ``sweep.json`` document (without ``jobs``), as plain JSON values."""
+    """The ``sweep.json`` document (without ``jobs``), as plain JSON values; with several vehicles
+    ``vehicle`` lists their files and ``base_config`` maps each one's name to its configuration."""
     grid = [{"key": a.key, "spec": a.spec, "values": list(a.values)} for a in axes]
-    columns = ["road", "direction", *(a.key for a in axes), *layout.columns]
-    return study_settings(profiles, direction, grid, base_config, base, columns)
+    vehicle = ["vehicle"] if len(bases) > 1 else []
+    columns = ["road", "direction", *vehicle, *(a.key for a in axes), *layout.columns]
+    settings = study_settings(profiles, directions, grid, base_configs[0], bases[0], columns)
+    if len(bases) > 1:
+        settings["vehicle"] = [base.vehicle_path for base in bases]
+        configs = {name: _config_doc(config) for name, config in zip(names, base_configs, strict=True)}
+        settings["base_config"] = json.loads(json.dumps(configs))
+    return settings
 
 
 def study_settings(
-    profiles: Sequence[RoadProfile],
-    direction: str,
+    profiles: Sequence[Road],
+    direction: str | Sequence[str],
     grid: Any,
     base_config: RunConfig,
     base: Any,
     columns: Sequence[str],
 ) -> dict[str, Any]:
     """The settings file of a sweep or Pareto study (without ``jobs``), as plain JSON values: what
-    identifies it (roads, `grid`, the resolved base configuration, columns) and the inputs as given
-    (`base`: ``vehicle_path``, ``config_paths``, ``overrides``)."""
-    config_doc = base_config.as_dict()
-    config_doc.pop("sources")
+    identifies it (roads and their directions — one for all, or one each —, `grid`, the resolved base
+    configuration, columns) and the inputs as given (`base`: ``vehicle_path``, ``config_paths``,
+    ``overrides``)."""
+    directions = [direction] * len(profiles) if isinstance(direction, str) else list(direction)
+    roads = [
+        {"name": p.name, "direction": d, "sha256": p.sha256(), "path": p.source}
+        for p, d in zip(profiles, directions, strict=True)
+    ]
     settings = {
         "version": 1,
-        "roads": [{"name": p.name, "direction": direction, "sha256": p.sha256(), "path": p.source} for p in profiles],
+        "roads": roads,
         "grid": grid,
-        "base_config": config_doc,
+        "base_config": _config_doc(base_config),
         "vehicle": base.vehicle_path,
         "configs": list(base.config_paths),
         "overrides": list(base.overrides),
         "columns": list(columns),
     }
     doc: dict[str, Any] = json.loads(json.dumps(settings))
+    return doc
+
+
+def _config_doc(config: RunConfig) -> dict[str, Any]:
+    """A resolved configuration as a document, without where each value came from."""
+    doc = config.as_dict()
+    doc.pop("sources")
     return doc

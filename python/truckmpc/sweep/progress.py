@@ -36,7 +36,7 @@ def progress_bar(enabled: bool = True) -> Iterator[ProgressHook | None]:
         TextColumn("sweep"),
         BarColumn(),
         MofNCompleteColumn(),
-        TextColumn("rows"),
+        TextColumn("runs"),
         TimeElapsedColumn(),
         TextColumn("ETA"),
         TimeRemainingColumn(),
@@ -47,7 +47,7 @@ def progress_bar(enabled: bool = True) -> Iterator[ProgressHook | None]:
 
         def hook(done: int, total: int) -> None:
             nonlocal started
-            if not started:  # rows resumed from an earlier run must not count towards the speed
+            if not started:  # the first call sets the total (rows resumed from an earlier run make no runs)
                 bar.reset(task, total=total, completed=done)
                 started = True
             bar.update(task, completed=done, total=total)

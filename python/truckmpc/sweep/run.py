@@ -24,7 +24,8 @@ from truckmpc.sweep.files import (
 )
 from truckmpc.sweep.grid import Axis
 from truckmpc.sweep.plan import SHARED_SECTIONS, Row, SweepPlan, plan_sweep
-from truckmpc.sweep.pool import Runner, Task
+from truckmpc.sweep.runner import Runner
+from truckmpc.sweep.task import RunBase, Task
 from truckmpc.sweep.waiting import Run, Waiting
 from truckmpc.workload import EQUAL_TIME_RUNS, MAX_WORK_S, Work, WorkError, memory_limit_bytes, too_big, too_long
 
@@ -50,7 +51,7 @@ class SweepResult:
 
 
 ProgressHook = Callable[[int, int], None]
-"""``hook(done_rows, total_rows)``, called at the start and after each row."""
+"""``hook(done_runs, total_runs)`` of the runs this call makes, called at the start and after each run."""
 
 
 def run_sweep(
@@ -58,8 +59,8 @@ def run_sweep(
     grid: Sequence[Axis | str] | Mapping[str, Sequence[Any]],
     out: PathLike,
     *,
-    reverse: bool = False,
-    vehicle_path: PathLike | None = None,
+    reverse: bool | str = False,
+    vehicle_path: PathLike | Sequence[PathLike] | None = None,
     config_paths: Sequence[PathLike] = (),
     overrides: Sequence[str] = (),
     jobs: int | None = None,
@@ -67,11 +68,13 @@ def run_sweep(
     force: bool = False,
     check_convergence: bool = False,
     controllers: Sequence[str] = DEFAULT_CONTROLLERS,
+    scheduler: str | None = None,
 ) -> SweepResult:
     """Run (or resume) a sweep into directory ``out``: the PI and `controllers` (``pcc``, ``mpc``)
     on every road for every combination of ``grid`` (``["horizon_m=250:3000:250",
-    "delta_kmh=0.1,0.2"]`` or ``{"horizon_m": [250, 500]}``); see :mod:`truckmpc.sweep` and
-    :func:`run_plan`.
+    "delta_kmh=0.1,0.2"]`` or ``{"horizon_m": [250, 500]}``), each road reversed or both ways
+    (``reverse="both"``), with one vehicle file or several; see :mod:`truckmpc.sweep`,
+    :func:`~truckmpc.sweep.plan.plan_sweep` and :func:`run_plan`.
 
     Every combination is validated before anything runs or ``out`` is created.
     """
@@ -85,7 +88,7 @@ def run_sweep(
         check_convergence=check_convergence,
         controllers=controllers,
     )
-    return run_plan(plan, out, jobs=jobs, progress=progress, force=force)
+    return run_plan(plan, out, jobs=jobs, progress=progress, force=force, scheduler=scheduler)
 
 
 def run_plan(
@@ -96,44 +99,41 @@ def run_plan(
     progress: ProgressHook | None = None,
     force: bool = False,
     notice: Callable[[str], None] | None = None,
+    scheduler: str | None = None,
 ) -> SweepResult:
     """Run (or resume) a planned sweep into directory ``out``; see :mod:`truckmpc.sweep`.
 
-    ``jobs``: processes (default ``os.cpu_count()``); 1 runs in this process. ``realtime_ratio`` of
-    each row is measured under whatever load the other jobs make.
+    ``jobs``: worker processes of the embedded Dask cluster (default ``os.cpu_count()``); 1 runs in
+    this process. ``scheduler``: the address of a running Dask cluster's scheduler to send the runs
+    to instead. ``realtime_ratio`` of each row is measured under whatever load the other jobs make.
     Raises :class:`SweepError` if ``out`` holds a different sweep,
     :class:`~truckmpc.workload.WorkError` if the runs left would take more than an hour (unless
     ``force``); damaged rows resumed from ``out`` are dropped, to run again, and ``notice`` (default:
-    a line on stderr) is told. On ``KeyboardInterrupt`` the
-    workers are stopped, the finished rows stay in ``sweep.partial.csv`` and
-    :class:`SweepInterrupted` (a ``KeyboardInterrupt``) says how many.
+    a line on stderr) is told; so are rows whose runs failed. A run that fails (raises, or kills its
+    workers) leaves its error in its rows' ``error`` column and the other runs go on. On
+    ``KeyboardInterrupt`` the workers are stopped, the finished rows stay in ``sweep.partial.csv``
+    and :class:`SweepInterrupted` (a ``KeyboardInterrupt``) says how many.
     """
-    out = Path(out)
-    jobs = max(1, jobs or os.cpu_count() or 1)
+    out, notice = Path(out), notice or _to_stderr
     check_out_dir(out, plan.settings)
-    done = _resumed_rows(plan, out, notice or _to_stderr)
+    done = _resumed_rows(plan, out, notice)
     resumed = len(done)
     pending = [row for row in plan.rows if row.index not in done]
     known = _resumed_runs(plan, done)
     tasks = _tasks(plan, pending, known)
-    _check_work(plan, tasks, jobs, force)
-    out.mkdir(parents=True, exist_ok=True)
-    write_settings(out, plan.settings, jobs)
-    header = csv_line(plan.columns)
-    partial = PartialFile(out / PARTIAL_NAME, header, [csv_line(cells) for _, cells in sorted(done.items())])
-    if progress:
-        progress(len(done), len(plan.rows))
-    try:
-        with Runner(plan.roads, (plan.vehicle_path, plan.config_paths), jobs) as runner:
-            for index, cells in _rows_as_they_finish(plan, pending, runner.results(tasks), known):
-                done[index] = cells
-                partial.append(csv_line(cells))
-                if progress:
-                    progress(len(done), len(plan.rows))
-    except KeyboardInterrupt:
-        raise SweepInterrupted(len(done), len(plan.rows), out / PARTIAL_NAME) from None
-    finally:
-        partial.close()
+    base = run_base(plan.vehicle_paths, plan.config_paths)
+    with Runner(plan.roads, base, max(1, jobs or os.cpu_count() or 1), scheduler, notice) as runner:
+        _check_work(plan, tasks, runner.jobs, force)
+        out.mkdir(parents=True, exist_ok=True)
+        write_settings(out, plan.settings, runner.jobs)
+        header = csv_line(plan.columns)
+        partial = PartialFile(out / PARTIAL_NAME, header, [csv_line(cells) for _, cells in sorted(done.items())])
+        try:
+            _run_rows(plan, pending, runner, tasks, known, done, partial, progress)
+        except KeyboardInterrupt:
+            raise SweepInterrupted(len(done), len(plan.rows), out / PARTIAL_NAME) from None
+        finally:
+            partial.close()
     ordered = [done[row.index] for row in plan.rows]
     return SweepResult(
         write_final(out, header, ordered),
@@ -142,6 +142,44 @@ def run_plan(
         runs={name: sum(task.controller == name for task in tasks) for name in plan.layout.runs},
         resumed_rows=resumed,
     )
+
+
+def _run_rows(
+    plan: SweepPlan,
+    pending: Sequence[Row],
+    runner: Runner,
+    tasks: Sequence[Task],
+    known: Mapping[Run, dict[str, Any]],
+    done: dict[int, list[str]],
+    partial: PartialFile,
+    progress: ProgressHook | None,
+) -> None:
+    """Run `tasks`, putting each pending row into `done` and `partial` as soon as its runs are in."""
+    finished = 0
+    if progress:
+        progress(0, len(tasks))
+
+    def counted(results: Iterable[tuple[Task, dict[str, Any]]]) -> Iterator[tuple[Task, dict[str, Any]]]:
+        nonlocal finished
+        for result in results:
+            yield result
+            finished += 1
+            if progress:
+                progress(finished, len(tasks))
+
+    for index, cells in _rows_as_they_finish(plan, pending, counted(runner.results(tasks)), known):
+        done[index] = cells
+        partial.append(csv_line(cells))
+
+
+def run_base(vehicles: Sequence[str | None], config_paths: Sequence[str]) -> RunBase:
+    """The files every run reads, as absolute paths (a worker may run elsewhere, on a shared file
+    system); a packaged preset's name, or None for the packaged truck, as it is."""
+    return RunBase(tuple(None if v is None else _absolute(v) for v in vehicles), tuple(map(_absolute, config_paths)))
+
+
+def _absolute(path: str) -> str:
+    return str(Path(path).resolve()) if Path(path).exists() else path
 
 
 def _to_stderr(text: str) -> None:
@@ -181,28 +219,39 @@ def _cost(work: Work, task: Task) -> float:
 def _resumed_rows(plan: SweepPlan, out: Path, notice: Callable[[str], None]) -> dict[int, list[str]]:
     """Row index -> cells of the plan's rows already in ``out`` (the first copy of each). A damaged
     row (a cell that is not what the sweep writes there, a wrong number of cells, axis values not in
-    this sweep) is dropped, to run again, and ``notice`` is told in one line."""
+    this sweep) is dropped, to run again, and ``notice`` is told in one line; so is a row whose runs
+    failed (its error may have passed: a worker out of memory)."""
     by_key = {plan.row_key(row): row for row in plan.rows}
-    first_result = 2 + len(plan.axes)
+    first_result = len(plan.key_columns)
     done: dict[int, list[str]] = {}
     dropped: list[str] = []
+    failed: set[int] = set()
     for where, cells in finished_rows(out, plan.columns):
         row = by_key.get(tuple(cells[:first_result]))
+        if row is not None and plan.layout.failed(cells[first_result:]):
+            failed.add(row.index)
+            continue
         damage = None if row is None else plan.layout.damaged(cells[first_result:])
         problem = "not a row of this sweep" if row is None else damage
         if problem is not None or row is None:
             dropped.append(f"{where}: {problem}")
-            continue
-        done.setdefault(row.index, cells)
+        else:
+            done.setdefault(row.index, cells)
     if dropped:
         rows = "1 damaged row" if len(dropped) == 1 else f"{len(dropped)} damaged rows"
         notice(f"dropped {rows}, to run again ({dropped[0]}{'; ...' if len(dropped) > 1 else ''})")
+    if failed - done.keys():
+        notice(f"running again {_rows_text(len(failed - done.keys()))} whose runs failed")
     return done
+
+
+def _rows_text(count: int) -> str:
+    return "1 row" if count == 1 else f"{count} rows"
 
 
 def _resumed_runs(plan: SweepPlan, done: Mapping[int, Sequence[str]]) -> dict[Run, dict[str, Any]]:
     """The shared runs' figures read back from finished rows, so that those runs are not repeated."""
-    first_result = len(plan.axes) + 2
+    first_result = len(plan.key_columns)
     known: dict[Run, dict[str, Any]] = {}
     for index, cells in done.items():
         for name, key in plan.rows[index].keys.items():
@@ -213,8 +262,8 @@ def _resumed_runs(plan: SweepPlan, done: Mapping[int, Sequence[str]]) -> dict[Ru
 
 def _tasks(plan: SweepPlan, pending: Sequence[Row], known: Mapping[Run, Any]) -> list[Task]:
     """The runs the pending rows need and `known` lacks: the shared runs first (the PI's, then the
-    PCC's; rows wait for them), once per key, then the rows' own runs longest first, so that a pool
-    does not end on one long run while the other workers idle."""
+    PCC's; rows wait for them), once per key, then the rows' own runs longest first, so that the
+    cluster does not end on one long run while the other workers idle (the runner keeps this order)."""
     by_cost = sorted(pending, key=lambda r: -r.cost)
     tasks: dict[Run, Task] = {}
     for name in plan.layout.runs:
@@ -223,7 +272,8 @@ def _tasks(plan: SweepPlan, pending: Sequence[Row], known: Mapping[Run, Any]) ->
         for row in pending if name in SHARED_SECTIONS else by_cost:
             run = (name, row.keys[name])
             if run not in known and run not in tasks:
-                tasks[run] = Task(name, row.road, row.overrides, row.index, run[1], False, convergence, baselines)
+                own = (False, convergence, baselines, row.vehicle)
+                tasks[run] = Task(name, row.road, row.overrides, row.index, run[1], *own)
     return list(tasks.values())
 
 

@@ -1,0 +1,174 @@
+"""A fleet study's summary: for each axis value (and each vehicle, each direction, and all rows
+together), each look-ahead controller's Δfuel and Δtime against the PI [%] over the roads — mean,
+standard deviation, the worst road (the least saving) — and how many rows failed; ``summary.csv``.
+And the result table as Parquet (``--parquet``, with pyarrow), since fleet tables outgrow CSV.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import statistics
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from truckmpc.atomic import atomic_write_text
+from truckmpc.sweep.columns import ERROR_COLUMN, delta_column, parse_cell
+from truckmpc.sweep.errors import SweepError
+from truckmpc.sweep.files import csv_line
+
+if TYPE_CHECKING:
+    from truckmpc.sweep.plan import SweepPlan
+    from truckmpc.sweep.run import SweepResult
+
+SUMMARY_NAME = "summary.csv"
+
+SUMMARY_COLUMNS = (
+    "axis",
+    "value",
+    "controller",
+    "rows",
+    "compared",
+    "failed",
+    "mean_delta_fuel_pct",
+    "std_delta_fuel_pct",
+    "mean_delta_time_pct",
+    "std_delta_time_pct",
+    "worst_road",
+    "worst_direction",
+    "worst_vehicle",
+    "worst_delta_fuel_pct",
+    "failed_roads",
+    "first_error",
+)
+"""Columns of ``summary.csv``: ``rows`` of the axis value, ``compared`` those with both Δs (not
+stalled, not failed), ``failed`` those with an error; the standard deviation is the sample's (0 for
+one row); the worst road is the compared row with the largest Δfuel; ``failed_roads`` names the
+roads of the failed rows, ``first_error`` the first one's error."""
+
+Rows = Sequence[Mapping[str, str]]
+
+
+def summary_groups(rows: Rows, axes: Sequence[str]) -> list[tuple[str, str, list[Mapping[str, str]]]]:
+    """(axis, value, rows) of every group summarised: all rows (axis ``all``), then each value of
+    the vehicle and direction (when they vary) and of each axis, in the order met."""
+    groups: list[tuple[str, str, list[Mapping[str, str]]]] = [("all", "", list(rows))]
+    keys = [key for key in ("vehicle", "direction") if len({row.get(key, "") for row in rows}) > 1]
+    for key in (*keys, *axes):
+        for value in dict.fromkeys(row[key] for row in rows):
+            groups.append((key, value, [row for row in rows if row[key] == value]))
+    return groups
+
+
+def summarise(rows: Rows, axes: Sequence[str], controllers: Sequence[str]) -> list[dict[str, str]]:
+    """The summary rows (:data:`SUMMARY_COLUMNS`, as cell text) of a sweep's result rows."""
+    out = []
+    for axis, value, members in summary_groups(rows, axes):
+        for controller in controllers:
+            out.append({"axis": axis, "value": value, "controller": controller, **_figures(members, controller)})
+    return out
+
+
+def _figures(members: Rows, controller: str) -> dict[str, str]:
+    """The summary cells of one group's rows for one controller."""
+    fuel_column, time_column = delta_column(controller, "fuel"), delta_column(controller, "time")
+    compared = [row for row in members if row[fuel_column] and row[time_column]]
+    failed = [row for row in members if row.get(ERROR_COLUMN)]
+    fuel = [float(row[fuel_column]) for row in compared]
+    time = [float(row[time_column]) for row in compared]
+    worst = max(compared, key=lambda row: float(row[fuel_column]), default=None)
+    return {
+        "rows": str(len(members)),
+        "compared": str(len(compared)),
+        "failed": str(len(failed)),
+        "mean_delta_fuel_pct": _number(statistics.fmean(fuel) if fuel else None),
+        "std_delta_fuel_pct": _number(_std(fuel)),
+        "mean_delta_time_pct": _number(statistics.fmean(time) if time else None),
+        "std_delta_time_pct": _number(_std(time)),
+        "worst_road": worst["road"] if worst else "",
+        "worst_direction": worst["direction"] if worst else "",
+        "worst_vehicle": worst.get("vehicle", "") if worst else "",
+        "worst_delta_fuel_pct": worst[fuel_column] if worst else "",
+        "failed_roads": " ".join(dict.fromkeys(row["road"] for row in failed)),
+        "first_error": failed[0][ERROR_COLUMN] if failed else "",
+    }
+
+
+def _std(values: Sequence[float]) -> float | None:
+    """The sample standard deviation; 0 for one value, None for none."""
+    if not values:
+        return None
+    return statistics.stdev(values) if len(values) > 1 else 0.0
+
+
+def _number(value: float | None) -> str:
+    return "" if value is None else f"{value:.6g}"
+
+
+def write_summary(out: Path, summary: Sequence[Mapping[str, str]]) -> Path:
+    """Write ``summary.csv`` into `out` in one step; its path."""
+    lines = [csv_line(SUMMARY_COLUMNS), *(csv_line([row[c] for c in SUMMARY_COLUMNS]) for row in summary)]
+    atomic_write_text(out / SUMMARY_NAME, "".join(lines))
+    return out / SUMMARY_NAME
+
+
+def summary_lines(summary: Sequence[Mapping[str, str]]) -> list[str]:
+    """One line per summary row: the group, the mean and spread of Δfuel and Δtime, the worst road,
+    the failed rows."""
+    lines = []
+    for row in summary:
+        group = "all rows" if row["axis"] == "all" else f"{row['axis']}={row['value']}"
+        if row["mean_delta_fuel_pct"]:
+            worst = ", ".join(v for v in (row["worst_direction"], row["worst_vehicle"]) if v)
+            text = (
+                f"delta fuel {float(row['mean_delta_fuel_pct']):+.2f} % ± {float(row['std_delta_fuel_pct']):.2f}, "
+                f"delta time {float(row['mean_delta_time_pct']):+.2f} % over {row['compared']} rows; worst "
+                f"{row['worst_road']} ({worst}) {float(row['worst_delta_fuel_pct']):+.2f} %"
+            )
+        else:
+            text = "no comparable row"
+        failed = f"; {row['failed']} failed, on {row['failed_roads']}" if row["failed"] != "0" else ""
+        lines.append(f"{group} {row['controller']}: {text}{failed}")
+    return lines
+
+
+def check_parquet() -> None:
+    """A one-line :class:`SweepError` unless pyarrow, which writes Parquet, is installed."""
+    if importlib.util.find_spec("pyarrow") is None:
+        raise SweepError("--parquet: needs pyarrow; install it with: pip install 'truckmpc[parquet]'")
+
+
+def write_parquet(path: Path, columns: Sequence[str], rows: Sequence[Sequence[str]]) -> Path:
+    """Write the rows (cell text) as a Parquet file at `path`, each column typed as its cells read
+    (numbers, booleans, text; blank as null): one call of pyarrow."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    arrays = [_array(pa, [parse_cell(row[i]) for row in rows]) for i in range(len(columns))]
+    pq.write_table(pa.table(dict(zip(columns, arrays, strict=True))), path)
+    return path
+
+
+def _array(pa: Any, values: list[Any]) -> Any:
+    """A pyarrow array of `values`; as text if they do not share a type (``nearest`` and 4)."""
+    try:
+        return pa.array(values)
+    except (pa.ArrowInvalid, pa.ArrowTypeError):
+        return pa.array([None if v is None else str(v) for v in values], type=pa.string())
+
+
+def fleet_outputs(out: Path, plan: SweepPlan, result: SweepResult, parquet: bool) -> tuple[list[str], list[Path]]:
+    """The summary lines to print and the files written besides ``sweep.csv``: ``summary.csv`` for
+    a fleet (several roads, directions or vehicles) or a sweep with failed rows, ``sweep.parquet``
+    when `parquet`."""
+    lines: list[str] = []
+    files: list[Path] = []
+    failed = any(row[ERROR_COLUMN] for row in result.rows)
+    if len(plan.roads) > 1 or len(plan.vehicle_paths) > 1 or failed:
+        summary = summarise(result.rows, [axis.key for axis in plan.axes], plan.controllers)
+        lines += summary_lines(summary)
+        files.append(write_summary(out, summary))
+    if parquet:
+        cells = [[row[column] for column in result.columns] for row in result.rows]
+        files.append(write_parquet(out / "sweep.parquet", result.columns, cells))
+    return lines, files
