@@ -10,13 +10,13 @@ import os
 import signal
 import subprocess
 import sys
-import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
 from truckmpc import run_sweep
+from waiting import data_rows, wait_for
 
 REPO = Path(__file__).resolve().parents[1]
 ROAD = REPO / "roads" / "test-track.csv"  # 8.5 km of hills: each run below takes about a second
@@ -28,22 +28,6 @@ TIMING = {"realtime_ratio", "solve_ms_mean", "solve_ms_max"}
 """Columns that are measured wall times: they differ between two runs of the same row."""
 
 pytestmark = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs Linux /proc")
-
-
-def wait_for(condition: Callable[[], bool], timeout_s: float) -> bool:
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        if condition():
-            return True
-        time.sleep(0.05)
-    return condition()
-
-
-def data_rows(path: Path) -> int:
-    try:
-        return max(0, len(path.read_text().splitlines()) - 1)
-    except FileNotFoundError:
-        return 0
 
 
 def untimed(path: Path) -> list[dict[str, str]]:

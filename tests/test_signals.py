@@ -16,6 +16,8 @@ from pathlib import Path
 
 import pytest
 
+from waiting import data_rows, wait_for
+
 REPO = Path(__file__).resolve().parents[1]
 HILL = REPO / "roads" / "hill_L500_A3.5.csv"  # 2.5 km
 COMMAND = [sys.executable, "-c", "from truckmpc.cli import main; main()"]
@@ -37,22 +39,6 @@ def group_members(pgid: int) -> list[int]:
         if int(fields[2]) == pgid and fields[0] != "Z":
             members.append(int(entry.name))
     return members
-
-
-def wait_for(condition, timeout_s: float) -> bool:
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        if condition():
-            return True
-        time.sleep(0.05)
-    return condition()
-
-
-def data_rows(path: Path) -> int:
-    try:
-        return max(0, len(path.read_text().splitlines()) - 1)
-    except FileNotFoundError:
-        return 0
 
 
 @pytest.mark.parametrize(
