@@ -34,7 +34,7 @@ import enum
 import importlib
 import json
 import sys
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Annotated, Any, NoReturn
 
@@ -763,34 +763,38 @@ def _import(kind: str, file: Path, output: Path, *options: Any) -> None:
         typer.echo(line)
 
 
-@road_import_app.command("gpx")
-def road_import_gpx_cmd(
-    file: geo.TrackArg,
-    output: geo.OutputOpt,
-    method: geo.MethodOpt = geo.Method.spline,
-    noise_m: geo.NoiseOpt = geo.DEFAULT_NOISE_M,
-    smooth_m: geo.SmoothOpt = None,
-    step_m: geo.StepOpt = None,
-    grade_limit_pct: geo.GradeLimitOpt = geo.DEFAULT_GRADE_LIMIT_PCT,
-) -> None:
-    """Make a road CSV from a GPX file's track points (else its route points): geodesic distance,
-    elevation resampled and smoothed, steep grades reported (README: Roads from GPS tracks)."""
-    _import("gpx", file, output, method, noise_m, smooth_m, step_m, grade_limit_pct)
+def _track_import_command(kind: str, doc: str) -> Callable[..., None]:
+    """The `road import KIND` command for a track format (`gpx`, `csv`): the same options for both."""
+
+    def command(
+        file: geo.TrackArg,
+        output: geo.OutputOpt,
+        method: geo.MethodOpt = geo.Method.spline,
+        noise_m: geo.NoiseOpt = geo.DEFAULT_NOISE_M,
+        smooth_m: geo.SmoothOpt = None,
+        step_m: geo.StepOpt = None,
+        grade_limit_pct: geo.GradeLimitOpt = geo.DEFAULT_GRADE_LIMIT_PCT,
+    ) -> None:
+        _import(kind, file, output, method, noise_m, smooth_m, step_m, grade_limit_pct)
+
+    command.__doc__ = doc
+    return command
 
 
-@road_import_app.command("csv")
-def road_import_csv_cmd(
-    file: geo.TrackArg,
-    output: geo.OutputOpt,
-    method: geo.MethodOpt = geo.Method.spline,
-    noise_m: geo.NoiseOpt = geo.DEFAULT_NOISE_M,
-    smooth_m: geo.SmoothOpt = None,
-    step_m: geo.StepOpt = None,
-    grade_limit_pct: geo.GradeLimitOpt = geo.DEFAULT_GRADE_LIMIT_PCT,
-) -> None:
-    """Make a road CSV from a plain lat,lon,ele table (degrees, metres; one point per row in travel
-    order), as road import gpx does."""
-    _import("csv", file, output, method, noise_m, smooth_m, step_m, grade_limit_pct)
+road_import_app.command("gpx")(
+    _track_import_command(
+        "gpx",
+        """Make a road CSV from a GPX file's track points (else its route points): geodesic distance,
+    elevation resampled and smoothed, steep grades reported (README: Roads from GPS tracks).""",
+    )
+)
+road_import_app.command("csv")(
+    _track_import_command(
+        "csv",
+        """Make a road CSV from a plain lat,lon,ele table (degrees, metres; one point per row in travel
+    order), as road import gpx does.""",
+    )
+)
 
 
 @road_app.command("info")

@@ -17,6 +17,14 @@ pub use rescue::Rescue;
 
 use crate::plant::{Control, PlantState};
 use crate::road::Road;
+use crate::vehicle::Vehicle;
+
+/// Specific mechanical energy g·h + v²/2 [J/kg] of the truck at `s_m` [m] on `road` with speed
+/// `v_mps` [m/s]: what the rule-based controllers compare to decide when to coast (the mass
+/// cancels; h is relative to the road's first point).
+pub fn specific_energy_j_per_kg(vehicle: &Vehicle, road: &Road, s_m: f64, v_mps: f64) -> f64 {
+    vehicle.params().gravity_mps2 * road.altitude_at(s_m) + 0.5 * v_mps * v_mps
+}
 
 /// What [`Controller::decide`] returns: the inputs and until when to hold them.
 #[derive(Debug, Clone, Copy, PartialEq)]

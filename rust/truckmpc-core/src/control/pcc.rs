@@ -31,7 +31,7 @@
 use std::sync::Arc;
 
 use super::pi::PiController;
-use super::{Controller, Decision};
+use super::{specific_energy_j_per_kg, Controller, Decision};
 use crate::error::CoreResult;
 use crate::params::{CruiseParams, PccParams, PiParams};
 use crate::plant::{Control, PlantState};
@@ -161,7 +161,7 @@ impl PccController {
 
     /// Specific energy at `s_m` with speed `v_mps` [J/kg].
     fn energy(&self, road: &Road, s_m: f64, v_mps: f64) -> f64 {
-        self.vehicle.params().gravity_mps2 * road.altitude_at(s_m) + 0.5 * v_mps * v_mps
+        specific_energy_j_per_kg(&self.vehicle, road, s_m, v_mps)
     }
 
     /// Whether coasting from `s_m` at `v_mps` arrives at `x_m` with at least the energy of `v_at`.
@@ -183,8 +183,8 @@ impl PccController {
             let v_ref = self.v_ref_at(s.max(d.x_low_m));
             let v_low = (v_ref * KMH_PER_MPS - self.p.pcc_underspeed_kmh) / KMH_PER_MPS;
             if s < d.x_low_m {
-                // Use case 1: before the descent, within the preview.
-                if s < d.x_low_m - self.p.pcc_preview_m || v < v_low {
+                // Use case 1: before the descent, within the preview (checked above).
+                if v < v_low {
                     continue;
                 }
                 let x_end = (s + self.p.pcc_preview_m).min(d.x_end_max_m);

@@ -26,7 +26,7 @@
 
 use std::sync::Arc;
 
-use super::{Controller, Decision};
+use super::{specific_energy_j_per_kg, Controller, Decision};
 use crate::band::SpeedBand;
 use crate::error::CoreResult;
 use crate::levels::stationary;
@@ -241,8 +241,8 @@ impl PiController {
         if v <= v_c {
             return;
         }
-        let g = self.vehicle.params().gravity_mps2;
-        let surplus = g * (road.altitude_at(s) - road.altitude_at(start_m)) + 0.5 * (v * v - v_c * v_c);
+        let surplus = specific_energy_j_per_kg(&self.vehicle, road, s, v)
+            - specific_energy_j_per_kg(&self.vehicle, road, start_m, v_c);
         let needed_per_m = surplus / (start_m - s).max(1e-3);
         let resistance = -self.vehicle.accel_mps2(0.5 * (v + v_c), 0.0, 0.0, self.gear.max(1), 0.0);
         if needed_per_m >= lac_decision_factor(set_kmh, here_kmh - set_kmh) * resistance {
