@@ -66,7 +66,9 @@ def corrected_fuel_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float
 
 def summary_corrected_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
     """A run's corrected fuel [kg] (:func:`corrected_fuel_kg`); for a road driven in legs (a road
-    with stops, :mod:`truckmpc.legs`) the sum over its legs, each corrected to its own entry speed."""
+    with stops, :mod:`truckmpc.legs`) the sum over its legs, each corrected to its own entry speed.
+    Not the summary's own `fuel_corrected_kg`: that prices kinetic energy in the gear at the run's
+    v_ref, while a re-tuned baseline must be priced at the original run's (`g_per_half_v2`)."""
     legs = summary.get("legs")
     if legs is None:
         return corrected_fuel_kg(summary, g_per_half_v2)

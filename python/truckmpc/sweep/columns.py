@@ -129,9 +129,6 @@ def delta_column(run: str, kind: str, base: str = "pi") -> str:
     return dict(versus.columns)[kind]
 
 
-DELTA_COLUMNS = tuple(column for _, column in VERSUS[0].columns)
-"""The MPC against the PI, as in ``summary.json``."""
-
 ERROR_COLUMN = "error"
 """The first result column: why a row's runs failed (``pi: ...; mpc: ...``), blank when they did
 not; the failed runs' figures and their comparisons are blank."""

@@ -44,10 +44,6 @@ class Row:
     vehicle: int = 0
 
     @property
-    def pi_key(self) -> str:
-        return self.keys["pi"]
-
-    @property
     def cost(self) -> float:
         """Estimated seconds of the row's look-ahead run [s] (the longest are scheduled first)."""
         return self.work.total_s
@@ -75,11 +71,6 @@ class SweepPlan:
     def layout(self) -> Layout:
         """The result columns and how a row's runs fill them."""
         return Layout(self.controllers, self.check_convergence)
-
-    @property
-    def direction(self) -> str:
-        """``forward``, ``reverse``, or ``both`` when the sweep drives its roads both ways."""
-        return self.directions[0] if len(set(self.directions)) == 1 else "both"
 
     @property
     def vehicle_path(self) -> str | None:
