@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import glob
+from collections import Counter
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -62,10 +63,7 @@ def load_fleet(arguments: Sequence[RoadProfile | PathLike], reverse: bool | str)
     roads = [_load(item, member) for item, member in road_files(arguments)]
     if not roads:
         raise SweepError("--road: expected at least one road")
-    names = [road.name for road in roads]
-    for name in names:
-        if names.count(name) > 1:
-            raise SweepError(f"--road: two roads are named {name!r} (rows are keyed by road name)")
+    check_unique([road.name for road in roads], "--road", "roads")
     directions = DIRECTIONS[reverse]
     out = [_driven(road, direction) for road in roads for direction in directions]
     return out, [direction for _ in roads for direction in directions]
@@ -93,7 +91,14 @@ def _driven(road: Road, direction: str) -> Road:
 def vehicle_names(paths: Sequence[str | None]) -> tuple[str, ...]:
     """The name of each vehicle (its file's stem; ``truck-40t`` for the packaged default), unique."""
     names = tuple("truck-40t" if path is None else Path(path).stem for path in paths)
-    for name in names:
-        if names.count(name) > 1:
-            raise SweepError(f"--vehicle: two vehicles are named {name!r} (rows are keyed by vehicle name)")
+    check_unique(names, "--vehicle", "vehicles")
     return names
+
+
+def check_unique(names: Sequence[str], option: str, what: str) -> None:
+    """A one-line SweepError naming `option` if two of `what` (``roads``, ``vehicles``) share a
+    name: rows are keyed by names."""
+    repeated = [name for name, count in Counter(names).items() if count > 1]
+    if repeated:
+        key = what.removesuffix("s")
+        raise SweepError(f"{option}: two {what} are named {repeated[0]!r} (rows are keyed by {key} name)")

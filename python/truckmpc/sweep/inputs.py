@@ -60,15 +60,13 @@ def checked_axes(
 def load_profiles(roads: Sequence[RoadProfile | PathLike], reverse: bool) -> list[RoadProfile]:
     """The roads loaded (directories and globs expanded, every file readable), uniquely named,
     reversed if asked (keeping their names: rows are keyed by them)."""
-    from truckmpc.sweep.fleet import road_files
+    from truckmpc.sweep.fleet import check_unique, road_files
 
     profiles = [road if isinstance(road, RoadProfile) else load_road(road) for road, _ in road_files(roads)]
     if not profiles:
         raise SweepError("--road: expected at least one road")
     names = [p.name for p in profiles]
-    for name in names:
-        if names.count(name) > 1:
-            raise SweepError(f"--road: two roads are named {name!r} (rows are keyed by road name)")
+    check_unique(names, "--road", "roads")
     if reverse:
         profiles = [p.reversed() for p in profiles]
         profiles = [dataclasses.replace(p, name=n) for p, n in zip(profiles, names, strict=True)]
