@@ -23,7 +23,7 @@ import numpy as np
 from truckmpc.config import config_from_values
 from truckmpc.errors import RoadError
 from truckmpc.road import RoadProfile
-from truckmpc.units import KMH_PER_MPS, M_PER_KM
+from truckmpc.units import KMH_PER_MPS, M_PER_KM, PCT_PER_FRACTION
 
 if TYPE_CHECKING:
     from truckmpc.config import RunConfig
@@ -116,14 +116,14 @@ def _map_part(told: RoadProfile, start_m: float, end_m: float) -> RoadProfile:
 
 def stops_document(road: RoadProfile) -> dict[str, Any]:
     """The summary's `stops_not_simulated`: how many stops `road` has, their total duration [s], why."""
-    total_s = float(sum(stop.duration_s for stop in road.stops))
+    total_s = road.stop_time_s
     return {"count": len(road.stops), "total_stop_s": total_s, "note": STOPS_NOTE}
 
 
 def stops_line(road: RoadProfile) -> str:
     """One line for the CLI on how a road's stops are driven (`road.stops` must not be empty)."""
     legs = leg_bounds(road)
-    total_s = sum(stop.duration_s for stop in road.stops)
+    total_s = road.stop_time_s
     return (
         f"stops not simulated: {len(road.stops)} stops ({total_s:g} s); driven as {len(legs)} stop-free legs, "
         "each from its entry target speed (no launch, no braking to standstill)"
@@ -201,7 +201,9 @@ def _merged_summary(legs: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     merged["stalled"] = stalled
     merged["fuel_corrected_kg"] = None if stalled else merged.get("fuel_corrected_kg")
     distance_m, time_s = merged["distance_m"], merged["time_s"]
-    merged["fuel_kg_per_100km"] = merged["fuel_kg"] / (distance_m / 1e5) if distance_m > 0 else None
+    merged["fuel_kg_per_100km"] = (
+        merged["fuel_kg"] / (distance_m / (PCT_PER_FRACTION * M_PER_KM)) if distance_m > 0 else None
+    )
     merged["mean_speed_kmh"] = distance_m / time_s * KMH_PER_MPS if time_s > 0 else merged["start_speed_kmh"]
     merged["realtime_ratio"] = merged["compute_time_s"] / time_s if time_s > 0 else None
     return merged

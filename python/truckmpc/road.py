@@ -133,6 +133,11 @@ class RoadProfile:
         return np.diff(self.altitude_m) / np.diff(self.distance_m)
 
     @property
+    def stop_time_s(self) -> float:
+        """Total duration of the road's stops [s] (0 without stops)."""
+        return float(sum(stop.duration_s for stop in self.stops))
+
+    @property
     def length_m(self) -> float:
         """Road length from the first to the last point [m]."""
         return float(self.distance_m[-1] - self.distance_m[0])
@@ -242,6 +247,12 @@ def _checked_stops(where: str, stops: tuple[Stop, ...], distance: np.ndarray) ->
             raise RoadError(f"{where}: stop at {stop.distance_m:g} m: expected stops in increasing distance")
         previous_m = stop.distance_m
     return stops
+
+
+def altitude_from_grade(distance_m: np.ndarray, grade: np.ndarray) -> np.ndarray:
+    """Altitudes [m] from 0 at the first point, integrating each point's `grade` [-] (that of the
+    segment starting there; the last one is unused) over the distances `distance_m` [m]."""
+    return np.concatenate([[0.0], np.cumsum(np.asarray(grade)[:-1] * np.diff(distance_m))])
 
 
 def _frozen_array(values: Any) -> np.ndarray:

@@ -20,7 +20,17 @@ import numpy as np
 
 from .atomic import atomic_write_text
 from .errors import RoadError, read_user_text
-from .road import GRADE_CHECK, MAX_ABS_DISTANCE_M, MAX_GRADE, MAX_LENGTH_M, MAX_TARGET_KMH, PathLike, RoadProfile, Stop
+from .road import (
+    GRADE_CHECK,
+    MAX_ABS_DISTANCE_M,
+    MAX_GRADE,
+    MAX_LENGTH_M,
+    MAX_TARGET_KMH,
+    PathLike,
+    RoadProfile,
+    Stop,
+    altitude_from_grade,
+)
 
 __all__ = ["OPTIONAL_COLUMNS_COMMENT", "read_road_csv", "write_road_csv"]
 
@@ -48,7 +58,7 @@ def read_road_csv(path: PathLike) -> RoadProfile:
     if "altitude_m" in data:
         altitude = np.array(data["altitude_m"])
     else:
-        altitude = np.concatenate([[0.0], np.cumsum(np.array(data["grade"])[:-1] * np.diff(distance))])
+        altitude = altitude_from_grade(distance, np.array(data["grade"]))
     targets = np.array(data["target_speed_kmh"]) if "target_speed_kmh" in data else None
     stops = tuple(Stop(d, t) for d, t in zip(data["distance_m"], data.get("stop_s", ()), strict=False) if t > 0)
     return RoadProfile(path.stem, distance, altitude, where, targets, stops)

@@ -35,6 +35,7 @@ from .road import (
     PathLike,
     RoadProfile,
     Stop,
+    altitude_from_grade,
 )
 from .road_csv import number_cell
 from .units import KMH_PER_MPS, M_PER_KM, PCT_PER_FRACTION
@@ -89,7 +90,7 @@ def read_vdri(path: PathLike) -> RoadProfile:
     columns = _header(where, *lines[0])
     cycle = _rows(where, columns, lines[1:])
     distance_m = np.array(cycle.s_m)
-    altitude_m = np.concatenate([[0.0], np.cumsum(np.array(cycle.grade)[:-1] * np.diff(distance_m))])
+    altitude_m = altitude_from_grade(distance_m, np.array(cycle.grade))
     stops = tuple(Stop(s, t) for s, t in zip(cycle.s_m, cycle.stop_s, strict=True) if t > 0)
     targets = _filled_targets(where, cycle, [i for i, t in enumerate(cycle.stop_s) if t > 0])
     return RoadProfile(path.stem, distance_m, altitude_m, where, targets, stops)
@@ -170,7 +171,9 @@ def _check_row(where: str, number: int, values: dict[str, float], previous_m: fl
     grade = values.get("grad", 0.0)
     if abs(grade) > GRADE_CHECK:
         limit_pct = MAX_GRADE * PCT_PER_FRACTION
-        raise RoadError(f"{where}:{number}: column <grad>: expected |grade| <= {limit_pct:g} %, got {grade * 100:g} %")
+        raise RoadError(
+            f"{where}:{number}: column <grad>: expected |grade| <= {limit_pct:g} %, got {grade * PCT_PER_FRACTION:g} %"
+        )
     if values.get("stop", 0.0) < 0:
         raise RoadError(f"{where}:{number}: column <stop>: expected a stop time >= 0 s, got {values['stop']:g} s")
 
@@ -226,7 +229,7 @@ def import_comments(profile: RoadProfile, command: str) -> list[str]:
 
 def cycle_summary(profile: RoadProfile) -> str:
     """One line on an imported cycle: length, legs, stops, the target speeds found."""
-    total_s = sum(stop.duration_s for stop in profile.stops)
+    total_s = profile.stop_time_s
     targets = profile.target_speed_kmh
     speeds = "none" if targets is None else ", ".join(f"{v:g}" for v in np.unique(targets)) + " km/h"
     return (

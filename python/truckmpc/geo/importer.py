@@ -29,7 +29,7 @@ from truckmpc.geo.options import DEFAULT_GRADE_LIMIT_PCT, DEFAULT_NOISE_M
 from truckmpc.geo.smooth import Smoothing
 from truckmpc.geo.track import POSITION_BANDWIDTH_M, Track, checked, cumulative_distance_m, smoothed_positions
 from truckmpc.road import RoadProfile
-from truckmpc.units import PCT_PER_FRACTION
+from truckmpc.units import M_PER_KM, PCT_PER_FRACTION
 
 __all__ = [
     "DEFAULT_GRADE_LIMIT",
@@ -125,10 +125,12 @@ def steep_sections(profile: RoadProfile, grade_limit: float) -> list[tuple[float
 
 def _limit_note(profile: RoadProfile, grade_limit: float) -> str:
     sections = steep_sections(profile, grade_limit)
-    head = f"|grade| <= {100 * grade_limit:g} % expected"
+    head = f"|grade| <= {PCT_PER_FRACTION * grade_limit:g} % expected"
     if not sections:
         return f"{head}; none beyond"
-    shown = ", ".join(f"km {a / 1e3:.2f}-{b / 1e3:.2f} ({100 * g:+.1f} %)" for a, b, g in sections[:5])
+    shown = ", ".join(
+        f"km {a / M_PER_KM:.2f}-{b / M_PER_KM:.2f} ({PCT_PER_FRACTION * g:+.1f} %)" for a, b, g in sections[:5]
+    )
     more = f" and {len(sections) - 5} more" if len(sections) > 5 else ""
     return f"{head}; {len(sections)} sections beyond, kept as they are: {shown}{more}"
 

@@ -16,6 +16,7 @@ import numpy as np
 
 from truckmpc.errors import RoadError, read_user_text
 from truckmpc.geo.track import Track
+from truckmpc.road_csv import number_cell
 
 __all__ = ["read_latlon_csv"]
 
@@ -72,10 +73,4 @@ def _cell(where: str, number: int, name: str, text: str) -> float:
     """The number in a cell; an empty elevation is NaN (a missing elevation, refused later)."""
     if name == "ele" and not text:
         return math.nan
-    try:
-        value = float(text)
-    except ValueError:
-        raise RoadError(f"{where}:{number}: column {name!r}: expected a number, got {text!r}") from None
-    if not math.isfinite(value):
-        raise RoadError(f"{where}:{number}: column {name!r}: expected a finite number, got {text!r}")
-    return value
+    return number_cell(where, number, repr(name), text)

@@ -31,6 +31,7 @@ from truckmpc.atomic import atomic_write_text
 from truckmpc.errors import RoadError
 from truckmpc.geo.track import WGS84
 from truckmpc.road import RoadProfile
+from truckmpc.units import KMH_PER_MPS, M_PER_KM
 
 __all__ = [
     "NOISE_KINDS",
@@ -39,7 +40,6 @@ __all__ = [
     "path_points",
     "road_piece",
     "write_fixtures",
-    "write_noisy_track",
 ]
 
 START = (57.70, 11.97)
@@ -51,7 +51,9 @@ _BASE_ALTITUDE_M = 100.0
 def path_points(length_m: float, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Distance [m], latitude and longitude [deg] of points logged at 1 Hz along the curving path
     over `length_m` (the last point exactly at its end)."""
-    speed_mps = 80.0 / 3.6 + (5.0 / 3.6) * np.sin(np.arange(int(length_m / 20.0) + 2) / 97.0 + rng.uniform(0, 6.3))
+    speed_mps = 80.0 / KMH_PER_MPS + (5.0 / KMH_PER_MPS) * np.sin(
+        np.arange(int(length_m / 20.0) + 2) / 97.0 + rng.uniform(0, 6.3)
+    )
     distance_m = np.concatenate([[0.0], np.cumsum(speed_mps)])
     distance_m = np.append(distance_m[distance_m < length_m - 1.0], length_m)
     phase = rng.uniform(0.0, 2 * math.pi, size=2)
@@ -135,22 +137,6 @@ def noisy_track_gpx(
     return document
 
 
-def write_noisy_track(
-    road: RoadProfile,
-    path: Path,
-    sigma_m: float,
-    seed: int,
-    *,
-    corr_m: float = 100.0,
-    jitter_m: float = 2.0,
-    kind: str = "markov",
-) -> Path:
-    """Write :func:`noisy_track_gpx` to `path` (GPX 1.1); returns `path`."""
-    document = noisy_track_gpx(road, sigma_m, seed, corr_m=corr_m, jitter_m=jitter_m, kind=kind)
-    atomic_write_text(path, document.to_xml(version="1.1"))
-    return path
-
-
 def road_piece(road: RoadProfile, start_m: float, end_m: float) -> RoadProfile:
     """The part of `road` between `start_m` and `end_m` [m] from its start (its points there, the
     ends interpolated), distances from 0, altitudes from 0, named ``NAME-kmA-B``."""
@@ -164,7 +150,7 @@ def road_piece(road: RoadProfile, start_m: float, end_m: float) -> RoadProfile:
     inside = road.distance_m[(road.distance_m > first_m + 1e-3) & (road.distance_m < last_m - 1e-3)]
     distance_m = np.concatenate([[first_m], inside, [last_m]])
     altitude_m = np.interp(distance_m, road.distance_m, road.altitude_m)
-    name = f"{road.name}-km{start_m / 1e3:g}-{end_m / 1e3:g}"
+    name = f"{road.name}-km{start_m / M_PER_KM:g}-{end_m / M_PER_KM:g}"
     return RoadProfile(name, distance_m - first_m, altitude_m - altitude_m[0], road.source)
 
 
@@ -178,5 +164,7 @@ def write_fixtures(
     for sigma_m in sigmas_m:
         path = out_dir / f"{road.name}-sigma{sigma_m:g}-seed{seed}.gpx"
         jitter_m = 2.0 if sigma_m > 0 else 0.0
-        written.append(write_noisy_track(road, path, sigma_m, seed, jitter_m=jitter_m, kind=kind))
+        document = noisy_track_gpx(road, sigma_m, seed, jitter_m=jitter_m, kind=kind)
+        atomic_write_text(path, document.to_xml(version="1.1"))
+        written.append(path)
     return written
