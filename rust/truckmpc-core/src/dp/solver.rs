@@ -18,6 +18,8 @@
 use super::cache::{Block, CoastArc, RowCache, RowScratch, StageKey, StageRows, LANES, PAD};
 use super::params::{DpSettings, GridAnchor, NeutralRule};
 use super::rows::{change_cost, forward_row, inputs, GridIndex};
+#[cfg(target_arch = "x86_64")]
+use super::simd::lanes::{self, pack, widen};
 use super::simd::{self, LaneMins};
 use super::space::{self, Grid, Intervals};
 use super::values::{StageValues, ValueTable};
@@ -808,7 +810,7 @@ impl Solver {
             self.shift_same_cur[g_i] = match (stays, g_i == NEUTRAL) {
                 (false, _) => decide_states::<false, false>(input, state, None),
                 (true, false) => decide_states::<true, false>(input, state, self.avx2),
-                (true, true) => decide_states::<true, true>(input, state, None),
+                (true, true) => decide_states::<true, true>(input, state, self.avx2),
             };
             // The rest of the gear's block (no state there) is +∞ for the min-plus pass.
             let block = g_i * stride(n)..(g_i + 1) * stride(n);
@@ -904,9 +906,9 @@ fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(
     assert!(out.counter.len() == m && out.shift.len() == m && out.decision.len() == m);
     let (mut blocked, mut done) = (false, 0);
     #[cfg(target_arch = "x86_64")]
-    if let (true, false, Some(_)) = (STAYS, NEUTRAL_STATE, avx2) {
+    if let (true, Some(_)) = (STAYS, avx2) {
         // SAFETY: the token exists only where the CPU has AVX2; the lengths are checked above.
-        (done, blocked) = unsafe { decide_staying_avx2(&input, &mut out) };
+        (done, blocked) = unsafe { decide_staying_avx2::<NEUTRAL_STATE>(&input, &mut out) };
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = avx2;
@@ -957,18 +959,22 @@ impl Avx2Token {
     }
 }
 
-/// [`decide_states`] for a forward gear that stays, four states at a time in AVX2, as far as whole
+/// [`decide_states`] for a gear that stays, four states at a time in AVX2, as far as whole
 /// groups of four go: returns the states done and whether one of them was blocked. Every value is
 /// the scalar loop's: the same additions (shift + Q4, best + Q2 term), comparisons and selects,
-/// and the counters' integer rules (saturating +1, at most u32::MAX / 2, ≥ k_lim).
+/// and the counters' integer rules (saturating +1, at most u32::MAX / 2, ≥ k_lim). `NEUTRAL_STATE`:
+/// the counter carried by staying is the neutral choice's own, not the target state's.
 ///
 /// # Safety
 /// The CPU must have AVX2, and the slices of `input` and `out` the lengths `decide_states` checks.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn decide_staying_avx2(input: &StateIn, out: &mut StateOut) -> (usize, bool) {
+unsafe fn decide_staying_avx2<const NEUTRAL_STATE: bool>(input: &StateIn, out: &mut StateOut) -> (usize, bool) {
     use std::arch::x86_64::*;
     let m = out.cost.len();
+    if input.counter_next.is_empty() || input.shift_j.is_empty() {
+        return (0, false);
+    }
     let groups = m / 4 * 4;
     let inf = _mm256_set1_pd(INF);
     let q4 = _mm256_set1_pd(input.q4);
@@ -983,17 +989,10 @@ unsafe fn decide_staying_avx2(input: &StateIn, out: &mut StateOut) -> (usize, bo
     let index_and_flag = _mm_set1_epi32(0xff00_ffff_u32 as i32);
     let arc = _mm_set1_epi32(ARC as i32);
     let low8 = _mm_set1_epi32(0xff);
-    // Gathers read only where the scalar loop reads; indices are clamped into the slices anyway.
+    // Lanes are loaded at indices clamped into the slices (checked non-empty below), and kept only
+    // where the scalar loop reads.
     let last_counter = _mm_set1_epi32(input.counter_next.len().saturating_sub(1) as i32);
     let last_shift_j = _mm_set1_epi32(input.shift_j.len().saturating_sub(1).min(i32::MAX as usize) as i32);
-    // The 32-bit halves of 64-bit lane masks.
-    let pack = |mask: __m256d| {
-        _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(
-            _mm256_castpd_si256(mask),
-            _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6),
-        ))
-    };
-    let widen = |mask: __m128i| _mm256_castsi256_pd(_mm256_cvtepi32_epi64(mask));
     let mut blocked = _mm256_setzero_pd();
     let mut t = 0;
     while t < groups {
@@ -1014,11 +1013,14 @@ unsafe fn decide_staying_avx2(input: &StateIn, out: &mut StateOut) -> (usize, bo
         let finite32 = pack(_mm256_cmp_pd::<_CMP_LT_OQ>(stay, inf));
         // Staying: the continuation's counter (0 when staying has no finite cost) + 1.
         let all_j = _mm_loadu_si128(input.all_j.as_ptr().add(t).cast());
-        let carried = _mm_mask_i32gather_epi32::<4>(
-            _mm_setzero_si128(),
-            input.counter_next.as_ptr().cast(),
-            _mm_min_epu32(_mm_andnot_si128(arc, all_j), last_counter),
-            _mm_andnot_si128(take32, finite32),
+        let carries = _mm_andnot_si128(take32, finite32);
+        let carried = _mm_and_si128(
+            if NEUTRAL_STATE {
+                _mm_loadu_si128(input.neutral_counter.as_ptr().add(t).cast())
+            } else {
+                lanes::load_u32(input.counter_next, _mm_min_epu32(_mm_andnot_si128(arc, all_j), last_counter))
+            },
+            carries,
         );
         let stay_counter = _mm_min_epu32(_mm_add_epi32(_mm_min_epu32(carried, below_max), one), half);
         let counter = _mm_blendv_epi8(stay_counter, one, take32);
@@ -1034,7 +1036,7 @@ unsafe fn decide_staying_avx2(input: &StateIn, out: &mut StateOut) -> (usize, bo
         let shift_gear = _mm_blendv_epi8(first_gear, second_gear, own);
         let slot = _mm_add_epi32(_mm_set1_epi32((input.slot0 + t) as i32), lanes);
         let at = _mm_min_epu32(_mm_add_epi32(_mm_mullo_epi32(shift_gear, width), slot), last_shift_j);
-        let shift_j = _mm_mask_i32gather_epi32::<4>(_mm_setzero_si128(), input.shift_j.as_ptr().cast(), at, take32);
+        let shift_j = _mm_and_si128(lanes::load_u32(input.shift_j, at), take32);
         let j = _mm_blendv_epi8(all_j, shift_j, take32);
         let next_gear = _mm_blendv_epi8(gear, shift_gear, take32);
         let decision =
@@ -1278,12 +1280,6 @@ unsafe fn rank_avx2(
     use std::arch::x86_64::*;
     let groups = costs.len() / 4 * 4;
     let gear = _mm_set1_epi32(gear as i32);
-    let pack = |mask: __m256d| {
-        _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(
-            _mm256_castpd_si256(mask),
-            _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6),
-        ))
-    };
     let mut t = 0;
     while t < groups {
         let c = _mm256_loadu_pd(costs.as_ptr().add(t));
@@ -1330,7 +1326,7 @@ unsafe fn join_nearest_avx2(
             && out.shift_cost.len() == n
             && out.shift_j.len() == n
     );
-    // The gathers below read indices within [lo, hi] only; the values must hold them.
+    // The loads below read indices within [lo, hi] only; the values must hold them.
     if (join.hi as usize) >= cost_next.len().min(counter_next.len()) || join.hi >= i32::MAX as u32 {
         return 0;
     }
@@ -1342,13 +1338,6 @@ unsafe fn join_nearest_avx2(
     let sign = _mm256_set1_pd(-0.0);
     let (lo, hi) = (_mm_set1_epi32(join.lo as i32), _mm_set1_epi32(join.hi as i32));
     let k_lim = _mm_set1_epi32(k_lim as i32);
-    let pack = |mask: __m256d| {
-        _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(
-            _mm256_castpd_si256(mask),
-            _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6),
-        ))
-    };
-    let widen = |mask: __m128i| _mm256_castsi256_pd(_mm256_cvtepi32_epi64(mask));
     let mut t = 0;
     while t < groups {
         // (v_end, cost) of arcs t..t + 4, as [v0 c0 v1 c1] [v2 c2 v3 c3].
@@ -1363,10 +1352,12 @@ unsafe fn join_nearest_avx2(
         let near = _mm256_and_pd(_mm256_cmp_pd::<_CMP_GE_OQ>(x, below), _mm256_cmp_pd::<_CMP_LE_OQ>(x, above));
         let j = _mm256_cvttpd_epi32(_mm256_add_pd(x, half));
         let in_states = _mm_andnot_si128(_mm_or_si128(_mm_cmpgt_epi32(lo, j), _mm_cmpgt_epi32(j, hi)), pack(near));
-        let to_go = _mm256_mask_i32gather_pd::<8>(_mm256_setzero_pd(), cost_next.as_ptr(), j, widen(in_states));
+        // Loaded at the nearest state (clamped into [lo, hi]), kept only where it is a state.
+        let state = _mm_min_epi32(_mm_max_epi32(j, lo), hi);
+        let to_go = lanes::load_f64(cost_next, state);
         let finite = _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_andnot_pd(sign, to_go), inf);
         let ok = _mm_and_si128(in_states, pack(finite));
-        let counter = _mm_mask_i32gather_epi32::<4>(_mm_setzero_si128(), counter_next.as_ptr().cast(), j, ok);
+        let counter = _mm_and_si128(lanes::load_u32(counter_next, state), ok);
         let cost = _mm256_blendv_pd(inf, _mm256_add_pd(arc_cost, to_go), widen(ok));
         let j = _mm_and_si128(j, ok);
         let shiftable = widen(_mm_cmpeq_epi32(_mm_max_epu32(counter, k_lim), counter));
@@ -1512,7 +1503,15 @@ mod tests {
             let all_j: Vec<u32> = (0..m).map(|_| index(40)).collect();
             let shift_j: Vec<u32> = (0..width * gears).map(|_| index(1000)).collect();
             let penalty: Vec<f64> = (0..m).map(|_| next(5) as f64 * 0.25).collect();
-            let neutral_counter = vec![0; m];
+            // Even cases decide a forward gear's states; odd ones neutral's, whose staying
+            // carries the counter of its own choice.
+            let neutral = case % 2 == 1;
+            let gear = if neutral { NEUTRAL as u32 } else { gear };
+            let neutral_counter: Vec<u32> = if neutral {
+                (0..m).map(|_| [0, 1, 7, 8, 9, u32::MAX / 2, u32::MAX - 1, u32::MAX][next(8) as usize]).collect()
+            } else {
+                vec![0; m]
+            };
             let run = |avx2: Option<Avx2Token>| {
                 let (mut c, mut n, mut sh, mut d) =
                     (vec![0.0; m], vec![0; m], vec![0.0; m], vec![Decision::default(); m]);
@@ -1534,7 +1533,11 @@ mod tests {
                     k_lim,
                 };
                 let out = StateOut { cost: &mut c, counter: &mut n, shift: &mut sh, decision: &mut d };
-                let same = decide_states::<true, false>(input, out, avx2);
+                let same = if neutral {
+                    decide_states::<true, true>(input, out, avx2)
+                } else {
+                    decide_states::<true, false>(input, out, avx2)
+                };
                 (
                     c.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
                     n,
