@@ -127,18 +127,35 @@ impl Road {
 
     /// Altitude at `s_m` [m] relative to the first point, flat beyond the end.
     pub fn altitude_at(&self, s_m: f64) -> f64 {
+        // A hint past the end makes `segment` search the whole profile.
+        let mut anywhere = usize::MAX;
+        self.altitude_from(s_m, &mut anywhere)
+    }
+
+    /// [`Road::altitude_at`], searching forward from `hint` as [`Road::segment`] does (the same
+    /// value whatever the hint).
+    #[inline]
+    pub fn altitude_from(&self, s_m: f64, hint: &mut usize) -> f64 {
         if s_m >= self.end_m() {
             return *self.altitude_m.last().unwrap();
         }
         if s_m <= self.start_m() {
             return self.slope[0] * (s_m - self.start_m());
         }
-        let i = self.distance_m.partition_point(|&d| d <= s_m).saturating_sub(1).min(self.slope.len() - 1);
-        self.altitude_m[i] + self.slope[i] * (s_m - self.distance_m[i])
+        *hint = self.segment(s_m, *hint);
+        self.altitude_m[*hint] + self.slope[*hint] * (s_m - self.distance_m[*hint])
     }
 
     /// Mean grade over [s0, s1] [-]: altitude difference over length, the slope a DP stage sees.
     pub fn mean_slope(&self, s0_m: f64, s1_m: f64) -> f64 {
-        (self.altitude_at(s1_m) - self.altitude_at(s0_m)) / (s1_m - s0_m)
+        let mut anywhere = usize::MAX;
+        self.mean_slope_from(s0_m, s1_m, &mut anywhere)
+    }
+
+    /// [`Road::mean_slope`] with a search hint, for positions visited in increasing order.
+    #[inline]
+    pub fn mean_slope_from(&self, s0_m: f64, s1_m: f64, hint: &mut usize) -> f64 {
+        let h0 = self.altitude_from(s0_m, hint);
+        (self.altitude_from(s1_m, hint) - h0) / (s1_m - s0_m)
     }
 }

@@ -12,9 +12,10 @@ use crate::vehicle::Vehicle;
 /// flat beyond its end), written into `out`.
 pub fn stage_slopes(road: &Road, s0_m: f64, stage_m: f64, stages: usize, out: &mut Vec<f64>) {
     out.clear();
+    let mut hint = usize::MAX;
     out.extend((0..stages).map(|k| {
         let a = s0_m + k as f64 * stage_m;
-        road.mean_slope(a, a + stage_m)
+        road.mean_slope_from(a, a + stage_m, &mut hint)
     }));
 }
 

@@ -40,6 +40,27 @@ pub struct LaneMins {
     pub shift_step: [u32; LANES],
 }
 
+/// Where a block's lane minima go: the minima and their next-grid indices, `LANES` of each.
+pub struct LaneOut<'a> {
+    pub all: &'a mut [f64],
+    pub all_j: &'a mut [u32],
+    pub shift: &'a mut [f64],
+    pub shift_j: &'a mut [u32],
+}
+
+impl LaneMins {
+    /// The minima into `out`, with lane l's index `base` + l + its step (wrapping, as u32).
+    #[inline(always)]
+    pub fn write(&self, base: u32, out: LaneOut) {
+        out.all[..LANES].copy_from_slice(&self.all);
+        out.shift[..LANES].copy_from_slice(&self.shift);
+        for l in 0..LANES {
+            out.all_j[l] = base.wrapping_add(l as u32).wrapping_add(self.all_step[l]);
+            out.shift_j[l] = base.wrapping_add(l as u32).wrapping_add(self.shift_step[l]);
+        }
+    }
+}
+
 /// The min-plus pass over one block of rows (see [`crate::dp::cache::Block`]): `costs` holds
 /// `steps × LANES` costs, step-major; lane l at step d adds `to_go[l + d]` (and
 /// `shiftable[l + d]`). Both value slices hold at least `steps + LANES − 1` values. Scanning the
@@ -70,6 +91,57 @@ pub fn block_mins(costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64])
 #[target_feature(enable = "avx2")]
 #[inline]
 unsafe fn block_mins_avx2(costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64]) -> LaneMins {
+    block_mins_avx2_regs(costs, steps, to_go, shiftable).lane_mins()
+}
+
+/// A block's lane minima in AVX2 registers: values, and steps as f64 lanes.
+#[cfg(target_arch = "x86_64")]
+#[derive(Clone, Copy)]
+struct MinsAvx2 {
+    all: std::arch::x86_64::__m256d,
+    all_step: std::arch::x86_64::__m256d,
+    shift: std::arch::x86_64::__m256d,
+    shift_step: std::arch::x86_64::__m256d,
+}
+
+#[cfg(target_arch = "x86_64")]
+impl MinsAvx2 {
+    /// As a [`LaneMins`].
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    unsafe fn lane_mins(self) -> LaneMins {
+        use std::arch::x86_64::*;
+        let mut out = LaneMins { all: [0.0; LANES], all_step: [0; LANES], shift: [0.0; LANES], shift_step: [0; LANES] };
+        _mm256_storeu_pd(out.all.as_mut_ptr(), self.all);
+        _mm256_storeu_pd(out.shift.as_mut_ptr(), self.shift);
+        // Steps are small non-negative integers: exact as i32.
+        _mm_storeu_si128(out.all_step.as_mut_ptr().cast(), _mm256_cvttpd_epi32(self.all_step));
+        _mm_storeu_si128(out.shift_step.as_mut_ptr().cast(), _mm256_cvttpd_epi32(self.shift_step));
+        out
+    }
+
+    /// As [`LaneMins::write`], from the registers.
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    unsafe fn write(self, base: u32, out: LaneOut) {
+        use std::arch::x86_64::*;
+        assert!(out.all.len() >= LANES && out.shift.len() >= LANES);
+        assert!(out.all_j.len() >= LANES && out.shift_j.len() >= LANES);
+        let first = _mm_add_epi32(_mm_set1_epi32(base as i32), _mm_setr_epi32(0, 1, 2, 3));
+        _mm256_storeu_pd(out.all.as_mut_ptr(), self.all);
+        _mm256_storeu_pd(out.shift.as_mut_ptr(), self.shift);
+        let all_j = _mm_add_epi32(first, _mm256_cvttpd_epi32(self.all_step));
+        let shift_j = _mm_add_epi32(first, _mm256_cvttpd_epi32(self.shift_step));
+        _mm_storeu_si128(out.all_j.as_mut_ptr().cast(), all_j);
+        _mm_storeu_si128(out.shift_j.as_mut_ptr().cast(), shift_j);
+    }
+}
+
+/// [`block_mins_avx2`], left in registers.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn block_mins_avx2_regs(costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64]) -> MinsAvx2 {
     use std::arch::x86_64::*;
     const _: () = assert!(LANES == 4);
     let (c, a, b) = (costs.as_ptr(), to_go.as_ptr(), shiftable.as_ptr());
@@ -131,13 +203,7 @@ unsafe fn block_mins_avx2(costs: &[f64], steps: usize, to_go: &[f64], shiftable:
         (_mm256_blendv_pd(even[value], odd[value], take), _mm256_blendv_pd(even[value + 1], odd[value + 1], take))
     };
     let ((all, all_step), (shift, shift_step)) = (merge(0), merge(2));
-    let mut out = LaneMins { all: [0.0; LANES], all_step: [0; LANES], shift: [0.0; LANES], shift_step: [0; LANES] };
-    _mm256_storeu_pd(out.all.as_mut_ptr(), all);
-    _mm256_storeu_pd(out.shift.as_mut_ptr(), shift);
-    // Steps are small non-negative integers: exact as i32.
-    _mm_storeu_si128(out.all_step.as_mut_ptr().cast(), _mm256_cvttpd_epi32(all_step));
-    _mm_storeu_si128(out.shift_step.as_mut_ptr().cast(), _mm256_cvttpd_epi32(shift_step));
-    out
+    MinsAvx2 { all, all_step, shift, shift_step }
 }
 
 /// [`block_mins`] when the shiftable to-go is the to-go itself (bit for bit): one minimum per
@@ -161,6 +227,14 @@ pub fn block_mins_same(costs: &[f64], steps: usize, to_go: &[f64]) -> LaneMins {
 #[target_feature(enable = "avx2")]
 #[inline]
 unsafe fn block_mins_same_avx2(costs: &[f64], steps: usize, to_go: &[f64]) -> LaneMins {
+    block_mins_same_avx2_regs(costs, steps, to_go).lane_mins()
+}
+
+/// [`block_mins_same_avx2`], left in registers.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn block_mins_same_avx2_regs(costs: &[f64], steps: usize, to_go: &[f64]) -> MinsAvx2 {
     use std::arch::x86_64::*;
     const _: () = assert!(LANES == 4);
     let (c, a) = (costs.as_ptr(), to_go.as_ptr());
@@ -194,11 +268,7 @@ unsafe fn block_mins_same_avx2(costs: &[f64], steps: usize, to_go: &[f64]) -> La
     let earlier = _mm256_cmp_pd::<_CMP_LT_OQ>(odd[1], even[1]);
     let take = _mm256_or_pd(smaller, _mm256_and_pd(equal, earlier));
     let (all, all_step) = (_mm256_blendv_pd(even[0], odd[0], take), _mm256_blendv_pd(even[1], odd[1], take));
-    let mut out = LaneMins { all: [0.0; LANES], all_step: [0; LANES], shift: [0.0; LANES], shift_step: [0; LANES] };
-    _mm256_storeu_pd(out.all.as_mut_ptr(), all);
-    _mm_storeu_si128(out.all_step.as_mut_ptr().cast(), _mm256_cvttpd_epi32(all_step));
-    (out.shift, out.shift_step) = (out.all, out.all_step);
-    out
+    MinsAvx2 { all, all_step, shift: all, shift_step: all_step }
 }
 
 /// The min-plus kernels of one instruction set, for callers that run many blocks in a loop: a
@@ -210,6 +280,24 @@ pub trait Kernels: Copy {
     fn block_mins(self, costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64]) -> LaneMins;
     /// As [`block_mins_same`].
     fn block_mins_same(self, costs: &[f64], steps: usize, to_go: &[f64]) -> LaneMins;
+
+    /// [`Kernels::block_mins`] (or [`Kernels::block_mins_same`] without `shiftable`) written
+    /// into `out` as [`LaneMins::write`] does.
+    #[inline(always)]
+    fn block_mins_to(
+        self,
+        (costs, steps): (&[f64], usize),
+        to_go: &[f64],
+        shiftable: Option<&[f64]>,
+        base: u32,
+        out: LaneOut,
+    ) {
+        match shiftable {
+            Some(shiftable) => self.block_mins(costs, steps, to_go, shiftable),
+            None => self.block_mins_same(costs, steps, to_go),
+        }
+        .write(base, out);
+    }
 }
 
 /// The portable kernels.
@@ -262,6 +350,28 @@ impl Kernels for Avx2 {
         let to_go = &to_go[..steps + LANES - 1];
         // SAFETY: as in `block_mins`.
         unsafe { block_mins_same_avx2(costs, steps, to_go) }
+    }
+
+    /// The minima go from registers to `out`, with no [`LaneMins`] in memory between.
+    #[inline(always)]
+    fn block_mins_to(
+        self,
+        (costs, steps): (&[f64], usize),
+        to_go: &[f64],
+        shiftable: Option<&[f64]>,
+        base: u32,
+        out: LaneOut,
+    ) {
+        let costs = &costs[..steps * LANES];
+        let to_go = &to_go[..steps + LANES - 1];
+        // SAFETY: an `Avx2` exists only where the CPU has AVX2; the lengths are checked here.
+        unsafe {
+            match shiftable {
+                Some(shiftable) => block_mins_avx2_regs(costs, steps, to_go, &shiftable[..steps + LANES - 1]),
+                None => block_mins_same_avx2_regs(costs, steps, to_go),
+            }
+            .write(base, out)
+        }
     }
 }
 
@@ -415,6 +525,41 @@ mod tests {
                     block_mins_same(&costs, steps, &to_go),
                     block_mins(&costs, steps, &to_go, &to_go),
                     "steps {steps}"
+                );
+            }
+        }
+    }
+
+    /// The outputs of `block_mins_to` for `kernels`: minima and next-grid indices, as bits.
+    fn written<K: Kernels>(
+        kernels: K,
+        costs: &[f64],
+        steps: usize,
+        values: (&[f64], Option<&[f64]>),
+        base: u32,
+    ) -> Vec<u64> {
+        let (mut all, mut all_j, mut shift, mut shift_j) = ([0.0; LANES], [0; LANES], [0.0; LANES], [0; LANES]);
+        let out = LaneOut { all: &mut all, all_j: &mut all_j, shift: &mut shift, shift_j: &mut shift_j };
+        kernels.block_mins_to((costs, steps), values.0, values.1, base, out);
+        let floats = all.iter().chain(&shift).map(|x| x.to_bits());
+        floats.chain(all_j.iter().chain(&shift_j).map(|&j| j as u64)).collect()
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn avx2_writes_what_the_portable_kernels_write() {
+        let Some(avx2) = Avx2::detect() else { return };
+        let mut seed = 11;
+        for steps in 0..30 {
+            for (i, base) in [0u32, 7, u32::MAX - 2].into_iter().enumerate() {
+                let costs = costs(&mut seed, steps * LANES);
+                let (to_go, shiftable) =
+                    (costs_of(&mut seed, steps + LANES - 1), costs_of(&mut seed, steps + LANES - 1));
+                let shiftable = (i != 1).then_some(&shiftable[..]);
+                assert_eq!(
+                    written(avx2, &costs, steps, (&to_go, shiftable), base),
+                    written(Portable, &costs, steps, (&to_go, shiftable), base),
+                    "steps {steps} base {base}"
                 );
             }
         }

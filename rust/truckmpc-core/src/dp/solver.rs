@@ -20,7 +20,7 @@ use super::params::{DpSettings, GridAnchor, NeutralRule};
 use super::rows::{change_cost, forward_row, inputs, GridIndex};
 #[cfg(target_arch = "x86_64")]
 use super::simd::lanes::{self, pack, widen};
-use super::simd::{self, LaneMins};
+use super::simd::{self, LaneMins, LaneOut};
 use super::space::{self, Grid, Intervals};
 use super::values::{StageValues, ValueTable};
 use crate::band::BandAt;
@@ -1222,18 +1222,14 @@ fn gear_pass<K: simd::Kernels>(kernels: K, pass: &GearPass, out: GearChoices) ->
     assert!(out.all_cost.len() == n && out.all_j.len() == n && out.shift_cost.len() == n && out.shift_j.len() == n);
     for (b, block) in pass.blocks.iter().enumerate() {
         let base = block.first as i64 - pass.next_first;
-        let mins = block_mins(kernels, block, pass.costs, base, (lo, hi), (pass.to_go, pass.shiftable), pass.same);
         let at = b * LANES..(b + 1) * LANES;
-        out.all_cost[at.clone()].copy_from_slice(&mins.all);
-        out.shift_cost[at.clone()].copy_from_slice(&mins.shift);
-        let (all_j, shift_j) = (&mut out.all_j[at.clone()], &mut out.shift_j[at]);
-        // Next-grid index of a lane's step (base + lane + step, as u32 like the i64 sum
-        // truncated); meaningless where the cost is +∞.
-        let base32 = base as u32;
-        for l in 0..LANES {
-            all_j[l] = base32.wrapping_add(l as u32).wrapping_add(mins.all_step[l]);
-            shift_j[l] = base32.wrapping_add(l as u32).wrapping_add(mins.shift_step[l]);
-        }
+        let lanes = LaneOut {
+            all: &mut out.all_cost[at.clone()],
+            all_j: &mut out.all_j[at.clone()],
+            shift: &mut out.shift_cost[at.clone()],
+            shift_j: &mut out.shift_j[at],
+        };
+        block_mins(kernels, block, pass.costs, base, (lo, hi), (pass.to_go, pass.shiftable), pass.same, lanes);
         let key0 = pass.first_key + (b * LANES) as i64;
         let inside = base >= lo as i64 && base + block.steps as i64 + LANES as i64 - 2 <= hi as i64;
         if inside && key0 >= pass.key_lo && key0 + LANES as i64 - 1 <= pass.key_hi {
@@ -1371,11 +1367,12 @@ unsafe fn join_nearest_avx2(
     t
 }
 
-/// The min-plus pass over one block of rows towards one forward target gear: per lane, the best
-/// of row cost + cost-to-go and the best among targets whose continuation allows a shift now.
-/// `base` is the next-grid index of lane 0 at step 0; `values` the target gear's blocks of
-/// cost_next and shift_next (margins included, state j at PAD + j); `same` when they are equal
-/// bit for bit.
+/// The min-plus pass over one block of rows towards one forward target gear, into `out`: per
+/// lane, the best of row cost + cost-to-go and the best among targets whose continuation allows a
+/// shift now, with their next-grid indices (base + lane + step, as u32 like the i64 sum
+/// truncated; meaningless where the cost is +∞). `base` is the next-grid index of lane 0 at step
+/// 0; `values` the target gear's blocks of cost_next and shift_next (margins included, state j at
+/// PAD + j); `same` when they are equal bit for bit.
 #[inline(always)]
 fn block_mins<K: simd::Kernels>(
     kernels: K,
@@ -1385,19 +1382,19 @@ fn block_mins<K: simd::Kernels>(
     (lo, hi): (u32, u32),
     (to_go, shiftable): (&[f64], &[f64]),
     same: bool,
-) -> LaneMins {
+    out: LaneOut,
+) {
     let steps = block.steps as usize;
     let at = base + PAD as i64;
     let costs = &costs[block.offset as usize..];
     if steps > 0 && at >= 0 && at as usize + steps + LANES - 1 <= to_go.len() {
         // The values outside the target gear's states are +∞ (margins included): no clipping.
         let at = at as usize;
-        if same {
-            return kernels.block_mins_same(costs, steps, &to_go[at..]);
-        }
-        return kernels.block_mins(costs, steps, &to_go[at..], &shiftable[at..]);
+        let shiftable = if same { None } else { Some(&shiftable[at..]) };
+        kernels.block_mins_to((costs, steps), &to_go[at..], shiftable, base as u32, out);
+        return;
     }
-    block_mins_clipped(costs, steps, base, (lo, hi), to_go, shiftable)
+    block_mins_clipped(costs, steps, base, (lo, hi), to_go, shiftable).write(base as u32, out);
 }
 
 /// [`block_mins`] for a block reaching beyond the margins: only targets that are states count.
@@ -1748,18 +1745,16 @@ mod tests {
             let block = Block { first: 0, steps: steps as u32, offset: 0, spans: [(0, 0); LANES], reach: 0 };
             // Inside the margins (packed pass) and reaching below them (clipped pass).
             for base in [-4i64, 10, -(PAD as i64) - 3, count as i64 - 5] {
-                let mins = block_mins(simd::Portable, &block, &costs, base, (lo, hi), (&to_go, &shiftable), false);
+                let (mut all, mut all_j, mut shift, mut shift_j) = ([0.0; LANES], [0; LANES], [0.0; LANES], [0; LANES]);
+                let out = LaneOut { all: &mut all, all_j: &mut all_j, shift: &mut shift, shift_j: &mut shift_j };
+                block_mins(simd::Portable, &block, &costs, base, (lo, hi), (&to_go, &shiftable), false, out);
+                // The index of lane l at step d is base + l + d.
+                let step = |j: u32, l: usize| (j as i64 - base - l as i64) as u32;
                 for l in 0..LANES {
-                    assert_eq!(
-                        (mins.all[l], mins.all_step[l]),
-                        scalar_lane(&costs, steps, base, (lo, hi), &to_go, l),
-                        "base {base} lane {l}"
-                    );
-                    assert_eq!(
-                        (mins.shift[l], mins.shift_step[l]),
-                        scalar_lane(&costs, steps, base, (lo, hi), &shiftable, l),
-                        "base {base} lane {l}"
-                    );
+                    let want = scalar_lane(&costs, steps, base, (lo, hi), &to_go, l);
+                    assert_eq!((all[l], step(all_j[l], l)), want, "base {base} lane {l}");
+                    let want = scalar_lane(&costs, steps, base, (lo, hi), &shiftable, l);
+                    assert_eq!((shift[l], step(shift_j[l], l)), want, "base {base} lane {l}");
                 }
             }
         }
