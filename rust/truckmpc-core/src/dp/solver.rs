@@ -528,10 +528,20 @@ impl Solver {
         let forced = p.k_lim.saturating_sub(start.stages_since_shift) as usize;
         self.gear_ranges.clear();
         self.active.resize(self.grids.len(), Vec::new());
+        // Per gear, the grid indices with engine speed in [n_min, n_max]: the same for every stage
+        // of one grid index (all stages of a fixed grid), so computed only when the index changes.
+        let (mut rpm_indices, mut rpm_of) = (vec![(0i64, -1i64); gears], None);
         for (k, grid) in self.grids.iter().enumerate() {
             let full = (0u32, grid.count as u32 - 1);
             self.active[k].clear();
-            for g in 0..gears {
+            if rpm_of != Some(grid.index) {
+                for (g, bounds) in rpm_indices.iter_mut().enumerate().filter(|&(g, _)| g != NEUTRAL) {
+                    let c4 = vehicle.gear(g).c4;
+                    *bounds = (grid.index.ceil(p.n_min_rpm / c4), grid.index.floor(p.n_max_rpm / c4));
+                }
+                rpm_of = Some(grid.index);
+            }
+            for (g, &(rpm_lo, rpm_hi)) in rpm_indices.iter().enumerate() {
                 let stored = terminal.filter(|_| k == last).map(|next| next.ranges.get(g).copied().unwrap_or((1, 0)));
                 let range = if (k == 0 || k <= forced) && g != start.gear {
                     (1, 0)
@@ -547,9 +557,7 @@ impl Solver {
                     }
                 } else {
                     // Engine speed in [n_min, n_max]: an interval of speeds, so of grid indices.
-                    let c4 = vehicle.gear(g).c4;
-                    let lo = (grid.index.ceil(p.n_min_rpm / c4) - grid.first).max(0);
-                    let hi = (grid.index.floor(p.n_max_rpm / c4) - grid.first).min(full.1 as i64);
+                    let (lo, hi) = ((rpm_lo - grid.first).max(0), (rpm_hi - grid.first).min(full.1 as i64));
                     if hi >= lo {
                         (lo as u32, hi as u32)
                     } else {
@@ -760,9 +768,18 @@ impl Solver {
         }
         // The speed-deviation cost of each source velocity, once for all its gears (the same
         // operations as per state, so the same bits).
-        for (slot, i) in ch.penalty[sources.clone()].iter_mut().zip(i_lo..) {
-            let below = (v_ref - here.speed(i)).max(0.0);
-            *slot = q_speed_below * below * below;
+        let penalty = &mut ch.penalty[sources.clone()];
+        let first = here.first + i_lo as i64;
+        if i32::try_from(first + penalty.len() as i64).is_ok() {
+            for (slot, i) in penalty.iter_mut().zip(first as i32..) {
+                let below = (v_ref - here.index.speed32(i)).max(0.0);
+                *slot = q_speed_below * below * below;
+            }
+        } else {
+            for (slot, i) in penalty.iter_mut().zip(first..) {
+                let below = (v_ref - here.index.speed(i)).max(0.0);
+                *slot = q_speed_below * below * below;
+            }
         }
         // The fuel_time cost's time: h / v_i per stage, exact to second order in S along a path
         // (the left sum differs from the trapezoid by the constant first term and half the last).
