@@ -1049,13 +1049,17 @@ unsafe fn decide_staying_avx2<const NEUTRAL_STATE: bool>(input: &StateIn, out: &
         _mm_storeu_si128(out.counter.as_mut_ptr().add(t).cast(), counter);
         _mm256_storeu_pd(out.shift.as_mut_ptr().add(t), _mm256_blendv_pd(inf, total, shiftable));
         blocked = _mm256_or_pd(blocked, _mm256_andnot_pd(shiftable, _mm256_cmp_pd::<_CMP_NEQ_UQ>(total, inf)));
-        // Shifting: the target of the best other gear.
-        let shift_gear = _mm_blendv_epi8(first_gear, second_gear, own);
-        let slot = _mm_add_epi32(_mm_set1_epi32((input.slot0 + t) as i32), lanes);
-        let at = _mm_min_epu32(_mm_add_epi32(_mm_mullo_epi32(shift_gear, width), slot), last_shift_j);
-        let shift_j = _mm_and_si128(lanes::load_u32(input.shift_j, at), take32);
-        let j = _mm_blendv_epi8(all_j, shift_j, take32);
-        let next_gear = _mm_blendv_epi8(gear, shift_gear, take32);
+        // Shifting: the target of the best other gear (looked up only when a lane shifts, which
+        // most groups do not).
+        let (j, next_gear) = if _mm256_movemask_pd(take) == 0 {
+            (all_j, gear)
+        } else {
+            let shift_gear = _mm_blendv_epi8(first_gear, second_gear, own);
+            let slot = _mm_add_epi32(_mm_set1_epi32((input.slot0 + t) as i32), lanes);
+            let at = _mm_min_epu32(_mm_add_epi32(_mm_mullo_epi32(shift_gear, width), slot), last_shift_j);
+            let shift_j = lanes::load_u32(input.shift_j, at);
+            (_mm_blendv_epi8(all_j, shift_j, take32), _mm_blendv_epi8(gear, shift_gear, take32))
+        };
         let decision =
             _mm_or_si128(_mm_and_si128(j, index_and_flag), _mm_slli_epi32::<16>(_mm_and_si128(next_gear, low8)));
         _mm_storeu_si128(out.decision.as_mut_ptr().add(t).cast(), decision);
