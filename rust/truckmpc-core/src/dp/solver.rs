@@ -1305,6 +1305,11 @@ unsafe fn rank_avx2(
         let sg = _mm_loadu_si128(second_gear.as_ptr().add(t).cast());
         let below_first = _mm256_cmp_pd::<_CMP_LT_OQ>(c, f);
         let below_either = _mm256_or_pd(below_first, _mm256_cmp_pd::<_CMP_LT_OQ>(c, s));
+        if _mm256_movemask_pd(below_either) == 0 {
+            // Not among the two best anywhere in the group: nothing changes.
+            t += 4;
+            continue;
+        }
         let (below_first32, below_either32) = (pack(below_first), pack(below_either));
         let s = _mm256_blendv_pd(s, _mm256_blendv_pd(c, f, below_first), below_either);
         let sg = _mm_blendv_epi8(sg, _mm_blendv_epi8(gear, fg, below_first32), below_either32);
