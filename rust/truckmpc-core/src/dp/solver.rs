@@ -1026,11 +1026,9 @@ unsafe fn decide_staying_avx2<const NEUTRAL_STATE: bool>(input: &StateIn, out: &
             q4,
         );
         let take = _mm256_cmp_pd::<_CMP_LT_OQ>(shift_cost, stay);
-        let take32 = pack(take);
-        let finite32 = pack(_mm256_cmp_pd::<_CMP_LT_OQ>(stay, inf));
         // Staying: the continuation's counter (0 when staying has no finite cost) + 1.
         let all_j = _mm_loadu_si128(input.all_j.as_ptr().add(t).cast());
-        let carries = _mm_andnot_si128(take32, finite32);
+        let carries = pack(_mm256_andnot_pd(take, _mm256_cmp_pd::<_CMP_LT_OQ>(stay, inf)));
         let carried = _mm_and_si128(
             if NEUTRAL_STATE {
                 _mm_loadu_si128(input.neutral_counter.as_ptr().add(t).cast())
@@ -1040,7 +1038,22 @@ unsafe fn decide_staying_avx2<const NEUTRAL_STATE: bool>(input: &StateIn, out: &
             carries,
         );
         let stay_counter = _mm_min_epu32(_mm_add_epi32(_mm_min_epu32(carried, below_max), one), half);
-        let counter = _mm_blendv_epi8(stay_counter, one, take32);
+        // Shifting: counter 1 and the target of the best other gear (looked up only when a lane
+        // shifts, which most groups do not).
+        let (counter, j, next_gear) = if _mm256_movemask_pd(take) == 0 {
+            (stay_counter, all_j, gear)
+        } else {
+            let take32 = pack(take);
+            let shift_gear = _mm_blendv_epi8(first_gear, second_gear, own);
+            let slot = _mm_add_epi32(_mm_set1_epi32((input.slot0 + t) as i32), lanes);
+            let at = _mm_min_epu32(_mm_add_epi32(_mm_mullo_epi32(shift_gear, width), slot), last_shift_j);
+            let shift_j = lanes::load_u32(input.shift_j, at);
+            (
+                _mm_blendv_epi8(stay_counter, one, take32),
+                _mm_blendv_epi8(all_j, shift_j, take32),
+                _mm_blendv_epi8(gear, shift_gear, take32),
+            )
+        };
         let total =
             _mm256_add_pd(_mm256_blendv_pd(stay, shift_cost, take), _mm256_loadu_pd(input.penalty.as_ptr().add(t)));
         let shiftable32 = _mm_cmpeq_epi32(_mm_max_epu32(counter, k_lim), counter);
@@ -1049,17 +1062,6 @@ unsafe fn decide_staying_avx2<const NEUTRAL_STATE: bool>(input: &StateIn, out: &
         _mm_storeu_si128(out.counter.as_mut_ptr().add(t).cast(), counter);
         _mm256_storeu_pd(out.shift.as_mut_ptr().add(t), _mm256_blendv_pd(inf, total, shiftable));
         blocked = _mm256_or_pd(blocked, _mm256_andnot_pd(shiftable, _mm256_cmp_pd::<_CMP_NEQ_UQ>(total, inf)));
-        // Shifting: the target of the best other gear (looked up only when a lane shifts, which
-        // most groups do not).
-        let (j, next_gear) = if _mm256_movemask_pd(take) == 0 {
-            (all_j, gear)
-        } else {
-            let shift_gear = _mm_blendv_epi8(first_gear, second_gear, own);
-            let slot = _mm_add_epi32(_mm_set1_epi32((input.slot0 + t) as i32), lanes);
-            let at = _mm_min_epu32(_mm_add_epi32(_mm_mullo_epi32(shift_gear, width), slot), last_shift_j);
-            let shift_j = lanes::load_u32(input.shift_j, at);
-            (_mm_blendv_epi8(all_j, shift_j, take32), _mm_blendv_epi8(gear, shift_gear, take32))
-        };
         let decision =
             _mm_or_si128(_mm_and_si128(j, index_and_flag), _mm_slli_epi32::<16>(_mm_and_si128(next_gear, low8)));
         _mm_storeu_si128(out.decision.as_mut_ptr().add(t).cast(), decision);
