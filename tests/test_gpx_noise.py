@@ -48,7 +48,7 @@ def test_sigma_2m_gives_a_grade_within_half_a_point(name):
 @needs_shared
 @pytest.mark.xfail(
     reason="0.3 points at sigma 2 m is below the oracle Wiener bound, 0.33-0.39 points "
-    "(scripts/smoothing_bound.py, README): no linear smoother reaches it",
+    "(scripts/smoothing_bound.py, README): no linear shift-invariant smoother reaches it on average",
 )
 @pytest.mark.parametrize("name", list(PIECES))
 def test_sigma_2m_gives_a_grade_within_the_aim_of_0_3_points(name):

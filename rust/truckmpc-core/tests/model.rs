@@ -133,3 +133,42 @@ fn road_slopes_altitude_and_flat_continuation() {
     assert!(Road::new(vec![0.0, 0.0], vec![0.0]).is_err());
     assert!(Road::new(vec![0.0], vec![]).is_err());
 }
+
+/// The hinted altitude search gives the same bits as a whole-profile search, whatever the hint:
+/// on and between profile points, at both ends, beyond them, and moving backwards.
+#[test]
+fn altitude_with_any_hint_equals_the_whole_profile_search() {
+    let distance_m: Vec<f64> = (0..40).map(|i| 25.0 * i as f64 + if i % 3 == 0 { 0.0 } else { 7.3 }).collect();
+    let slopes: Vec<f64> = (0..39).map(|i| 0.001 * ((i * 7) % 11) as f64 - 0.004).collect();
+    let road = Road::new(distance_m.clone(), slopes.clone()).unwrap();
+    // The reference: altitudes summed segment by segment, the segment found by bisection.
+    let mut altitude_m = vec![0.0];
+    for i in 0..slopes.len() {
+        altitude_m.push(altitude_m[i] + slopes[i] * (distance_m[i + 1] - distance_m[i]));
+    }
+    let last = slopes.len() - 1;
+    let reference = |s: f64| {
+        if s >= distance_m[last + 1] {
+            return altitude_m[last + 1];
+        }
+        if s <= distance_m[0] {
+            return slopes[0] * (s - distance_m[0]);
+        }
+        let i = distance_m.partition_point(|&d| d <= s).saturating_sub(1).min(last);
+        altitude_m[i] + slopes[i] * (s - distance_m[i])
+    };
+    let mut positions: Vec<f64> = distance_m.clone();
+    positions.extend(distance_m.windows(2).map(|w| 0.5 * (w[0] + w[1])));
+    positions.extend([-5.0, 1e4, distance_m[last + 1] - 1e-9]);
+    let backwards: Vec<f64> = positions.iter().rev().copied().collect();
+    for order in [positions, backwards] {
+        for start_hint in [0, 17, usize::MAX] {
+            let mut hint = start_hint;
+            for &s in &order {
+                let got = road.altitude_from(s, &mut hint);
+                assert_eq!(got.to_bits(), reference(s).to_bits(), "s {s}, hint from {start_hint}");
+                assert_eq!(road.altitude_at(s).to_bits(), got.to_bits(), "s {s}");
+            }
+        }
+    }
+}

@@ -421,6 +421,7 @@ pub mod lanes {
     #[inline]
     pub unsafe fn load_u32(values: &[u32], index: __m128i) -> __m128i {
         let [a, b, c, d] = indices(index);
+        debug_assert!([a, b, c, d].iter().all(|&i| i < values.len()), "lane index out of bounds");
         let v = values.as_ptr();
         _mm_setr_epi32(*v.add(a) as i32, *v.add(b) as i32, *v.add(c) as i32, *v.add(d) as i32)
     }
@@ -433,6 +434,7 @@ pub mod lanes {
     #[inline]
     pub unsafe fn load_f64(values: &[f64], index: __m128i) -> __m256d {
         let [a, b, c, d] = indices(index);
+        debug_assert!([a, b, c, d].iter().all(|&i| i < values.len()), "lane index out of bounds");
         let v = values.as_ptr();
         _mm256_setr_pd(*v.add(a), *v.add(b), *v.add(c), *v.add(d))
     }

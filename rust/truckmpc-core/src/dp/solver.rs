@@ -770,7 +770,7 @@ impl Solver {
         // operations as per state, so the same bits).
         let penalty = &mut ch.penalty[sources.clone()];
         let first = here.first + i_lo as i64;
-        if i32::try_from(first + penalty.len() as i64).is_ok() {
+        if i32::try_from(first).is_ok() && i32::try_from(first + penalty.len() as i64).is_ok() {
             for (slot, i) in penalty.iter_mut().zip(first as i32..) {
                 let below = (v_ref - here.index.speed32(i)).max(0.0);
                 *slot = q_speed_below * below * below;
@@ -1001,15 +1001,15 @@ unsafe fn decide_staying_avx2<const NEUTRAL_STATE: bool>(input: &StateIn, out: &
     let half = _mm_set1_epi32((u32::MAX / 2) as i32);
     let k_lim = _mm_set1_epi32(input.k_lim as i32);
     let width = _mm_set1_epi32(input.width as i32);
-    let lanes = _mm_setr_epi32(0, 1, 2, 3);
+    let lane_offsets = _mm_setr_epi32(0, 1, 2, 3);
     // A choice's index in the low half and its flag byte on top, the gear going in between.
     let index_and_flag = _mm_set1_epi32(0xff00_ffff_u32 as i32);
     let arc = _mm_set1_epi32(ARC as i32);
     let low8 = _mm_set1_epi32(0xff);
-    // Lanes are loaded at indices clamped into the slices (checked non-empty below), and kept only
-    // where the scalar loop reads.
-    let last_counter = _mm_set1_epi32(input.counter_next.len().saturating_sub(1) as i32);
-    let last_shift_j = _mm_set1_epi32(input.shift_j.len().saturating_sub(1).min(i32::MAX as usize) as i32);
+    // Lanes are loaded at indices clamped (as u32) into the slices, non-empty as checked above, and
+    // kept only where the scalar loop reads.
+    let last = |len: usize| _mm_set1_epi32((len - 1).min(u32::MAX as usize) as u32 as i32);
+    let (last_counter, last_shift_j) = (last(input.counter_next.len()), last(input.shift_j.len()));
     let mut blocked = _mm256_setzero_pd();
     let mut t = 0;
     while t < groups {
@@ -1045,7 +1045,7 @@ unsafe fn decide_staying_avx2<const NEUTRAL_STATE: bool>(input: &StateIn, out: &
         } else {
             let take32 = pack(take);
             let shift_gear = _mm_blendv_epi8(first_gear, second_gear, own);
-            let slot = _mm_add_epi32(_mm_set1_epi32((input.slot0 + t) as i32), lanes);
+            let slot = _mm_add_epi32(_mm_set1_epi32((input.slot0 + t) as i32), lane_offsets);
             let at = _mm_min_epu32(_mm_add_epi32(_mm_mullo_epi32(shift_gear, width), slot), last_shift_j);
             let shift_j = lanes::load_u32(input.shift_j, at);
             (
@@ -1327,8 +1327,9 @@ unsafe fn rank_avx2(
 /// [`ArcJoin::join`] with the nearest rule (and the shiftable cost), four arcs at a time in
 /// AVX2, as far as whole groups of four go and no end speed is NaN: returns the arcs done. The
 /// same operations as the scalar join: the division, the range tests, the truncation of x + 0.5
-/// (exact: x + 0.5 is in [0, 2^31) where it is used), the cost-to-go and counter read only where
-/// the scalar join reads them, and the finiteness test.
+/// (exact: x + 0.5 is in [0, 2^31) where it is used), the cost-to-go and counter kept only where
+/// the scalar join reads them (they are loaded at the nearest state within [lo, hi] for every
+/// lane), and the finiteness test.
 ///
 /// # Safety
 /// The CPU must have AVX2.
@@ -1351,7 +1352,8 @@ unsafe fn join_nearest_avx2(
             && out.shift_j.len() == n
     );
     // The loads below read indices within [lo, hi] only; the values must hold them.
-    if (join.hi as usize) >= cost_next.len().min(counter_next.len()) || join.hi >= i32::MAX as u32 {
+    if join.lo > join.hi || (join.hi as usize) >= cost_next.len().min(counter_next.len()) || join.hi >= i32::MAX as u32
+    {
         return 0;
     }
     let groups = n / 4 * 4;
@@ -1776,6 +1778,37 @@ mod tests {
                 let (mut all, mut all_j, mut shift, mut shift_j) = ([0.0; LANES], [0; LANES], [0.0; LANES], [0; LANES]);
                 let out = LaneOut { all: &mut all, all_j: &mut all_j, shift: &mut shift, shift_j: &mut shift_j };
                 block_mins(simd::Portable, &block, &costs, base, (lo, hi), (&to_go, &shiftable), false, out);
+                // The AVX2 kernels (minima written from registers) write the same.
+                #[cfg(target_arch = "x86_64")]
+                if let Some(avx2) = simd::Avx2::detect() {
+                    for same in [false, true] {
+                        let shiftable = if same { &to_go } else { &shiftable };
+                        let mut got = ([0.0; LANES], [0; LANES], [0.0; LANES], [0; LANES]);
+                        let mut want = got;
+                        for (kernels_avx2, (all, all_j, shift, shift_j)) in [(true, &mut got), (false, &mut want)] {
+                            let out = LaneOut { all, all_j, shift, shift_j };
+                            if kernels_avx2 {
+                                block_mins(avx2, &block, &costs, base, (lo, hi), (&to_go, shiftable), same, out);
+                            } else {
+                                block_mins(
+                                    simd::Portable,
+                                    &block,
+                                    &costs,
+                                    base,
+                                    (lo, hi),
+                                    (&to_go, shiftable),
+                                    same,
+                                    out,
+                                );
+                            }
+                        }
+                        let bits = |x: [f64; LANES]| x.map(f64::to_bits);
+                        assert_eq!(
+                            (bits(got.0), got.1, bits(got.2), got.3),
+                            (bits(want.0), want.1, bits(want.2), want.3)
+                        );
+                    }
+                }
                 // The index of lane l at step d is base + l + d.
                 let step = |j: u32, l: usize| (j as i64 - base - l as i64) as u32;
                 for l in 0..LANES {
