@@ -29,13 +29,6 @@ impl GridIndex {
         self.origin_mps + index as f64 * self.delta_mps
     }
 
-    /// [`GridIndex::speed`] of an index that fits in i32: the same value (an i32 converts to f64
-    /// exactly, as an i64 of that size does), in a form that loops over indices vectorise.
-    #[inline]
-    pub fn speed32(&self, index: i32) -> f64 {
-        self.origin_mps + f64::from(index) * self.delta_mps
-    }
-
     /// Smallest index whose speed is at least `v_mps` (to rounding).
     #[inline]
     pub fn ceil(&self, v_mps: f64) -> i64 {

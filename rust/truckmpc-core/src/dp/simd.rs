@@ -276,13 +276,17 @@ unsafe fn block_mins_same_avx2_regs(costs: &[f64], steps: usize, to_go: &[f64]) 
 /// [`Avx2::detect`]) inlines the AVX2 kernels, with no call, feature check or result in memory
 /// per block.
 pub trait Kernels: Copy {
-    /// As [`block_mins`].
-    fn block_mins(self, costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64]) -> LaneMins;
-    /// As [`block_mins_same`].
-    fn block_mins_same(self, costs: &[f64], steps: usize, to_go: &[f64]) -> LaneMins;
+    /// The min-plus pass of [`block_mins`] (of [`block_mins_same`] without `shiftable`) over
+    /// `steps` steps (`block`: the costs and the steps), written into `out` as
+    /// [`LaneMins::write`] does.
+    fn block_mins_to(self, block: (&[f64], usize), to_go: &[f64], shiftable: Option<&[f64]>, base: u32, out: LaneOut);
+}
 
-    /// [`Kernels::block_mins`] (or [`Kernels::block_mins_same`] without `shiftable`) written
-    /// into `out` as [`LaneMins::write`] does.
+/// The portable kernels.
+#[derive(Debug, Clone, Copy)]
+pub struct Portable;
+
+impl Kernels for Portable {
     #[inline(always)]
     fn block_mins_to(
         self,
@@ -292,31 +296,10 @@ pub trait Kernels: Copy {
         base: u32,
         out: LaneOut,
     ) {
-        match shiftable {
-            Some(shiftable) => self.block_mins(costs, steps, to_go, shiftable),
-            None => self.block_mins_same(costs, steps, to_go),
-        }
-        .write(base, out);
-    }
-}
-
-/// The portable kernels.
-#[derive(Debug, Clone, Copy)]
-pub struct Portable;
-
-impl Kernels for Portable {
-    #[inline(always)]
-    fn block_mins(self, costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64]) -> LaneMins {
-        let costs = &costs[..steps * LANES];
-        let (to_go, shiftable) = (&to_go[..steps + LANES - 1], &shiftable[..steps + LANES - 1]);
-        block_mins_portable(costs, steps, to_go, shiftable)
-    }
-
-    #[inline(always)]
-    fn block_mins_same(self, costs: &[f64], steps: usize, to_go: &[f64]) -> LaneMins {
         let costs = &costs[..steps * LANES];
         let to_go = &to_go[..steps + LANES - 1];
-        block_mins_portable(costs, steps, to_go, to_go)
+        let shiftable = shiftable.map_or(to_go, |values| &values[..steps + LANES - 1]);
+        block_mins_portable(costs, steps, to_go, shiftable).write(base, out);
     }
 }
 
@@ -336,22 +319,6 @@ impl Avx2 {
 
 #[cfg(target_arch = "x86_64")]
 impl Kernels for Avx2 {
-    #[inline(always)]
-    fn block_mins(self, costs: &[f64], steps: usize, to_go: &[f64], shiftable: &[f64]) -> LaneMins {
-        let costs = &costs[..steps * LANES];
-        let (to_go, shiftable) = (&to_go[..steps + LANES - 1], &shiftable[..steps + LANES - 1]);
-        // SAFETY: an `Avx2` exists only where the CPU has AVX2; the lengths are checked above.
-        unsafe { block_mins_avx2(costs, steps, to_go, shiftable) }
-    }
-
-    #[inline(always)]
-    fn block_mins_same(self, costs: &[f64], steps: usize, to_go: &[f64]) -> LaneMins {
-        let costs = &costs[..steps * LANES];
-        let to_go = &to_go[..steps + LANES - 1];
-        // SAFETY: as in `block_mins`.
-        unsafe { block_mins_same_avx2(costs, steps, to_go) }
-    }
-
     /// The minima go from registers to `out`, with no [`LaneMins`] in memory between.
     #[inline(always)]
     fn block_mins_to(

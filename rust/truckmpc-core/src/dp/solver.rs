@@ -768,18 +768,9 @@ impl Solver {
         }
         // The speed-deviation cost of each source velocity, once for all its gears (the same
         // operations as per state, so the same bits).
-        let penalty = &mut ch.penalty[sources.clone()];
-        let first = here.first + i_lo as i64;
-        if i32::try_from(first).is_ok() && i32::try_from(first + penalty.len() as i64).is_ok() {
-            for (slot, i) in penalty.iter_mut().zip(first as i32..) {
-                let below = (v_ref - here.index.speed32(i)).max(0.0);
-                *slot = q_speed_below * below * below;
-            }
-        } else {
-            for (slot, i) in penalty.iter_mut().zip(first..) {
-                let below = (v_ref - here.index.speed(i)).max(0.0);
-                *slot = q_speed_below * below * below;
-            }
+        for (slot, i) in ch.penalty[sources.clone()].iter_mut().zip(i_lo..) {
+            let below = (v_ref - here.speed(i)).max(0.0);
+            *slot = q_speed_below * below * below;
         }
         // The fuel_time cost's time: h / v_i per stage, exact to second order in S along a path
         // (the left sum differs from the trapezoid by the constant first term and half the last).
