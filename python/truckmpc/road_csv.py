@@ -48,8 +48,7 @@ def read_road_csv(path: PathLike) -> RoadProfile:
     path = Path(path)
     where = str(path)
     text = read_user_text(path, where, "a CSV file", RoadError, encoding="utf-8-sig")
-    lines = [(n, line.strip()) for n, line in enumerate(text.splitlines(), start=1)]
-    lines = [(n, line) for n, line in lines if line and not line.startswith("#")]
+    lines = data_lines(text)
     if not lines:
         raise RoadError(f"{where}: no header line (expected columns distance_m and altitude_m and/or grade)")
     columns = _header(where, *lines[0])
@@ -65,7 +64,7 @@ def read_road_csv(path: PathLike) -> RoadProfile:
 
 
 def _header(where: str, number: int, line: str) -> list[str]:
-    columns = [name.strip().strip('"').strip() for name in line.split(",")]
+    columns = header_cells(line)
     if "distance_m" not in columns or not {"altitude_m", "grade"} & set(columns):
         raise RoadError(
             f"{where}:{number}: expected a header with columns distance_m and altitude_m and/or grade, "
@@ -89,6 +88,18 @@ def _rows(where: str, columns: list[str], lines: list[tuple[int, str]]) -> dict[
     if len(data["distance_m"]) < 2:
         raise RoadError(f"{where}: expected at least two data rows, got {len(data['distance_m'])}")
     return data
+
+
+def data_lines(text: str) -> list[tuple[int, str]]:
+    """The (1-based line number, stripped line) of each line of a CSV text that is neither blank
+    nor a ``#`` comment."""
+    lines = [(number, line.strip()) for number, line in enumerate(text.splitlines(), start=1)]
+    return [(number, line) for number, line in lines if line and not line.startswith("#")]
+
+
+def header_cells(line: str) -> list[str]:
+    """The names in a CSV header line, spaces and double quotes around each taken off."""
+    return [cell.strip().strip('"').strip() for cell in line.split(",")]
 
 
 def number_cell(where: str, number: int, column: str, text: str) -> float:
@@ -156,7 +167,7 @@ def write_road_csv(profile: RoadProfile, path: PathLike, comments: Sequence[str]
     grade = np.append(profile.slope, profile.slope[-1])
     lines = [f"# {line}".rstrip() for comment in comments for line in str(comment).splitlines() or [""]]
     header = ["distance_m", "altitude_m", "grade"]
-    rows = [f"{d},{_fixed(h)},{_fixed(g)}" for d, h, g in zip(distance, profile.altitude_m, grade, strict=True)]
+    rows = [f"{d},{fixed_cell(h)},{fixed_cell(g)}" for d, h, g in zip(distance, profile.altitude_m, grade, strict=True)]
     for name, values in _optional_columns(profile).items():
         lines.append(f"# {OPTIONAL_COLUMNS_COMMENT[name]}")
         header.append(name)
@@ -178,7 +189,7 @@ def _optional_columns(profile: RoadProfile) -> dict[str, np.ndarray]:
     return columns
 
 
-def _fixed(value: float) -> str:
+def fixed_cell(value: float) -> str:
     """`value` with 6 decimals, without a minus sign on zero."""
     text = f"{value:.6f}"
     return "0.000000" if text == "-0.000000" else text

@@ -37,7 +37,7 @@ from .road import (
     Stop,
     altitude_from_grade,
 )
-from .road_csv import number_cell
+from .road_csv import header_cells, number_cell
 from .units import KMH_PER_MPS, M_PER_KM, PCT_PER_FRACTION
 
 __all__ = ["SUFFIX", "UNITS", "cycle_summary", "import_comments", "read_vdri"]
@@ -99,8 +99,8 @@ def read_vdri(path: PathLike) -> RoadProfile:
 def _header(where: str, number: int, line: str) -> dict[str, _Column]:
     """The known columns of the header line, with their units checked."""
     columns: dict[str, _Column] = {}
-    for index, cell in enumerate(line.split(",")):
-        match = _CELL.match(cell.strip().strip('"').strip())
+    for index, cell in enumerate(header_cells(line)):
+        match = _CELL.match(cell)
         if match is None:
             continue
         name, unit = match.group(1).lower(), (match.group(2) or "").strip()

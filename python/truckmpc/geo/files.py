@@ -12,7 +12,6 @@ An imported road is an ordinary road CSV (``load_road`` reads it) with two addit
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -21,14 +20,13 @@ import numpy as np
 from truckmpc.atomic import atomic_write_text
 from truckmpc.errors import RoadError, read_user_text
 from truckmpc.geo.importer import NOTE_KEYS, ImportedRoad, import_track
-from truckmpc.road import COLUMNS_COMMENT, RoadProfile, load_road
+from truckmpc.road import COLUMNS_COMMENT, PathLike, RoadProfile, load_road
+from truckmpc.road_csv import data_lines, fixed_cell, header_cells
 
 __all__ = ["RAW_COLUMN", "RoadWithNotes", "gpx_road", "read_road_with_notes", "write_imported"]
 
 RAW_COLUMN = "raw_altitude_m"
 """The extra column of an imported road: the elevation before smoothing [m]."""
-
-PathLike = str | os.PathLike[str]
 
 
 @dataclass(frozen=True)
@@ -49,13 +47,8 @@ def write_imported(imported: ImportedRoad, path: PathLike, command: str) -> None
     lines.append(f"# {COLUMNS_COMMENT}; {RAW_COLUMN} [m], the resampled elevation before smoothing")
     lines.append(f"distance_m,altitude_m,grade,{RAW_COLUMN}")
     rows = zip(profile.distance_m, profile.altitude_m, grade, imported.raw_altitude_m, strict=True)
-    lines += [f"{d:.3f},{_fixed(h)},{_fixed(g)},{raw:.3f}" for d, h, g, raw in rows]
+    lines += [f"{d:.3f},{fixed_cell(h)},{fixed_cell(g)},{raw:.3f}" for d, h, g, raw in rows]
     atomic_write_text(path, "\n".join(lines) + "\n")
-
-
-def _fixed(value: float) -> str:
-    text = f"{value:.6f}"
-    return "0.000000" if text == "-0.000000" else text
 
 
 def gpx_road(path: PathLike) -> RoadProfile:
@@ -82,8 +75,8 @@ def read_road_with_notes(path: PathLike) -> RoadWithNotes:
 
 def _raw_column(path: Path, text: str, profile: RoadProfile) -> np.ndarray | None:
     """The `raw_altitude_m` column of a road CSV, or None if it has none or a cell is not a number."""
-    rows = [line.strip() for line in text.splitlines() if line.strip() and not line.strip().startswith("#")]
-    header = [cell.strip().strip('"').strip() for cell in rows[0].split(",")]
+    rows = [line for _, line in data_lines(text)]
+    header = header_cells(rows[0])
     if RAW_COLUMN not in header:
         return None
     column = header.index(RAW_COLUMN)

@@ -16,7 +16,7 @@ import numpy as np
 
 from truckmpc.errors import RoadError, read_user_text
 from truckmpc.geo.track import Track
-from truckmpc.road_csv import number_cell
+from truckmpc.road_csv import data_lines, header_cells, number_cell
 
 __all__ = ["read_latlon_csv"]
 
@@ -31,8 +31,7 @@ def read_latlon_csv(path: Path) -> Track:
     """The points of a ``lat,lon,ele`` CSV table (format in the module doc)."""
     where = str(path)
     text = read_user_text(path, where, "a CSV file", RoadError, encoding="utf-8-sig")
-    rows = [(n, line.strip()) for n, line in enumerate(text.splitlines(), start=1)]
-    rows = [(n, line) for n, line in rows if line and not line.startswith("#")]
+    rows = data_lines(text)
     if not rows:
         raise RoadError(f"{where}: expected a header with columns lat, lon and ele, got an empty file")
     index = _header(where, *rows[0])
@@ -57,7 +56,7 @@ def read_latlon_csv(path: Path) -> Track:
 
 def _header(where: str, number: int, line: str) -> dict[str, int]:
     """Column index of lat, lon and ele in the header line."""
-    columns = [cell.strip().strip('"').strip().lower() for cell in line.split(",")]
+    columns = [cell.lower() for cell in header_cells(line)]
     index = {}
     for name, aliases in _NAMES.items():
         found = [i for i, column in enumerate(columns) if column in aliases]
