@@ -23,7 +23,7 @@ import numpy as np
 from truckmpc.config import config_from_values
 from truckmpc.errors import RoadError
 from truckmpc.road import RoadProfile
-from truckmpc.units import KMH_PER_MPS, M_PER_KM, PCT_PER_FRACTION
+from truckmpc.units import KMH_PER_MPS, M_PER_KM
 
 if TYPE_CHECKING:
     from truckmpc.config import RunConfig
@@ -188,7 +188,7 @@ def _merged_summary(legs: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     merged["start_speed_kmh"] = legs[0]["start_speed_kmh"]
     for key in SUMMED:
         values = [leg.get(key) for leg in legs]
-        if values[0] is not None and all(value is not None for value in values):
+        if all(value is not None for value in values):
             merged[key] = sum(values)
     for key in LARGEST:
         if key in merged:
@@ -201,9 +201,7 @@ def _merged_summary(legs: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     merged["stalled"] = stalled
     merged["fuel_corrected_kg"] = None if stalled else merged.get("fuel_corrected_kg")
     distance_m, time_s = merged["distance_m"], merged["time_s"]
-    merged["fuel_kg_per_100km"] = (
-        merged["fuel_kg"] / (distance_m / (PCT_PER_FRACTION * M_PER_KM)) if distance_m > 0 else None
-    )
+    merged["fuel_kg_per_100km"] = merged["fuel_kg"] / (distance_m / (100.0 * M_PER_KM)) if distance_m > 0 else None
     merged["mean_speed_kmh"] = distance_m / time_s * KMH_PER_MPS if time_s > 0 else merged["start_speed_kmh"]
     merged["realtime_ratio"] = merged["compute_time_s"] / time_s if time_s > 0 else None
     return merged

@@ -19,19 +19,19 @@ saving that is kept.
 from __future__ import annotations
 
 import dataclasses
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from truckmpc.compare import compare
+from truckmpc.compare import compare, delta_pct
 from truckmpc.config import RunConfig, config_from_values
 from truckmpc.equal_time import equal_time_baselines
-from truckmpc.road import RoadProfile
+from truckmpc.gauss_markov import gauss_markov
+from truckmpc.road import RoadProfile, altitude_from_grade
 from truckmpc.sim import simulate
-from truckmpc.units import PCT_PER_FRACTION
+from truckmpc.units import KG_PER_T, PCT_PER_FRACTION
 
 MASS_ERRORS = (-0.25, 0.25)
 """Relative errors of the truck's mass the controller does not know (the truck is 30 t or 50 t
@@ -51,20 +51,16 @@ def noisy_map(road: RoadProfile, sigma_pct: float, seed: int, correlation_m: flo
     """`road` with AR(1) grade noise of standard deviation `sigma_pct` [% of grade] and correlation
     length `correlation_m` [m] added, on points every NOISE_STEP_M metres (and the end)."""
     # The road's own points are kept, so that σ → 0 gives back the road exactly.
-    grid = np.union1d(road.distance_m, road.resampled(NOISE_STEP_M).distance_m)
-    targets = None if road.target_speed_kmh is None else road.target_speed_at(grid)
-    fine = RoadProfile(road.name, grid, np.interp(grid, road.distance_m, road.altitude_m), road.source, targets)
-    step_m = np.diff(fine.distance_m)
+    grid_m = np.union1d(road.distance_m, road.resampled(NOISE_STEP_M).distance_m)
+    targets = None if road.target_speed_kmh is None else road.target_speed_at(grid_m)
+    step_m = np.diff(grid_m)
     rho = np.exp(-step_m / correlation_m)
     shocks = np.random.default_rng(seed).standard_normal(step_m.size)
-    sigma = sigma_pct / PCT_PER_FRACTION
-    noise = np.empty(step_m.size)
-    noise[0] = sigma * shocks[0]
-    for i in range(1, step_m.size):
-        noise[i] = rho[i] * noise[i - 1] + sigma * math.sqrt(1.0 - rho[i] ** 2) * shocks[i]
-    altitude = fine.altitude_m + np.concatenate([[0.0], np.cumsum(noise * step_m)])
+    # One grade per segment; the last point's is unused by the integration.
+    grade = np.append(gauss_markov(rho[1:], sigma_pct / PCT_PER_FRACTION, shocks), 0.0)
+    altitude_m = np.interp(grid_m, road.distance_m, road.altitude_m) + altitude_from_grade(grid_m, grade)
     name = f"{road.name}-grade-noise-{sigma_pct:g}pct-seed{seed}"
-    return RoadProfile(name, fine.distance_m, altitude, road.source, fine.target_speed_kmh)
+    return RoadProfile(name, grid_m, altitude_m, road.source, targets)
 
 
 @dataclass(frozen=True)
@@ -85,8 +81,9 @@ def cases(mass_kg: float, seeds: Sequence[int]) -> list[Case]:
     out = [Case("exact", mass_kg, mass_kg)]
     for error in MASS_ERRORS:
         truck = mass_kg * (1.0 + error)
-        out.append(Case(f"truck {truck / 1000:g} t, told it (reference)", truck, truck))
-        out.append(Case(f"truck {truck / 1000:g} t, controller assumes {mass_kg / 1000:g} t", truck, mass_kg))
+        truck_t, assumed_t = truck / KG_PER_T, mass_kg / KG_PER_T
+        out.append(Case(f"truck {truck_t:g} t, told it (reference)", truck, truck))
+        out.append(Case(f"truck {truck_t:g} t, controller assumes {assumed_t:g} t", truck, mass_kg))
     for sigma in GRADE_SIGMAS_PCT:
         out += [Case(f"map grade noise {sigma:g} %, seed {seed}", mass_kg, mass_kg, sigma, seed) for seed in seeds]
     return out
@@ -103,8 +100,8 @@ def run_case(road: RoadProfile, config: RunConfig, case: Case, controller: str =
     deltas = compare(results["pi"].summary, results[controller].summary, "pi", controller)
     found = equal_time_baselines(road, truth, results).get(controller)
     equal = None
-    if found is not None and found.reached and found.fuel_kg:
-        equal = PCT_PER_FRACTION * (results[controller].summary["fuel_kg"] - found.fuel_kg) / found.fuel_kg
+    if found is not None and found.reached and found.fuel_kg is not None:
+        equal = delta_pct(results[controller].summary["fuel_kg"], found.fuel_kg)
     return {
         "case": case.label,
         "mass_kg": case.mass_kg,

@@ -17,3 +17,6 @@ PCT_PER_FRACTION = 100.0
 
 G_PER_KG = 1000.0
 """Grams per kilogram."""
+
+KG_PER_T = 1000.0
+"""Kilograms per tonne."""

@@ -136,4 +136,5 @@ def _limit_note(profile: RoadProfile, grade_limit: float) -> str:
 
 
 def _extent_pct(grade: np.ndarray) -> str:
-    return f"{100 * float(np.min(grade)):+.1f} % to {100 * float(np.max(grade)):+.1f} %"
+    low_pct, high_pct = PCT_PER_FRACTION * float(np.min(grade)), PCT_PER_FRACTION * float(np.max(grade))
+    return f"{low_pct:+.1f} % to {high_pct:+.1f} %"

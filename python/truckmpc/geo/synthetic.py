@@ -29,6 +29,7 @@ from scipy.signal import fftconvolve
 
 from truckmpc.atomic import atomic_write_text
 from truckmpc.errors import RoadError
+from truckmpc.gauss_markov import gauss_markov
 from truckmpc.geo.track import WGS84
 from truckmpc.road import RoadProfile
 from truckmpc.units import KMH_PER_MPS, M_PER_KM
@@ -75,13 +76,9 @@ def path_points(length_m: float, rng: np.random.Generator) -> tuple[np.ndarray, 
 def _gauss_markov(distance_m: np.ndarray, sigma_m: float, corr_m: float, rng: np.random.Generator) -> np.ndarray:
     """A stationary first-order Gauss–Markov sequence at `distance_m`: std `sigma_m`, correlation
     exp(−Δs / `corr_m`) between points Δs apart."""
-    noise = np.empty(distance_m.size)
-    noise[0] = sigma_m * rng.standard_normal()
+    first = rng.standard_normal()
     rho = np.exp(-np.diff(distance_m) / corr_m)
-    kicks = sigma_m * np.sqrt(1.0 - rho**2) * rng.standard_normal(rho.size)
-    for i in range(1, noise.size):
-        noise[i] = rho[i - 1] * noise[i - 1] + kicks[i - 1]
-    return noise
+    return gauss_markov(rho, sigma_m, np.concatenate([[first], rng.standard_normal(rho.size)]))
 
 
 def _gaussian_correlated(distance_m: np.ndarray, sigma_m: float, corr_m: float, rng: np.random.Generator) -> np.ndarray:
