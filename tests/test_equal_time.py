@@ -13,7 +13,7 @@ from typer.testing import CliRunner
 
 from truckmpc import load_road, load_run_config, simulate
 from truckmpc.cli import app
-from truckmpc.equal_time import TIME_TOLERANCE, baseline_runner, equal_time, kinetic_correction_kg
+from truckmpc.equal_time import TIME_TOLERANCE, EqualTime, baseline_runner, equal_time, kinetic_correction_kg
 from truckmpc.road import RoadProfile, make_section
 
 runner = CliRunner()
@@ -162,3 +162,14 @@ def test_on_a_road_with_target_speeds_the_search_moves_the_target_offset() -> No
     assert doc["pi_v_ref_kmh"] == 85.0
     assert doc["pi_target_offset_kmh"] == pytest.approx(1.3, abs=0.05)
     assert "pi_target_offset_kmh" not in equal_time(run_at, 85.0, 35.0, base, target_s, c).document()
+
+
+def test_on_a_road_with_targets_the_v_ref_is_the_kept_one_and_the_offset_the_setting_minus_it():
+    """The search variable there is v_ref + target offset: what the result reports as v_ref (in the
+    summary and the sweep's columns alike) is the v_ref kept, the offset the difference."""
+    found = EqualTime(100.0, setting_kmh=86.5, time_s=100.0, offset_from_kmh=85.0)
+    assert (found.v_ref_kmh, found.target_offset_kmh) == (85.0, 1.5)
+    doc = found.document()
+    assert (doc["pi_v_ref_kmh"], doc["pi_target_offset_kmh"]) == (85.0, 1.5)
+    plain = EqualTime(100.0, setting_kmh=83.0, time_s=100.0)
+    assert (plain.v_ref_kmh, plain.target_offset_kmh) == (83.0, None)

@@ -89,14 +89,15 @@ def summary_corrected_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> fl
 class EqualTime:
     """The baseline driven to a target trip time.
 
-    ``v_ref_kmh``, ``time_s``, ``fuel_kg`` and ``fuel_corrected_kg`` are those of the closest run
-    found; ``reached`` says whether it is within :data:`TIME_TOLERANCE`, and ``reason`` why not.
-    With ``offset_from_kmh`` set (a road with target speeds), ``v_ref_kmh`` is the search variable
-    x = v_ref + target_offset_kmh and ``offset_from_kmh`` the v_ref [km/h] it counts from.
+    ``setting_kmh`` (the search variable), ``time_s``, ``fuel_kg`` and ``fuel_corrected_kg`` are
+    those of the closest run found; ``reached`` says whether it is within :data:`TIME_TOLERANCE`,
+    and ``reason`` why not. The search variable is v_ref [km/h]; with ``offset_from_kmh`` set (a
+    road with target speeds) it is x = v_ref + target_offset_kmh, ``offset_from_kmh`` the v_ref
+    [km/h] kept.
     """
 
     target_time_s: float
-    v_ref_kmh: float | None = None
+    setting_kmh: float | None = None
     time_s: float | None = None
     fuel_kg: float | None = None
     fuel_corrected_kg: float | None = None
@@ -108,6 +109,19 @@ class EqualTime:
     @property
     def reached(self) -> bool:
         return self.reason is None and self.time_s is not None
+
+    @property
+    def v_ref_kmh(self) -> float | None:
+        """The v_ref [km/h] of the closest run: the setting found, or the one kept on a road with
+        target speeds."""
+        return self.setting_kmh if self.offset_from_kmh is None else self.offset_from_kmh
+
+    @property
+    def target_offset_kmh(self) -> float | None:
+        """The target offset [km/h] of the closest run on a road with target speeds, else None."""
+        if self.offset_from_kmh is None or self.setting_kmh is None:
+            return None
+        return self.setting_kmh - self.offset_from_kmh
 
     def setting(self, x_kmh: float | None) -> str:
         """What the search variable `x_kmh` sets, for messages: `v_ref 84.00 km/h` or `target offset +1.00 km/h`."""
@@ -123,9 +137,8 @@ class EqualTime:
         road with target speeds, ``<baseline>_v_ref_kmh`` is the v_ref kept and
         ``<baseline>_target_offset_kmh`` the target offset found."""
         found = self.reached
-        v_ref_kmh = self.v_ref_kmh if self.offset_from_kmh is None else self.offset_from_kmh
         doc: dict[str, Any] = {
-            f"{baseline}_v_ref_kmh": v_ref_kmh if found else None,
+            f"{baseline}_v_ref_kmh": self.v_ref_kmh if found else None,
             f"{baseline}_time_s": self.time_s if found else None,
             f"{baseline}_fuel_kg": self.fuel_kg if found else None,
             f"{baseline}_fuel_corrected_kg": self.fuel_corrected_kg if found else None,
@@ -134,8 +147,7 @@ class EqualTime:
             f"{baseline}_runs": self.runs,
         }
         if self.offset_from_kmh is not None:
-            offset_kmh = None if self.v_ref_kmh is None else self.v_ref_kmh - self.offset_from_kmh
-            doc[f"{baseline}_target_offset_kmh"] = offset_kmh if found else None
+            doc[f"{baseline}_target_offset_kmh"] = self.target_offset_kmh if found else None
         if self.reason is not None:
             doc["not_comparable"] = self.reason
         return doc
@@ -226,7 +238,7 @@ class _Search:
         time_s = float(result.summary["time_s"])
         error = time_s - found.target_time_s
         if found.time_s is None or abs(error) < abs(found.time_s - found.target_time_s):
-            found.v_ref_kmh, found.time_s = v_kmh, time_s
+            found.setting_kmh, found.time_s = v_kmh, time_s
             found.fuel_kg = float(result.summary["fuel_kg"])
             found.fuel_corrected_kg = summary_corrected_kg(result.summary, self.g_per_half_v2)
         self.points.append((v_kmh, error))
@@ -288,7 +300,7 @@ class _Search:
                 if base is None
                 else (f"the target offset in {lo_kmh - base:+.1f}..{hi_kmh - base:+.1f} km/h")
             )
-            closest = f"{found.v_ref_kmh:.2f} km/h" if base is None else found.setting(found.v_ref_kmh)
+            closest = f"{found.setting_kmh:.2f} km/h" if base is None else found.setting(found.setting_kmh)
             found.reason = (
                 f"not comparable: the pi cannot reach the trip time {found.target_time_s:.1f} s with {searched} "
                 f"(closest {found.time_s:.1f} s at {closest}{', too slow' if slow else ', too fast'})"
