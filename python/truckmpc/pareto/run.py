@@ -106,7 +106,7 @@ def _resumed(plan: ParetoPlan, out: Path, notice: Callable[[str], None] | None) 
         problem = "not a point of this study" if point is None else damaged_row(cells)
         if point is None or problem is not None:
             dropped.append(f"{where}: {problem}")
-        elif not cells[-1].strip():  # a point whose run failed runs again
+        elif not cells[plan.columns.index(ERROR)].strip():  # a point whose run failed runs again
             done.setdefault(point.index, cells)
     if dropped and notice is not None:
         notice(f"dropped {len(dropped)} damaged row(s), to run again ({dropped[0]})")

@@ -228,7 +228,7 @@ class Layout:
 
     def failed(self, cells: Sequence[str]) -> bool:
         """Whether a row read back has an error (it is run again on resume)."""
-        return len(cells) == len(self.columns) and cells[0].strip() != ""
+        return len(cells) == len(self.columns) and cells[self.columns.index(ERROR_COLUMN)].strip() != ""
 
     def damaged(self, cells: Sequence[str]) -> str | None:
         """What is wrong with the result cells of a row read back, or None when each is what

@@ -15,10 +15,11 @@ from truckmpc.equal_time import equal_time_baselines
 from truckmpc.errors import RoadError, TruckmpcError
 from truckmpc.road import RoadProfile
 from truckmpc.sim import RunResult, simulate
-from truckmpc.sweep.columns import CONVERGENCE_COLUMNS, RUNS, equal_time_fields
+from truckmpc.sweep.columns import CONVERGENCE_COLUMNS, ERROR_COLUMN, RUNS, equal_time_fields
 
-ERROR = "error"
-"""The key of a failed run's one-line error in its figures (which hold nothing else)."""
+ERROR = ERROR_COLUMN
+"""The key of a failed run's one-line error in its figures (which hold nothing else): the name of
+the column it goes to."""
 
 
 class Task(NamedTuple):
@@ -54,14 +55,10 @@ class BrokenRoad(NamedTuple):
     name: str
     source: str
     message: str
-    stops: tuple[()] = ()
 
     def sha256(self) -> None:
         """No content to identify the road by."""
         return None
-
-    def reversed(self) -> BrokenRoad:
-        return self
 
 
 Road = RoadProfile | BrokenRoad
