@@ -101,17 +101,8 @@ def leg_road(road: RoadProfile, start_m: float, end_m: float, number: int) -> Ro
         segments = road.target_speed_kmh[keep][:-1]
         targets = np.append(segments, segments[-1])
     name = f"{road.name}-leg{number}"
-    told = None if road.controller_map is None else _map_part(road.controller_map, start_m, end_m)
+    told = None if road.controller_map is None else road.controller_map.between(start_m, end_m)
     return RoadProfile(name, road.distance_m[keep], road.altitude_m[keep], road.source, targets, (), told)
-
-
-def _map_part(told: RoadProfile, start_m: float, end_m: float) -> RoadProfile:
-    """The controllers' map from `start_m` to `end_m` [m]: its points inside, plus both ends."""
-    inside = told.distance_m[(told.distance_m > start_m) & (told.distance_m < end_m)]
-    distance = np.concatenate([[start_m], inside, [end_m]])
-    altitude = np.interp(distance, told.distance_m, told.altitude_m)
-    targets = None if told.target_speed_kmh is None else told.target_speed_at(distance)
-    return RoadProfile(told.name, distance, altitude, told.source, targets)
 
 
 def stops_document(road: RoadProfile) -> dict[str, Any]:

@@ -208,6 +208,17 @@ class RoadProfile:
         altitude = np.interp(grid, self.distance_m, self.altitude_m)
         return RoadProfile(self.name, grid, altitude, self.source, targets, self.stops, self.controller_map)
 
+    def between(self, start_m: float, end_m: float, margin_m: float = 0.0) -> RoadProfile:
+        """The road from `start_m` to `end_m` [m] (positions on this road): its points more than
+        `margin_m` [m] inside, and both ends interpolated (altitude, and target speed where the road
+        has them); no stops and no map."""
+        distance = self.distance_m
+        inside = distance[(distance > start_m + margin_m) & (distance < end_m - margin_m)]
+        grid = np.concatenate([[start_m], inside, [end_m]])
+        altitude = np.interp(grid, distance, self.altitude_m)
+        targets = None if self.target_speed_kmh is None else self.target_speed_at(grid)
+        return RoadProfile(self.name, grid, altitude, self.source, targets)
+
     def target_speed_at(self, s_m: np.ndarray) -> np.ndarray:
         """The target speed [km/h] at distances `s_m` [m] (that of the segment containing each; the
         first segment's before the start, the last one's beyond the end)."""

@@ -144,11 +144,9 @@ def road_piece(road: RoadProfile, start_m: float, end_m: float) -> RoadProfile:
             f"{road.source or road.name}: expected a part within the road's {road.length_m:g} m, "
             f"got {start_m:g} m to {end_m:g} m"
         )
-    inside = road.distance_m[(road.distance_m > first_m + 1e-3) & (road.distance_m < last_m - 1e-3)]
-    distance_m = np.concatenate([[first_m], inside, [last_m]])
-    altitude_m = np.interp(distance_m, road.distance_m, road.altitude_m)
+    part = road.between(first_m, last_m, margin_m=1e-3)
     name = f"{road.name}-km{start_m / M_PER_KM:g}-{end_m / M_PER_KM:g}"
-    return RoadProfile(name, distance_m - first_m, altitude_m - altitude_m[0], road.source)
+    return RoadProfile(name, part.distance_m - first_m, part.altitude_m - part.altitude_m[0], road.source)
 
 
 def write_fixtures(

@@ -89,8 +89,9 @@ class Runner:
             return
         if cluster.address is not None:
             self._notice(f"{runs} runs on the Dask cluster at {cluster.address} ({cluster.workers} workers now)")
-        if cluster.dashboard is not None:
-            self._notice(f"Dask dashboard: {cluster.dashboard}")
+        dashboard = cluster.dashboard  # each read asks the scheduler
+        if dashboard is not None:
+            self._notice(f"Dask dashboard: {dashboard}")
 
 
 def _used(tasks: Sequence[Task]) -> list[int]:
