@@ -4,7 +4,6 @@ cluster, or this process) and files: ``pareto.json`` (which study), ``pareto.par
 
 from __future__ import annotations
 
-import os
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -23,8 +22,8 @@ from truckmpc.sweep.files import (
     write_final,
     write_settings,
 )
-from truckmpc.sweep.run import ProgressHook, run_base
-from truckmpc.sweep.runner import Runner
+from truckmpc.sweep.run import run_base
+from truckmpc.sweep.runner import ProgressHook, Runner
 from truckmpc.sweep.task import ERROR, Task
 from truckmpc.workload import MAX_WORK_S, WorkError, too_long
 
@@ -66,21 +65,17 @@ def run_pareto(
     tasks = [Task(p.controller, p.road, p.overrides, p.index, "", plain=True) for p in pending]
     base = run_base((plan.vehicle_path,), plan.config_paths)
     partial_path = out / file_names(STEM)[1]
-    with Runner(plan.roads, base, max(1, jobs or os.cpu_count() or 1), scheduler, notice) as runner:
+    with Runner(plan.roads, base, jobs, scheduler, notice) as runner:
         _check_work(pending, runner.jobs, force)
         out.mkdir(parents=True, exist_ok=True)
         write_settings(out, plan.settings, runner.jobs, STEM)
         header = csv_line(plan.columns)
         partial = PartialFile(partial_path, header, [csv_line(cells) for _, cells in sorted(done.items())])
-        if progress:
-            progress(0, len(tasks))
         try:
-            for finished, (task, figures) in enumerate(runner.results(tasks), start=1):
+            for task, figures in runner.results(tasks, progress):
                 cells = _cells(plan, plan.points[task.row], figures)
                 done[task.row] = cells
                 partial.append(csv_line(cells))
-                if progress:
-                    progress(finished, len(tasks))
         except KeyboardInterrupt:
             raise SweepInterrupted(len(done), len(plan.points), partial_path) from None
         finally:

@@ -43,7 +43,8 @@ from truckmpc.sweep.files import CSV_NAME, PARTIAL_NAME, SETTINGS_NAME
 from truckmpc.sweep.grid import MAX_AXIS_VALUES, Axis, expand_grid, parse_axis
 from truckmpc.sweep.plan import Row, SweepPlan, plan_sweep
 from truckmpc.sweep.progress import progress_bar
-from truckmpc.sweep.run import ProgressHook, SweepResult, run_plan, run_sweep
+from truckmpc.sweep.run import SweepResult, run_plan, run_sweep
+from truckmpc.sweep.runner import ProgressHook
 from truckmpc.sweep.task import run_task
 
 __all__ = [

@@ -5,7 +5,7 @@ from __future__ import annotations
 import contextlib
 from collections.abc import Iterator
 
-from truckmpc.sweep.run import ProgressHook
+from truckmpc.sweep.runner import ProgressHook
 
 
 @contextlib.contextmanager

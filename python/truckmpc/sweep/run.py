@@ -3,7 +3,6 @@ ones run, and ``sweep.csv`` is written when all are done."""
 
 from __future__ import annotations
 
-import os
 import sys
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
@@ -24,7 +23,7 @@ from truckmpc.sweep.files import (
 )
 from truckmpc.sweep.grid import Axis
 from truckmpc.sweep.plan import SHARED_SECTIONS, Row, SweepPlan, plan_sweep
-from truckmpc.sweep.runner import Runner
+from truckmpc.sweep.runner import ProgressHook, Runner
 from truckmpc.sweep.task import RunBase, Task
 from truckmpc.sweep.waiting import Run, Waiting
 from truckmpc.workload import EQUAL_TIME_RUNS, MAX_WORK_S, Work, WorkError, memory_limit_bytes, too_big, too_long
@@ -48,10 +47,6 @@ class SweepResult:
     @property
     def mpc_runs(self) -> int:
         return self.runs.get("mpc", 0)
-
-
-ProgressHook = Callable[[int, int], None]
-"""``hook(done_runs, total_runs)`` of the runs this call makes, called at the start and after each run."""
 
 
 def run_sweep(
@@ -122,7 +117,7 @@ def run_plan(
     known = _resumed_runs(plan, done)
     tasks = _tasks(plan, pending, known)
     base = run_base(plan.vehicle_paths, plan.config_paths)
-    with Runner(plan.roads, base, max(1, jobs or os.cpu_count() or 1), scheduler, notice) as runner:
+    with Runner(plan.roads, base, jobs, scheduler, notice) as runner:
         _check_work(plan, tasks, runner.jobs, force)
         out.mkdir(parents=True, exist_ok=True)
         write_settings(out, plan.settings, runner.jobs)
@@ -155,19 +150,7 @@ def _run_rows(
     progress: ProgressHook | None,
 ) -> None:
     """Run `tasks`, putting each pending row into `done` and `partial` as soon as its runs are in."""
-    finished = 0
-    if progress:
-        progress(0, len(tasks))
-
-    def counted(results: Iterable[tuple[Task, dict[str, Any]]]) -> Iterator[tuple[Task, dict[str, Any]]]:
-        nonlocal finished
-        for result in results:
-            yield result
-            finished += 1
-            if progress:
-                progress(finished, len(tasks))
-
-    for index, cells in _rows_as_they_finish(plan, pending, counted(runner.results(tasks)), known):
+    for index, cells in _rows_as_they_finish(plan, pending, runner.results(tasks, progress), known):
         done[index] = cells
         partial.append(csv_line(cells))
 

@@ -9,6 +9,7 @@ run whose worker dies is run again on another one (Dask's own rescheduling); a r
 
 from __future__ import annotations
 
+import os
 import uuid
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any
@@ -19,6 +20,9 @@ from truckmpc.sweep.errors import SweepWorkerDied
 from truckmpc.sweep.task import ERROR, Road, RunBase, Task, run_all, run_task
 
 Notice = Callable[[str], None]
+
+ProgressHook = Callable[[int, int], None]
+"""``hook(done_runs, total_runs)`` of the runs this call makes, called at the start and after each run."""
 
 ALLOWED_FAILURES = 3
 """Workers a run may kill before it is given up (Dask's ``distributed.scheduler.allowed-failures``)."""
@@ -34,15 +38,15 @@ class Runner:
         self,
         roads: Sequence[Road],
         base: RunBase,
-        jobs: int,
+        jobs: int | None,
         scheduler: str | None = None,
         notice: Notice | None = None,
     ) -> None:
-        """`jobs`: worker processes of the embedded cluster (1: this process); `scheduler` (default
-        ``$TRUCKMPC_SCHEDULER``): the address of a running cluster's scheduler instead (connected to
-        at once)."""
+        """`jobs`: worker processes of the embedded cluster (1: this process; None: one per core);
+        `scheduler` (default ``$TRUCKMPC_SCHEDULER``): the address of a running cluster's scheduler
+        instead (connected to at once)."""
         self.roads, self.base, self.scheduler = roads, base, scheduler_address(scheduler)
-        self._jobs, self._notice = jobs, notice
+        self._jobs, self._notice = max(1, jobs or os.cpu_count() or 1), notice
         self._cluster: Cluster | None = None if self.scheduler is None else Cluster(self.scheduler, 0)
 
     @property
@@ -58,8 +62,19 @@ class Runner:
         if cluster is not None:
             cluster.close(failed=exc_type is not None)
 
-    def results(self, tasks: Sequence[Task]) -> Iterator[tuple[Task, dict[str, Any]]]:
-        """``(task, figures)`` of each task as it finishes, the longest first where there is a choice."""
+    def results(
+        self, tasks: Sequence[Task], progress: ProgressHook | None = None
+    ) -> Iterator[tuple[Task, dict[str, Any]]]:
+        """``(task, figures)`` of each task as it finishes, the longest first where there is a choice;
+        `progress` hears of each once the caller has taken it."""
+        if progress:
+            progress(0, len(tasks))
+        for finished, result in enumerate(self._finishing(tasks), start=1):
+            yield result
+            if progress:
+                progress(finished, len(tasks))
+
+    def _finishing(self, tasks: Sequence[Task]) -> Iterator[tuple[Task, dict[str, Any]]]:
         if not tasks:
             return
         if self._cluster is None and (self._jobs <= 1 or len(tasks) <= 1):
