@@ -12,17 +12,15 @@ $TRUCKMPC_SHARED_ROADS). Prints a Markdown table: mean and range over the seeds.
 from __future__ import annotations
 
 import argparse
-import os
 from pathlib import Path
+
+from study_roads import default_road_paths, road_part
 
 from truckmpc.config import load_run_config
 from truckmpc.geo.smooth import Smoothing
 from truckmpc.geo.study import StudyRow, study_rows
-from truckmpc.geo.synthetic import NOISE_KINDS, road_piece
+from truckmpc.geo.synthetic import NOISE_KINDS
 from truckmpc.road import load_road
-
-SHARED = Path(os.environ.get("TRUCKMPC_SHARED_ROADS", Path(__file__).resolve().parents[1] / ".." / "shared" / "roads"))
-DEFAULT_ROADS = ("eu_vecto_longhaul_100km.csv", "us_epa_gem_ph2_grade_20km.csv")
 
 
 def _arguments() -> argparse.Namespace:
@@ -63,11 +61,8 @@ def main() -> None:
     print(f"noise: {args.kind}, correlation 100 m, jitter 2 m per axis (none at sigma 0); seeds 1..{args.seeds}")
     print("| road | sigma [m] | smoothing | grade RMS error [pp] | delta-fuel error [points] |")
     print("|---|---|---|---|---|")
-    for path in args.road or [SHARED / name for name in DEFAULT_ROADS]:
-        road = load_road(path)
-        if args.km is not None:
-            start_km, end_km = (float(x) for x in args.km.split("-"))
-            road = road_piece(road, 1e3 * start_km, 1e3 * end_km)
+    for path in args.road or default_road_paths():
+        road = road_part(load_road(path), args.km)
         rows = study_rows(road, config, sigmas_m, smoothings, range(1, args.seeds + 1), args.kind)
         for i, row in enumerate(rows):
             if i == 0:

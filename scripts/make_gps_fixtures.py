@@ -11,7 +11,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from truckmpc.geo.synthetic import NOISE_KINDS, road_piece, write_fixtures
+from study_roads import road_part
+
+from truckmpc.geo.synthetic import NOISE_KINDS, write_fixtures
 from truckmpc.road import load_road
 
 
@@ -24,10 +26,7 @@ def main() -> None:
     parser.add_argument("--km", default=None, help="only the part A-B [km] of the road, e.g. 0-10")
     parser.add_argument("--kind", choices=sorted(NOISE_KINDS), default="markov", help="altitude noise process")
     args = parser.parse_args()
-    road = load_road(args.road)
-    if args.km is not None:
-        start_km, end_km = (float(x) for x in args.km.split("-"))
-        road = road_piece(road, 1e3 * start_km, 1e3 * end_km)
+    road = road_part(load_road(args.road), args.km)
     sigmas_m = [float(x) for x in args.sigmas.split(",")]
     for path in write_fixtures(road, args.out_dir, sigmas_m, args.seed, args.kind):
         print(f"wrote {path}")

@@ -50,7 +50,6 @@ from __future__ import annotations
 import argparse
 import itertools
 import math
-import os
 import tempfile
 from collections.abc import Callable
 from pathlib import Path
@@ -59,17 +58,16 @@ import numpy as np
 from scipy import sparse
 from scipy.linalg import cho_solve_banded, cholesky_banded
 from scipy.optimize import brentq, minimize_scalar
+from study_roads import default_road_paths, road_part
 
 from truckmpc.geo.gpx import read_gpx
 from truckmpc.geo.importer import import_track
 from truckmpc.geo.smooth import Smoothing
 from truckmpc.geo.study import grade_rms_error_pct
-from truckmpc.geo.synthetic import noisy_track_gpx, road_piece
+from truckmpc.geo.synthetic import noisy_track_gpx
 from truckmpc.road import RoadProfile, load_road
-from truckmpc.units import M_PER_KM, PCT_PER_FRACTION
+from truckmpc.units import PCT_PER_FRACTION
 
-SHARED = Path(os.environ.get("TRUCKMPC_SHARED_ROADS", Path(__file__).resolve().parents[1] / ".." / "shared" / "roads"))
-DEFAULT_ROADS = ("eu_vecto_longhaul_100km.csv", "us_epa_gem_ph2_grade_20km.csv")
 CORR_M = 100.0
 JITTER_M = 2.0
 WHITE_M = 0.02
@@ -331,11 +329,8 @@ def main() -> None:
     print("| road | sigma [m] | jitter [m] | smoothing | grade RMS error [pp] | note |")
     print("|---|---|---|---|---|---|")
     aims = []
-    for path in args.road or [SHARED / name for name in DEFAULT_ROADS]:
-        road = load_road(path)
-        if args.km is not None:
-            start_km, end_km = (float(x) for x in args.km.split("-"))
-            road = road_piece(road, M_PER_KM * start_km, M_PER_KM * end_km)
+    for path in args.road or default_road_paths():
+        road = road_part(load_road(path), args.km)
         road_rows(road, sigmas_m, seeds, args.l1)
         aims.append(f"{road.name}: sigma {sigma_at_aim_m(road, seeds, args.aim_pct):.2f} m")
     print(f"sigma at which the expected exact Wiener error is {args.aim_pct:g} pp: {'; '.join(aims)}")
