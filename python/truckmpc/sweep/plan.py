@@ -80,8 +80,7 @@ class SweepPlan:
     @property
     def key_columns(self) -> tuple[str, ...]:
         """The columns that identify a row: road, direction, vehicle (when there are several) and the axes."""
-        vehicle = ("vehicle",) if len(self.vehicle_paths) > 1 else ()
-        return ("road", "direction", *vehicle, *(axis.key for axis in self.axes))
+        return key_columns(self.axes, len(self.vehicle_paths) > 1)
 
     @property
     def columns(self) -> tuple[str, ...]:
@@ -91,6 +90,11 @@ class SweepPlan:
         """The cells that identify a row in the CSV: road, direction, vehicle and the axis values."""
         vehicle = (self.vehicle_names[row.vehicle],) if len(self.vehicle_paths) > 1 else ()
         return (self.roads[row.road].name, self.directions[row.road], *vehicle, *(cell(v) for v in row.values))
+
+
+def key_columns(axes: Sequence[Axis], several_vehicles: bool) -> tuple[str, ...]:
+    """The columns that identify a row: road, direction, vehicle (with `several_vehicles`) and the axes."""
+    return ("road", "direction", *(("vehicle",) if several_vehicles else ()), *(axis.key for axis in axes))
 
 
 def plan_sweep(
@@ -244,8 +248,7 @@ def _settings(
     """The ``sweep.json`` document (without ``jobs``), as plain JSON values; with several vehicles
     ``vehicle`` lists their files and ``base_config`` maps each one's name to its configuration."""
     grid = [{"key": a.key, "spec": a.spec, "values": list(a.values)} for a in axes]
-    vehicle = ["vehicle"] if len(bases) > 1 else []
-    columns = ["road", "direction", *vehicle, *(a.key for a in axes), *layout.columns]
+    columns = [*key_columns(axes, len(bases) > 1), *layout.columns]
     settings = study_settings(profiles, directions, grid, base_configs[0], bases[0], columns)
     if len(bases) > 1:
         settings["vehicle"] = [base.vehicle_path for base in bases]
