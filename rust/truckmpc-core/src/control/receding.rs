@@ -267,7 +267,14 @@ impl RecedingController {
             None => {
                 let (solver, band) = if relaxed {
                     let params = self.solver.params().relaxed(RELAXED_V_MIN_KMH);
-                    (self.relaxed.get_or_insert_with(|| Solver::new(params)), &self.relaxed_band)
+                    // No row cache: the relaxed band reaches down to 5 km/h, and caching a
+                    // horizon of its rows (a rare solve) would take gigabytes on a fine grid.
+                    let solver = self.relaxed.get_or_insert_with(|| {
+                        let mut solver = Solver::new(params);
+                        solver.set_caching(false);
+                        solver
+                    });
+                    (solver, &self.relaxed_band)
                 } else {
                     (&mut self.solver, &self.band)
                 };
