@@ -74,7 +74,7 @@ declare_params! {
         /// Prediction horizon; N = round(horizon / S) stages.
         horizon_m: f64 = 1500.0, unit "m", range Range::positive_up_to(1e6);
         /// δ, step of the DP's speed grid.
-        delta_kmh: f64 = 0.05, unit "km/h", range Range::positive_up_to(100.0);
+        delta_kmh: f64 = 0.025, unit "km/h", range Range::positive_up_to(100.0);
         /// ε, pedal tolerance: levels in [-ε, 1 + ε] are accepted and clipped to [0, 1]; null = half a grid step δ of speed change.
         epsilon: Option<f64> = None, unit "-", range Range::between(0.0, 1.0);
         /// Least number of stages between two gear shifts; null = 200 m / S (table 6.1).
