@@ -43,8 +43,8 @@ road 8e-8 s too; rounded up."""
 
 DP_UNIT_S = 1.2e-9
 """Seconds per DP unit (one stage × one grid point²) [s] while a solve's rows fit in the caches: the
-MPC over the bundled test track took 0.75e-9 s a unit at the defaults (S 25 m, δ 0.2 km/h, 1500 m,
-moving grid), 0.4e-9 at δ 0.1 km/h and 2000 m, 0.3e-9 at 3000 m on the fixed grid; over the 108 km
+MPC over the bundled test track took 0.75e-9 s a unit at S 25 m, δ 0.2 km/h, 1500 m on the moving
+grid (the defaults then), 0.4e-9 at δ 0.1 km/h and 2000 m, 0.3e-9 at 3000 m on the fixed grid; over the 108 km
 VECTO road 1.3e-9, 0.5e-9 and 0.25e-9. The estimate is meant to be right within a factor of ten,
 enough to refuse hours of work."""
 
@@ -60,11 +60,12 @@ DP_BYTES_PER_UNIT = 2.5
 """Memory of the DP [bytes] per stage × grid point²: peak resident memory on a flat 100 m road at
 the defaults less the 55 MB of the process was 2.2 bytes a unit at δ 0.01, 0.005 and 0.0025 km/h."""
 
-WHOLE_ROAD_BYTES_PER_POINT = 250.0
-"""Memory of a whole-road optimum run [bytes] per road stage × grid point. On the 805 km road at δ
-0.05 km/h (32 184 stages × 201 points) the run peaked at 1.6 GB, 240 bytes a unit: the plan itself
-(its decisions for every gear and its stored values) 0.58 GB, the rest the relaxed solves of its
-rescue after the one-stage solves that found no admissible path."""
+WHOLE_ROAD_BYTES_PER_POINT = 110.0
+"""Memory of a whole-road optimum run [bytes] per road stage × grid point: the plan (its decisions
+for every gear and its stored values) and the process. On the 805 km road (32 184 stages) the run
+peaked at 1.21 GB at δ 0.025 km/h (401 points, 94 bytes a unit) and at 0.66 GB at δ 0.05 km/h
+(201 points, 103 bytes a unit); its relaxed solves keep no rows (no row cache, a grid of at least
+0.1 km/h)."""
 
 _PLANT_KEYS = ("plant_dt_s", "v_ref_kmh")
 _DP_KEYS = ("delta_kmh", "stage_m", "horizon_m", "v_inc_kmh", "v_dec_kmh")

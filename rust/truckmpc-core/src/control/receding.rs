@@ -6,8 +6,9 @@
 //! over the horizon from there, and keeps the first control of the optimum for that next stage.
 //! Stage boundaries are counted from the road's start. When a solve finds no admissible path, the
 //! controller counts the event and, by `on_infeasible`, either keeps the inputs it is applying (the
-//! thesis's rule) or rescues: a solve with the lower speed bound and the shift limit relaxed, and
-//! failing that the [`Rescue`] policy until a later solve succeeds.
+//! thesis's rule) or rescues: a solve with the lower speed bound and the shift limit relaxed (on a
+//! grid no finer than [`crate::dp::params::RELAXED_DELTA_MIN_KMH`]), and failing that the [`Rescue`]
+//! policy until a later solve succeeds.
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -125,7 +126,8 @@ impl SolverStats {
 pub struct RecedingController {
     vehicle: Arc<Vehicle>,
     solver: Solver,
-    /// The relaxed solver, built on the first need (rescue only).
+    /// The relaxed solver ([`DpSettings::relaxed`], without the row cache), built on the first
+    /// need (rescue only).
     relaxed: Option<Solver>,
     rescue: Rescue,
     /// The PI's gear logic, for the gear the truck starts in.

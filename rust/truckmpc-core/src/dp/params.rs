@@ -11,9 +11,9 @@ use crate::band::BandAt;
 use crate::error::{CoreError, CoreResult};
 use crate::vehicle::Vehicle;
 
-/// Coarsest grid step [km/h] of the relaxed solve ([`DpSettings::relaxed`]) when the settings'
-/// own is finer.
-pub const RELAXED_DELTA_KMH: f64 = 0.1;
+/// Finest grid step [km/h] of the relaxed solve ([`DpSettings::relaxed`]): a finer δ of the
+/// settings is raised to it.
+pub const RELAXED_DELTA_MIN_KMH: f64 = 0.1;
 
 /// Resolved DP settings; build them with [`DpSettings::new`], which validates.
 #[derive(Debug, Clone, PartialEq)]
@@ -179,14 +179,14 @@ impl DpSettings {
     }
 
     /// The same settings with the lower speed bound at `v_min_kmh`, no shift limit and a grid step
-    /// of at least [`RELAXED_DELTA_KMH`]: the rescue solve when these admit no path. (Its band
+    /// of at least [`RELAXED_DELTA_MIN_KMH`]: the rescue solve when these admit no path. (Its band
     /// reaches down to `v_min_kmh`, many times the cruise band's width: at δ 0.025 km/h one such
-    /// solve took 0.7 s.)
+    /// solve took 0.7 s without the row cache.)
     pub fn relaxed(&self, v_min_kmh: f64) -> Self {
         DpSettings {
             v_dec_kmh: (self.v_ref_kmh - v_min_kmh).max(self.v_dec_kmh),
             k_lim: 1,
-            delta_kmh: self.delta_kmh.max(RELAXED_DELTA_KMH),
+            delta_kmh: self.delta_kmh.max(RELAXED_DELTA_MIN_KMH),
             ..self.clone()
         }
     }
@@ -243,5 +243,26 @@ impl DpSettings {
     /// v_min = v_ref − v_dec [m/s].
     pub fn v_min_mps(&self) -> f64 {
         (self.v_ref_kmh - self.v_dec_kmh) / 3.6
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_relaxed_solve_lowers_v_min_drops_the_shift_limit_and_keeps_a_grid_of_at_least_0_1_kmh() {
+        let fine = DpSettings::default();
+        assert!(fine.delta_kmh < RELAXED_DELTA_MIN_KMH);
+        let relaxed = fine.relaxed(5.0);
+        assert_eq!((relaxed.v_min_mps() * 3.6, relaxed.k_lim), (5.0, 1));
+        assert_eq!(relaxed.delta_kmh, RELAXED_DELTA_MIN_KMH);
+        // A coarser grid (the thesis's 0.2 km/h) is kept as it is.
+        let thesis = DpSettings::thesis().relaxed(5.0);
+        assert_eq!(thesis.delta_kmh, 0.2);
+        assert_eq!(
+            DpSettings { delta_kmh: 0.0, ..relaxed.clone() },
+            DpSettings { delta_kmh: 0.0, v_dec_kmh: relaxed.v_dec_kmh, k_lim: 1, ..fine }
+        );
     }
 }
