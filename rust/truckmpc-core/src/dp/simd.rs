@@ -282,6 +282,19 @@ pub trait Kernels: Copy {
     fn block_mins_to(self, block: (&[f64], usize), to_go: &[f64], shiftable: Option<&[f64]>, base: u32, out: LaneOut);
 }
 
+/// A block's costs and value slices cut to the lengths the kernels read: `steps × LANES` costs and
+/// `steps + LANES − 1` values (panics if a slice is shorter).
+#[inline(always)]
+fn block_slices<'a>(
+    costs: &'a [f64],
+    steps: usize,
+    to_go: &'a [f64],
+    shiftable: Option<&'a [f64]>,
+) -> (&'a [f64], &'a [f64], Option<&'a [f64]>) {
+    let values = steps + LANES - 1;
+    (&costs[..steps * LANES], &to_go[..values], shiftable.map(|shiftable| &shiftable[..values]))
+}
+
 /// The portable kernels.
 #[derive(Debug, Clone, Copy)]
 pub struct Portable;
@@ -296,10 +309,8 @@ impl Kernels for Portable {
         base: u32,
         out: LaneOut,
     ) {
-        let costs = &costs[..steps * LANES];
-        let to_go = &to_go[..steps + LANES - 1];
-        let shiftable = shiftable.map_or(to_go, |values| &values[..steps + LANES - 1]);
-        block_mins_portable(costs, steps, to_go, shiftable).write(base, out);
+        let (costs, to_go, shiftable) = block_slices(costs, steps, to_go, shiftable);
+        block_mins_portable(costs, steps, to_go, shiftable.unwrap_or(to_go)).write(base, out);
     }
 }
 
@@ -329,12 +340,12 @@ impl Kernels for Avx2 {
         base: u32,
         out: LaneOut,
     ) {
-        let costs = &costs[..steps * LANES];
-        let to_go = &to_go[..steps + LANES - 1];
-        // SAFETY: an `Avx2` exists only where the CPU has AVX2; the lengths are checked here.
+        let (costs, to_go, shiftable) = block_slices(costs, steps, to_go, shiftable);
+        // SAFETY: an `Avx2` exists only where the CPU has AVX2; the lengths are checked by
+        // `block_slices`.
         unsafe {
             match shiftable {
-                Some(shiftable) => block_mins_avx2_regs(costs, steps, to_go, &shiftable[..steps + LANES - 1]),
+                Some(shiftable) => block_mins_avx2_regs(costs, steps, to_go, shiftable),
                 None => block_mins_same_avx2_regs(costs, steps, to_go),
             }
             .write(base, out)
