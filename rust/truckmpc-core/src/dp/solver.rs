@@ -1744,6 +1744,22 @@ mod tests {
         best
     }
 
+    /// What [`block_mins`] with `kernels` writes: minima and next-grid indices of the four lanes.
+    fn written<K: simd::Kernels>(
+        kernels: K,
+        block: &Block,
+        costs: &[f64],
+        base: i64,
+        range: (u32, u32),
+        values: (&[f64], &[f64]),
+        same: bool,
+    ) -> ([f64; LANES], [u32; LANES], [f64; LANES], [u32; LANES]) {
+        let mut lanes = ([0.0; LANES], [0; LANES], [0.0; LANES], [0; LANES]);
+        let (all, all_j, shift, shift_j) = (&mut lanes.0, &mut lanes.1, &mut lanes.2, &mut lanes.3);
+        block_mins(kernels, block, costs, base, range, values, same, LaneOut { all, all_j, shift, shift_j });
+        lanes
+    }
+
     #[test]
     fn block_pass_inside_and_beyond_the_margins_matches_a_scalar_scan() {
         let (count, steps) = (30usize, 20usize);
@@ -1766,33 +1782,15 @@ mod tests {
             let block = Block { first: 0, steps: steps as u32, offset: 0, spans: [(0, 0); LANES], reach: 0 };
             // Inside the margins (packed pass) and reaching below them (clipped pass).
             for base in [-4i64, 10, -(PAD as i64) - 3, count as i64 - 5] {
-                let (mut all, mut all_j, mut shift, mut shift_j) = ([0.0; LANES], [0; LANES], [0.0; LANES], [0; LANES]);
-                let out = LaneOut { all: &mut all, all_j: &mut all_j, shift: &mut shift, shift_j: &mut shift_j };
-                block_mins(simd::Portable, &block, &costs, base, (lo, hi), (&to_go, &shiftable), false, out);
+                let (all, all_j, shift, shift_j) =
+                    written(simd::Portable, &block, &costs, base, (lo, hi), (&to_go, &shiftable), false);
                 // The AVX2 kernels (minima written from registers) write the same.
                 #[cfg(target_arch = "x86_64")]
                 if let Some(avx2) = simd::Avx2::detect() {
                     for same in [false, true] {
-                        let shiftable = if same { &to_go } else { &shiftable };
-                        let mut got = ([0.0; LANES], [0; LANES], [0.0; LANES], [0; LANES]);
-                        let mut want = got;
-                        for (kernels_avx2, (all, all_j, shift, shift_j)) in [(true, &mut got), (false, &mut want)] {
-                            let out = LaneOut { all, all_j, shift, shift_j };
-                            if kernels_avx2 {
-                                block_mins(avx2, &block, &costs, base, (lo, hi), (&to_go, shiftable), same, out);
-                            } else {
-                                block_mins(
-                                    simd::Portable,
-                                    &block,
-                                    &costs,
-                                    base,
-                                    (lo, hi),
-                                    (&to_go, shiftable),
-                                    same,
-                                    out,
-                                );
-                            }
-                        }
+                        let values = (&to_go[..], if same { &to_go[..] } else { &shiftable[..] });
+                        let got = written(avx2, &block, &costs, base, (lo, hi), values, same);
+                        let want = written(simd::Portable, &block, &costs, base, (lo, hi), values, same);
                         let bits = |x: [f64; LANES]| x.map(f64::to_bits);
                         assert_eq!(
                             (bits(got.0), got.1, bits(got.2), got.3),
