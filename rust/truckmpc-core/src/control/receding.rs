@@ -17,8 +17,9 @@ use super::pi::GearLogic;
 use super::rescue::Rescue;
 use super::{Controller, Decision};
 use crate::band::{BandAt, SpeedBand};
+use crate::dp::stage;
 use crate::dp::{horizon, DpSettings, InitialState, Solver, ValueTable};
-use crate::levels::{stage_fuel_g, stationary};
+use crate::levels::stationary;
 use crate::params::OnInfeasible;
 use crate::plant::{Control, PlantState};
 use crate::road::Road;
@@ -218,9 +219,14 @@ impl RecedingController {
         let began = Instant::now();
         let solution = self.solver.solve_recording(&self.vehicle, start, &plan.slopes, bands, &mut plan.table);
         let solve_s = began.elapsed().as_secs_f64();
-        // The trajectory's point k holds the inputs of stage k and the speed at its start.
-        let (fuel_g, time_s) = solution.trajectory.iter().take(stages).fold((0.0, 0.0), |(fuel, time), point| {
-            (fuel + stage_fuel_g(&self.vehicle, point.v_mps, point.pedal, point.gear, h), time + h / point.v_mps)
+        // The trajectory's point k holds the inputs of stage k and the speed at its start; each
+        // stage priced by the DP's own stage model.
+        let model = self.solver.params().stage_model;
+        let (fuel_g, time_s) = solution.trajectory.windows(2).take(stages).fold((0.0, 0.0), |(fuel, time), pair| {
+            let (point, v_end) = (pair[0], pair[1].v_mps);
+            let speeds = (point.v_mps, v_end);
+            let stage_fuel = stage::fuel_g(model, &self.vehicle, speeds, point.pedal, point.gear, h);
+            (fuel + stage_fuel, time + stage::time_s(model, speeds, h))
         });
         self.stats.plan = Some(PlanStats {
             fuel_kg: if solution.feasible { fuel_g / 1000.0 } else { f64::NAN },
@@ -317,7 +323,8 @@ impl RecedingController {
     fn apply_and_plan(&mut self, road: &Road, state: &PlantState, u: Control, boundary_m: f64, h_m: f64) -> Decision {
         self.shifts.record(self.gear, u.gear);
         self.gear = u.gear;
-        let v_next = horizon::predict_speed(&self.vehicle, road, state.s_m, state.v_mps, u, h_m);
+        let model = self.solver.params().stage_model;
+        let v_next = horizon::predict_speed((&self.vehicle, model), road, state.s_m, state.v_mps, u, h_m);
         let chosen = if v_next > 0.0 { self.solve(road, boundary_m, v_next, u.gear) } else { None };
         self.rescue_next = chosen.is_none() && self.rescues();
         self.pending = chosen.unwrap_or(u);

@@ -2,6 +2,7 @@
 //! and the prediction of the speed one stage ahead under the inputs being applied now.
 
 use super::solver::{InitialState, Solution, Solver};
+use super::stage::{self, StageModel};
 use crate::band::{BandAt, SpeedBand};
 use crate::levels::euler_step;
 use crate::plant::Control;
@@ -42,11 +43,24 @@ pub fn bands_at(band: &SpeedBand, positions: impl Iterator<Item = f64>, out: &mu
     }
 }
 
-/// Speed [m/s] one stage ahead of `s_m` with `u` held, by the controller's own model (one Euler
-/// stage of (5.4) on the stage's mean slope).
-pub fn predict_speed(vehicle: &Vehicle, road: &Road, s_m: f64, v_mps: f64, u: Control, stage_m: f64) -> f64 {
+/// Speed [m/s] one stage ahead of `s_m` with `u` held, by the controller's own stage model on the
+/// stage's mean slope (the thesis's Euler stage (5.4) is kept bit for bit).
+pub fn predict_speed(
+    (vehicle, model): (&Vehicle, StageModel),
+    road: &Road,
+    s_m: f64,
+    v_mps: f64,
+    u: Control,
+    stage_m: f64,
+) -> f64 {
     let slope = road.mean_slope(s_m, s_m + stage_m);
-    euler_step(vehicle, v_mps, u.pedal, u.brake, u.gear, slope, stage_m)
+    match model {
+        StageModel::Euler => euler_step(vehicle, v_mps, u.pedal, u.brake, u.gear, slope, stage_m),
+        StageModel::Trapezoid => {
+            let torque = vehicle.slope_torque_nm(slope);
+            stage::end_speed_with(model, vehicle, (v_mps, stage_m), (u.pedal, u.brake, u.gear), torque)
+        }
+    }
 }
 
 /// Scratch buffers of [`solve_at`]: the horizon's slopes and bands.

@@ -9,8 +9,9 @@ pub mod rows;
 pub mod simd;
 pub mod solver;
 pub mod space;
+pub mod stage;
 pub mod values;
 
-pub use params::{CostKind, DpSettings, GridAnchor, NeutralRule};
+pub use params::{CostKind, DpSettings, GridAnchor, NeutralRule, StageModel};
 pub use solver::{InitialState, Solution, Solver, TrajectoryPoint};
 pub use values::{StageValues, ValueTable};

@@ -3,7 +3,7 @@
 //! meanings are those of the declarations; the solver converts speeds to m/s through the methods
 //! below.
 
-pub use crate::params::{CostKind, GridAnchor, NeutralRule, OnInfeasible};
+pub use crate::params::{CostKind, GridAnchor, NeutralRule, OnInfeasible, StageModel};
 use crate::params::{CruiseParams, MpcParams, ParamSet};
 
 use super::fuel_time;
@@ -56,6 +56,10 @@ pub struct DpSettings {
     pub q_gear_shift: f64,
     /// Q5 per stage [-], resolved.
     pub q_brake: f64,
+    /// Price per engagement of neutral from a forward gear, on top of Q4 [-].
+    pub q_neutral: f64,
+    /// The stage model of every transition, arc and bound.
+    pub stage_model: StageModel,
     /// What is minimised; with [`CostKind::FuelTime`] Q2 is zero.
     pub cost: CostKind,
     /// β [g/s] as given (None: derived from v_ref by [`DpSettings::for_vehicle`]).
@@ -66,8 +70,8 @@ pub struct DpSettings {
     /// Q1 times the grams one unit of ½v² [m²/s²] costs in the cruise gear: the horizon's end is
     /// charged this times ½(v_ref² − v²); 0 until [`DpSettings::for_vehicle`] resolves a fuel_time cost.
     pub q_terminal_per_half_v2: f64,
-    /// Weight per (m/s)² of speed change over a stage: 0, except with the fuel_time cost, where
-    /// it is Q1 · (grams per unit of ½v²) · ½. The DP's explicit Euler stage v_j = v_i + (h/v_i)·a
+    /// Weight per (m/s)² of speed change over a stage: 0, except with the fuel_time cost on Euler
+    /// stages, where it is Q1 · (grams per unit of ½v²) · ½. The explicit Euler stage v_j = v_i + (h/v_i)·a
     /// adds h·a + ½(v_j − v_i)² to ½v², so a path that speeds up and slows down in turn would
     /// gain ½Δv² of kinetic energy a stage for nothing; this charges it back at the engine's
     /// marginal fuel cost (the speed_penalty cost leaves it out: its Q3·|Δv| is larger at any Δv a
@@ -124,6 +128,8 @@ impl DpSettings {
             q_speed_change: mpc.q_speed_change,
             q_gear_shift: mpc.q_gear_shift,
             q_brake: mpc.q_brake_weight(),
+            q_neutral: mpc.q_neutral,
+            stage_model: mpc.stage_model,
             cost: mpc.cost,
             beta_g_per_s: mpc.beta_g_per_s,
             q_time_per_s: 0.0,
@@ -148,7 +154,8 @@ impl DpSettings {
         DpSettings {
             q_time_per_s: self.q_fuel * beta,
             q_terminal_per_half_v2: kinetic,
-            q_speed_change_sq: 0.5 * kinetic,
+            // The trapezoid stage conserves energy: nothing to charge back.
+            q_speed_change_sq: if self.stage_model == StageModel::Euler { 0.5 * kinetic } else { 0.0 },
             ..self
         }
     }

@@ -8,7 +8,8 @@
 //! reaches hold +∞. Speeds of grid indices come from [`GridIndex`], so a row computed for an
 //! absolute grid is the same whichever solve asks for it (what makes caching exact).
 
-use super::params::DpSettings;
+use super::params::{DpSettings, StageModel};
+use super::stage::{self, Branch};
 use crate::levels::{brake_accel_on, pedal_accel_on, stage_fuel_g, AffineAccel};
 use crate::vehicle::Vehicle;
 
@@ -86,20 +87,129 @@ pub struct Inputs {
     pub brake: f64,
 }
 
-/// The per-state constants of a row: both affine maps of (B.1) at v_i and the full-pedal fuel.
+/// The per-state constants of a row: both affine maps of (B.1) at v_i and the full-pedal fuel
+/// (Euler: the whole stage's; trapezoid: the half at v_i), and with the trapezoid stage what the
+/// maps at the end speed need.
 #[derive(Debug, Clone, Copy)]
-struct RowMaps {
+struct RowMaps<'a> {
     pedal: AffineAccel,
     brake: AffineAccel,
     full_fuel_g: f64,
+    trapezoid: Option<EndMaps<'a>>,
 }
 
-fn maps(vehicle: &Vehicle, p: &DpSettings, v_i: f64, gear: usize, slope_torque: f64) -> RowMaps {
+/// What a trapezoid stage evaluates at its end speed: the vehicle, the gear and the slope.
+#[derive(Debug, Clone, Copy)]
+struct EndMaps<'a> {
+    vehicle: &'a Vehicle,
+    gear: usize,
+    slope_torque: f64,
+}
+
+fn maps<'a>(vehicle: &'a Vehicle, p: &DpSettings, v_i: f64, gear: usize, slope_torque: f64) -> RowMaps<'a> {
+    let trapezoid = p.stage_model == StageModel::Trapezoid;
     RowMaps {
         pedal: pedal_accel_on(vehicle, v_i, gear, slope_torque),
         brake: brake_accel_on(vehicle, v_i, gear, slope_torque),
-        full_fuel_g: stage_fuel_g(vehicle, v_i, 1.0, gear, p.stage_m),
+        full_fuel_g: if trapezoid {
+            0.5 * p.stage_m * vehicle.fuel_rate_gps(v_i, 1.0, gear) / v_i
+        } else {
+            stage_fuel_g(vehicle, v_i, 1.0, gear, p.stage_m)
+        },
+        trapezoid: trapezoid.then_some(EndMaps { vehicle, gear, slope_torque }),
     }
+}
+
+/// [`pair`] on a trapezoid stage: the inputs from the maps at both ends, the fuel from the fuel
+/// per metre at both ends.
+#[inline]
+fn pair_trapezoid(p: &DpSettings, m: &RowMaps, end: &EndMaps, v_i: f64, v_j: f64, v_max: f64) -> Option<(Inputs, f64)> {
+    let h = p.stage_m;
+    let change = change_cost(p.q_speed_change, p.q_speed_change_sq, v_i - v_j);
+    let model = StageModel::Trapezoid;
+    if m.pedal.gain > 0.0 {
+        let at_j = pedal_accel_on(end.vehicle, v_j, end.gear, end.slope_torque);
+        let pedal = stage::input_for(model, &m.pedal, &at_j, (v_i, v_j), h);
+        let (pedal_lo, pedal_hi) = p.pedal_band(v_i, m.pedal.gain);
+        if pedal >= pedal_lo && pedal <= pedal_hi {
+            // Above full pedal the tolerance reaches the grid point past the full-pedal end: it is
+            // charged the fuel of the level it needs, not of full pedal, so that no path gains
+            // speed for nothing (a path pulsing between full pedal and a glide would otherwise
+            // gain up to half a grid step a stage).
+            let fuel_per_pedal = m.full_fuel_g + 0.5 * h * end.vehicle.fuel_rate_gps(v_j, 1.0, end.gear) / v_j;
+            let charged = pedal.max(0.0);
+            let inputs = Inputs { pedal: pedal.clamp(0.0, 1.0), brake: 0.0 };
+            return Some((inputs, p.q_fuel * fuel_per_pedal * charged + change));
+        }
+        if pedal > pedal_hi {
+            return None;
+        }
+    }
+    if (v_j - v_max).abs() < p.delta_mps() * BRAKE_WINDOW {
+        let at_j = brake_accel_on(end.vehicle, v_j, end.gear, end.slope_torque);
+        let brake = stage::input_for(model, &m.brake, &at_j, (v_i, v_j), h);
+        if (0.0..=1.0).contains(&brake) {
+            return Some((Inputs { pedal: 0.0, brake }, p.q_brake * brake + change));
+        }
+    }
+    None
+}
+
+/// [`forward_row`] on a trapezoid stage: the span from the end speeds of the pedal band's ends
+/// (one index wider each way, the implicit step being solved to rounding), each cost from
+/// [`pair_trapezoid`].
+#[allow(clippy::too_many_arguments)]
+fn forward_row_trapezoid(
+    vehicle: &Vehicle,
+    p: &DpSettings,
+    v_i: f64,
+    gear: usize,
+    slope_torque: f64,
+    grid: GridIndex,
+    v_max: f64,
+    out: &mut Vec<f64>,
+) -> (RowSpan, usize) {
+    let start = out.len();
+    let m = maps(vehicle, p, v_i, gear, slope_torque);
+    let end = m.trapezoid.expect("a trapezoid row");
+    let h = p.stage_m;
+    let (mut first, mut last) = (i64::MAX, i64::MIN);
+    let pedal_on = m.pedal.gain > 0.0;
+    let mut band_lo = f64::INFINITY;
+    if pedal_on {
+        let (pedal_lo, pedal_hi) = p.pedal_band(v_i, m.pedal.gain);
+        let at =
+            |u: f64| stage::end_speed(StageModel::Trapezoid, vehicle, (v_i, h), gear, slope_torque, (Branch::Pedal, u));
+        band_lo = at(pedal_lo);
+        first = grid.ceil(band_lo) - 1;
+        last = grid.floor(at(pedal_hi)) + 1;
+    }
+    if band_lo > v_max - p.delta_mps() {
+        first = first.min(grid.floor(v_max - p.delta_mps()));
+        last = last.max(grid.ceil(v_max + p.delta_mps()));
+    }
+    first = first.max(grid.ceil(0.0) + 1);
+    if last < first {
+        return (RowSpan { first: 0, len: 0 }, start);
+    }
+    out.extend((first..=last).map(|index| {
+        pair_trapezoid(p, &m, &end, v_i, grid.speed(index), v_max).map_or(f64::INFINITY, |(_, cost)| cost)
+    }));
+    trim(out, start, first)
+}
+
+/// Trim a row's unreachable ends (appended to `out` from `start`, its first index `first`) so the
+/// min-plus loop never scans them.
+fn trim(out: &mut Vec<f64>, start: usize, first: i64) -> (RowSpan, usize) {
+    let row = &out[start..];
+    let Some(lead) = row.iter().position(|c| c.is_finite()) else {
+        out.truncate(start);
+        return (RowSpan { first: 0, len: 0 }, start);
+    };
+    let trail = row.iter().rev().take_while(|c| !c.is_finite()).count();
+    let len = row.len() - lead - trail;
+    out.truncate(start + lead + len);
+    (RowSpan { first: first + lead as i64, len }, start + lead)
 }
 
 /// The cost of a speed change `dv` [m/s] over a stage: Q3·|Δv| plus, with the fuel_time cost,
@@ -113,6 +223,9 @@ pub fn change_cost(q_change: f64, q_change_sq: f64, dv: f64) -> f64 {
 /// None if inadmissible; `v_max` [m/s] is the top of the next stage's band.
 #[inline]
 fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64, v_max: f64) -> Option<(Inputs, f64)> {
+    if let Some(end) = &m.trapezoid {
+        return pair_trapezoid(p, m, end, v_i, v_j, v_max);
+    }
     let h = p.stage_m;
     let change = change_cost(p.q_speed_change, p.q_speed_change_sq, v_i - v_j);
     if m.pedal.gain > 0.0 {
@@ -154,6 +267,9 @@ pub fn forward_row(
     v_max_mps: f64,
     out: &mut Vec<f64>,
 ) -> (RowSpan, usize) {
+    if p.stage_model == StageModel::Trapezoid {
+        return forward_row_trapezoid(vehicle, p, v_i, gear, slope_torque, grid, v_max_mps, out);
+    }
     let start = out.len();
     let m = maps(vehicle, p, v_i, gear, slope_torque);
     let h = p.stage_m;
@@ -213,16 +329,7 @@ pub fn forward_row(
     }
     #[cfg(not(target_arch = "x86_64"))]
     out.extend((first..=last).map(cost));
-    // Trim unreachable ends so the min-plus loop never scans them.
-    let row = &out[start..];
-    let Some(lead) = row.iter().position(|c| c.is_finite()) else {
-        out.truncate(start);
-        return (RowSpan { first: 0, len: 0 }, start);
-    };
-    let trail = row.iter().rev().take_while(|c| !c.is_finite()).count();
-    let len = row.len() - lead - trail;
-    out.truncate(start + lead + len);
-    (RowSpan { first: first + lead as i64, len }, start + lead)
+    trim(out, start, first)
 }
 
 /// The constants of a row's pedal costs.
@@ -322,8 +429,15 @@ mod tests {
     /// trimmed to its finite ends: over speeds, gears and slopes, with brake points next to v_max.
     #[test]
     fn rows_hold_the_costs_of_pair() {
+        let thesis = DpSettings::thesis();
+        rows_hold_the_costs_of_pair_in(&thesis);
+        rows_hold_the_costs_of_pair_in(&DpSettings { stage_model: StageModel::Trapezoid, ..thesis });
+        rows_hold_the_costs_of_pair_in(&DpSettings::default());
+    }
+
+    fn rows_hold_the_costs_of_pair_in(p: &DpSettings) {
         let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
-        let p = DpSettings::thesis();
+        let p = p.clone();
         let mut out = vec![1.0; 3];
         for (s, slope) in [-0.06, -0.03, -0.01, 0.0, 0.01, 0.03, 0.06].into_iter().enumerate() {
             let torque = vehicle.slope_torque_nm(slope);

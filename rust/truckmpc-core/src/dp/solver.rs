@@ -16,15 +16,15 @@
 //! (5.6).) Stages reached before the vehicle's own counter allows a shift keep the current gear.
 
 use super::cache::{Block, CoastArc, RowCache, RowScratch, StageKey, StageRows, LANES, PAD};
-use super::params::{DpSettings, GridAnchor, NeutralRule};
+use super::params::{DpSettings, GridAnchor, NeutralRule, StageModel};
 use super::rows::{change_cost, forward_row, inputs, GridIndex};
 #[cfg(target_arch = "x86_64")]
 use super::simd::lanes::{self, pack, widen};
 use super::simd::{self, LaneMins, LaneOut};
 use super::space::{self, Grid, Intervals};
+use super::stage::{self, Branch};
 use super::values::{StageValues, ValueTable};
 use crate::band::BandAt;
-use crate::levels::{brake_accel_on, stage_fuel_g};
 use crate::vehicle::{Vehicle, NEUTRAL};
 
 const INF: f64 = f64::INFINITY;
@@ -406,12 +406,21 @@ impl Solver {
                 let terminal = &mut self.cost_next[at + lo as usize..=at + hi as usize];
                 terminal.fill(0.0);
                 let weight = self.params.q_terminal_per_half_v2;
+                let grid = self.grids[n_stages];
                 if weight > 0.0 {
                     // The fuel_time cost values the speed left at the end: ½(v_ref² − v²) in fuel.
-                    let (grid, v_ref) = (self.grids[n_stages], self.bands[n_stages].v_ref_mps());
+                    let v_ref = self.bands[n_stages].v_ref_mps();
                     for (cost, j) in terminal.iter_mut().zip(lo as usize..) {
                         let v = grid.speed(j);
                         *cost = weight * 0.5 * (v_ref * v_ref - v * v);
+                    }
+                }
+                let q_time = self.params.q_time_per_s * self.params.stage_m;
+                if q_time > 0.0 && self.params.stage_model == StageModel::Trapezoid {
+                    // Each state is charged h/v (the stay_or_shift pass); the trapezoid's time along
+                    // a path is that sum plus h/(2 v_N) at the end (less a constant h/(2 v_0)).
+                    for (cost, j) in terminal.iter_mut().zip(lo as usize..) {
+                        *cost += 0.5 * q_time / grid.speed(j);
                     }
                 }
             }
@@ -670,6 +679,10 @@ impl Solver {
                     let (cost, j, counter) = join.join(arc, cost_next, counter_next);
                     (all_cost[s], all_j[s], counters[s]) = (cost, j, counter);
                     (shift_cost[s], shift_j[s]) = (if counter >= p.k_lim { cost } else { INF }, j);
+                }
+                if p.q_neutral > 0.0 {
+                    // Shifting into neutral from a forward gear is an engagement: its price on top of Q4.
+                    shift_cost.iter_mut().for_each(|c| *c += p.q_neutral);
                 }
                 transitions += i_hi - i_lo + 1;
                 continue;
@@ -1066,8 +1079,8 @@ unsafe fn decide_staying_avx2<const NEUTRAL_STATE: bool>(input: &StateIn, out: &
 /// fuel in neutral, none at fuel cut) and speed-change cost.
 fn coast_arc(p: &DpSettings, vehicle: &Vehicle, v_i_mps: f64, gear: usize, slope_torque: f64) -> CoastArc {
     let h = p.stage_m;
-    let v_end_mps = brake_accel_on(vehicle, v_i_mps, gear, slope_torque).step(v_i_mps, h, 0.0);
-    let fuel = stage_fuel_g(vehicle, v_i_mps, 0.0, gear, h);
+    let v_end_mps = stage::end_speed(p.stage_model, vehicle, (v_i_mps, h), gear, slope_torque, (Branch::Brake, 0.0));
+    let fuel = stage::fuel_g(p.stage_model, vehicle, (v_i_mps, v_end_mps), 0.0, gear, h);
     let change = change_cost(p.q_speed_change, p.q_speed_change_sq, v_i_mps - v_end_mps);
     CoastArc { v_end_mps, cost: p.q_fuel * fuel + change }
 }

@@ -4,8 +4,8 @@
 
 use super::params::{DpSettings, GridAnchor};
 use super::rows::GridIndex;
+use super::stage::{self, Branch};
 use crate::band::BandAt;
-use crate::levels::{brake_accel, pedal_accel};
 use crate::vehicle::{Vehicle, NEUTRAL};
 
 /// Forward gears whose engine speed at `v_mps` lies in [n_min, n_max], as an inclusive range of
@@ -40,33 +40,45 @@ fn reach_gears(vehicle: &Vehicle, params: &DpSettings, v_mps: f64) -> (usize, us
 /// Speeds after one stage at full pedal, over the reachability gears: (max, min) [m/s].
 /// Neutral counts towards the maximum when allowed: on a steep descent it can beat a gear.
 fn full_pedal_speeds(vehicle: &Vehicle, params: &DpSettings, v_mps: f64, slope: f64) -> (f64, f64) {
-    let h = params.stage_m;
     let (lo, hi) = reach_gears(vehicle, params, v_mps);
+    let torque = vehicle.slope_torque_nm(slope);
     let mut best = f64::NEG_INFINITY;
     let mut worst = f64::INFINITY;
     for g in lo..=hi {
-        let v1 = pedal_accel(vehicle, v_mps, g, slope).step(v_mps, h, 1.0);
+        let v1 = end_of_stage(vehicle, params, v_mps, g, torque, (Branch::Pedal, 1.0));
         best = best.max(v1);
         worst = worst.min(v1);
     }
     if params.allow_neutral {
-        best = best.max(brake_accel(vehicle, v_mps, NEUTRAL, slope).step(v_mps, h, 0.0));
+        best = best.max(end_of_stage(vehicle, params, v_mps, NEUTRAL, torque, (Branch::Brake, 0.0)));
     }
     (best, worst)
 }
 
 /// Lowest speed after one stage without brakes: fuel cut in the gear with the most engine drag.
 fn lowest_speed(vehicle: &Vehicle, params: &DpSettings, v_mps: f64, slope: f64) -> f64 {
-    let h = params.stage_m;
     let (lo, hi) = reach_gears(vehicle, params, v_mps);
+    let torque = vehicle.slope_torque_nm(slope);
     let mut v_min = f64::INFINITY;
     for g in lo..=hi {
-        v_min = v_min.min(brake_accel(vehicle, v_mps, g, slope).step(v_mps, h, 0.0));
+        v_min = v_min.min(end_of_stage(vehicle, params, v_mps, g, torque, (Branch::Brake, 0.0)));
     }
     if params.allow_neutral {
-        v_min = v_min.min(brake_accel(vehicle, v_mps, NEUTRAL, slope).step(v_mps, h, 0.0));
+        v_min = v_min.min(end_of_stage(vehicle, params, v_mps, NEUTRAL, torque, (Branch::Brake, 0.0)));
     }
     v_min
+}
+
+/// End speed of one stage from `v_mps` in `gear` by the settings' stage model.
+fn end_of_stage(
+    vehicle: &Vehicle,
+    params: &DpSettings,
+    v_mps: f64,
+    gear: usize,
+    torque: f64,
+    input: (Branch, f64),
+) -> f64 {
+    stage::end_speed(params.stage_model, vehicle, (v_mps, params.stage_m), gear, torque, input)
 }
 
 /// One stage's velocity grid: v(j) = first_mps + j·δ for j in 0..count.

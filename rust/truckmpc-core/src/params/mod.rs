@@ -17,7 +17,7 @@ mod value;
 mod vehicle;
 
 pub use cruise::CruiseParams;
-pub use mpc::{CostKind, GridAnchor, MpcParams, NeutralRule, OnInfeasible};
+pub use mpc::{CostKind, GridAnchor, MpcParams, NeutralRule, OnInfeasible, StageModel};
 pub use pcc::PccParams;
 pub use pi::PiParams;
 pub use settings::RunSettings;

@@ -50,6 +50,18 @@ choice_enum! {
 }
 
 choice_enum! {
+    /// The DP's model of one stage with constant inputs ([`crate::dp::stage`]).
+    pub enum StageModel {
+        /// The thesis's explicit Euler stage (5.4): first order in S; a path that speeds up and
+        /// slows down in turn gains kinetic energy the plant does not give.
+        Euler = "euler",
+        /// Kinetic energy integrated by the trapezoid rule, fuel and time by the same rule: second
+        /// order in S, and a closed speed cycle gains no energy.
+        Trapezoid = "trapezoid",
+    }
+}
+
+choice_enum! {
     /// What the controller does when a solve finds no admissible path.
     pub enum OnInfeasible {
         /// Solve again with the lower speed bound and the shift limit relaxed; failing that, drive
@@ -95,6 +107,8 @@ declare_params! {
         q_speed_change: f64 = 15.0, unit "1/(m/s)", range Range::between(0.0, 1e6);
         /// Q4, weight per gear shift.
         q_gear_shift: f64 = 15.0, unit "1/shift", range Range::between(0.0, 1e6);
+        /// Price per engagement of neutral (a shift from a forward gear into neutral, on top of Q4): a drivability price, not fuel.
+        q_neutral: f64 = 0.0, unit "1/engagement", range Range::between(0.0, 1e6);
         /// Q5 per stage, weight per unit brake level held over a stage; null = q_brake_per_km × S.
         q_brake: Option<f64> = None, unit "-", range Range::between(0.0, 1e6);
         /// Q5 per kilometre, weight per unit brake level held over a kilometre (used when q_brake is null).
@@ -103,6 +117,8 @@ declare_params! {
         cost: CostKind = CostKind::SpeedPenalty, unit "-", range Range::ANY;
         /// β of the fuel_time cost, the fuel worth one second of trip time; null = the β for which steady v_ref is optimal on a flat road.
         beta_g_per_s: Option<f64> = None, unit "g/s", range Range::between(0.0, 1e4);
+        /// The DP's stage model: euler (the thesis's, first order in S) or trapezoid (kinetic energy, fuel and time by the trapezoid rule, second order).
+        stage_model: StageModel = StageModel::Trapezoid, unit "-", range Range::ANY;
         /// Fuel cut in a forward gear is also an exact arc: its end speed off the grid, joined to the next stage's grid by neutral_rule (otherwise only the grid point above fuel cut, at a small pedal, or below it within ε).
         fuel_cut_arcs: bool = true, unit "-", range Range::ANY;
         /// Neutral arcs end on the nearest grid point, or interpolate the cost-to-go linearly or through the three nearest points.
@@ -130,6 +146,7 @@ impl MpcParams {
             neutral_rule: NeutralRule::Nearest,
             grid: GridAnchor::Moving,
             on_infeasible: OnInfeasible::Hold,
+            stage_model: StageModel::Euler,
             ..MpcParams::default()
         }
     }
