@@ -119,11 +119,15 @@ fn one_stage_solves_against_the_stored_values_follow_the_whole_road_optimum() {
         for (k, &slope) in slopes.iter().enumerate().skip(1) {
             let point = whole.trajectory[k];
             let state =
-                InitialState { v_mps: point.v_mps, gear: whole.trajectory[k - 1].gear, stages_since_shift: since };
+                InitialState { v_mps: point.v_grid_mps, gear: whole.trajectory[k - 1].gear, stages_since_shift: since };
             let step = one.solve_to_values(&vehicle, state, slope, None, &table.stages[k + 1]);
             assert!(step.feasible, "stage {k}");
             assert_eq!(step.gear, point.gear, "stage {k}");
-            assert!((step.pedal - point.pedal).abs() < 1e-12 && (step.brake - point.brake).abs() < 1e-12, "stage {k}");
+            // The trajectory's inputs aim from its own speed (off the grid after an arc on
+            // trapezoid stages); the one-stage solve's from the grid state.
+            let on_grid = point.v_mps == point.v_grid_mps;
+            let same = (step.pedal - point.pedal).abs() < 1e-12 && (step.brake - point.brake).abs() < 1e-12;
+            assert!(same || !on_grid, "stage {k}");
             since = if point.gear != state.gear { 1 } else { (since + 1).min(p.k_lim) };
         }
     }

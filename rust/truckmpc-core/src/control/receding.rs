@@ -269,7 +269,9 @@ impl RecedingController {
 
     fn timed_solve(&mut self, road: &Road, s_m: f64, start: InitialState, relaxed: bool) -> Option<Control> {
         let began = Instant::now();
-        let planned = if relaxed { None } else { self.solve_against_plan(s_m, start) };
+        // A state the plan's stored states do not reach (the plant a little slower than the plan
+        // on a climb at full pedal) is solved over the horizon instead, as the MPC would.
+        let planned = if relaxed { None } else { self.solve_against_plan(s_m, start) }.filter(|s| s.feasible);
         let solution = match planned {
             Some(solution) => solution,
             None => {

@@ -130,16 +130,12 @@ fn pair_trapezoid(p: &DpSettings, m: &RowMaps, end: &EndMaps, v_i: f64, v_j: f64
     if m.pedal.gain > 0.0 {
         let at_j = pedal_accel_on(end.vehicle, v_j, end.gear, end.slope_torque);
         let pedal = stage::input_for(model, &m.pedal, &at_j, (v_i, v_j), h);
-        let (pedal_lo, pedal_hi) = p.pedal_band(v_i, m.pedal.gain);
+        let (pedal_lo, pedal_hi) = trapezoid_pedal_band(p, v_i, m.pedal.gain);
         if pedal >= pedal_lo && pedal <= pedal_hi {
-            // Above full pedal the tolerance reaches the grid point past the full-pedal end: it is
-            // charged the fuel of the level it needs, not of full pedal, so that no path gains
-            // speed for nothing (a path pulsing between full pedal and a glide would otherwise
-            // gain up to half a grid step a stage).
             let fuel_per_pedal = m.full_fuel_g + 0.5 * h * end.vehicle.fuel_rate_gps(v_j, 1.0, end.gear) / v_j;
-            let charged = pedal.max(0.0);
-            let inputs = Inputs { pedal: pedal.clamp(0.0, 1.0), brake: 0.0 };
-            return Some((inputs, p.q_fuel * fuel_per_pedal * charged + change));
+            let clipped = pedal.clamp(0.0, 1.0);
+            let cost = p.q_fuel * fuel_per_pedal * pedal.max(0.0) + change;
+            return Some((Inputs { pedal: clipped, brake: 0.0 }, cost));
         }
         if pedal > pedal_hi {
             return None;
@@ -153,6 +149,18 @@ fn pair_trapezoid(p: &DpSettings, m: &RowMaps, end: &EndMaps, v_i: f64, v_j: f64
         }
     }
     None
+}
+
+/// The pedal levels a trapezoid row accepts from `v_i`: never above full pedal (a level clipped
+/// to full pedal would reach the grid point past the full-pedal end for nothing: a path pulsing
+/// between full pedal and a glide gained half a grid step a stage), the full-pedal end being an
+/// exact arc of the solver's instead; and from zero when fuel cut is an exact arc too (a level
+/// below zero, clipped to zero, is fuel cut in the plant, whose engine drag brakes much harder
+/// than the map at zero pedal the row assumed), else from −ε as the Euler rows.
+#[inline]
+fn trapezoid_pedal_band(p: &DpSettings, v_i: f64, gain: f64) -> (f64, f64) {
+    let (lo, hi) = p.pedal_band(v_i, gain);
+    (if p.fuel_cut_arcs && std::env::var("TPLO").is_err() { 0.0 } else { lo }, hi)
 }
 
 /// [`forward_row`] on a trapezoid stage: the span from the end speeds of the pedal band's ends
@@ -177,7 +185,7 @@ fn forward_row_trapezoid(
     let pedal_on = m.pedal.gain > 0.0;
     let mut band_lo = f64::INFINITY;
     if pedal_on {
-        let (pedal_lo, pedal_hi) = p.pedal_band(v_i, m.pedal.gain);
+        let (pedal_lo, pedal_hi) = trapezoid_pedal_band(p, v_i, m.pedal.gain);
         let at =
             |u: f64| stage::end_speed(StageModel::Trapezoid, vehicle, (v_i, h), gear, slope_torque, (Branch::Pedal, u));
         band_lo = at(pedal_lo);

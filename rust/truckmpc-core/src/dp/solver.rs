@@ -16,7 +16,7 @@
 //! (5.6).) Stages reached before the vehicle's own counter allows a shift keep the current gear.
 
 use super::cache::{Block, CoastArc, RowCache, RowScratch, StageKey, StageRows, LANES, PAD};
-use super::params::{DpSettings, GridAnchor, NeutralRule, StageModel};
+use super::params::{CostKind, DpSettings, GridAnchor, NeutralRule, StageModel};
 use super::rows::{change_cost, forward_row, inputs, GridIndex};
 #[cfg(target_arch = "x86_64")]
 use super::simd::lanes::{self, pack, widen};
@@ -60,8 +60,11 @@ pub struct InitialState {
 /// One stage of the optimal predicted trajectory.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct TrajectoryPoint {
-    /// Speed at the start of the stage [m/s].
+    /// Speed at the start of the stage [m/s]: on trapezoid stages the speed the decisions before
+    /// give (off the grid after an arc), on Euler stages the grid speed.
     pub v_mps: f64,
+    /// Grid speed of the stage's state in the plan [m/s].
+    pub v_grid_mps: f64,
     /// Gear used over the stage.
     pub gear: usize,
     /// Pedal level over the stage.
@@ -84,7 +87,7 @@ pub struct Solution {
     /// First control: gear.
     pub gear: usize,
     /// Predicted optimal trajectory, one point per stage; the last point has the final speed and
-    /// zero inputs. Speeds on later stages are grid speeds.
+    /// zero inputs.
     pub trajectory: Vec<TrajectoryPoint>,
     /// Number of (speed, gear) states in the search space.
     pub states: usize,
@@ -182,6 +185,13 @@ impl Decision {
 /// fuel-cut arc, whose end speed is off the grid and whose control is zero pedal and brake; the
 /// index is the grid point nearest to the arc's end. Grid indices stay below 2^16.
 const ARC: u32 = 1 << 24;
+
+/// Flag on a choice's next-grid index: the way into the target gear is its full-pedal arc (a
+/// trapezoid stage's), whose end speed is off the grid and whose control is full pedal.
+const FULL: u32 = 1 << 25;
+
+/// Both flags of a choice's next-grid index.
+const FLAGS: u32 = ARC | FULL;
 
 /// One stage's grid: speeds of grid indices `first..first + count` of `index`.
 #[derive(Debug, Clone, Copy)]
@@ -379,7 +389,11 @@ impl Solver {
             Ends::Values(next) => Some(*next),
             _ => None,
         };
-        self.build_space(vehicle, start, slopes, first_stage, terminal);
+        // A horizon of the fuel_time cost ends on its reachable speeds, priced by the terminal cost
+        // (its kinetic energy in fuel): requiring v_ref there kept the truck from planning a coast
+        // into a descent beyond the horizon. The whole road ends at v_ref, as every cost does.
+        let raise_end = matches!(ends, Ends::Recording(_));
+        self.build_space(vehicle, start, slopes, first_stage, terminal, raise_end);
         let cached_from = if self.caching { first_stage } else { None };
         if let Some(stage) = cached_from {
             // Stage k of this solve (k ≥ 1 has grid states) is absolute stage `stage + k`.
@@ -502,11 +516,13 @@ impl Solver {
         slopes: &[f64],
         first_stage: Option<u64>,
         terminal: Option<&StageValues>,
+        raise_end: bool,
     ) {
         // Absolute stages, when known, let the interval passes reuse steps of earlier solves.
         let p = &self.params;
         let memo = first_stage.filter(|_| self.caching).map(|stage| (stage, &mut self.interval_memo));
-        space::intervals_from_stage(vehicle, p, start.v_mps, slopes, &self.bands, memo, &mut self.intervals);
+        let raise_end = raise_end || p.cost == CostKind::SpeedPenalty;
+        space::intervals_from_stage(vehicle, p, start.v_mps, slopes, &self.bands, memo, raise_end, &mut self.intervals);
         let delta = p.delta_mps();
         self.grids.clear();
         self.grids.push(StageGrid {
@@ -726,7 +742,21 @@ impl Solver {
                     // The counter of the grid point the path continues from, not the stencil's
                     // smallest (the neutral state's rule): this arc's state is a forward gear's.
                     let (cost, j, _) = join.join(arc, cost_next, counter_next);
-                    better_by_arc(cost, j, counter_next[j as usize] >= p.k_lim, ch, at);
+                    better_by_arc(cost, j | ARC, counter_next[j as usize] >= p.k_lim, ch, at);
+                }
+                transitions += (key_hi - key_lo + 1) as usize;
+            }
+            if p.stage_model == StageModel::Trapezoid {
+                // Full pedal as an exact arc too: the trapezoid's rows stop at full pedal.
+                let arcs = stage.arcs(gears + g);
+                arcs.fill(key_lo, key_hi, |key| full_pedal_arc(p, vehicle, here.index.speed(key), g, slope_torque));
+                let block = g * stride(next.count) + PAD;
+                let (cost_next, counter_next) = (&self.cost_next[block..], &self.counter_next[block..]);
+                let join = ArcJoin::full_pedal(p, next, (lo, hi));
+                let slot0 = out + (key_lo - ch.base_key) as usize;
+                for (at, arc) in (slot0..).zip(arcs.get(key_lo, key_hi)) {
+                    let (cost, j, _) = join.join(arc, cost_next, counter_next);
+                    better_by_arc(cost, j | FULL, counter_next[j as usize] >= p.k_lim, ch, at);
                 }
                 transitions += (key_hi - key_lo + 1) as usize;
             }
@@ -847,25 +877,42 @@ impl Solver {
     fn trace(&self, vehicle: &Vehicle, start: InitialState, out: &mut Solution) {
         let (mut i, mut g) = (0usize, start.gear);
         let mut v = start.v_mps;
+        // On trapezoid stages the trajectory follows the speeds the decisions give (an arc ends
+        // off the grid, and the next stage's inputs aim at its planned grid speed from there), so
+        // the plan's fuel and time are those of driving it; on Euler stages it runs on the grid.
+        let exact = self.params.stage_model == StageModel::Trapezoid;
         out.trajectory.clear();
         for k in 0..self.grids.len() - 1 {
             let d = self.decisions[self.offsets[k] + g * self.grids[k].count + i];
             let (next_i, next_g) = (d.j as usize, d.gear as usize);
             let v_next = self.grids[k + 1].speed(next_i);
-            let (pedal, brake) = if next_g == NEUTRAL || d.arc != 0 {
+            let (pedal, brake) = if next_g == NEUTRAL || d.arc == (ARC >> 24) as u8 {
                 (0.0, 0.0)
+            } else if d.arc == (FULL >> 24) as u8 {
+                (1.0, 0.0)
             } else {
                 let v_max = self.bands[k + 1].v_max_mps();
-                let u = inputs(vehicle, &self.params, (v, v_next, v_max), next_g, self.slope_torques[k])
+                let torque = self.slope_torques[k];
+                let planned = |from: f64| inputs(vehicle, &self.params, (from, v_next, v_max), next_g, torque);
+                let u = planned(v)
+                    .or_else(|| planned(self.grids[k].speed(i)))
                     .unwrap_or(super::rows::Inputs { pedal: 0.0, brake: 0.0 });
                 (u.pedal, u.brake)
             };
-            out.trajectory.push(TrajectoryPoint { v_mps: v, gear: next_g, pedal, brake });
+            let v_grid_mps = self.grids[k].speed(i);
+            out.trajectory.push(TrajectoryPoint { v_mps: v, v_grid_mps, gear: next_g, pedal, brake });
+            v = if exact {
+                let h = self.params.stage_m;
+                let input = (pedal, brake, next_g);
+                stage::end_speed_with(self.params.stage_model, vehicle, (v, h), input, self.slope_torques[k])
+            } else {
+                v_next
+            };
             i = next_i;
             g = next_g;
-            v = v_next;
         }
-        out.trajectory.push(TrajectoryPoint { v_mps: v, gear: g, pedal: 0.0, brake: 0.0 });
+        let v_grid_mps = self.grids[self.grids.len() - 1].speed(i);
+        out.trajectory.push(TrajectoryPoint { v_mps: v, v_grid_mps, gear: g, pedal: 0.0, brake: 0.0 });
         let first = out.trajectory[0];
         out.pedal = first.pedal;
         out.brake = first.brake;
@@ -949,7 +996,7 @@ fn decide_states<const STAYS: bool, const NEUTRAL_STATE: bool>(
             } else if NEUTRAL_STATE {
                 input.neutral_counter[t]
             } else {
-                input.counter_next[(j & !ARC) as usize]
+                input.counter_next[(j & !FLAGS) as usize]
             };
             (stay_cost, Decision::new(j, input.gear), carried.saturating_add(1).min(u32::MAX / 2))
         };
@@ -1008,7 +1055,7 @@ unsafe fn decide_staying_avx2<const NEUTRAL_STATE: bool>(input: &StateIn, out: &
     let lane_offsets = _mm_setr_epi32(0, 1, 2, 3);
     // A choice's index in the low half and its flag byte on top, the gear going in between.
     let index_and_flag = _mm_set1_epi32(0xff00_ffff_u32 as i32);
-    let arc = _mm_set1_epi32(ARC as i32);
+    let arc = _mm_set1_epi32(FLAGS as i32);
     let low8 = _mm_set1_epi32(0xff);
     // Lanes are loaded at indices clamped (as u32) into the slices, non-empty as checked above, and
     // kept only where the scalar loop reads.
@@ -1085,15 +1132,26 @@ fn coast_arc(p: &DpSettings, vehicle: &Vehicle, v_i_mps: f64, gear: usize, slope
     CoastArc { v_end_mps, cost: p.q_fuel * fuel + change }
 }
 
-/// Let a fuel-cut arc of cost `cost` (cost-to-go included) to grid point `j` take choice slot `at`
-/// where it is strictly cheaper, and the shift choice too when its continuation allows a shift.
+/// The full-pedal arc from `v_i_mps` in forward `gear` on a trapezoid stage: its end speed, off
+/// the grid, and its fuel and speed-change cost.
+fn full_pedal_arc(p: &DpSettings, vehicle: &Vehicle, v_i_mps: f64, gear: usize, slope_torque: f64) -> CoastArc {
+    let h = p.stage_m;
+    let v_end_mps = stage::end_speed(p.stage_model, vehicle, (v_i_mps, h), gear, slope_torque, (Branch::Pedal, 1.0));
+    let fuel = stage::fuel_g(p.stage_model, vehicle, (v_i_mps, v_end_mps), 1.0, gear, h);
+    let change = change_cost(p.q_speed_change, p.q_speed_change_sq, v_i_mps - v_end_mps);
+    CoastArc { v_end_mps, cost: p.q_fuel * fuel + change }
+}
+
+/// Let an arc of cost `cost` (cost-to-go included) to grid point `j` (with its [`ARC`] or
+/// [`FULL`] flag) take choice slot `at` where it is strictly cheaper, and the shift choice too
+/// when its continuation allows a shift.
 #[inline]
 fn better_by_arc(cost: f64, j: u32, shiftable: bool, ch: &mut Choices, at: usize) {
     if cost < ch.all_cost[at] {
-        (ch.all_cost[at], ch.all_j[at]) = (cost, j | ARC);
+        (ch.all_cost[at], ch.all_j[at]) = (cost, j);
     }
     if shiftable && cost < ch.shift_cost[at] {
-        (ch.shift_cost[at], ch.shift_j[at]) = (cost, j | ARC);
+        (ch.shift_cost[at], ch.shift_j[at]) = (cost, j);
     }
 }
 
@@ -1101,6 +1159,12 @@ fn better_by_arc(cost: f64, j: u32, shiftable: bool, ch: &mut Choices, at: usize
 /// gear's index range, with the stage's constants computed once.
 struct ArcJoin {
     rule: NeutralRule,
+    /// Whether an arc ending less than a grid step above the top state is joined to it, its
+    /// cost-to-go extrapolated linearly from the two top states (full-pedal arcs: the top of the
+    /// next stage is the grid speed full pedal reaches from the top of this one, so the arc from
+    /// the top ends above it, and without this the top state could only stay at the top with a
+    /// little less than full pedal, giving away power on every climb).
+    extrapolate_top: bool,
     /// Speed of next-grid index 0 [m/s].
     origin_mps: f64,
     delta_mps: f64,
@@ -1110,7 +1174,19 @@ struct ArcJoin {
 
 impl ArcJoin {
     fn new(p: &DpSettings, next: StageGrid, (lo, hi): (u32, u32)) -> Self {
-        ArcJoin { rule: p.neutral_rule, origin_mps: next.speed(0), delta_mps: p.delta_mps(), lo, hi }
+        ArcJoin {
+            rule: p.neutral_rule,
+            extrapolate_top: false,
+            origin_mps: next.speed(0),
+            delta_mps: p.delta_mps(),
+            lo,
+            hi,
+        }
+    }
+
+    /// The join of full-pedal arcs ([`ArcJoin::extrapolate_top`]).
+    fn full_pedal(p: &DpSettings, next: StageGrid, range: (u32, u32)) -> Self {
+        ArcJoin { extrapolate_top: true, ..Self::new(p, next, range) }
     }
 
     /// (cost with the cost-to-go, next-grid index, counter of the continuation); cost +∞ when
@@ -1120,6 +1196,14 @@ impl ArcJoin {
         const NONE: (f64, u32, u32) = (INF, 0, 0);
         let (lo, hi) = (self.lo, self.hi);
         let x = (arc.v_end_mps - self.origin_mps) / self.delta_mps;
+        if self.extrapolate_top && x > hi as f64 && x <= hi as f64 + 1.0 && hi > lo {
+            let (top, below) = (cost_next[hi as usize], cost_next[hi as usize - 1]);
+            if !(top.is_finite() && below.is_finite()) {
+                return NONE;
+            }
+            let to_go = top + (x - hi as f64) * (top - below);
+            return (arc.cost + to_go, hi, counter_next[hi as usize]);
+        }
         // Grid indices are never negative; x below −0.5 is outside the grid either way.
         if x < lo as f64 - 0.5 || x > hi as f64 + 0.5 {
             return NONE;
@@ -1635,6 +1719,7 @@ mod tests {
         for case in 0..300 {
             let (lo, hi) = (next(6) as u32, 6 + next(20) as u32);
             let join = ArcJoin {
+                extrapolate_top: false,
                 rule: NeutralRule::Nearest,
                 origin_mps: 20.0 + next(100) as f64 * 0.01,
                 delta_mps: 0.1 / 3.6,

@@ -117,10 +117,11 @@ pub fn intervals(
     bands: &[BandAt],
     out: &mut Intervals,
 ) {
-    intervals_from_stage(vehicle, params, v0_mps, slopes, bands, None, out)
+    intervals_from_stage(vehicle, params, v0_mps, slopes, bands, None, true, out)
 }
 
-/// As [`intervals`], with the absolute index of the first stage and a memo kept across solves:
+/// As [`intervals`], with the final stage's lower bound raised to its v_ref only when `raise_end`,
+/// and with the absolute index of the first stage and a memo kept across solves:
 /// each step of the forward and backward passes is a function of its stage's slope and its input
 /// bounds only, and successive receding horizons mostly repeat the same steps at the same road
 /// stages (the chains of bounds meet). A step whose stage, slope and inputs (bit for bit) are
@@ -133,6 +134,7 @@ pub fn intervals_from_stage(
     slopes: &[f64],
     bands: &[BandAt],
     memo: Option<(u64, &mut IntervalMemo)>,
+    raise_end: bool,
     out: &mut Intervals,
 ) {
     debug_assert_eq!(bands.len(), slopes.len() + 1);
@@ -161,7 +163,8 @@ pub fn intervals_from_stage(
         out.hi.push(hi);
     }
     let n = slopes.len();
-    let v_ref_end = bands[n].v_ref_mps();
+    // Without the raise the final stage keeps its reachable speeds: the terminal cost prices them.
+    let v_ref_end = if raise_end { bands[n].v_ref_mps() } else { out.lo[n] };
     out.lo[n] = match params.grid {
         GridAnchor::Moving => v_ref_end.min(out.hi[n]),
         GridAnchor::Fixed => {

@@ -1,10 +1,12 @@
 //! The look-ahead controller's parameters (tables 5.2, 6.1 and 6.2). Its cost weighs fuel in grams
 //! and speeds in m/s: with these units table 6.2's weights give chapter 6's behaviour.
 //!
-//! The defaults are a controller whose closed-loop result converges as δ and S shrink: a fixed
-//! grid, fuel cut and neutral as exact arcs joined by three-point interpolation, a pedal tolerance
-//! of half a grid step, and Q2 and Q5 per kilometre (5 and 100 per stage at S = 25 m, as table 6.2
-//! at δ < 0.15 km/h). [`MpcParams::thesis`] (the `thesis` preset) is the controller as printed.
+//! The defaults are the physical cost, fuel + β·trip time, on a stage model accurate to second
+//! order (the trapezoid), with a closed-loop result that converges as δ and S shrink: a fixed grid,
+//! fuel cut, full pedal and neutral as exact arcs joined by three-point interpolation, a 3 km
+//! horizon, and a drivability price on gear shifts and neutral engagements (Q4, q_neutral) instead
+//! of a price on speed changes. [`MpcParams::thesis`] (the `thesis` preset) is the controller as
+//! printed: the speed-penalty cost (5.9) on Euler stages over 1.5 km.
 
 use super::{CruiseParams, Range};
 use crate::error::{CoreError, CoreResult};
@@ -84,9 +86,9 @@ declare_params! {
         /// S, stage length: one solve per stage, its control held over the stage.
         stage_m: f64 = 25.0, unit "m", range Range::positive_up_to(1e4);
         /// Prediction horizon; N = round(horizon / S) stages.
-        horizon_m: f64 = 1500.0, unit "m", range Range::positive_up_to(1e6);
+        horizon_m: f64 = 3000.0, unit "m", range Range::positive_up_to(1e6);
         /// δ, step of the DP's speed grid.
-        delta_kmh: f64 = 0.025, unit "km/h", range Range::positive_up_to(100.0);
+        delta_kmh: f64 = 0.05, unit "km/h", range Range::positive_up_to(100.0);
         /// ε, pedal tolerance: levels in [-ε, 1 + ε] are accepted and clipped to [0, 1]; null = half a grid step δ of speed change.
         epsilon: Option<f64> = None, unit "-", range Range::between(0.0, 1.0);
         /// Least number of stages between two gear shifts; null = 200 m / S (table 6.1).
@@ -104,17 +106,17 @@ declare_params! {
         /// Q2 per kilometre driven, so that S is a resolution of one cost (used when q_speed_below is null).
         q_speed_below_per_km: Option<f64> = Some(200.0), unit "1/((m/s)^2 km)", range Range::between(0.0, 1e9);
         /// Q3, weight per m/s of speed change over a stage.
-        q_speed_change: f64 = 15.0, unit "1/(m/s)", range Range::between(0.0, 1e6);
+        q_speed_change: f64 = 0.0, unit "1/(m/s)", range Range::between(0.0, 1e6);
         /// Q4, weight per gear shift.
-        q_gear_shift: f64 = 15.0, unit "1/shift", range Range::between(0.0, 1e6);
+        q_gear_shift: f64 = 6.0, unit "1/shift", range Range::between(0.0, 1e6);
         /// Price per engagement of neutral (a shift from a forward gear into neutral, on top of Q4): a drivability price, not fuel.
-        q_neutral: f64 = 0.0, unit "1/engagement", range Range::between(0.0, 1e6);
+        q_neutral: f64 = 6.0, unit "1/engagement", range Range::between(0.0, 1e6);
         /// Q5 per stage, weight per unit brake level held over a stage; null = q_brake_per_km × S.
         q_brake: Option<f64> = None, unit "-", range Range::between(0.0, 1e6);
         /// Q5 per kilometre, weight per unit brake level held over a kilometre (used when q_brake is null).
         q_brake_per_km: Option<f64> = Some(4000.0), unit "1/km", range Range::between(0.0, 1e9);
         /// What the controller minimises: the thesis's speed_penalty criterion, or fuel_time (fuel + β·trip time, Q3·|Δv|, Q4 and Q5; q_speed_below unused).
-        cost: CostKind = CostKind::SpeedPenalty, unit "-", range Range::ANY;
+        cost: CostKind = CostKind::FuelTime, unit "-", range Range::ANY;
         /// β of the fuel_time cost, the fuel worth one second of trip time; null = the β for which steady v_ref is optimal on a flat road.
         beta_g_per_s: Option<f64> = None, unit "g/s", range Range::between(0.0, 1e4);
         /// The DP's stage model: euler (the thesis's, first order in S) or trapezoid (kinetic energy, fuel and time by the trapezoid rule, second order).
@@ -132,8 +134,9 @@ declare_params! {
 
 impl MpcParams {
     /// The thesis's controller as printed (chapter 5, tables 6.1 and 6.2; the `thesis` preset): the
-    /// moving grid at δ 0.2 km/h, ε = 0.1, neutral arcs on the nearest grid point, no fuel-cut
-    /// arcs, Q2 and Q5 per stage, and the inputs kept when a solve finds no admissible path.
+    /// speed-penalty cost with Q3 = Q4 = 15 on Euler stages over a 1.5 km horizon, the moving grid
+    /// at δ 0.2 km/h, ε = 0.1, neutral arcs on the nearest grid point, no fuel-cut arcs, Q2 and Q5
+    /// per stage, and the inputs kept when a solve finds no admissible path.
     pub fn thesis() -> Self {
         MpcParams {
             delta_kmh: 0.2,
@@ -147,6 +150,11 @@ impl MpcParams {
             grid: GridAnchor::Moving,
             on_infeasible: OnInfeasible::Hold,
             stage_model: StageModel::Euler,
+            cost: CostKind::SpeedPenalty,
+            horizon_m: 1500.0,
+            q_speed_change: 15.0,
+            q_gear_shift: 15.0,
+            q_neutral: 0.0,
             ..MpcParams::default()
         }
     }
