@@ -76,3 +76,17 @@ def test_below_the_enabling_speed_no_event_starts() -> None:
     lead = between(pcc.trace, 0.0, 450.0)
     assert np.allclose(pcc.trace["speed_kmh"][lead], pi.trace["speed_kmh"][lead], atol=0.05)
 
+
+def test_eco_roll_is_a_neutral_engagement_not_a_gear_shift() -> None:
+    """Through the use case 1 test's descent the PCC declutches once (the coast before the descent)
+    and re-engages: one neutral engagement, and no more gear shifts than the PI, which never
+    declutches. Without eco-roll it coasts in gear: no engagement."""
+    road = make_section("hill", 500.0, -3.0)
+    pcc, pi = run(road)
+    gears = pcc.trace["gear"]
+    entries = int(np.sum((gears[1:] == 0) & (gears[:-1] != 0)))
+    assert pcc.summary["neutral_engagements"] == entries >= 1
+    assert pi.summary["neutral_engagements"] == 0
+    assert pcc.summary["gear_shifts"] <= pi.summary["gear_shifts"] + entries
+    in_gear, _ = run(road, "eco_roll=false")
+    assert in_gear.summary["neutral_engagements"] == 0
