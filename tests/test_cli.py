@@ -253,6 +253,11 @@ BAD_INPUTS = [
     (["--set", "mass_kg=-5"], ["--set mass_kg"]),
     (["--set", "v_inc_kmh=-1"], ["--set v_inc_kmh"]),
     (["--set", "top_speed=3"], ["--set top_speed", "unknown"]),
+    # A set speed the truck cannot drive, and the PCC's band keys that the one band replaced (issue 25).
+    (["--set", "v_ref_kmh=200"], ["--set v_ref_kmh", "top speed 119.90 km/h", "got 200"]),
+    (["--set", "v_ref_kmh=10"], ["--set v_ref_kmh", "lowest usable speed 5.32 km/h"]),
+    (["--set", "pcc_underspeed_kmh=6"], ["--set pcc_underspeed_kmh", "replaced by 'v_dec_kmh'"]),
+    (["--set", "pcc_overspeed_kmh=6"], ["--set pcc_overspeed_kmh", "replaced by 'v_inc_kmh'"]),
     (["--set", "mass_kg"], ["--set", "key=value"]),
     (["--controller", "fuzzy"], ["--controller"]),
     # MPC configuration (issue 3): each names the key and what was expected.

@@ -4,6 +4,7 @@ key tables follow from them, layering works, and every bad input gives one line 
 
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 
@@ -220,6 +221,55 @@ def test_set_parses_yaml_values() -> None:
 def test_a_cross_key_error_blames_the_key_set_last(override: str, start: str) -> None:
     message = one_line_error([start], overrides=[override])
     assert message.startswith(start) and "configs/" not in message
+
+
+@pytest.mark.parametrize(("old", "new"), [("pcc_underspeed_kmh", "v_dec_kmh"), ("pcc_overspeed_kmh", "v_inc_kmh")])
+def test_a_replaced_key_names_its_replacement(tmp_path: Path, old: str, new: str) -> None:
+    """The PCC's own band keys are gone: a file or --set naming one says which key replaced it."""
+    path = write(tmp_path, "old.yaml", f"# comment\n{old}: 6.0\n")
+    message = one_line_error([f"{path.name}:2: key {old!r} was replaced by {new!r}"], config_paths=[path])
+    assert "one speed band for every controller" in message and "did you mean" not in message
+    one_line_error([f"--set {old}: key was replaced by {new!r}"], overrides=[f"{old}=6"])
+    with pytest.raises(_core.ParamError) as info:
+        _core.Settings({old: 6.0})
+    assert info.value.key == old and new in info.value.expected
+
+
+def test_the_band_is_vectos_and_the_thesis_keeps_its_own() -> None:
+    """One band for every controller: VECTO's 8 km/h under and 5 over by default; the thesis preset
+    keeps the thesis's ±5."""
+    assert (load_run_config().cruise.v_dec_kmh, load_run_config().cruise.v_inc_kmh) == (8.0, 5.0)
+    thesis = load_run_config(config_paths=["thesis"]).cruise
+    assert (thesis.v_dec_kmh, thesis.v_inc_kmh) == (5.0, 5.0)
+
+
+@pytest.mark.parametrize(
+    ("override", "words"),
+    [
+        ("v_ref_kmh=200", ["--set v_ref_kmh", "top speed 119.90 km/h", "n_max_rpm 2000 rpm", "got 200"]),
+        ("v_ref_kmh=115", ["--set v_ref_kmh", "top speed 119.90 km/h"]),
+        ("v_ref_kmh=13", ["--set v_ref_kmh", "lowest usable speed 5.32 km/h", "n_min_rpm 1000 rpm", "got 13"]),
+        ("v_inc_kmh=40", ["--set v_inc_kmh: v_ref_kmh: expected v_ref_kmh + v_inc_kmh (40)", "119.90 km/h"]),
+        ("n_max_rpm=1400", ["--set n_max_rpm: v_ref_kmh:", "top speed 83.93 km/h"]),
+    ],
+)
+def test_a_band_the_truck_cannot_drive_is_refused(override: str, words: list[str]) -> None:
+    """Top gear at n_max_rpm (2000 rpm: 119.90 km/h for the default truck) caps v_ref + v_inc, gear 1
+    at n_min_rpm (5.32 km/h) floors v_ref − v_dec; the key set last is blamed."""
+    one_line_error(words, overrides=[override])
+
+
+def test_the_drivable_set_speeds_follow_the_gearbox() -> None:
+    """The range of drivable set speeds is the gearbox's speeds at the usable engine speeds, less
+    the band: v = n · π r_w / (30 i_t i_f)."""
+    config = load_run_config()
+    r_w, i_f = config.vehicle.wheel_radius_m, config.vehicle.final_drive_ratio
+    ratios = config.vehicle.gear_ratios
+    speed_kmh = lambda n_rpm, i_t: n_rpm * math.pi * r_w / (30 * i_t * i_f) * 3.6  # noqa: E731
+    lowest, highest = config.settings.v_ref_range_kmh
+    assert lowest == pytest.approx(speed_kmh(1000, ratios[0]) + 8.0, rel=1e-12)
+    assert highest == pytest.approx(speed_kmh(2000, ratios[-1]) - 5.0, rel=1e-12)
+    load_run_config(overrides=[f"v_ref_kmh={highest - 1e-6}"])
 
 
 def test_a_file_error_names_its_line(tmp_path: Path) -> None:

@@ -173,3 +173,36 @@ def test_on_a_road_with_targets_the_v_ref_is_the_kept_one_and_the_offset_the_set
     assert (doc["pi_v_ref_kmh"], doc["pi_target_offset_kmh"]) == (85.0, 1.5)
     plain = EqualTime(100.0, setting_kmh=83.0, time_s=100.0)
     assert (plain.v_ref_kmh, plain.target_offset_kmh) == (83.0, None)
+
+
+def test_search_stays_below_the_ceiling_of_drivable_set_speeds() -> None:
+    """A time that needs a set speed above the highest the truck can drive (its band's top beyond
+    the top speed) is not comparable, and no run is asked for beyond that ceiling."""
+    run_at = fake_run(50_000.0)
+    asked: list[float] = []
+
+    def counted(v_ref_kmh: float):
+        asked.append(v_ref_kmh)
+        return run_at(v_ref_kmh)
+
+    target_s = 50_000.0 / (120.0 / 3.6)
+    found = equal_time(counted, 110.0, 6.0, run_at(110.0), target_s, 2.0, v_ceiling_kmh=114.5)
+    assert not found.reached and "v_ref in 95.0-114.5 km/h" in found.reason
+    assert asked and max(asked) <= 114.5
+
+
+def test_equal_time_near_the_top_speed_clips_the_search_instead_of_failing() -> None:
+    """At v_ref 112 km/h (the band's top 117, the truck's top speed 119.90 km/h) a look-ahead run
+    5 % faster than the PI would need the PI at some 118 km/h, beyond what the core accepts: the
+    search clips to the highest drivable v_ref and reports the comparison as not comparable."""
+    from truckmpc.equal_time import equal_time_baselines
+
+    road = make_section("flat", 2000.0, 0.0)
+    config = load_run_config(overrides=["v_ref_kmh=112"])
+    pi = simulate(road, config, "pi")
+    faster = SimpleNamespace(stalled=False, summary={**pi.summary, "time_s": pi.summary["time_s"] * 0.95})
+    found = equal_time_baselines(road, config, {"pi": pi, "pcc": faster})["pcc"]
+    highest = config.settings.v_ref_range_kmh[1]
+    assert not found.reached and "cannot reach the trip time" in found.reason
+    assert f"{highest:.1f} km/h" in found.reason
+    assert max(v for v, _ in found.tried) <= highest

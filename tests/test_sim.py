@@ -216,3 +216,35 @@ def test_the_rust_loop_returns_the_trace_columns_as_arrays(config):
     # 200 m / S; Q2 and Q5 per stage from their per-kilometre defaults at S 25 m.
     assert (settings["k_lim"], settings["q_speed_below"], settings["q_brake"]) == (8, 5.0, 100.0)
     assert settings["horizon_m"] == config.mpc.horizon_m and settings["v_ref_kmh"] == config.cruise.v_ref_kmh
+
+
+class GearsByDistance:
+    """Coasting at fuel cut (no pedal) on a -1.25 % road in a gear set per 250 m stretch: a known
+    sequence of gears, neutral between some of them."""
+
+    name = "gears"
+
+    def __init__(self, gears: list[int]) -> None:
+        self.gears = gears
+
+    def start(self, road: RoadProfile, state: PlantState) -> None:
+        pass
+
+    def decide(self, state: PlantState) -> tuple[Control, float]:
+        k = min(int(state.s_m // 250.0 + 1e-9), len(self.gears) - 1)
+        return Control(0.0, 0.0, self.gears[k]), (k + 1) * 250.0
+
+
+def test_shifts_and_neutral_engagements_are_counted_apart(config):
+    """Gears 12, N, 12, 11, N, N, 10, 12 over eight 250 m stretches (2 km): declutching and
+    re-engaging 12 is one engagement and no shift; 11 -> N -> 10 is one engagement and one shift;
+    12 -> 11 and 10 -> 12 are one shift each: 3 shifts, 2 engagements, 150 and 100 per 100 km."""
+    gears = [12, 0, 12, 11, 0, 0, 10, 12]
+    road = make_section("hill", 2000.0, -1.25, lead_m=0, tail_m=0)
+    summary = simulate(road, config, GearsByDistance(gears)).summary
+    assert (summary["gear_shifts"], summary["neutral_engagements"]) == (3, 2)
+    km = summary["distance_m"] / 1000.0
+    assert km == pytest.approx(2.0, abs=1e-3)
+    assert summary["gear_shifts_per_100km"] == pytest.approx(3 / km * 100.0, rel=1e-12)
+    assert summary["neutral_engagements_per_100km"] == pytest.approx(2 / km * 100.0, rel=1e-12)
+    assert summary["neutral_distance_m"] == pytest.approx(750.0, abs=1e-3)

@@ -197,8 +197,10 @@ def test_the_sweep_plot_draws_the_pcc_deltas(descent, tmp_path, monkeypatch):
 
 def test_the_default_sweep_keeps_its_columns():
     """Without --controller the columns are those of the sweep before the PCC was added, after the
-    error column (blank unless a run of the row failed)."""
-    figures = ["fuel_kg", "fuel_corrected_kg", "time_s", "end_speed_kmh", "brake_energy_kj", "gear_shifts", "stalled"]
+    error column (blank unless a run of the row failed), with every controller's gear shifts and
+    neutral engagements apart, each also per 100 km (issue 25)."""
+    gears = ["gear_shifts", "gear_shifts_per_100km", "neutral_engagements", "neutral_engagements_per_100km"]
+    figures = ["fuel_kg", "fuel_corrected_kg", "time_s", "end_speed_kmh", "brake_energy_kj", *gears, "stalled"]
     mpc_own = ["neutral_distance_m", "realtime_ratio", "solve_ms_mean", "solve_ms_max", "infeasible_solves"]
     equal_time = ["equal_time_pi_v_ref_kmh", "equal_time_pi_fuel_kg", "equal_time_pi_fuel_corrected_kg"]
     deltas = ["fuel", "time", "fuel_corrected", "fuel_equal_time", "fuel_equal_time_corrected"]

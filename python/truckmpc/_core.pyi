@@ -17,6 +17,7 @@ __all__ = [
     "Settings",
     "Vehicle",
     "parameter_specs",
+    "replaced_keys",
     "run",
     "run_python",
     "steady_gear",
@@ -54,6 +55,9 @@ class ParamSpec:
 def parameter_specs() -> list[ParamSpec]:
     """Every declared parameter, section by section."""
 
+def replaced_keys() -> list[tuple[str, str]]:
+    """The keys that are no longer declared, each with the key that replaced it."""
+
 @final
 class Settings:
     """A validated set of every parameter of a run (keys not given take their defaults)."""
@@ -63,6 +67,8 @@ class Settings:
     def get(self, key: str) -> Any: ...
     @property
     def vehicle(self) -> Vehicle: ...
+    @property
+    def v_ref_range_kmh(self) -> tuple[float, float]: ...
     @property
     def k_lim_stages(self) -> int: ...
     @property

@@ -25,6 +25,7 @@ the offset found.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -191,15 +192,18 @@ def equal_time(
     target_time_s: float,
     g_per_half_v2: float,
     offset_from_kmh: float | None = None,
+    v_ceiling_kmh: float = math.inf,
 ) -> EqualTime:
-    """Search v_ref in [max(v_ref − SEARCH, v_floor), v_ref + SEARCH] until the baseline's trip time
-    is within :data:`TIME_TOLERANCE` of `target_time_s`; `first` is the baseline already driven at
-    `v_ref_kmh`. `v_floor_kmh` is the lowest set speed the band allows (above v_dec). With
+    """Search v_ref in [max(v_ref − SEARCH, v_floor), min(v_ref + SEARCH, v_ceiling)] until the
+    baseline's trip time is within :data:`TIME_TOLERANCE` of `target_time_s`; `first` is the
+    baseline already driven at `v_ref_kmh`. `v_floor_kmh` and `v_ceiling_kmh` are the lowest and
+    highest set speeds [km/h] whose band the truck can drive (a set speed beyond them is refused by
+    the core): a time that needs one beyond them is not comparable. With
     `offset_from_kmh` (a road with target speeds) the search variable is x = v_ref + target offset,
     `v_ref_kmh` the configured x and `offset_from_kmh` the v_ref [km/h] the offset counts from."""
     found = EqualTime(target_time_s, offset_from_kmh=offset_from_kmh)
     search = _Search(found, g_per_half_v2, TIME_TOLERANCE * target_time_s)
-    lo_kmh, hi_kmh = max(v_ref_kmh - SEARCH_KMH, v_floor_kmh), v_ref_kmh + SEARCH_KMH
+    lo_kmh, hi_kmh = max(v_ref_kmh - SEARCH_KMH, v_floor_kmh), min(v_ref_kmh + SEARCH_KMH, v_ceiling_kmh)
     if offset_from_kmh is not None:
         # The offset is a key with a range: the search stays inside it.
         hi_kmh = min(hi_kmh, offset_from_kmh + TARGET_OFFSET_LIMIT_KMH)
@@ -339,13 +343,15 @@ def equal_time_baselines(
         return {}
     run_at = baseline_runner(road, config, baseline)
     cruise = config.cruise
-    # The band needs v_ref > v_dec (its lower end above zero): keep 1 km/h clear of it.
-    floor_kmh, start_kmh, offset_from_kmh = cruise.v_dec_kmh + 1.0, cruise.v_ref_kmh, None
+    # The band needs v_ref > v_dec (its lower end above zero): keep 1 km/h clear of it, and inside
+    # the set speeds whose band the truck can drive.
+    lowest_kmh, ceiling_kmh = config.settings.v_ref_range_kmh
+    floor_kmh, start_kmh, offset_from_kmh = max(cruise.v_dec_kmh + 1.0, lowest_kmh), cruise.v_ref_kmh, None
     if road.target_speed_kmh is not None:
         # x = v_ref + target offset; the core keeps every stretch's set speed at 1 km/h or more.
         offset_from_kmh = cruise.v_ref_kmh
         start_kmh = cruise.v_ref_kmh + cruise.target_offset_kmh
-        floor_kmh = cruise.v_ref_kmh - TARGET_OFFSET_LIMIT_KMH
+        floor_kmh, ceiling_kmh = cruise.v_ref_kmh - TARGET_OFFSET_LIMIT_KMH, math.inf
     out = {}
     for name in LOOK_AHEAD if baseline == "pi" else OPTIMISERS:
         result = results.get(name)
@@ -356,5 +362,7 @@ def equal_time_baselines(
             continue
         target_s = float(result.summary["time_s"])
         g_per_half_v2 = config.settings.kinetic_fuel_g_per_half_v2
-        out[name] = equal_time(run_at, start_kmh, floor_kmh, base, target_s, g_per_half_v2, offset_from_kmh)
+        out[name] = equal_time(
+            run_at, start_kmh, floor_kmh, base, target_s, g_per_half_v2, offset_from_kmh, v_ceiling_kmh=ceiling_kmh
+        )
     return out

@@ -113,7 +113,9 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
     -------
     RunResult
         Summary keys: `fuel_kg`, `fuel_kg_per_100km`, `time_s`, `distance_m`, `mean_speed_kmh`,
-        `start_speed_kmh`, `end_speed_kmh`, `gear_shifts`, `brake_energy_kj`, `neutral_distance_m`,
+        `start_speed_kmh`, `end_speed_kmh`, `gear_shifts` (changes between forward gears, a stretch
+        in neutral bridged), `neutral_engagements` (entries into neutral), both also
+        `..._per_100km` (None when the truck did not move), `brake_energy_kj`, `neutral_distance_m`,
         `compute_time_s` (wall time of the run), `realtime_ratio` (compute time / simulated time),
         `stalled`, `stall_distance_m` (None unless stalled), `message` (None unless stalled),
         `plant_dt_s`, `fuel_corrected_kg` (the fuel with the end speed brought back to the start

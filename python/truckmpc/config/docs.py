@@ -13,14 +13,15 @@ from truckmpc.config.keys import CONFIG_DIR, SECTION_FILES, SPECS, VEHICLE_FILES
 
 SECTION_TITLES = {
     "vehicle": "The truck: tables A.1 (vehicle, engine) and A.2 (gearbox) of Hellström's thesis.",
-    "cruise": "The set speed and the speed band both cruise controllers work to.",
+    "cruise": "The set speed and the one speed band every controller works to.",
     "pi": "The PI cruise controller (section 2.5; gains table A.4, gear thresholds table A.3). Its error\n"
     "# signals are in km/h, so each integrator state is in km/h s, clamped to +-limit (the anti-windup).",
     "mpc": "The look-ahead DP-MPC (chapter 5; tables 5.2, 6.1, 6.2). The cost weighs fuel in grams and\n"
     "# speeds in m/s: with these units table 6.2's weights give chapter 6's behaviour. These defaults\n"
     "# converge as delta_kmh and stage_m shrink; --config thesis is the controller as printed.",
     "pcc": "VECTO's rule-based predictive cruise control (use cases 1-3) and eco-roll, on the PI: its\n"
-    "# declaration defaults. Drive it with --controller pcc.",
+    "# declaration defaults; its allowed underspeed and overspeed are the cruise band's v_dec_kmh and\n"
+    "# v_inc_kmh. Drive it with --controller pcc.",
     "sim": "How the closed loop is simulated and recorded.",
 }
 

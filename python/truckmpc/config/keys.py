@@ -20,6 +20,8 @@ SPEC_BY_KEY: dict[str, _core.ParamSpec] = {spec.name: spec for spec in SPECS}
 SECTION_NAMES: tuple[str, ...] = tuple(dict.fromkeys(spec.section for spec in SPECS))
 KEYS: tuple[str, ...] = tuple(SPEC_BY_KEY)
 """Every key, section by section in declaration order."""
+REPLACED_KEYS: dict[str, str] = dict(_core.replaced_keys())
+"""Keys no longer declared, each with the key that replaced it."""
 
 SECTION_FILES: dict[str, str] = {
     "cruise": "cruise.yaml",
@@ -70,7 +72,14 @@ def preset_names() -> list[str]:
 
 
 def unknown_key(where: str, key: str, known: Sequence[str]) -> ConfigError:
-    """The error for a key that is not declared (with the closest known key as a hint)."""
+    """The error for a key that is not declared: the key that replaced it, or the closest known key
+    as a hint."""
+    if key in REPLACED_KEYS:
+        what = "key" if where.startswith("--") else f"key {key!r}"
+        return ConfigError(
+            f"{where}: {what} was replaced by {REPLACED_KEYS[key]!r} "
+            "(one speed band for every controller: v_dec_kmh below v_ref, v_inc_kmh above)"
+        )
     close = difflib.get_close_matches(key, list(known), n=1)
     hint = f" (did you mean {close[0]!r}?)" if close else ""
     if where.startswith("--"):

@@ -165,9 +165,10 @@ class _Layers:
                 raise ConfigError(
                     f"{where}: key {key!r} is a vehicle parameter: set it in the vehicle file or with --set {key}=..."
                 )
+            at = f"{where}:{lines[key]}" if key in lines else where
             if key not in allowed:
-                raise unknown_key(where, key, allowed)
-            self.put(key, raw, f"{where}:{lines[key]}" if key in lines else where)
+                raise unknown_key(at, key, allowed)
+            self.put(key, raw, at)
         missing = [key for key in allowed if key not in data]
         if complete and missing:
             shown = ", ".join(repr(key) for key in missing[:4])

@@ -22,8 +22,20 @@ from typing import Any
 
 from truckmpc.compare import compare, delta_pct
 
-PI_FIELDS = ("fuel_kg", "fuel_corrected_kg", "time_s", "end_speed_kmh", "brake_energy_kj", "gear_shifts", "stalled")
-"""Figures of a run's summary that go to the CSV for every controller."""
+PI_FIELDS = (
+    "fuel_kg",
+    "fuel_corrected_kg",
+    "time_s",
+    "end_speed_kmh",
+    "brake_energy_kj",
+    "gear_shifts",
+    "gear_shifts_per_100km",
+    "neutral_engagements",
+    "neutral_engagements_per_100km",
+    "stalled",
+)
+"""Figures of a run's summary that go to the CSV for every controller (gear shifts between forward
+gears and entries into neutral apart, each also per 100 km)."""
 
 
 def equal_time_fields(baseline: str) -> tuple[str, ...]:

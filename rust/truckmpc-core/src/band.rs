@@ -198,7 +198,7 @@ mod tests {
     /// lower top, at the distance that braking at `a` needs from the higher top it is that top.
     #[test]
     fn the_top_falls_at_the_set_deceleration_before_a_drop() {
-        let cruise = CruiseParams::default();
+        let cruise = CruiseParams { v_dec_kmh: 5.0, ..CruiseParams::default() };
         let band = SpeedBand::new(&road(vec![85.0, 60.0, 85.0]), &cruise);
         let (hi, lo) = (90.0 / 3.6, 65.0 / 3.6);
         let reach = (hi * hi - lo * lo) / (2.0 * cruise.target_decel_mps2);
@@ -224,7 +224,7 @@ mod tests {
         assert_eq!(band.at(1500.0, &mut 0).v_min_kmh, V_MIN_FLOOR_KMH);
         assert_eq!(band.at(10.0, &mut 0).v_min_kmh, 5.0);
         let normal = SpeedBand::new(&road(vec![85.0, 30.0]), &CruiseParams::default());
-        assert_eq!(normal.at(1500.0, &mut 0).v_min_kmh, 25.0);
+        assert_eq!(normal.at(1500.0, &mut 0).v_min_kmh, 30.0 - CruiseParams::default().v_dec_kmh);
     }
 
     /// The cruise v_ref caps the targets; the offset moves every stretch.

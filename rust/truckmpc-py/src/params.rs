@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use truckmpc_core::control::pi::GearLogic;
 use truckmpc_core::dp::{fuel_time, DpSettings};
-use truckmpc_core::params::{Kind, ParamSpec, Value};
+use truckmpc_core::params::{Kind, ParamSpec, Value, REPLACED_KEYS};
 use truckmpc_core::{RunSettings, Vehicle};
 
 use crate::errors::to_py;
@@ -99,6 +99,12 @@ pub fn parameter_specs(py: Python<'_>) -> PyResult<Vec<PyParamSpec>> {
     RunSettings::specs().iter().map(|spec| PyParamSpec::new(py, spec)).collect()
 }
 
+/// The keys that are no longer declared, each with the key that replaced it.
+#[pyfunction]
+pub fn replaced_keys() -> Vec<(&'static str, &'static str)> {
+    REPLACED_KEYS.to_vec()
+}
+
 /// A validated set of every parameter of a run.
 ///
 /// Args:
@@ -126,6 +132,7 @@ impl PySettings {
         }
         let settings = RunSettings::from_values(pairs.iter().map(|(k, v)| (k.as_str(), v))).map_err(to_py)?;
         let vehicle = Arc::new(Vehicle::new(settings.vehicle.clone()).map_err(to_py)?);
+        settings.check_drivable(&vehicle).map_err(to_py)?;
         let controller_vehicle = match settings.sim.controller_mass_kg {
             Some(_) => Arc::new(Vehicle::new(settings.controller_vehicle_params()).map_err(to_py)?),
             None => vehicle.clone(),
@@ -158,6 +165,13 @@ impl PySettings {
     #[getter]
     fn vehicle(&self) -> PyVehicle {
         PyVehicle { inner: self.vehicle.clone() }
+    }
+
+    /// The set speeds v_ref [km/h] whose band the truck can drive, (lowest, highest): v_ref − v_dec
+    /// at or above gear 1 at n_min_rpm, v_ref + v_inc at or below the top gear at n_max_rpm.
+    #[getter]
+    fn v_ref_range_kmh(&self) -> (f64, f64) {
+        self.inner.v_ref_range_kmh(&self.vehicle)
     }
 
     /// k_lim [stages] with its default resolved (round(200 m / S), table 6.1).

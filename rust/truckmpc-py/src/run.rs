@@ -41,6 +41,9 @@ fn summary_dict<'py>(py: Python<'py>, s: &RunSummary) -> PyResult<Bound<'py, PyD
     out.set_item("start_speed_kmh", s.start_speed_kmh)?;
     out.set_item("end_speed_kmh", s.end_speed_kmh)?;
     out.set_item("gear_shifts", s.gear_shifts)?;
+    out.set_item("neutral_engagements", s.neutral_engagements)?;
+    out.set_item("gear_shifts_per_100km", s.gear_shifts_per_100km)?;
+    out.set_item("neutral_engagements_per_100km", s.neutral_engagements_per_100km)?;
     out.set_item("brake_energy_kj", s.brake_energy_kj)?;
     out.set_item("neutral_distance_m", s.neutral_distance_m)?;
     out.set_item("compute_time_s", s.compute_time_s)?;

@@ -10,12 +10,12 @@
 //! m·v²/2; the mass cancels), losing f = the coasting deceleration on a flat road at v_ref [m/s²,
 //! J/(kg m)] per metre coasted:
 //! - use case 1 (crest coasting), from x_low − preview to x_low: coast when coasting from here
-//!   reaches x_low no slower than v_ref − underspeed *and* reaches x_end = min(x + preview,
+//!   reaches x_low no slower than v_ref − underspeed (the band's v_dec) *and* reaches x_end = min(x + preview,
 //!   x_end_max) with at least v_ref's energy;
 //! - use case 2 (accelerating without engine power), on the descent below v_ref and above the
 //!   minimum speed: coast when coasting reaches x_end (preview 1000 m) with v_ref's energy;
 //! - use case 3 (dip coasting), on the descent: the brake limit is raised to v_ref + the allowed
-//!   overspeed (never below the band's v_ref + v_inc).
+//!   overspeed (the band's v_inc, so never below the band's top v_ref + v_inc).
 //!
 //! A use case 1 event ends when the speed falls below v_ref − underspeed; either event ends at
 //! x_end, or when the speed passes the brake limit (the PI then brakes). The choices where VECTO's
@@ -66,6 +66,10 @@ pub struct PccController {
     pi: PiController,
     vehicle: Arc<Vehicle>,
     p: PccParams,
+    /// Allowed underspeed of use case 1: the band's v_dec [km/h].
+    underspeed_kmh: f64,
+    /// Allowed overspeed of use case 3: the band's v_inc [km/h].
+    overspeed_kmh: f64,
     /// The cruise set speed [m/s]: the coasting grade and loss are those at it.
     v_ref_mps: f64,
     /// The descents of the road, in order.
@@ -86,6 +90,8 @@ impl PccController {
             pi: PiController::new(vehicle.clone(), pi, cruise)?,
             vehicle,
             p: pcc.clone(),
+            underspeed_kmh: cruise.v_dec_kmh,
+            overspeed_kmh: cruise.v_inc_kmh,
             v_ref_mps: cruise.v_ref_mps(),
             descents: Vec::new(),
             used: Vec::new(),
@@ -142,7 +148,7 @@ impl PccController {
     /// the allowed overspeed.
     fn brake_limit_mps(&self, s_m: f64) -> f64 {
         let at = self.pi.band().at(s_m, &mut 0);
-        let raised = (at.v_ref_mps() * KMH_PER_MPS + self.p.pcc_overspeed_kmh) / KMH_PER_MPS;
+        let raised = (at.v_ref_mps() * KMH_PER_MPS + self.overspeed_kmh) / KMH_PER_MPS;
         if self.p.pcc_use_case_3 && self.descent_at(s_m).is_some() {
             at.v_max_mps().max(raised)
         } else {
@@ -181,7 +187,7 @@ impl PccController {
                 continue;
             }
             let v_ref = self.v_ref_at(s.max(d.x_low_m));
-            let v_low = (v_ref * KMH_PER_MPS - self.p.pcc_underspeed_kmh) / KMH_PER_MPS;
+            let v_low = (v_ref * KMH_PER_MPS - self.underspeed_kmh) / KMH_PER_MPS;
             if s < d.x_low_m {
                 // Use case 1: before the descent, within the preview (checked above).
                 if v < v_low {

@@ -6,11 +6,8 @@ use crate::declare_params;
 
 declare_params! {
     /// VECTO's predictive cruise control (use cases 1–3) and eco-roll on top of the PI cruise control.
+    /// Its allowed underspeed and overspeed are the cruise band's v_dec_kmh and v_inc_kmh.
     pub struct PccParams in "pcc" {
-        /// Allowed underspeed: how far below v_ref a PCC event lets the speed fall before a descent (use case 1).
-        pcc_underspeed_kmh: f64 = 8.0, unit "km/h", range Range::between(0.0, 50.0);
-        /// Allowed overspeed while a descent is under way (use case 3): the brake limit is then v_ref plus this (never below v_ref + v_inc).
-        pcc_overspeed_kmh: f64 = 5.0, unit "km/h", range Range::between(0.0, 50.0);
         /// PCC acts only where v_ref is at least this.
         pcc_enabling_speed_kmh: f64 = 80.0, unit "km/h", range Range::between(0.0, 250.0);
         /// Lowest speed at which use case 2 (regaining speed on a descent by gravity alone) starts.

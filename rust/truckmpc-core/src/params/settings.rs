@@ -1,6 +1,9 @@
 //! All the settings of a run, as one flat namespace of declared keys.
 
-use super::{CruiseParams, MpcParams, ParamSet, ParamSpec, PccParams, PiParams, SimParams, Value, VehicleParams};
+use super::{
+    replacement, CruiseParams, MpcParams, ParamSet, ParamSpec, PccParams, PiParams, SimParams, Value, VehicleParams,
+    REPLACED_WHY,
+};
 use crate::band::SpeedBand;
 use crate::error::{CoreError, CoreResult};
 use crate::road::Road;
@@ -54,6 +57,8 @@ impl RunSettings {
             || self.sim.set(key, value)?;
         if known {
             Ok(())
+        } else if let Some(new) = replacement(key) {
+            Err(CoreError::invalid(key, format!("{new} instead {REPLACED_WHY}")).got("a replaced key"))
         } else {
             Err(CoreError::invalid(key, "a known parameter").got("an unknown key"))
         }
@@ -115,6 +120,7 @@ impl RunSettings {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::params::REPLACED_KEYS;
     use std::collections::HashSet;
 
     #[test]
@@ -149,6 +155,16 @@ mod tests {
         let err = RunSettings::from_values([("v_ref_kmh", &Value::Int(5))]).unwrap_err();
         let CoreError::Invalid { key, related, .. } = err;
         assert_eq!((key.as_str(), related), ("v_dec_kmh", vec!["v_ref_kmh".to_string()]));
+    }
+
+    #[test]
+    fn a_replaced_key_names_its_replacement() {
+        for (old, new) in REPLACED_KEYS {
+            let err = RunSettings::from_values([(old, &Value::Float(5.0))]).unwrap_err();
+            assert_eq!(err.key(), old);
+            assert!(err.to_string().starts_with(&format!("{old}: expected {new} instead")), "{err}");
+            assert!(RunSettings::specs().iter().all(|spec| spec.name != old));
+        }
     }
 
     #[test]

@@ -9,6 +9,7 @@
 //! applied over the step that crosses it.
 
 pub mod run;
+pub mod shifts;
 pub mod summary;
 pub mod trace;
 

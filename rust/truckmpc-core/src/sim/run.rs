@@ -3,6 +3,7 @@
 use std::sync::Arc;
 use std::time::Instant;
 
+use super::shifts::GearCounts;
 use super::summary::{LoopOutcome, RunSummary};
 use super::trace::{Trace, TraceRecorder};
 use super::{ARRIVAL_TOLERANCE_M, KMH_PER_MPS};
@@ -107,7 +108,7 @@ impl ClosedLoop {
             start_m,
             end_m,
             start_speed_kmh,
-            gear_shifts: 0,
+            gears: GearCounts::default(),
             neutral_distance_m: 0.0,
             stuck: false,
             stall_speed_mps: vehicle.stall_speed_mps(),
@@ -132,9 +133,7 @@ impl ClosedLoop {
             if controller.aborted() {
                 break;
             }
-            if last.is_some_and(|u| u.gear != decision.control.gear) {
-                self.outcome.gear_shifts += 1;
-            }
+            self.outcome.gears.apply(decision.control.gear);
             last = Some(decision.control);
             let begin_m = self.state.s_m;
             self.hold(decision);

@@ -1,5 +1,6 @@
 //! The scalar figures of a run.
 
+use super::shifts::{per_100km, GearCounts};
 use super::KMH_PER_MPS;
 use crate::control::SolverStats;
 use crate::plant::PlantState;
@@ -16,7 +17,14 @@ pub struct RunSummary {
     pub mean_speed_kmh: f64,
     pub start_speed_kmh: f64,
     pub end_speed_kmh: f64,
+    /// Changes between forward gears, a stretch in neutral bridged ([`super::shifts`]).
     pub gear_shifts: u64,
+    /// Entries into neutral.
+    pub neutral_engagements: u64,
+    /// Gear shifts per 100 km; None when the truck did not move.
+    pub gear_shifts_per_100km: Option<f64>,
+    /// Neutral engagements per 100 km; None when the truck did not move.
+    pub neutral_engagements_per_100km: Option<f64>,
     pub brake_energy_kj: f64,
     /// Distance driven in neutral [m].
     pub neutral_distance_m: f64,
@@ -40,7 +48,8 @@ pub struct LoopOutcome {
     pub start_m: f64,
     pub end_m: f64,
     pub start_speed_kmh: f64,
-    pub gear_shifts: u64,
+    /// Gear shifts and neutral engagements so far.
+    pub gears: GearCounts,
     pub neutral_distance_m: f64,
     /// The controller's inputs stopped moving the truck.
     pub stuck: bool,
@@ -61,7 +70,10 @@ impl RunSummary {
             mean_speed_kmh: if moved { distance_m / last.t_s * KMH_PER_MPS } else { outcome.start_speed_kmh },
             start_speed_kmh: outcome.start_speed_kmh,
             end_speed_kmh: last.v_mps * KMH_PER_MPS,
-            gear_shifts: outcome.gear_shifts,
+            gear_shifts: outcome.gears.gear_shifts,
+            neutral_engagements: outcome.gears.neutral_engagements,
+            gear_shifts_per_100km: per_100km(outcome.gears.gear_shifts, distance_m),
+            neutral_engagements_per_100km: per_100km(outcome.gears.neutral_engagements, distance_m),
             brake_energy_kj: last.brake_energy_j / 1000.0,
             neutral_distance_m: outcome.neutral_distance_m,
             compute_time_s,
