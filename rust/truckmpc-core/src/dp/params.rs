@@ -58,6 +58,11 @@ pub struct DpSettings {
     pub q_brake: f64,
     /// Price per engagement of neutral from a forward gear, on top of Q4 [-].
     pub q_neutral: f64,
+    /// Whether a neutral state may shift only into the highest gear usable at its speed.
+    pub neutral_exit_top_gear: bool,
+    /// Whether Q4 prices shifts into and out of neutral too (else q_neutral alone prices an
+    /// engagement, and leaving neutral is free).
+    pub shift_price_neutral: bool,
     /// The stage model of every transition, arc and bound.
     pub stage_model: StageModel,
     /// What is minimised; with [`CostKind::FuelTime`] Q2 is zero.
@@ -129,6 +134,8 @@ impl DpSettings {
             q_gear_shift: mpc.q_gear_shift,
             q_brake: mpc.q_brake_weight(),
             q_neutral: mpc.q_neutral,
+            neutral_exit_top_gear: mpc.neutral_exit_top_gear,
+            shift_price_neutral: mpc.shift_price_neutral,
             stage_model: mpc.stage_model,
             cost: mpc.cost,
             beta_g_per_s: mpc.beta_g_per_s,

@@ -117,6 +117,12 @@ struct Choices {
     second_gear: Vec<u32>,
     /// Per slot, the speed-deviation cost Q2·max(v_ref − v, 0)² of the source velocity.
     penalty: Vec<f64>,
+    /// Per slot, the neutral state's best and second-best shifts when they differ from every
+    /// other state's (only the highest usable gear, or leaving neutral free of Q4): cost and gear.
+    exit_cost: Vec<f64>,
+    exit_gear: Vec<u32>,
+    exit2_cost: Vec<f64>,
+    exit2_gear: Vec<u32>,
 }
 
 /// No gear (in the two best shifts).
@@ -139,13 +145,13 @@ impl Choices {
                 v.resize(size, 0);
             }
         }
-        for v in [&mut self.first_cost, &mut self.second_cost] {
+        for v in [&mut self.first_cost, &mut self.second_cost, &mut self.exit_cost, &mut self.exit2_cost] {
             if v.len() < self.width {
                 v.resize(self.width, INF);
             }
             v[..self.width].fill(INF);
         }
-        for v in [&mut self.first_gear, &mut self.second_gear] {
+        for v in [&mut self.first_gear, &mut self.second_gear, &mut self.exit_gear, &mut self.exit2_gear] {
             if v.len() < self.width {
                 v.resize(self.width, NO_GEAR);
             }
@@ -636,7 +642,7 @@ impl Solver {
         if sources.0 <= sources.1 {
             self.choices.prepare(gears, here.first + sources.0 as i64, here.first + sources.1 as i64);
             transitions = self.best_per_target_gear(vehicle, k, abs_stage, sources, &active_next);
-            self.stay_or_shift(k, sources, &active_here, &active_next, start_gear, gears);
+            self.stay_or_shift(vehicle, k, sources, &active_here, &active_next, (start_gear, gears));
         }
         self.active[k] = active_here;
         self.active[k + 1] = active_next;
@@ -696,9 +702,11 @@ impl Solver {
                     (all_cost[s], all_j[s], counters[s]) = (cost, j, counter);
                     (shift_cost[s], shift_j[s]) = (if counter >= p.k_lim { cost } else { INF }, j);
                 }
-                if p.q_neutral > 0.0 {
-                    // Shifting into neutral from a forward gear is an engagement: its price on top of Q4.
-                    shift_cost.iter_mut().for_each(|c| *c += p.q_neutral);
+                // Shifting into neutral from a forward gear is an engagement: its price, in place of
+                // Q4 (which the second pass adds to every shift) where Q4 prices forward shifts only.
+                let engagement = p.q_neutral - if p.shift_price_neutral { 0.0 } else { p.q_gear_shift };
+                if engagement != 0.0 {
+                    shift_cost.iter_mut().for_each(|c| *c += engagement);
                 }
                 transitions += i_hi - i_lo + 1;
                 continue;
@@ -768,12 +776,12 @@ impl Solver {
     /// speed-deviation cost; writes J_k, the counters and the decisions.
     fn stay_or_shift(
         &mut self,
+        vehicle: &Vehicle,
         k: usize,
         (i_lo, i_hi): (usize, usize),
         active_here: &[usize],
         active_next: &[usize],
-        start_gear: usize,
-        gears: usize,
+        (start_gear, gears): (usize, usize),
     ) {
         let (here, next) = (self.grids[k], self.grids[k + 1]);
         let n = here.count;
@@ -823,6 +831,28 @@ impl Solver {
                 *slot += q_time / here.speed(i);
             }
         }
+        let p = &self.params;
+        let exit_own = active_here.contains(&NEUTRAL) && (p.neutral_exit_top_gear || !p.shift_price_neutral);
+        if exit_own {
+            // Leaving neutral is not charged Q4 where Q4 prices forward shifts only (the second
+            // pass adds Q4 to every shift), and goes only into the highest usable gear where so set.
+            let free = if p.shift_price_neutral { 0.0 } else { q4 };
+            let (n_min, n_max) = (p.n_min_rpm, p.n_max_rpm);
+            for (slot, i) in sources.clone().zip(i_lo..) {
+                let (exit, second) = if p.neutral_exit_top_gear {
+                    let top = space::usable_gears(vehicle, here.speed(i), n_min, n_max).map(|(_, hi)| hi);
+                    let exit = match top {
+                        Some(g) if active_next.contains(&g) => (ch.shift_cost[g * ch.width + slot], g as u32),
+                        _ => (INF, NO_GEAR),
+                    };
+                    (exit, (INF, NO_GEAR))
+                } else {
+                    ((ch.first_cost[slot], ch.first_gear[slot]), (ch.second_cost[slot], ch.second_gear[slot]))
+                };
+                (ch.exit_cost[slot], ch.exit_gear[slot]) = (exit.0 - free, exit.1);
+                (ch.exit2_cost[slot], ch.exit2_gear[slot]) = (second.0 - free, second.1);
+            }
+        }
         let stride_n = stride(next.count);
         for &g_i in active_here {
             let (lo, hi) = self.gear_ranges[k * gears + g_i];
@@ -841,15 +871,25 @@ impl Solver {
                 shift: &mut self.shift_cur[values],
                 decision: &mut self.decisions[decisions],
             };
+            let ranked = if exit_own && g_i == NEUTRAL {
+                [&ch.exit_cost, &ch.exit2_cost].map(|costs| &costs[slots.clone()])
+            } else {
+                [&ch.first_cost, &ch.second_cost].map(|costs| &costs[slots.clone()])
+            };
+            let ranked_gears = if exit_own && g_i == NEUTRAL {
+                [&ch.exit_gear, &ch.exit2_gear].map(|gears| &gears[slots.clone()])
+            } else {
+                [&ch.first_gear, &ch.second_gear].map(|gears| &gears[slots.clone()])
+            };
             let input = StateIn {
                 gear: g_i as u32,
                 slot0: slots.start,
                 all_cost: &ch.all_cost[out.clone()],
                 all_j: &ch.all_j[out],
-                first_cost: &ch.first_cost[slots.clone()],
-                first_gear: &ch.first_gear[slots.clone()],
-                second_cost: &ch.second_cost[slots.clone()],
-                second_gear: &ch.second_gear[slots.clone()],
+                first_cost: ranked[0],
+                first_gear: ranked_gears[0],
+                second_cost: ranked[1],
+                second_gear: ranked_gears[1],
                 neutral_counter: &ch.neutral_counter[slots.clone()],
                 penalty: &ch.penalty[slots],
                 shift_j: &ch.shift_j,

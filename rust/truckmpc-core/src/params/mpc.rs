@@ -108,9 +108,13 @@ declare_params! {
         /// Q3, weight per m/s of speed change over a stage.
         q_speed_change: f64 = 0.0, unit "1/(m/s)", range Range::between(0.0, 1e6);
         /// Q4, weight per gear shift.
-        q_gear_shift: f64 = 6.0, unit "1/shift", range Range::between(0.0, 1e6);
-        /// Price per engagement of neutral (a shift from a forward gear into neutral, on top of Q4): a drivability price, not fuel.
-        q_neutral: f64 = 6.0, unit "1/engagement", range Range::between(0.0, 1e6);
+        q_gear_shift: f64 = 25.0, unit "1/shift", range Range::between(0.0, 1e6);
+        /// Price per engagement of neutral (a coasting episode; on top of Q4 where shift_price_neutral): a drivability price, not fuel.
+        q_neutral: f64 = 20.0, unit "1/engagement", range Range::between(0.0, 1e6);
+        /// Whether Q4 also prices each shift into and out of neutral (the thesis's cost); false: Q4 prices changes of forward gear only, and q_neutral each neutral engagement.
+        shift_price_neutral: bool = false, unit "-", range Range::ANY;
+        /// After coasting in neutral, engage only the highest gear usable at the speed (as an automated gearbox does); false: any usable gear.
+        neutral_exit_top_gear: bool = true, unit "-", range Range::ANY;
         /// Q5 per stage, weight per unit brake level held over a stage; null = q_brake_per_km × S.
         q_brake: Option<f64> = None, unit "-", range Range::between(0.0, 1e6);
         /// Q5 per kilometre, weight per unit brake level held over a kilometre (used when q_brake is null).
@@ -155,6 +159,8 @@ impl MpcParams {
             q_speed_change: 15.0,
             q_gear_shift: 15.0,
             q_neutral: 0.0,
+            neutral_exit_top_gear: false,
+            shift_price_neutral: true,
             ..MpcParams::default()
         }
     }
