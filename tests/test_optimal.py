@@ -17,6 +17,21 @@ from truckmpc.units import KMH_PER_MPS
 
 runner = CliRunner()
 
+# The thesis's speed-penalty cost (with the converged grid and arcs), which `trajectory_cost` prices:
+# Q4 on every gear change, neutral included, Euler stages, the thesis's ±5 km/h band.
+SPEED_PENALTY = [
+    "cost=speed_penalty",
+    "stage_model=euler",
+    "q_speed_change=15",
+    "q_gear_shift=15",
+    "q_neutral=0",
+    "shift_price_neutral=true",
+    "neutral_exit_top_gear=false",
+    "horizon_m=1500",
+    "delta_kmh=0.025",
+    "v_dec_kmh=5",
+]
+
 
 def trajectory_cost(result, config) -> float:
     """The DP's cost (Q1 fuel, Q2 speed deficit at each stage start, Q3 speed change, Q4 shifts,
@@ -44,7 +59,7 @@ def trajectory_cost(result, config) -> float:
     "road", [default_test_track(), make_section("crest", 1500, 4.0)], ids=["test-track", "crest 4 %"]
 )
 def test_the_whole_road_plan_is_never_costlier_than_the_mpcs_closed_loop_trajectory(road):
-    config = load_run_config()
+    config = load_run_config(overrides=SPEED_PENALTY)
     optimal = simulate(road, config, "optimal").summary
     mpc = simulate(road, config, "mpc")
     assert np.isfinite(optimal["plan_cost"]) and optimal["infeasible_solves"] == 0

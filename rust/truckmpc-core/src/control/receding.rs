@@ -259,6 +259,7 @@ impl RecedingController {
     fn solve(&mut self, road: &Road, s_m: f64, v_mps: f64, gear: usize) -> Option<Control> {
         let start = InitialState { v_mps, gear, stages_since_shift: self.shifts.stages() };
         let found = self.timed_solve(road, s_m, start, false);
+
         if found.is_some() || !self.rescues() || v_mps < self.band.at(s_m, &mut 0).v_min_mps() {
             return found;
         }

@@ -134,8 +134,7 @@ fn pair_trapezoid(p: &DpSettings, m: &RowMaps, end: &EndMaps, v_i: f64, v_j: f64
         if pedal >= pedal_lo && pedal <= pedal_hi {
             let fuel_per_pedal = m.full_fuel_g + 0.5 * h * end.vehicle.fuel_rate_gps(v_j, 1.0, end.gear) / v_j;
             let clipped = pedal.clamp(0.0, 1.0);
-            let cost = p.q_fuel * fuel_per_pedal * pedal.max(0.0) + change;
-            return Some((Inputs { pedal: clipped, brake: 0.0 }, cost));
+            return Some((Inputs { pedal: clipped, brake: 0.0 }, p.q_fuel * fuel_per_pedal * clipped + change));
         }
         if pedal > pedal_hi {
             return None;
@@ -151,16 +150,16 @@ fn pair_trapezoid(p: &DpSettings, m: &RowMaps, end: &EndMaps, v_i: f64, v_j: f64
     None
 }
 
-/// The pedal levels a trapezoid row accepts from `v_i`: never above full pedal (a level clipped
-/// to full pedal would reach the grid point past the full-pedal end for nothing: a path pulsing
+/// The pedal levels a trapezoid row accepts from `v_i`: never above full pedal (a level clipped to
+/// full pedal would reach the grid point past the full-pedal end for nothing: a path pulsing
 /// between full pedal and a glide gained half a grid step a stage), the full-pedal end being an
 /// exact arc of the solver's instead; and from zero when fuel cut is an exact arc too (a level
 /// below zero, clipped to zero, is fuel cut in the plant, whose engine drag brakes much harder
 /// than the map at zero pedal the row assumed), else from −ε as the Euler rows.
 #[inline]
 fn trapezoid_pedal_band(p: &DpSettings, v_i: f64, gain: f64) -> (f64, f64) {
-    let (lo, hi) = p.pedal_band(v_i, gain);
-    (if p.fuel_cut_arcs && std::env::var("TPLO").is_err() { 0.0 } else { lo }, hi)
+    let (lo, _) = p.pedal_band(v_i, gain);
+    (if p.fuel_cut_arcs { 0.0 } else { lo }, 1.0)
 }
 
 /// [`forward_row`] on a trapezoid stage: the span from the end speeds of the pedal band's ends
