@@ -102,14 +102,17 @@ def test_end_speed_correction_prices_the_kinetic_energy_of_a_speed_up() -> None:
 
 def test_fuel_time_cost_with_the_derived_beta_holds_v_ref_on_a_flat_road() -> None:
     """With β derived from v_ref, the fuel–time controller holds v_ref on a flat road (within
-    0.05 km/h, in one gear), at every set speed tried."""
+    0.05 km/h, in one gear) at every set speed tried, once it has left the gear the PI's gear logic
+    starts it in (at 75 km/h gear 11, where the controller cruises in 12: one change, made by a
+    coast, in the first kilometre)."""
     road = make_section("flat", 4000.0, None)
     for v_ref in (75.0, 85.0):
         config = load_run_config(config_paths=["fuel_time"], overrides=[f"v_ref_kmh={v_ref}"])
         result = simulate(road, config, "mpc")
-        speed = result.trace["speed_kmh"]
+        steady = result.trace["distance_m"] > 1500.0
+        speed, gear = result.trace["speed_kmh"][steady], result.trace["gear"][steady]
         assert np.max(np.abs(speed - v_ref)) < 0.05, (v_ref, speed.min(), speed.max())
-        assert result.summary["gear_shifts"] == 0
+        assert np.all(gear == gear[0]) and result.summary["gear_shifts"] <= 1
         assert result.summary["settings"]["beta_g_per_s"] > 0
 
 
