@@ -8,7 +8,7 @@
 //! reaches hold +∞. Speeds of grid indices come from [`GridIndex`], so a row computed for an
 //! absolute grid is the same whichever solve asks for it (what makes caching exact).
 
-use super::params::{DpSettings, StageModel};
+use super::params::{DpSettings, GridAnchor, StageModel};
 use super::stage::{self, Branch};
 use crate::levels::{brake_accel_on, pedal_accel_on, stage_fuel_g, AffineAccel};
 use crate::vehicle::Vehicle;
@@ -156,10 +156,16 @@ fn pair_trapezoid(p: &DpSettings, m: &RowMaps, end: &EndMaps, v_i: f64, v_j: f64
 /// exact arc of the solver's instead; and from zero when fuel cut is an exact arc too (a level
 /// below zero, clipped to zero, is fuel cut in the plant, whose engine drag brakes much harder
 /// than the map at zero pedal the row assumed), else from −ε as the Euler rows.
+/// On the moving grid, whose top bound is the continuous full-pedal speed, the top would be out of
+/// reach at full pedal (its solves were infeasible, 58 in the first 10 km of VECTO 108 km): there
+/// the band is the Euler rows' [−ε, 1 + ε].
 #[inline]
 fn trapezoid_pedal_band(p: &DpSettings, v_i: f64, gain: f64) -> (f64, f64) {
-    let (lo, _) = p.pedal_band(v_i, gain);
-    (if p.fuel_cut_arcs { 0.0 } else { lo }, 1.0)
+    let (lo, hi) = p.pedal_band(v_i, gain);
+    match p.grid {
+        GridAnchor::Fixed => (if p.fuel_cut_arcs { 0.0 } else { lo }, 1.0),
+        GridAnchor::Moving => (lo, hi),
+    }
 }
 
 /// [`forward_row`] on a trapezoid stage: the span from the end speeds of the pedal band's ends
