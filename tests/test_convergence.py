@@ -127,15 +127,30 @@ def fuel_moves(road_path: Path, *configs: str) -> tuple[float, float]:
     return doc["delta_fuel_pct_half_delta"], doc["delta_fuel_pct_half_stage"]
 
 
+# Not reached by the fuel + β·time default (issue 25, item 5): that cost is nearly flat along the
+# trade of fuel for time, so a finer grid or stage moves the plan along it. On the 500 m 2 % climb
+# δ 0.05 km/h slows down before the climb (−1.50 % fuel, +2.7 % time) where δ 0.025 km/h holds v_ref,
+# two plans whose costs (fuel + β·time) differ by 0.2 %; VECTO 108 km moves −0.17 points at δ/2,
+# VECTO 100 km +0.21 at S/2.
+NOT_CONVERGED = pytest.mark.xfail(
+    reason="the fuel_time default's raw Δfuel moves more than 0.1 points at δ/2 or S/2 (issue 25)", strict=True
+)
+
+
 @pytest.mark.parametrize("section", ["hill_L500_A-3", "hill_L500_A2"])
-def test_the_default_converges_on_a_descent_and_a_climb_where_the_thesis_preset_does_not(section):
-    path = ROADS / f"{section}.csv"
-    default = fuel_moves(path)
-    assert all(abs(move) <= TOLERANCE_POINTS for move in default), default
-    thesis = fuel_moves(path, "thesis")
+def test_the_thesis_preset_does_not_converge_on_a_descent_and_a_climb(section):
+    thesis = fuel_moves(ROADS / f"{section}.csv", "thesis")
     assert max(abs(move) for move in thesis) > 0.3, thesis
 
 
+@NOT_CONVERGED
+@pytest.mark.parametrize("section", ["hill_L500_A-3", "hill_L500_A2"])
+def test_the_default_converges_on_a_descent_and_a_climb(section):
+    default = fuel_moves(ROADS / f"{section}.csv")
+    assert all(abs(move) <= TOLERANCE_POINTS for move in default), default
+
+
+@NOT_CONVERGED
 @pytest.mark.slow
 @pytest.mark.skipif(not SHARED_ROADS.is_dir(), reason="shared road profiles (../shared/roads) not present")
 @pytest.mark.parametrize("road", ["eu_vecto_longhaul_2015_108km", "eu_vecto_longhaul_100km"])

@@ -104,9 +104,9 @@ impl Default for DpSettings {
 }
 
 impl DpSettings {
-    /// The settings of the thesis's controller ([`MpcParams::thesis`]) in the default cruise band.
+    /// The settings of the thesis's controller ([`MpcParams::thesis`]) in the thesis's band ±5 km/h.
     pub fn thesis() -> Self {
-        Self::resolve(&MpcParams::thesis(), &CruiseParams::default())
+        Self::resolve(&MpcParams::thesis(), &CruiseParams::thesis())
     }
 
     /// Validate `mpc` and `cruise` (ranges and checks between keys) and resolve the defaults.

@@ -21,6 +21,11 @@ declare_params! {
 }
 
 impl CruiseParams {
+    /// The thesis's band: v_ref 85 km/h, ±5 km/h (the `thesis` preset's).
+    pub fn thesis() -> Self {
+        CruiseParams { v_dec_kmh: 5.0, ..CruiseParams::default() }
+    }
+
     /// v_ref [m/s].
     pub fn v_ref_mps(&self) -> f64 {
         self.v_ref_kmh / 3.6
