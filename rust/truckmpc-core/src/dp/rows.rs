@@ -98,25 +98,31 @@ struct RowMaps<'a> {
     trapezoid: Option<EndMaps<'a>>,
 }
 
-/// What a trapezoid stage evaluates at its end speed: the vehicle, the gear and the slope.
+/// What a trapezoid stage evaluates at its end speed (the vehicle, the gear and the slope), and the
+/// pedal levels its row accepts ([`trapezoid_pedal_band`], a function of v_i alone).
 #[derive(Debug, Clone, Copy)]
 struct EndMaps<'a> {
     vehicle: &'a Vehicle,
     gear: usize,
     slope_torque: f64,
+    pedal_band: (f64, f64),
 }
 
 fn maps<'a>(vehicle: &'a Vehicle, p: &DpSettings, v_i: f64, gear: usize, slope_torque: f64) -> RowMaps<'a> {
     let trapezoid = p.stage_model == StageModel::Trapezoid;
+    let pedal = pedal_accel_on(vehicle, v_i, gear, slope_torque);
     RowMaps {
-        pedal: pedal_accel_on(vehicle, v_i, gear, slope_torque),
+        pedal,
         brake: brake_accel_on(vehicle, v_i, gear, slope_torque),
         full_fuel_g: if trapezoid {
-            0.5 * p.stage_m * vehicle.fuel_rate_gps(v_i, 1.0, gear) / v_i
+            stage::half_stage_fuel_g(vehicle, v_i, 1.0, gear, p.stage_m)
         } else {
             stage_fuel_g(vehicle, v_i, 1.0, gear, p.stage_m)
         },
-        trapezoid: trapezoid.then_some(EndMaps { vehicle, gear, slope_torque }),
+        trapezoid: trapezoid.then(|| {
+            let pedal_band = if pedal.gain > 0.0 { trapezoid_pedal_band(p, v_i, pedal.gain) } else { (0.0, 0.0) };
+            EndMaps { vehicle, gear, slope_torque, pedal_band }
+        }),
     }
 }
 
@@ -130,9 +136,9 @@ fn pair_trapezoid(p: &DpSettings, m: &RowMaps, end: &EndMaps, v_i: f64, v_j: f64
     if m.pedal.gain > 0.0 {
         let at_j = pedal_accel_on(end.vehicle, v_j, end.gear, end.slope_torque);
         let pedal = stage::input_for(model, &m.pedal, &at_j, (v_i, v_j), h);
-        let (pedal_lo, pedal_hi) = trapezoid_pedal_band(p, v_i, m.pedal.gain);
+        let (pedal_lo, pedal_hi) = end.pedal_band;
         if pedal >= pedal_lo && pedal <= pedal_hi {
-            let fuel_per_pedal = m.full_fuel_g + 0.5 * h * end.vehicle.fuel_rate_gps(v_j, 1.0, end.gear) / v_j;
+            let fuel_per_pedal = m.full_fuel_g + stage::half_stage_fuel_g(end.vehicle, v_j, 1.0, end.gear, h);
             let clipped = pedal.clamp(0.0, 1.0);
             return Some((Inputs { pedal: clipped, brake: 0.0 }, p.q_fuel * fuel_per_pedal * clipped + change));
         }
@@ -190,7 +196,7 @@ fn forward_row_trapezoid(
     let pedal_on = m.pedal.gain > 0.0;
     let mut band_lo = f64::INFINITY;
     if pedal_on {
-        let (pedal_lo, pedal_hi) = trapezoid_pedal_band(p, v_i, m.pedal.gain);
+        let (pedal_lo, pedal_hi) = end.pedal_band;
         let at =
             |u: f64| stage::end_speed(StageModel::Trapezoid, vehicle, (v_i, h), gear, slope_torque, (Branch::Pedal, u));
         band_lo = at(pedal_lo);

@@ -739,32 +739,22 @@ impl Solver {
                 shift_j: &mut ch.shift_j[span],
             };
             transitions += gear_pass_dispatch(&pass, choices);
-            if p.fuel_cut_arcs {
-                let arcs = stage.arcs(g);
-                arcs.fill(key_lo, key_hi, |key| coast_arc(p, vehicle, here.index.speed(key), g, slope_torque));
-                let block = g * stride(next.count) + PAD;
+            // Fuel cut, and on trapezoid stages (whose rows stop at full pedal) full pedal too, as
+            // exact arcs: (cache slot, input held, join, flag of the choice).
+            let fuel_cut = p.fuel_cut_arcs.then(|| (g, (Branch::Brake, 0.0), ArcJoin::new(p, next, (lo, hi)), ARC));
+            let full = (p.stage_model == StageModel::Trapezoid)
+                .then(|| (gears + g, (Branch::Pedal, 1.0), ArcJoin::full_pedal(p, next, (lo, hi)), FULL));
+            let block = g * stride(next.count) + PAD;
+            let slot0 = out + (key_lo - ch.base_key) as usize;
+            for (slot, input, join, flag) in fuel_cut.into_iter().chain(full) {
+                let arcs = stage.arcs(slot);
+                arcs.fill(key_lo, key_hi, |key| exact_arc(p, vehicle, here.index.speed(key), g, slope_torque, input));
                 let (cost_next, counter_next) = (&self.cost_next[block..], &self.counter_next[block..]);
-                let join = ArcJoin::new(p, next, (lo, hi));
-                let slot0 = out + (key_lo - ch.base_key) as usize;
                 for (at, arc) in (slot0..).zip(arcs.get(key_lo, key_hi)) {
                     // The counter of the grid point the path continues from, not the stencil's
                     // smallest (the neutral state's rule): this arc's state is a forward gear's.
                     let (cost, j, _) = join.join(arc, cost_next, counter_next);
-                    better_by_arc(cost, j | ARC, counter_next[j as usize] >= p.k_lim, ch, at);
-                }
-                transitions += (key_hi - key_lo + 1) as usize;
-            }
-            if p.stage_model == StageModel::Trapezoid {
-                // Full pedal as an exact arc too: the trapezoid's rows stop at full pedal.
-                let arcs = stage.arcs(gears + g);
-                arcs.fill(key_lo, key_hi, |key| full_pedal_arc(p, vehicle, here.index.speed(key), g, slope_torque));
-                let block = g * stride(next.count) + PAD;
-                let (cost_next, counter_next) = (&self.cost_next[block..], &self.counter_next[block..]);
-                let join = ArcJoin::full_pedal(p, next, (lo, hi));
-                let slot0 = out + (key_lo - ch.base_key) as usize;
-                for (at, arc) in (slot0..).zip(arcs.get(key_lo, key_hi)) {
-                    let (cost, j, _) = join.join(arc, cost_next, counter_next);
-                    better_by_arc(cost, j | FULL, counter_next[j as usize] >= p.k_lim, ch, at);
+                    better_by_arc(cost, j | flag, counter_next[j as usize] >= p.k_lim, ch, at);
                 }
                 transitions += (key_hi - key_lo + 1) as usize;
             }
@@ -871,16 +861,13 @@ impl Solver {
                 shift: &mut self.shift_cur[values],
                 decision: &mut self.decisions[decisions],
             };
-            let ranked = if exit_own && g_i == NEUTRAL {
-                [&ch.exit_cost, &ch.exit2_cost].map(|costs| &costs[slots.clone()])
+            let (ranked, ranked_gears) = if exit_own && g_i == NEUTRAL {
+                ([&ch.exit_cost, &ch.exit2_cost], [&ch.exit_gear, &ch.exit2_gear])
             } else {
-                [&ch.first_cost, &ch.second_cost].map(|costs| &costs[slots.clone()])
+                ([&ch.first_cost, &ch.second_cost], [&ch.first_gear, &ch.second_gear])
             };
-            let ranked_gears = if exit_own && g_i == NEUTRAL {
-                [&ch.exit_gear, &ch.exit2_gear].map(|gears| &gears[slots.clone()])
-            } else {
-                [&ch.first_gear, &ch.second_gear].map(|gears| &gears[slots.clone()])
-            };
+            let ranked = ranked.map(|costs| &costs[slots.clone()]);
+            let ranked_gears = ranked_gears.map(|gears| &gears[slots.clone()]);
             let input = StateIn {
                 gear: g_i as u32,
                 slot0: slots.start,
@@ -1165,19 +1152,24 @@ unsafe fn decide_staying_avx2<const NEUTRAL_STATE: bool>(input: &StateIn, out: &
 /// physics ends it (engine drag braking in a forward gear, none in neutral), and its fuel (idle
 /// fuel in neutral, none at fuel cut) and speed-change cost.
 fn coast_arc(p: &DpSettings, vehicle: &Vehicle, v_i_mps: f64, gear: usize, slope_torque: f64) -> CoastArc {
-    let h = p.stage_m;
-    let v_end_mps = stage::end_speed(p.stage_model, vehicle, (v_i_mps, h), gear, slope_torque, (Branch::Brake, 0.0));
-    let fuel = stage::fuel_g(p.stage_model, vehicle, (v_i_mps, v_end_mps), 0.0, gear, h);
-    let change = change_cost(p.q_speed_change, p.q_speed_change_sq, v_i_mps - v_end_mps);
-    CoastArc { v_end_mps, cost: p.q_fuel * fuel + change }
+    exact_arc(p, vehicle, v_i_mps, gear, slope_torque, (Branch::Brake, 0.0))
 }
 
-/// The full-pedal arc from `v_i_mps` in forward `gear` on a trapezoid stage: its end speed, off
-/// the grid, and its fuel and speed-change cost.
-fn full_pedal_arc(p: &DpSettings, vehicle: &Vehicle, v_i_mps: f64, gear: usize, slope_torque: f64) -> CoastArc {
+/// The exact arc from `v_i_mps` in `gear` with `input` held over a stage (fuel cut or coasting
+/// with the brake branch at zero, full pedal with the pedal branch at one): its end speed, off the
+/// grid, and its cost Q1·fuel + speed change.
+fn exact_arc(
+    p: &DpSettings,
+    vehicle: &Vehicle,
+    v_i_mps: f64,
+    gear: usize,
+    slope_torque: f64,
+    input: (Branch, f64),
+) -> CoastArc {
     let h = p.stage_m;
-    let v_end_mps = stage::end_speed(p.stage_model, vehicle, (v_i_mps, h), gear, slope_torque, (Branch::Pedal, 1.0));
-    let fuel = stage::fuel_g(p.stage_model, vehicle, (v_i_mps, v_end_mps), 1.0, gear, h);
+    let v_end_mps = stage::end_speed(p.stage_model, vehicle, (v_i_mps, h), gear, slope_torque, input);
+    let pedal = if input.0 == Branch::Pedal { input.1 } else { 0.0 };
+    let fuel = stage::fuel_g(p.stage_model, vehicle, (v_i_mps, v_end_mps), pedal, gear, h);
     let change = change_cost(p.q_speed_change, p.q_speed_change_sq, v_i_mps - v_end_mps);
     CoastArc { v_end_mps, cost: p.q_fuel * fuel + change }
 }

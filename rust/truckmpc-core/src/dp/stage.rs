@@ -104,17 +104,17 @@ pub fn fuel_g(model: StageModel, vehicle: &Vehicle, (v_i, v_j): (f64, f64), peda
     match model {
         StageModel::Euler => h_m / v_i * vehicle.fuel_rate_gps(v_i, pedal, gear),
         StageModel::Trapezoid => {
-            0.5 * h_m * (vehicle.fuel_rate_gps(v_i, pedal, gear) / v_i + vehicle.fuel_rate_gps(v_j, pedal, gear) / v_j)
+            half_stage_fuel_g(vehicle, v_i, pedal, gear, h_m) + half_stage_fuel_g(vehicle, v_j, pedal, gear, h_m)
         }
     }
 }
 
-/// Fuel [g] per unit of pedal of a stage from `v_i` to `v_j` in forward `gear` (fuel is linear in
-/// the pedal at a fixed engine speed, (B.2)).
+/// The trapezoid's share of a stage's fuel [g] at one end, at speed `v_mps`: (h/2)·ṁ_f/v, half
+/// the stage length at that end's fuel per metre. Fuel is linear in the pedal at a fixed engine
+/// speed (B.2), so at `pedal` 1 this is the fuel per unit of pedal.
 #[inline]
-pub fn fuel_per_pedal_g(model: StageModel, vehicle: &Vehicle, (v_i, v_j): (f64, f64), gear: usize, h_m: f64) -> f64 {
-    debug_assert!(gear != NEUTRAL);
-    fuel_g(model, vehicle, (v_i, v_j), 1.0, gear, h_m)
+pub fn half_stage_fuel_g(vehicle: &Vehicle, v_mps: f64, pedal: f64, gear: usize, h_m: f64) -> f64 {
+    0.5 * h_m * vehicle.fuel_rate_gps(v_mps, pedal, gear) / v_mps
 }
 
 /// Time [s] of a stage from `v_i` to `v_j` [m/s] over `h_m`.
@@ -209,7 +209,7 @@ mod tests {
         assert_eq!(time_s(StageModel::Euler, (v_i, v_j), h), h / v_i);
         assert!((time_s(StageModel::Trapezoid, (v_i, v_j), h) - 0.5 * h * (1.0 / v_i + 1.0 / v_j)).abs() < 1e-15);
         let per_m = |v: f64| vehicle.fuel_rate_gps(v, 1.0, 12) / v;
-        let trapezoid = fuel_per_pedal_g(StageModel::Trapezoid, &vehicle, (v_i, v_j), 12, h);
+        let trapezoid = fuel_g(StageModel::Trapezoid, &vehicle, (v_i, v_j), 1.0, 12, h);
         assert!((trapezoid - 0.5 * h * (per_m(v_i) + per_m(v_j))).abs() < 1e-12);
         assert_eq!(
             fuel_g(StageModel::Euler, &vehicle, (v_i, v_j), 0.5, 12, h),
