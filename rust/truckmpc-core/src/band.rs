@@ -13,8 +13,7 @@
 
 use crate::params::CruiseParams;
 use crate::road::Road;
-
-const KMH_PER_MPS: f64 = 3.6;
+use crate::KMH_PER_MPS;
 
 /// Lowest v_min [km/h] a stretch's band takes (unless the cruise band's own is lower).
 pub const V_MIN_FLOOR_KMH: f64 = 5.0;

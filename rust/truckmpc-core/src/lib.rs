@@ -23,6 +23,10 @@ pub mod sim;
 pub mod vehicle;
 
 pub use error::{CoreError, CoreResult};
+
+/// Road speed conversion [km/h per m/s]: speeds are m/s inside the model, km/h at the interfaces.
+pub const KMH_PER_MPS: f64 = 3.6;
+
 pub use params::{CruiseParams, MpcParams, PiParams, RunSettings, SimParams};
 pub use plant::{Control, Plant, PlantState};
 pub use road::Road;

@@ -37,8 +37,7 @@ use crate::params::{CruiseParams, PccParams, PiParams};
 use crate::plant::{Control, PlantState};
 use crate::road::Road;
 use crate::vehicle::{Vehicle, NEUTRAL};
-
-const KMH_PER_MPS: f64 = 3.6;
+use crate::KMH_PER_MPS;
 
 /// A stretch of road steeper downhill than α*: the speed should be lowest at `x_low_m` and back at
 /// v_ref by `x_end_max_m`.

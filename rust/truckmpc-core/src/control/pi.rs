@@ -34,8 +34,7 @@ use crate::params::{CruiseParams, PiParams};
 use crate::plant::{Control, PlantState};
 use crate::road::Road;
 use crate::vehicle::{Vehicle, NEUTRAL};
-
-const KMH_PER_MPS: f64 = 3.6;
+use crate::KMH_PER_MPS;
 
 /// Engine-speed thresholds of table A.3 for a vehicle: above gear g's upshift threshold the next
 /// higher gear is chosen, below its downshift threshold the next lower one. The PI never selects

@@ -6,8 +6,7 @@
 
 use super::pi::GearLogic;
 use crate::plant::Control;
-
-const KMH_PER_MPS: f64 = 3.6;
+use crate::KMH_PER_MPS;
 
 /// Brake level per km/h above v_max, and the offset [km/h] that keeps braking just below v_max so
 /// the speed ends up inside the band rather than creeping down towards its top.

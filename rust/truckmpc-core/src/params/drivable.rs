@@ -5,9 +5,7 @@
 use super::RunSettings;
 use crate::error::{CoreError, CoreResult};
 use crate::vehicle::Vehicle;
-
-/// Road speed conversion [km/h per m/s].
-const KMH_PER_MPS: f64 = 3.6;
+use crate::KMH_PER_MPS;
 
 /// The speeds the truck can drive [km/h]: from gear 1 at `n_min_rpm` to the top gear at `n_max_rpm`
 /// (the look-ahead controller's usable engine speeds, section 5.7).

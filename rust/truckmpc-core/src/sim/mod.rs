@@ -17,8 +17,7 @@ pub use run::{run, run_on_map, RunOutput};
 pub use summary::RunSummary;
 pub use trace::Trace;
 
-/// Road speed conversion [km/h per m/s].
-pub const KMH_PER_MPS: f64 = 3.6;
+pub use crate::KMH_PER_MPS;
 
 /// A run (or a hold `until_m`) is complete within this distance of its target [m].
 pub const ARRIVAL_TOLERANCE_M: f64 = 1e-6;
