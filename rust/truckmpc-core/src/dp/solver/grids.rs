@@ -38,6 +38,21 @@ impl Solver {
         terminal: Option<&StageValues>,
         raise_end: bool,
     ) {
+        self.stage_grids(vehicle, start, slopes, first_stage, terminal, raise_end);
+        self.gear_states(vehicle, start, terminal);
+    }
+
+    /// The speed bounds of every stage (the interval passes) and the grid on them; the start
+    /// stage's grid is the start speed alone, the last stage's that of `terminal` if given.
+    fn stage_grids(
+        &mut self,
+        vehicle: &Vehicle,
+        start: InitialState,
+        slopes: &[f64],
+        first_stage: Option<u64>,
+        terminal: Option<&StageValues>,
+        raise_end: bool,
+    ) {
         // Absolute stages, when known, let the interval passes reuse steps of earlier solves.
         let p = &self.params;
         let memo = first_stage.filter(|_| self.caching).map(|stage| (stage, &mut self.interval_memo));
@@ -67,6 +82,12 @@ impl Solver {
             let index = GridIndex { origin_mps: next.origin_mps, delta_mps: next.delta_mps };
             *self.grids.last_mut().expect("a stage") = StageGrid { index, first: next.first, count: next.count };
         }
+    }
+
+    /// Per stage and gear, the grid indices with a state (`gear_ranges`) and the gears with any
+    /// (`active`); room for the decisions of every state.
+    fn gear_states(&mut self, vehicle: &Vehicle, start: InitialState, terminal: Option<&StageValues>) {
+        let p = &self.params;
         let gears = vehicle.forward_gears() + 1;
         let last = self.grids.len() - 1;
         // Stages 1..=forced are reached before the shift limit lets the truck leave its gear.
