@@ -186,7 +186,7 @@ pub fn forward_row(
     if p.stage_model == StageModel::Trapezoid {
         return forward_row_trapezoid(vehicle, p, v_i, gear, slope_torque, grid, v_max_mps, out);
     }
-    forward_row_euler(vehicle, p, v_i, gear, slope_torque, grid, v_max_mps, out)
+    forward_row_euler((vehicle, p), (v_i, gear, slope_torque), (grid, v_max_mps), out)
 }
 
 /// The inputs of one admissible pair (the solver recomputes them for the path it keeps); `v_max`

@@ -291,7 +291,10 @@ impl Solver {
         // (its kinetic energy in fuel): requiring v_ref there kept the truck from planning a coast
         // into a descent beyond the horizon. The whole road ends at v_ref, as every cost does.
         let raise_end = matches!(ends, Ends::Recording(_));
-        self.build_space(vehicle, start, slopes, first_stage, terminal, raise_end);
+        // Intervals, grids, gear ranges and active gears of every stage; the last stage's are those
+        // of `terminal` when the solve ends on stored values.
+        self.stage_grids(vehicle, start, slopes, first_stage, terminal, raise_end);
+        self.gear_states(vehicle, start, terminal);
         let cached_from = if self.caching { first_stage } else { None };
         if let Some(stage) = cached_from {
             // Stage k of this solve (k ≥ 1 has grid states) is absolute stage `stage + k`.

@@ -41,15 +41,10 @@ pub(super) fn pair_euler(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64, v_max:
 /// Each cost is computed by the same operations as [`pair`](super::pair) (same bits); only the
 /// constants of the row are hoisted out of the loop. `v_max_mps` is the top of the next stage's
 /// band.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn forward_row_euler(
-    vehicle: &Vehicle,
-    p: &DpSettings,
-    v_i: f64,
-    gear: usize,
-    slope_torque: f64,
-    grid: GridIndex,
-    v_max_mps: f64,
+    (vehicle, p): (&Vehicle, &DpSettings),
+    (v_i, gear, slope_torque): (f64, usize, f64),
+    (grid, v_max_mps): (GridIndex, f64),
     out: &mut Vec<f64>,
 ) -> (RowSpan, usize) {
     let start = out.len();

@@ -27,24 +27,9 @@ impl StageGrid {
 }
 
 impl Solver {
-    /// Intervals, grids, gear ranges and active gears of every stage; the last stage's are those
-    /// of `terminal` when the solve ends on stored values.
-    pub(super) fn build_space(
-        &mut self,
-        vehicle: &Vehicle,
-        start: InitialState,
-        slopes: &[f64],
-        first_stage: Option<u64>,
-        terminal: Option<&StageValues>,
-        raise_end: bool,
-    ) {
-        self.stage_grids(vehicle, start, slopes, first_stage, terminal, raise_end);
-        self.gear_states(vehicle, start, terminal);
-    }
-
     /// The speed bounds of every stage (the interval passes) and the grid on them; the start
     /// stage's grid is the start speed alone, the last stage's that of `terminal` if given.
-    fn stage_grids(
+    pub(super) fn stage_grids(
         &mut self,
         vehicle: &Vehicle,
         start: InitialState,
@@ -86,7 +71,7 @@ impl Solver {
 
     /// Per stage and gear, the grid indices with a state (`gear_ranges`) and the gears with any
     /// (`active`); room for the decisions of every state.
-    fn gear_states(&mut self, vehicle: &Vehicle, start: InitialState, terminal: Option<&StageValues>) {
+    pub(super) fn gear_states(&mut self, vehicle: &Vehicle, start: InitialState, terminal: Option<&StageValues>) {
         let p = &self.params;
         let gears = vehicle.forward_gears() + 1;
         let last = self.grids.len() - 1;
