@@ -1,0 +1,108 @@
+//! Rows of the trapezoid stage: the inputs joining two speeds [m/s] from the maps at both ends,
+//! the fuel from the fuel per metre at both ends; the pedal band stops at full pedal (the
+//! full-pedal end is an exact arc of the solver's), and from zero where fuel cut is one too. Costs
+//! in the units of (5.9).
+
+use super::{change_cost, maps, trim, EndMaps, GridIndex, Inputs, RowMaps, RowSpan, BRAKE_WINDOW};
+use crate::dp::params::{DpSettings, GridAnchor, StageModel};
+use crate::dp::stage::{self, Branch};
+use crate::levels::{brake_accel_on, pedal_accel_on};
+use crate::vehicle::Vehicle;
+
+/// [`pair`](super::pair) on a trapezoid stage: the inputs from the maps at both ends, the fuel from
+/// the fuel per metre at both ends.
+#[inline]
+pub(super) fn pair_trapezoid(
+    p: &DpSettings,
+    m: &RowMaps,
+    end: &EndMaps,
+    v_i: f64,
+    v_j: f64,
+    v_max: f64,
+) -> Option<(Inputs, f64)> {
+    let h = p.stage_m;
+    let change = change_cost(p.q_speed_change, p.q_speed_change_sq, v_i - v_j);
+    let model = StageModel::Trapezoid;
+    if m.pedal.gain > 0.0 {
+        let at_j = pedal_accel_on(end.vehicle, v_j, end.gear, end.slope_torque);
+        let pedal = stage::input_for(model, &m.pedal, &at_j, (v_i, v_j), h);
+        let (pedal_lo, pedal_hi) = end.pedal_band;
+        if pedal >= pedal_lo && pedal <= pedal_hi {
+            let fuel_per_pedal = m.full_fuel_g + stage::half_stage_fuel_g(end.vehicle, v_j, 1.0, end.gear, h);
+            let clipped = pedal.clamp(0.0, 1.0);
+            return Some((Inputs { pedal: clipped, brake: 0.0 }, p.q_fuel * fuel_per_pedal * clipped + change));
+        }
+        if pedal > pedal_hi {
+            return None;
+        }
+    }
+    if (v_j - v_max).abs() < p.delta_mps() * BRAKE_WINDOW {
+        let at_j = brake_accel_on(end.vehicle, v_j, end.gear, end.slope_torque);
+        let brake = stage::input_for(model, &m.brake, &at_j, (v_i, v_j), h);
+        if (0.0..=1.0).contains(&brake) {
+            return Some((Inputs { pedal: 0.0, brake }, p.q_brake * brake + change));
+        }
+    }
+    None
+}
+
+/// The pedal levels a trapezoid row accepts from `v_i`: never above full pedal (a level clipped to
+/// full pedal would reach the grid point past the full-pedal end for nothing: a path pulsing
+/// between full pedal and a glide gained half a grid step a stage), the full-pedal end being an
+/// exact arc of the solver's instead; and from zero when fuel cut is an exact arc too (a level
+/// below zero, clipped to zero, is fuel cut in the plant, whose engine drag brakes much harder
+/// than the map at zero pedal the row assumed), else from −ε as the Euler rows.
+/// On the moving grid, whose top bound is the continuous full-pedal speed, the top would be out of
+/// reach at full pedal (its solves were infeasible, 58 in the first 10 km of VECTO 108 km): there
+/// the band is the Euler rows' [−ε, 1 + ε].
+#[inline]
+pub(super) fn trapezoid_pedal_band(p: &DpSettings, v_i: f64, gain: f64) -> (f64, f64) {
+    let (lo, hi) = p.pedal_band(v_i, gain);
+    match p.grid {
+        GridAnchor::Fixed => (if p.fuel_cut_arcs { 0.0 } else { lo }, 1.0),
+        GridAnchor::Moving => (lo, hi),
+    }
+}
+
+/// [`forward_row`](super::forward_row) on a trapezoid stage: the span from the end speeds of the
+/// pedal band's ends (one index wider each way, the implicit step being solved to rounding), each
+/// cost from [`pair_trapezoid`].
+#[allow(clippy::too_many_arguments)]
+pub(super) fn forward_row_trapezoid(
+    vehicle: &Vehicle,
+    p: &DpSettings,
+    v_i: f64,
+    gear: usize,
+    slope_torque: f64,
+    grid: GridIndex,
+    v_max: f64,
+    out: &mut Vec<f64>,
+) -> (RowSpan, usize) {
+    let start = out.len();
+    let m = maps(vehicle, p, v_i, gear, slope_torque);
+    let end = m.trapezoid.expect("a trapezoid row");
+    let h = p.stage_m;
+    let (mut first, mut last) = (i64::MAX, i64::MIN);
+    let pedal_on = m.pedal.gain > 0.0;
+    let mut band_lo = f64::INFINITY;
+    if pedal_on {
+        let (pedal_lo, pedal_hi) = end.pedal_band;
+        let at =
+            |u: f64| stage::end_speed(StageModel::Trapezoid, vehicle, (v_i, h), gear, slope_torque, (Branch::Pedal, u));
+        band_lo = at(pedal_lo);
+        first = grid.ceil(band_lo) - 1;
+        last = grid.floor(at(pedal_hi)) + 1;
+    }
+    if band_lo > v_max - p.delta_mps() {
+        first = first.min(grid.floor(v_max - p.delta_mps()));
+        last = last.max(grid.ceil(v_max + p.delta_mps()));
+    }
+    first = first.max(grid.ceil(0.0) + 1);
+    if last < first {
+        return (RowSpan { first: 0, len: 0 }, start);
+    }
+    out.extend((first..=last).map(|index| {
+        pair_trapezoid(p, &m, &end, v_i, grid.speed(index), v_max).map_or(f64::INFINITY, |(_, cost)| cost)
+    }));
+    trim(out, start, first)
+}

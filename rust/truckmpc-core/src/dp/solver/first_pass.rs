@@ -1,0 +1,247 @@
+//! The first pass of a stage (per target gear): for every source speed, the cheapest way into each
+//! gear of the next stage (row cost + cost-to-go) and the cheapest that allows a shift now. Forward
+//! gears take the min-plus pass over their cached rows ([`crate::dp::simd`]); neutral, fuel-cut and
+//! full-pedal ways are exact arcs ([`super::arcs`]). Costs in the units of (5.9).
+
+use super::arcs::{better_by_arc, exact_arc, neutral_choices, ArcJoin};
+use super::choices::{ARC, FULL};
+use super::{stride, Solver, INF};
+use crate::dp::cache::{Block, StageKey, StageRows, LANES, PAD};
+use crate::dp::params::StageModel;
+use crate::dp::rows::forward_row;
+use crate::dp::simd::{self, LaneMins, LaneOut};
+use crate::dp::stage::Branch;
+use crate::vehicle::{Vehicle, NEUTRAL};
+
+impl Solver {
+    /// First pass of a stage: for every source velocity in `sources` and every target gear, the
+    /// best next state and the best one that allows a shift now, into `choices`. Returns the
+    /// transitions evaluated.
+    pub(super) fn best_per_target_gear(
+        &mut self,
+        vehicle: &Vehicle,
+        k: usize,
+        abs_stage: Option<u64>,
+        (i_lo, i_hi): (usize, usize),
+        active_next: &[usize],
+    ) -> usize {
+        let gears = vehicle.forward_gears() + 1;
+        let (here, next) = (self.grids[k], self.grids[k + 1]);
+        let p = &self.params;
+        let v_max_next = self.bands[k + 1].v_max_mps();
+        let mut uncounted = 0;
+        let (stage, computed): (&mut StageRows, &mut u64) = match abs_stage {
+            Some(stage) if k > 0 => self.cache.stage(stage),
+            _ => {
+                self.scratch_rows.reset(StageKey { slope_torque_nm: self.slope_torques[k], ..StageKey::default() });
+                (&mut self.scratch_rows, &mut uncounted)
+            }
+        };
+        let slope_torque = self.slope_torques[k];
+        let (key_lo, key_hi) = (here.first + i_lo as i64, here.first + i_hi as i64);
+        let ch = &mut self.choices;
+        let mut transitions = 0;
+        for &g in active_next {
+            let (lo, hi) = self.gear_ranges[(k + 1) * gears + g];
+            let out = g * ch.width;
+            if g == NEUTRAL {
+                let values = (&self.cost_next[PAD..], &self.counter_next[PAD..]);
+                let arcs = stage.arcs(NEUTRAL);
+                let keys = (key_lo, key_hi);
+                neutral_choices(p, vehicle, arcs, (here, next), slope_torque, keys, (lo, hi), values, self.avx2, ch);
+                transitions += i_hi - i_lo + 1;
+                continue;
+            }
+            let rows = stage.gear(g);
+            *computed += rows.fill(key_lo, key_hi, &mut self.scratch, |key, buf| {
+                forward_row(vehicle, p, here.index.speed(key), g, slope_torque, next.index, v_max_next, buf)
+            });
+            let values = g * stride(next.count)..(g + 1) * stride(next.count);
+            let (blocks, first_key) = rows.get(key_lo, key_hi);
+            debug_assert_eq!(first_key, ch.base_key);
+            let pass = GearPass {
+                blocks,
+                costs: &rows.costs,
+                next_first: next.first,
+                lo,
+                hi,
+                to_go: &self.cost_next[values.clone()],
+                shiftable: &self.shift_next[values],
+                same: self.shift_same_next[g],
+                first_key,
+                key_lo,
+                key_hi,
+            };
+            let span = out..out + blocks.len() * LANES;
+            let choices = GearChoices {
+                all_cost: &mut ch.all_cost[span.clone()],
+                all_j: &mut ch.all_j[span.clone()],
+                shift_cost: &mut ch.shift_cost[span.clone()],
+                shift_j: &mut ch.shift_j[span],
+            };
+            transitions += gear_pass_dispatch(&pass, choices);
+            // Fuel cut, and on trapezoid stages (whose rows stop at full pedal) full pedal too, as
+            // exact arcs: (cache slot, input held, join, flag of the choice).
+            let fuel_cut = p.fuel_cut_arcs.then(|| (g, (Branch::Brake, 0.0), ArcJoin::new(p, next, (lo, hi)), ARC));
+            let full = (p.stage_model == StageModel::Trapezoid)
+                .then(|| (gears + g, (Branch::Pedal, 1.0), ArcJoin::full_pedal(p, next, (lo, hi)), FULL));
+            let block = g * stride(next.count) + PAD;
+            let slot0 = out + (key_lo - ch.base_key) as usize;
+            for (slot, input, join, flag) in fuel_cut.into_iter().chain(full) {
+                let arcs = stage.arcs(slot);
+                arcs.fill(key_lo, key_hi, |key| exact_arc(p, vehicle, here.index.speed(key), g, slope_torque, input));
+                let (cost_next, counter_next) = (&self.cost_next[block..], &self.counter_next[block..]);
+                for (at, arc) in (slot0..).zip(arcs.get(key_lo, key_hi)) {
+                    // The counter of the grid point the path continues from, not the stencil's
+                    // smallest (the neutral state's rule): this arc's state is a forward gear's.
+                    let (cost, j, _) = join.join(arc, cost_next, counter_next);
+                    better_by_arc(cost, j | flag, counter_next[j as usize] >= p.k_lim, ch, at);
+                }
+                transitions += (key_hi - key_lo + 1) as usize;
+            }
+        }
+        transitions
+    }
+}
+
+/// What the first pass reads for one forward target gear.
+struct GearPass<'a> {
+    /// The blocks of the source keys, from `first_key` on.
+    blocks: &'a [Block],
+    costs: &'a [f64],
+    /// Grid index of the next grid's state 0.
+    next_first: i64,
+    /// The target gear's states at the next stage.
+    lo: u32,
+    hi: u32,
+    /// The target gear's blocks of cost_next and shift_next (margins included).
+    to_go: &'a [f64],
+    shiftable: &'a [f64],
+    /// Whether `shiftable` equals `to_go` bit for bit.
+    same: bool,
+    first_key: i64,
+    /// The source keys with states.
+    key_lo: i64,
+    key_hi: i64,
+}
+
+/// Where the first pass writes for one forward target gear: one value per block lane.
+struct GearChoices<'a> {
+    all_cost: &'a mut [f64],
+    all_j: &'a mut [u32],
+    shift_cost: &'a mut [f64],
+    shift_j: &'a mut [u32],
+}
+
+/// [`gear_pass`] with the best kernels of the CPU. Returns the transitions evaluated.
+fn gear_pass_dispatch(pass: &GearPass, out: GearChoices) -> usize {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(kernels) = simd::Avx2::detect() {
+        // SAFETY: `kernels` exists, so the CPU has AVX2.
+        return unsafe { gear_pass_avx2(kernels, pass, out) };
+    }
+    gear_pass(simd::Portable, pass, out)
+}
+
+/// [`gear_pass`] compiled for AVX2, so that its kernels inline into the loop over blocks.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn gear_pass_avx2(kernels: simd::Avx2, pass: &GearPass, out: GearChoices) -> usize {
+    gear_pass(kernels, pass, out)
+}
+
+/// The first pass towards one forward target gear: per block, the lanes' best ways into the gear
+/// (and the best that allow a shift now), their next-grid indices, and the transitions counted.
+#[inline(always)]
+fn gear_pass<K: simd::Kernels>(kernels: K, pass: &GearPass, out: GearChoices) -> usize {
+    let (lo, hi) = (pass.lo, pass.hi);
+    let mut transitions = 0;
+    let n = pass.blocks.len() * LANES;
+    assert!(out.all_cost.len() == n && out.all_j.len() == n && out.shift_cost.len() == n && out.shift_j.len() == n);
+    for (b, block) in pass.blocks.iter().enumerate() {
+        let base = block.first as i64 - pass.next_first;
+        let at = b * LANES..(b + 1) * LANES;
+        let lanes = LaneOut {
+            all: &mut out.all_cost[at.clone()],
+            all_j: &mut out.all_j[at.clone()],
+            shift: &mut out.shift_cost[at.clone()],
+            shift_j: &mut out.shift_j[at],
+        };
+        block_mins(kernels, block, pass.costs, base, (lo, hi), (pass.to_go, pass.shiftable), pass.same, lanes);
+        let key0 = pass.first_key + (b * LANES) as i64;
+        let inside = base >= lo as i64 && base + block.steps as i64 + LANES as i64 - 2 <= hi as i64;
+        if inside && key0 >= pass.key_lo && key0 + LANES as i64 - 1 <= pass.key_hi {
+            // Every lane's targets are states and every lane a source: no clipping.
+            transitions += block.reach as usize;
+            continue;
+        }
+        for l in 0..LANES {
+            let key = key0 + l as i64;
+            let (first, len) = block.spans[l];
+            let first = first as i64 - pass.next_first;
+            let reached = ((first + len as i64 - 1).min(hi as i64) - first.max(lo as i64) + 1).max(0) as usize;
+            transitions += if key >= pass.key_lo && key <= pass.key_hi { reached } else { 0 };
+        }
+    }
+    transitions
+}
+
+/// The min-plus pass over one block of rows towards one forward target gear, into `out`: per
+/// lane, the best of row cost + cost-to-go and the best among targets whose continuation allows a
+/// shift now, with their next-grid indices (base + lane + step, as u32 like the i64 sum
+/// truncated; meaningless where the cost is +∞). `base` is the next-grid index of lane 0 at step
+/// 0; `values` the target gear's blocks of cost_next and shift_next (margins included, state j at
+/// PAD + j); `same` when they are equal bit for bit.
+#[inline(always)]
+pub(super) fn block_mins<K: simd::Kernels>(
+    kernels: K,
+    block: &Block,
+    costs: &[f64],
+    base: i64,
+    (lo, hi): (u32, u32),
+    (to_go, shiftable): (&[f64], &[f64]),
+    same: bool,
+    out: LaneOut,
+) {
+    let steps = block.steps as usize;
+    let at = base + PAD as i64;
+    let costs = &costs[block.offset as usize..];
+    if steps > 0 && at >= 0 && at as usize + steps + LANES - 1 <= to_go.len() {
+        // The values outside the target gear's states are +∞ (margins included): no clipping.
+        let at = at as usize;
+        let shiftable = if same { None } else { Some(&shiftable[at..]) };
+        kernels.block_mins_to((costs, steps), &to_go[at..], shiftable, base as u32, out);
+        return;
+    }
+    block_mins_clipped(costs, steps, base, (lo, hi), to_go, shiftable).write(base as u32, out);
+}
+
+/// [`block_mins`] for a block reaching beyond the margins: only targets that are states count.
+#[cold]
+fn block_mins_clipped(
+    costs: &[f64],
+    steps: usize,
+    base: i64,
+    (lo, hi): (u32, u32),
+    to_go: &[f64],
+    shiftable: &[f64],
+) -> LaneMins {
+    let mut out = LaneMins { all: [INF; LANES], all_step: [0; LANES], shift: [INF; LANES], shift_step: [0; LANES] };
+    for d in 0..steps {
+        for l in 0..LANES {
+            let j = base + (l + d) as i64;
+            if j < lo as i64 || j > hi as i64 {
+                continue;
+            }
+            let c = costs[d * LANES + l];
+            let (x, y) = (c + to_go[PAD + j as usize], c + shiftable[PAD + j as usize]);
+            if x < out.all[l] {
+                (out.all[l], out.all_step[l]) = (x, d as u32);
+            }
+            if y < out.shift[l] {
+                (out.shift[l], out.shift_step[l]) = (y, d as u32);
+            }
+        }
+    }
+    out
+}
