@@ -183,10 +183,11 @@ pub fn forward_row(
     v_max_mps: f64,
     out: &mut Vec<f64>,
 ) -> (RowSpan, usize) {
-    if p.stage_model == StageModel::Trapezoid {
-        return forward_row_trapezoid(vehicle, p, v_i, gear, slope_torque, grid, v_max_mps, out);
+    let (from, target) = ((v_i, gear, slope_torque), (grid, v_max_mps));
+    match p.stage_model {
+        StageModel::Trapezoid => forward_row_trapezoid((vehicle, p), from, target, out),
+        StageModel::Euler => forward_row_euler((vehicle, p), from, target, out),
     }
-    forward_row_euler((vehicle, p), (v_i, gear, slope_torque), (grid, v_max_mps), out)
 }
 
 /// The inputs of one admissible pair (the solver recomputes them for the path it keeps); `v_max`

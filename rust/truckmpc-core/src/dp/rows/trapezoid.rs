@@ -67,15 +67,10 @@ pub(super) fn trapezoid_pedal_band(p: &DpSettings, v_i: f64, gain: f64) -> (f64,
 /// [`forward_row`](super::forward_row) on a trapezoid stage: the span from the end speeds of the
 /// pedal band's ends (one index wider each way, the implicit step being solved to rounding), each
 /// cost from [`pair_trapezoid`].
-#[allow(clippy::too_many_arguments)]
 pub(super) fn forward_row_trapezoid(
-    vehicle: &Vehicle,
-    p: &DpSettings,
-    v_i: f64,
-    gear: usize,
-    slope_torque: f64,
-    grid: GridIndex,
-    v_max: f64,
+    (vehicle, p): (&Vehicle, &DpSettings),
+    (v_i, gear, slope_torque): (f64, usize, f64),
+    (grid, v_max): (GridIndex, f64),
     out: &mut Vec<f64>,
 ) -> (RowSpan, usize) {
     let start = out.len();
