@@ -35,7 +35,7 @@ import typer
 
 from truckmpc.config import load_run_config
 from truckmpc.errors import TruckmpcError
-from truckmpc.road import RoadProfile, default_test_track, load_road
+from truckmpc.roads import RoadProfile, default_test_track, load_road
 from truckmpc.table import figure_lines, label_width
 from truckmpc.units import M_PER_KM
 

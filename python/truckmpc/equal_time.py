@@ -35,7 +35,7 @@ from truckmpc.units import G_PER_KG, KMH_PER_MPS
 
 if TYPE_CHECKING:
     from truckmpc.config import RunConfig
-    from truckmpc.road import RoadProfile
+    from truckmpc.roads import RoadProfile
     from truckmpc.sim import RunResult
 
 TIME_TOLERANCE = 1e-4

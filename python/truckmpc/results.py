@@ -47,7 +47,7 @@ from truckmpc.units import M_PER_KM
 
 if TYPE_CHECKING:
     from truckmpc.config import RunConfig
-    from truckmpc.road import RoadProfile
+    from truckmpc.roads import RoadProfile
 
 BASELINE = "pi"
 """The controller every other one is compared against."""

@@ -37,7 +37,7 @@ from truckmpc.legs import drive_legs
 
 if TYPE_CHECKING:
     from truckmpc.config import RunConfig
-    from truckmpc.road import RoadProfile
+    from truckmpc.roads import RoadProfile
 
 TRACE_COLUMNS = (
     "distance_m",

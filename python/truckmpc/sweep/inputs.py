@@ -16,7 +16,8 @@ from truckmpc import _core
 from truckmpc.config import Origin, RunConfig, load_run_config
 from truckmpc.config.yamlfile import load_value
 from truckmpc.errors import ConfigError
-from truckmpc.road import PathLike, RoadProfile, load_road
+from truckmpc.roads import RoadProfile, load_road
+from truckmpc.roads.profile import PathLike
 from truckmpc.sweep.columns import cell
 from truckmpc.sweep.errors import SweepError
 from truckmpc.sweep.grid import Axis, parse_axis
