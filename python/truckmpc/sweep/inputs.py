@@ -18,7 +18,7 @@ from truckmpc.config.yamlfile import load_value
 from truckmpc.errors import ConfigError
 from truckmpc.roads import RoadProfile, load_road
 from truckmpc.roads.profile import PathLike
-from truckmpc.sweep.columns import cell
+from truckmpc.sweep.cells import cell
 from truckmpc.sweep.errors import SweepError
 from truckmpc.sweep.grid import Axis, parse_axis
 

@@ -13,7 +13,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from truckmpc.atomic import atomic_write_text
-from truckmpc.sweep.columns import ERROR_COLUMN, delta_column, parse_cell
+from truckmpc.sweep.cells import parse_cell
+from truckmpc.sweep.columns import ERROR_COLUMN, delta_column
 from truckmpc.sweep.errors import SweepError
 from truckmpc.sweep.files import csv_line
 
