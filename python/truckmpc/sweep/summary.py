@@ -142,6 +142,7 @@ def check_parquet() -> None:
 def write_parquet(path: Path, columns: Sequence[str], rows: Sequence[Sequence[str]]) -> Path:
     """Write the rows (cell text) as a Parquet file at `path`, each column typed as its cells read
     (numbers, booleans, text; blank as null): one call of pyarrow."""
+    # pyarrow is optional (the parquet extra), loaded only to write Parquet
     import pyarrow as pa
     import pyarrow.parquet as pq
 
