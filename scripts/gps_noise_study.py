@@ -17,10 +17,10 @@ from pathlib import Path
 from study_roads import default_road_paths, road_part
 
 from truckmpc.config import load_run_config
-from truckmpc.geo.smooth import Smoothing
 from truckmpc.geo.study import StudyRow, study_rows
 from truckmpc.geo.synthetic import NOISE_KINDS
-from truckmpc.road import load_road
+from truckmpc.roads import load_road
+from truckmpc.roads.gps.smooth import Smoothing
 
 
 def _arguments() -> argparse.Namespace:

@@ -14,7 +14,7 @@ from pathlib import Path
 from study_roads import road_part
 
 from truckmpc.geo.synthetic import NOISE_KINDS, write_fixtures
-from truckmpc.road import load_road
+from truckmpc.roads import load_road
 
 
 def main() -> None:

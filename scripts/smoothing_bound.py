@@ -3,7 +3,7 @@
 The noise test (tests/test_gpx_noise.py, scripts/gps_noise_study.py) lays a shared road's altitude
 along a synthetic path, adds altitude noise of std σ [m] as a first-order Gauss–Markov process
 (correlation e^(−Δs/100 m)) and 2 m of horizontal jitter per axis (truckmpc.geo.synthetic), imports
-the track (truckmpc.geo.importer) and measures the grade RMS error of the imported road against the
+the track (truckmpc.roads.gps.importer) and measures the grade RMS error of the imported road against the
 true one, in percentage points of grade [pp] (truckmpc.geo.study.grade_rms_error_pct). The issue's
 aim is 0.3 pp at σ = 2 m. This script takes the same seeded tracks, the altitude the importer
 resamples on its uniform grid before smoothing (ImportedRoad.raw_altitude_m), and smooths it in
@@ -60,12 +60,12 @@ from scipy.linalg import cho_solve_banded, cholesky_banded
 from scipy.optimize import brentq, minimize_scalar
 from study_roads import default_road_paths, road_part
 
-from truckmpc.geo.gpx import read_gpx
-from truckmpc.geo.importer import import_track
-from truckmpc.geo.smooth import Smoothing
 from truckmpc.geo.study import grade_rms_error_pct
 from truckmpc.geo.synthetic import noisy_track_gpx
-from truckmpc.road import RoadProfile, load_road
+from truckmpc.roads import RoadProfile, load_road
+from truckmpc.roads.gps.importer import import_track
+from truckmpc.roads.gps.smooth import Smoothing
+from truckmpc.roads.gpx import read_gpx
 from truckmpc.units import PCT_PER_FRACTION
 
 CORR_M = 100.0

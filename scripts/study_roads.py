@@ -7,7 +7,7 @@ import os
 from pathlib import Path
 
 from truckmpc.geo.synthetic import road_piece
-from truckmpc.road import RoadProfile
+from truckmpc.roads import RoadProfile
 from truckmpc.units import M_PER_KM
 
 SHARED_ROADS = Path(

@@ -21,7 +21,7 @@ from truckmpc.errors import ConfigError
 if TYPE_CHECKING:
     from truckmpc._core import Vehicle
     from truckmpc.config import RunConfig
-    from truckmpc.road import RoadProfile
+    from truckmpc.roads import RoadProfile
 
 KMH_PER_MPS = 3.6
 

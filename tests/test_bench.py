@@ -11,7 +11,7 @@ from typer.testing import CliRunner
 
 from truckmpc.bench import SETTINGS, BenchResult, _first, format_bench
 from truckmpc.cli import app
-from truckmpc.road import default_test_track, make_section, write_road
+from truckmpc.roads import default_test_track, make_section, write_road
 
 runner = CliRunner()
 

@@ -13,8 +13,9 @@ from typer.testing import CliRunner
 
 from truckmpc import load_road, load_run_config, simulate
 from truckmpc.cli import app
-from truckmpc.equal_time import TIME_TOLERANCE, EqualTime, baseline_runner, equal_time, kinetic_correction_kg
-from truckmpc.road import RoadProfile, make_section
+from truckmpc.equal_time import TIME_TOLERANCE, EqualTime, baseline_runner, equal_time
+from truckmpc.fuel import kinetic_correction_kg
+from truckmpc.roads import RoadProfile, make_section
 
 runner = CliRunner()
 SHARED_ROADS = Path(__file__).resolve().parents[1] / ".." / "shared" / "roads"

@@ -13,7 +13,7 @@ from gps_tracks import gpx_text, meridian_points, point_xml
 from truckmpc.cli import app
 from truckmpc.geo.study import grade_rms_error_pct
 from truckmpc.geo.synthetic import path_points, write_fixtures
-from truckmpc.road import RoadProfile, concatenate, load_road, make_section
+from truckmpc.roads import RoadProfile, concatenate, load_road, make_section
 
 runner = CliRunner()
 WGS84_A_M = 6378137.0

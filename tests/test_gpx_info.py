@@ -10,7 +10,7 @@ from typer.testing import CliRunner
 from truckmpc.cli import app
 from truckmpc.geo.info import road_info
 from truckmpc.geo.synthetic import write_fixtures
-from truckmpc.road import RoadProfile, write_road
+from truckmpc.roads import RoadProfile, write_road
 
 runner = CliRunner()
 

@@ -10,11 +10,11 @@ import pytest
 
 from gps_tracks import SHARED_ROADS, needs_shared
 from truckmpc.config import load_run_config
-from truckmpc.geo.importer import default_smoothing
-from truckmpc.geo.smooth import Smoothing
 from truckmpc.geo.study import delta_fuel_pct, grade_rms_error_pct, noisy_imports
 from truckmpc.geo.synthetic import road_piece
-from truckmpc.road import RoadProfile, load_road
+from truckmpc.roads import RoadProfile, load_road
+from truckmpc.roads.gps.importer import default_smoothing
+from truckmpc.roads.gps.smooth import Smoothing
 
 SEEDS = (1, 2, 3)
 PIECES = {

@@ -10,8 +10,9 @@ import numpy as np
 import pytest
 
 from truckmpc import _core, load_road, load_run_config, simulate
-from truckmpc.legs import STOPS_NOTE, leg_bounds, merge_legs
-from truckmpc.road import RoadProfile, Stop, concatenate, make_section
+from truckmpc.legs import merge_legs
+from truckmpc.roads import RoadProfile, Stop, concatenate, make_section
+from truckmpc.roads.stops import STOPS_NOTE, leg_bounds
 from truckmpc.sim import RunResult
 
 REPO = Path(__file__).resolve().parents[1]

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from truckmpc.config import load_run_config
-from truckmpc.road import default_test_track, make_section
+from truckmpc.roads import default_test_track, make_section
 from truckmpc.sim import simulate
 
 DETAIL = ["horizon_m=1000"]

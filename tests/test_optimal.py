@@ -12,7 +12,7 @@ from typer.testing import CliRunner
 
 from truckmpc import load_run_config, simulate
 from truckmpc.cli import app
-from truckmpc.road import default_test_track, make_section
+from truckmpc.roads import default_test_track, make_section
 from truckmpc.units import KMH_PER_MPS
 
 runner = CliRunner()

@@ -12,8 +12,8 @@ from truckmpc import load_run_config, make_section, simulate
 from truckmpc.cli import app
 from truckmpc.pareto import below, curves, equal_time_savings, plan_pareto, run_pareto
 from truckmpc.pareto.run import FIGURES
-from truckmpc.road import default_test_track, write_road
-from truckmpc.sweep.columns import parse_cell
+from truckmpc.roads import default_test_track, write_road
+from truckmpc.sweep.cells import parse_cell
 
 runner = CliRunner()
 

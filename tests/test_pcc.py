@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from truckmpc import load_run_config, simulate
-from truckmpc.road import make_section
+from truckmpc.roads import make_section
 
 
 def run(road, *overrides: str):

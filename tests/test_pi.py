@@ -13,7 +13,7 @@ import pytest
 from python_pi import PiController
 from truckmpc import _core
 from truckmpc.config import load_run_config
-from truckmpc.road import default_test_track, make_section
+from truckmpc.roads import default_test_track, make_section
 from truckmpc.sim import TRACE_COLUMNS, simulate
 
 KMH = 3.6

@@ -12,7 +12,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from truckmpc import load_run_config, simulate
-from truckmpc.road import RoadProfile, load_road, make_section
+from truckmpc.roads import RoadProfile, load_road, make_section
 from truckmpc.sim import RunResult
 
 REPO = Path(__file__).resolve().parent.parent

@@ -11,8 +11,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from truckmpc.road import (
-    RoadError,
+from truckmpc.errors import RoadError
+from truckmpc.roads import (
     RoadProfile,
     Stop,
     concatenate,

@@ -17,7 +17,7 @@ from typer.testing import CliRunner
 from truckmpc import load_run_config, simulate
 from truckmpc import robustness as rb
 from truckmpc.cli import app
-from truckmpc.road import RoadProfile, concatenate, make_section, write_road
+from truckmpc.roads import RoadProfile, concatenate, make_section, write_road
 
 COARSE = ("delta_kmh=0.2", "stage_m=50", "horizon_m=1000")
 runner = CliRunner()

@@ -12,7 +12,7 @@ from truckmpc import _core
 from truckmpc.config import load_run_config
 from truckmpc.controller import Control, PlantState
 from truckmpc.errors import ConfigError
-from truckmpc.road import RoadProfile, default_test_track, load_road, make_section
+from truckmpc.roads import RoadProfile, default_test_track, load_road, make_section
 from truckmpc.sim import TRACE_COLUMNS, simulate
 
 SHARED_ROADS = Path(__file__).resolve().parents[1] / ".." / "shared" / "roads"

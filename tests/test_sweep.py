@@ -21,7 +21,8 @@ from truckmpc.sweep import (
     parse_axis,
     plan_sweep,
 )
-from truckmpc.sweep.columns import MPC_FIELDS, PI_FIELDS, cell, parse_cell, result_cells
+from truckmpc.sweep.cells import cell, parse_cell
+from truckmpc.sweep.columns import MPC_FIELDS, PI_FIELDS, result_cells
 
 runner = CliRunner()
 # Columns that are measured wall times: they differ between two runs of the same row.

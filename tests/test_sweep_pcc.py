@@ -14,7 +14,8 @@ import truckmpc.sweep.task as sweep_task
 from truckmpc import _core, load_road, load_run_config, make_section, run_sweep, simulate, write_road
 from truckmpc.cli import app
 from truckmpc.sweep import PARTIAL_NAME, SWEEP_COLUMNS
-from truckmpc.sweep.columns import PCC_FIELDS, PI_FIELDS, parse_cell
+from truckmpc.sweep.cells import parse_cell
+from truckmpc.sweep.columns import PCC_FIELDS, PI_FIELDS
 
 runner = CliRunner()
 TIMING = {"realtime_ratio", "solve_ms_mean", "solve_ms_max"}

@@ -12,8 +12,8 @@ from typer.testing import CliRunner
 
 from truckmpc.cli import app
 from truckmpc.errors import RoadError
-from truckmpc.road import Stop, load_road
-from truckmpc.vdri import read_vdri
+from truckmpc.roads import Stop, load_road
+from truckmpc.roads.vdri import read_vdri
 
 REPO = Path(__file__).resolve().parents[1]
 LONG_HAUL = REPO / ".." / "shared" / "roads" / "raw" / "vecto-longhaul-2015.vdri"

@@ -14,7 +14,7 @@ import truckmpc.workload as workload
 from truckmpc import default_test_track, load_run_config, simulate
 from truckmpc.cli import app
 from truckmpc.sweep import expand_grid, parse_axis
-from truckmpc.sweep.columns import yaml_text
+from truckmpc.sweep.cells import yaml_text
 from truckmpc.sweep.inputs import Base, Combinations
 
 runner = CliRunner()

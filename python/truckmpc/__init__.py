@@ -11,7 +11,7 @@ from truckmpc.config import RunConfig, load_run_config
 from truckmpc.controller import Control, Controller, PlantState
 from truckmpc.errors import ConfigError, RoadError, TruckmpcError
 from truckmpc.results import format_table, summary_document, trace_csv, write_outputs
-from truckmpc.road import RoadProfile, Stop, default_test_track, load_road, make_section, shipped_roads, write_road
+from truckmpc.roads import RoadProfile, Stop, default_test_track, load_road, make_section, shipped_roads, write_road
 from truckmpc.sim import CONTROLLERS, TRACE_COLUMNS, RunResult, simulate
 from truckmpc.sweep import SweepError, SweepResult, run_sweep
 

@@ -35,7 +35,8 @@ import typer
 
 from truckmpc.config import load_run_config
 from truckmpc.errors import TruckmpcError
-from truckmpc.road import RoadProfile, default_test_track, load_road
+from truckmpc.roads import RoadProfile, default_test_track, load_road
+from truckmpc.sim import simulate
 from truckmpc.table import figure_lines, label_width
 from truckmpc.units import M_PER_KM
 
@@ -118,8 +119,6 @@ def _peak_rss_mb() -> float:
 
 def run_one(road_path: str | None, quick: bool, setting: dict[str, Any], extra: tuple[str, ...] = ()) -> dict[str, Any]:
     """One closed-loop MPC run in this process; the figures of :func:`run_bench`'s runs."""
-    from truckmpc.sim import simulate
-
     config = load_run_config(overrides=_overrides(setting, extra))
     profile = _road(road_path, quick)
     summary = simulate(profile, config, "mpc").summary

@@ -52,7 +52,7 @@ from truckmpc.geo import options as geo
 from truckmpc.legs import stops_line
 from truckmpc.record import RunRequest, load_replay, run_record, with_controller_road
 from truckmpc.results import check_run_dir, format_table, write_outputs
-from truckmpc.road import (
+from truckmpc.roads import (
     COLUMNS_COMMENT,
     RoadProfile,
     default_test_track,
@@ -61,11 +61,11 @@ from truckmpc.road import (
     write_road,
     write_shipped_roads,
 )
+from truckmpc.roads.vdri import cycle_summary, import_comments, read_vdri
 from truckmpc.signals import Stopped, received_signal, stopping_on_signals
 from truckmpc.sim import CONTROLLERS, simulate
 from truckmpc.status import status_line
 from truckmpc.units import KMH_PER_MPS, M_PER_KM, PCT_PER_FRACTION
-from truckmpc.vdri import cycle_summary, import_comments, read_vdri
 from truckmpc.workload import EQUAL_TIME_RUNS, check_runs, duration
 
 USAGE_EXIT_CODE = 2

@@ -21,7 +21,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, NamedTuple, Protocol
 
 if TYPE_CHECKING:
-    from truckmpc.road import RoadProfile
+    from truckmpc.roads import RoadProfile
 
 
 class Control(NamedTuple):

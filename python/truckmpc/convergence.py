@@ -27,7 +27,7 @@ from typing import Any
 
 from truckmpc.compare import compare
 from truckmpc.config import RunConfig, config_from_values
-from truckmpc.road import RoadProfile
+from truckmpc.roads import RoadProfile
 from truckmpc.sim import RunResult, simulate
 
 FLAG_POINTS = 0.3

@@ -2,19 +2,18 @@
 
 The vehicle model cannot launch from standstill (below the stall speed gear 1 turns the engine
 slower than idle) and the cruise controllers do not brake to a standstill, so a driving cycle's stops
-(:class:`truckmpc.road.Stop`) are not simulated: the road is cut at every stop inside it into legs,
-each leg is driven on its own from its entry target speed (the set speed at its start; with
-`start_speed_kmh` configured, the first leg starts at that), and the legs' results are joined into
-one :class:`~truckmpc.sim.RunResult`. The summary says so (`stops_not_simulated`) and lists the legs
-(`legs`: each one's start and end [m], entry and exit speed [km/h], fuel [kg] and time [s]); the
-trace runs on across the legs, with two samples at each stop (the end of one leg and the start of
-the next) and the cumulative columns continued.
+(:class:`truckmpc.roads.profile.Stop`) are not simulated: the road is cut at every stop inside it into
+legs (:mod:`truckmpc.roads.stops`), each leg is driven on its own from its entry target speed (the set
+speed at its start; with `start_speed_kmh` configured, the first leg starts at that), and the legs'
+results are joined into one :class:`~truckmpc.sim.RunResult`. The summary says so
+(`stops_not_simulated`) and lists the legs (`legs`: each one's start and end [m], entry and exit
+speed [km/h], fuel [kg] and time [s]); the trace runs on across the legs, with two samples at each
+stop (the end of one leg and the start of the next) and the cumulative columns continued.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import itertools
 from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -22,32 +21,15 @@ import numpy as np
 
 from truckmpc.config import config_from_values
 from truckmpc.errors import RoadError
-from truckmpc.road import RoadProfile
+from truckmpc.roads.profile import RoadProfile
+from truckmpc.roads.stops import MIN_LEG_M, STOPS_NOTE, leg_bounds, leg_road
 from truckmpc.units import KMH_PER_MPS, M_PER_KM
 
 if TYPE_CHECKING:
     from truckmpc.config import RunConfig
     from truckmpc.sim import RunResult
 
-__all__ = [
-    "MIN_LEG_M",
-    "STOPS_NOTE",
-    "drive_legs",
-    "leg_bounds",
-    "leg_road",
-    "merge_legs",
-    "stops_document",
-    "stops_line",
-]
-
-MIN_LEG_M = 1.0
-"""Legs shorter than this [m] (two stops about at one place) are not driven."""
-
-STOPS_NOTE = (
-    "launches from standstill, braking to standstill and the stops themselves are not simulated; "
-    "each leg starts at its entry target speed"
-)
-"""What `stops_not_simulated.note` says."""
+__all__ = ["drive_legs", "merge_legs", "stops_document", "stops_line"]
 
 SUMMED = (
     "distance_m",
@@ -83,27 +65,6 @@ CUMULATIVE = ("time_s", "fuel_g", "brake_energy_kj")
 
 Drive = Callable[[RoadProfile, "RunConfig"], "RunResult"]
 """Drive one stop-free road with a configuration."""
-
-
-def leg_bounds(road: RoadProfile) -> list[tuple[float, float]]:
-    """(start, end) [m] of each stop-free leg of `road`: cut at its stops, those shorter than
-    :data:`MIN_LEG_M` left out."""
-    start_m, end_m = float(road.distance_m[0]), float(road.distance_m[-1])
-    cuts = [start_m, *(stop.distance_m for stop in road.stops if start_m < stop.distance_m < end_m), end_m]
-    return [(a, b) for a, b in itertools.pairwise(cuts) if b - a >= MIN_LEG_M]
-
-
-def leg_road(road: RoadProfile, start_m: float, end_m: float, number: int) -> RoadProfile:
-    """The part of `road` from `start_m` to `end_m` [m] (points of the road, as stops are), without
-    stops, named `<road>-leg<number>`; its last point's target speed is its last segment's."""
-    keep = (road.distance_m >= start_m) & (road.distance_m <= end_m)
-    targets = None
-    if road.target_speed_kmh is not None:
-        segments = road.target_speed_kmh[keep][:-1]
-        targets = np.append(segments, segments[-1])
-    name = f"{road.name}-leg{number}"
-    told = None if road.controller_map is None else road.controller_map.between(start_m, end_m)
-    return RoadProfile(name, road.distance_m[keep], road.altitude_m[keep], road.source, targets, (), told)
 
 
 def stops_document(road: RoadProfile) -> dict[str, Any]:

@@ -20,7 +20,7 @@ from typing import Any
 
 from truckmpc.config import RunConfig, config_from_values
 from truckmpc.errors import ConfigError, RoadError, read_user_text
-from truckmpc.road import RoadProfile, default_test_track, load_road
+from truckmpc.roads import RoadProfile, default_test_track, load_road
 from truckmpc.units import PCT_PER_FRACTION
 
 MAP_SLACK = 0.02

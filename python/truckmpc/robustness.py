@@ -29,7 +29,8 @@ from truckmpc.compare import compare, delta_pct
 from truckmpc.config import RunConfig, config_from_values
 from truckmpc.equal_time import equal_time_baselines
 from truckmpc.gauss_markov import gauss_markov
-from truckmpc.road import RoadProfile, altitude_from_grade
+from truckmpc.roads import RoadProfile
+from truckmpc.roads.profile import altitude_from_grade
 from truckmpc.sim import simulate
 from truckmpc.units import KG_PER_T, PCT_PER_FRACTION
 

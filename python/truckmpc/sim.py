@@ -31,13 +31,13 @@ import numpy as np
 
 from truckmpc import _core
 from truckmpc.controller import Controller, PlantState
-from truckmpc.equal_time import corrected_fuel_kg
 from truckmpc.errors import ConfigError
+from truckmpc.fuel import corrected_fuel_kg
 from truckmpc.legs import drive_legs
 
 if TYPE_CHECKING:
     from truckmpc.config import RunConfig
-    from truckmpc.road import RoadProfile
+    from truckmpc.roads import RoadProfile
 
 TRACE_COLUMNS = (
     "distance_m",
@@ -119,7 +119,7 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
         `compute_time_s` (wall time of the run), `realtime_ratio` (compute time / simulated time),
         `stalled`, `stall_distance_m` (None unless stalled), `message` (None unless stalled),
         `plant_dt_s`, `fuel_corrected_kg` (the fuel with the end speed brought back to the start
-        speed, :func:`truckmpc.equal_time.corrected_fuel_kg`; None if stalled). The MPC adds
+        speed, :func:`truckmpc.fuel.corrected_fuel_kg`; None if stalled). The MPC adds
         `solves`, `infeasible_solves`, `solve_ms_mean`, `solve_ms_max`, `states_per_solve`,
         `transitions_per_solve` and `settings` (its parameters with k_lim, Q2 and Q5 resolved, and
         the fuel_time cost's β); the whole-road optimum adds the plan's `plan_fuel_kg`,

@@ -27,7 +27,7 @@ from truckmpc.units import KMH_PER_MPS
 
 if TYPE_CHECKING:
     from truckmpc.config import RunConfig
-    from truckmpc.road import RoadProfile
+    from truckmpc.roads import RoadProfile
 
 MAX_WORK_S = 3600.0
 """Estimated work [s] beyond which a command refuses to start without ``--force`` (an hour)."""

@@ -1,8 +1,9 @@
-"""Roads from GPS tracks and maps: ``truckmpc road import gpx|csv``, ``road info``, ``road plot``.
+"""Roads from GPS tracks and maps: ``truckmpc road import gpx|csv``, ``road info``, ``road plot``,
+and the noise study.
 
-Modules: :mod:`~truckmpc.geo.gpx` (GPX reader), :mod:`~truckmpc.geo.latlon` (``lat,lon,ele``
-tables), :mod:`~truckmpc.geo.track` (checks, jitter, geodesic distance), :mod:`~truckmpc.geo.smooth`
-(elevation smoothing), :mod:`~truckmpc.geo.importer` (track to road), :mod:`~truckmpc.geo.files`
+Reading a track into a road is :mod:`truckmpc.roads`'s (:mod:`~truckmpc.roads.gpx`,
+:mod:`~truckmpc.roads.latlon` and :mod:`~truckmpc.roads.gps`: ``load_road`` reads a ``.gpx``
+too); this package sits above it and above the simulation. Modules: :mod:`~truckmpc.geo.files`
 (imported road files), :mod:`~truckmpc.geo.info` (``road info`` figures),
 :mod:`~truckmpc.geo.synthetic` (noisy tracks with known truth), :mod:`~truckmpc.geo.study` (the
 noise study), :mod:`~truckmpc.geo.options` and :mod:`~truckmpc.geo.commands` (the CLI's part).

@@ -8,13 +8,15 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from truckmpc.geo.files import read_road_with_notes, write_imported
-from truckmpc.geo.gpx import read_gpx
-from truckmpc.geo.importer import import_track
 from truckmpc.geo.info import format_info, road_info
-from truckmpc.geo.latlon import read_latlon_csv
-from truckmpc.geo.options import DEFAULT_GRADE_LIMIT_PCT, DEFAULT_NOISE_M, Method
-from truckmpc.geo.smooth import Smoothing
-from truckmpc.geo.track import Track
+from truckmpc.geo.options import Method
+from truckmpc.plot.road import plot_road
+from truckmpc.roads.gps import DEFAULT_GRADE_LIMIT_PCT, DEFAULT_NOISE_M
+from truckmpc.roads.gps.importer import import_track
+from truckmpc.roads.gps.smooth import Smoothing
+from truckmpc.roads.gps.track import Track
+from truckmpc.roads.gpx import read_gpx
+from truckmpc.roads.latlon import read_latlon_csv
 from truckmpc.units import M_PER_KM, PCT_PER_FRACTION
 
 __all__ = ["ImportOptions", "import_road", "info_lines", "plot_road_file"]
@@ -78,7 +80,5 @@ def info_lines(file: Path) -> list[str]:
 
 def plot_road_file(file: Path, out: Path | None, svg: bool) -> list[Path]:
     """Draw road `file` to `out` (default: FILE with the suffix .png); returns the files written."""
-    from truckmpc.plot.road import plot_road
-
     road = read_road_with_notes(file)
     return plot_road(road.profile, file.with_suffix(".png") if out is None else out, road.raw_altitude_m, svg=svg)

@@ -2,7 +2,7 @@
 
 An imported road is an ordinary road CSV (``load_road`` reads it) with two additions:
 
-- ``#`` comment lines ``key: value`` recording how it was made (:data:`~truckmpc.geo.importer.NOTE_KEYS`:
+- ``#`` comment lines ``key: value`` recording how it was made (:data:`~truckmpc.roads.gps.importer.NOTE_KEYS`:
   source, length, positions, resample, smoothing, grade limit, raw grade), after a line naming the
   command that wrote it;
 - a fourth column ``raw_altitude_m`` [m], the resampled elevation before smoothing, on the same
@@ -19,11 +19,13 @@ import numpy as np
 
 from truckmpc.atomic import atomic_write_text
 from truckmpc.errors import RoadError, read_user_text
-from truckmpc.geo.importer import NOTE_KEYS, ImportedRoad, import_track
-from truckmpc.road import COLUMNS_COMMENT, PathLike, RoadProfile, load_road
-from truckmpc.road_csv import data_lines, fixed_cell, header_cells
+from truckmpc.roads.csvfile import COLUMNS_COMMENT, data_lines, fixed_cell, header_cells
+from truckmpc.roads.gps.importer import NOTE_KEYS, ImportedRoad, import_track
+from truckmpc.roads.gpx import read_gpx
+from truckmpc.roads.loader import load_road
+from truckmpc.roads.profile import PathLike, RoadProfile
 
-__all__ = ["RAW_COLUMN", "RoadWithNotes", "gpx_road", "read_road_with_notes", "write_imported"]
+__all__ = ["RAW_COLUMN", "RoadWithNotes", "read_road_with_notes", "write_imported"]
 
 RAW_COLUMN = "raw_altitude_m"
 """The extra column of an imported road: the elevation before smoothing [m]."""
@@ -51,19 +53,10 @@ def write_imported(imported: ImportedRoad, path: PathLike, command: str) -> None
     atomic_write_text(path, "\n".join(lines) + "\n")
 
 
-def gpx_road(path: PathLike) -> RoadProfile:
-    """The road of GPX file `path`, imported with the defaults (what ``load_road`` does for ``.gpx``)."""
-    from truckmpc.geo.gpx import read_gpx
-
-    return import_track(read_gpx(Path(path))).profile
-
-
 def read_road_with_notes(path: PathLike) -> RoadWithNotes:
     """A road file (CSV, or GPX imported with the defaults) with its notes and raw elevation."""
     path = Path(path)
     if path.suffix.lower() == ".gpx":
-        from truckmpc.geo.gpx import read_gpx
-
         imported = import_track(read_gpx(path))
         return RoadWithNotes(imported.profile, imported.raw_altitude_m, imported.notes)
     profile = load_road(path)

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from truckmpc.road import RoadProfile
+from truckmpc.roads.profile import RoadProfile
 from truckmpc.units import M_PER_KM, PCT_PER_FRACTION
 
 __all__ = ["HISTOGRAM_EDGES_PCT", "STRETCH_M", "RoadInfo", "format_info", "road_info", "steepest_stretches"]

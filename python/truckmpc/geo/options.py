@@ -1,5 +1,6 @@
-"""Defaults and command-line options of ``truckmpc road import|info|plot``, kept free of heavy
-imports (scipy, pyproj, gpxpy) so that the ``truckmpc`` command starts fast."""
+"""Command-line options of ``truckmpc road import|info|plot``, kept free of heavy imports (scipy,
+pyproj, gpxpy) so that the ``truckmpc`` command starts fast; the import's defaults are
+:mod:`truckmpc.roads.gps`'s, named here too for the command line."""
 
 from __future__ import annotations
 
@@ -8,6 +9,8 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
+
+from truckmpc.roads.gps import DEFAULT_GRADE_LIMIT_PCT, DEFAULT_NOISE_M
 
 __all__ = [
     "DEFAULT_GRADE_LIMIT_PCT",
@@ -23,16 +26,9 @@ __all__ = [
     "TrackArg",
 ]
 
-DEFAULT_NOISE_M = 2.0
-"""Elevation noise std [m] assumed unless told: a consumer GPS receiver's, or a terrain model's."""
-
-DEFAULT_GRADE_LIMIT_PCT = 8.0
-"""|grade| [%] beyond which an imported road's grade is reported as implausible for a truck route
-(motorways are built to at most 6–7 %)."""
-
 
 class Method(enum.StrEnum):
-    """Elevation smoothing methods (:mod:`truckmpc.geo.smooth`)."""
+    """Elevation smoothing methods (:mod:`truckmpc.roads.gps.smooth`)."""
 
     spline = "spline"
     savgol = "savgol"

@@ -22,11 +22,11 @@ import numpy as np
 from truckmpc.compare import compare
 from truckmpc.config import RunConfig
 from truckmpc.errors import RoadError
-from truckmpc.geo.gpx import read_gpx
-from truckmpc.geo.importer import import_track
-from truckmpc.geo.smooth import Smoothing
 from truckmpc.geo.synthetic import write_fixtures
-from truckmpc.road import RoadProfile
+from truckmpc.roads.gps.importer import import_track
+from truckmpc.roads.gps.smooth import Smoothing
+from truckmpc.roads.gpx import read_gpx
+from truckmpc.roads.profile import RoadProfile
 from truckmpc.sim import simulate
 from truckmpc.units import PCT_PER_FRACTION
 

@@ -30,8 +30,8 @@ from scipy.signal import fftconvolve
 from truckmpc.atomic import atomic_write_text
 from truckmpc.errors import RoadError
 from truckmpc.gauss_markov import gauss_markov
-from truckmpc.geo.track import WGS84
-from truckmpc.road import RoadProfile
+from truckmpc.roads.gps.track import WGS84
+from truckmpc.roads.profile import RoadProfile
 from truckmpc.units import KMH_PER_MPS, M_PER_KM
 
 __all__ = [

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from truckmpc.sweep.columns import parse_cell
+from truckmpc.sweep.cells import parse_cell
 
 BASELINE = "pi"
 

@@ -25,8 +25,9 @@ from truckmpc.config import RunConfig, load_run_config
 from truckmpc.config.keys import PRESET_DIR
 from truckmpc.config.yamlfile import read_mapping
 from truckmpc.errors import ConfigError
-from truckmpc.road import PathLike, RoadProfile
-from truckmpc.sweep.columns import cell, yaml_text
+from truckmpc.roads import RoadProfile
+from truckmpc.roads.profile import PathLike
+from truckmpc.sweep.cells import cell, yaml_text
 from truckmpc.sweep.errors import SweepError
 from truckmpc.sweep.inputs import load_profiles
 from truckmpc.sweep.plan import study_settings

@@ -10,8 +10,8 @@ from pathlib import Path
 from typing import Any
 
 from truckmpc.pareto.plan import ParetoPlan, Point
-from truckmpc.road import PathLike
-from truckmpc.sweep.columns import cell, parse_cell
+from truckmpc.roads.profile import PathLike
+from truckmpc.sweep.cells import cell, parse_cell
 from truckmpc.sweep.errors import SweepInterrupted
 from truckmpc.sweep.files import (
     PartialFile,

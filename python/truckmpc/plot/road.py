@@ -10,7 +10,7 @@ import numpy as np
 
 from truckmpc.plot.figures import figure_class, save
 from truckmpc.plot.run import decimate
-from truckmpc.road import RoadProfile
+from truckmpc.roads import RoadProfile
 from truckmpc.units import M_PER_KM, PCT_PER_FRACTION
 
 __all__ = ["plot_road"]

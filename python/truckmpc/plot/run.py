@@ -200,6 +200,7 @@ def _run_figure(Figure: Any, summary: Mapping[str, Any], traces: Mapping[str, Ma
         ax.label_outer()
     handles = lines + references
     if neutral_spans:
+        # matplotlib is optional, loaded only to draw (see truckmpc.plot)
         from matplotlib.patches import Patch
 
         handles.append(Patch(color="0.5", alpha=0.3, label="neutral gear (N), shaded"))

@@ -148,6 +148,7 @@ def _panel_title(panel: Panel) -> str:
 
 def _sweep_figure(Figure: Any, layout: _Layout, metrics: Sequence[tuple[str, str]], *, log: bool, title: str) -> Any:
     """One row of panels per metric, one column per (road, direction), one line per combination."""
+    # matplotlib is optional, loaded only to draw (see truckmpc.plot)
     from matplotlib.lines import Line2D
 
     ncols = len(layout.panels)
@@ -190,6 +191,7 @@ def _sweep_figure(Figure: Any, layout: _Layout, metrics: Sequence[tuple[str, str
 def _draw_lines(ax: Any, layout: _Layout, rows: Sequence[Row], metric: str, log: bool, handles: dict[str, Any]) -> None:
     """One line of ``metric`` against the x axis per combination (and per ``allow_neutral``); adds a
     legend handle per combination to ``handles``."""
+    # matplotlib is optional, loaded only to draw (see truckmpc.plot)
     from matplotlib.lines import Line2D
 
     combos = _combos(layout.rows, layout.line_axes)

@@ -11,7 +11,8 @@ from typing import Any
 
 from truckmpc.config import KEYS
 from truckmpc.plot.figures import PlotError
-from truckmpc.sweep.columns import ALL_COLUMNS, delta_column, parse_cell
+from truckmpc.sweep.cells import parse_cell
+from truckmpc.sweep.columns import ALL_COLUMNS, delta_column
 
 RESULT_COLUMNS = frozenset({"road", "direction", *ALL_COLUMNS})
 """Column names of sweep.csv that are not grid axes."""

@@ -37,7 +37,8 @@ cluster and the runs on it), :mod:`~truckmpc.sweep.run` (running and resuming),
 summary per axis value, Parquet), :mod:`~truckmpc.sweep.progress` (the progress bar).
 """
 
-from truckmpc.sweep.columns import SWEEP_COLUMNS, cell
+from truckmpc.sweep.cells import cell
+from truckmpc.sweep.columns import SWEEP_COLUMNS
 from truckmpc.sweep.errors import SweepError, SweepInterrupted, SweepWorkerDied
 from truckmpc.sweep.files import CSV_NAME, PARTIAL_NAME, SETTINGS_NAME
 from truckmpc.sweep.grid import MAX_AXIS_VALUES, Axis, expand_grid, parse_axis

@@ -101,6 +101,7 @@ def _local_cluster(workers: int) -> LocalCluster:
     """`workers` worker processes of one thread on this machine, ignoring SIGINT; the scheduler's
     HTTP server (the dashboard, if bokeh is installed) on a free port, not on 8787, which another
     cluster may hold."""
+    # distributed is loaded only when runs go to workers (start-up time)
     from distributed import LocalCluster
 
     with _sigint_ignored():  # the spawned workers inherit it through exec
@@ -115,6 +116,7 @@ def _local_cluster(workers: int) -> LocalCluster:
 
 def _connect(address: str) -> Client:
     """A client of the scheduler at `address`; a one-line :class:`SweepError` if it cannot be reached."""
+    # distributed is loaded only when runs go to workers (start-up time)
     from distributed import Client
 
     try:

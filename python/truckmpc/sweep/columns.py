@@ -1,4 +1,5 @@
-"""The result columns of ``sweep.csv`` and the text of its cells.
+"""The result columns of ``sweep.csv`` and how a row's figures fill them (the text of a cell is
+:mod:`truckmpc.sweep.cells`'s).
 
 After ``road``, ``direction``, ``vehicle`` (when a sweep has several) and one column per axis
 come ``error`` (blank unless a run of the row failed), the PI figures, then those of each
@@ -12,15 +13,14 @@ columns of every selection follow from :data:`RUNS` and :data:`VERSUS`.
 
 from __future__ import annotations
 
-import contextlib
 import functools
-import json
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 from truckmpc.compare import compare, delta_pct
+from truckmpc.sweep.cells import cell, parse_cell
 
 PI_FIELDS = (
     "fuel_kg",
@@ -275,23 +275,6 @@ def error_text(failed: Mapping[str, str]) -> str | None:
     return "; ".join(f"{', '.join(names)}: {line}" for line, names in by_line.items()) or None
 
 
-def cell(value: Any) -> str:
-    """A value as written in the CSV (and as a YAML ``--set`` value): true/false, repr of floats
-    (exact round trip), blank for None."""
-    if value is None:
-        return ""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, float):
-        return repr(value) if math.isfinite(value) else ""
-    return str(value)
-
-
-def yaml_text(value: Any) -> str:
-    """A value as the YAML text of a ``key=value`` override (strings quoted)."""
-    return json.dumps(value) if isinstance(value, str) else ("null" if value is None else cell(value))
-
-
 def result_cells(pi: Mapping[str, Any], mpc: Mapping[str, Any], check_convergence: bool = False) -> list[str]:
     """The result cells of a PI and MPC row (:data:`SWEEP_COLUMNS`) from the two runs' figures."""
     return Layout(DEFAULT_CONTROLLERS, check_convergence).cells({"pi": pi, "mpc": mpc})
@@ -299,18 +282,3 @@ def result_cells(pi: Mapping[str, Any], mpc: Mapping[str, Any], check_convergenc
 
 def _delta(value: float | None, base: float | None) -> float | None:
     return None if value is None or base is None else delta_pct(value, base)
-
-
-def parse_cell(text: str) -> Any:
-    """The value a cell's text stands for (the inverse of :func:`cell`, also for ``truckmpc plot``):
-    None for blank, a bool for true/false (any case), an int, a float, else the text itself (road
-    names, string axis values)."""
-    text = text.strip()
-    if text == "":
-        return None
-    if text.lower() in ("true", "false"):
-        return text.lower() == "true"
-    for number in (int, float):
-        with contextlib.suppress(ValueError):
-            return number(text)
-    return text

@@ -17,7 +17,8 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from truckmpc.errors import TruckmpcError
-from truckmpc.road import PathLike, RoadProfile, load_road
+from truckmpc.roads import RoadProfile, load_road
+from truckmpc.roads.profile import PathLike
 from truckmpc.sweep.errors import SweepError
 from truckmpc.sweep.task import BrokenRoad, Road
 

@@ -11,7 +11,7 @@ from typing import Any
 import yaml
 
 from truckmpc.config.yamlfile import load_value
-from truckmpc.sweep.columns import cell
+from truckmpc.sweep.cells import cell
 from truckmpc.sweep.errors import SweepError
 
 MAX_AXIS_VALUES = 10_000

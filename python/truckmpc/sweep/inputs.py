@@ -16,9 +16,11 @@ from truckmpc import _core
 from truckmpc.config import Origin, RunConfig, load_run_config
 from truckmpc.config.yamlfile import load_value
 from truckmpc.errors import ConfigError
-from truckmpc.road import PathLike, RoadProfile, load_road
-from truckmpc.sweep.columns import cell
+from truckmpc.roads import RoadProfile, load_road
+from truckmpc.roads.profile import PathLike
+from truckmpc.sweep.cells import cell
 from truckmpc.sweep.errors import SweepError
+from truckmpc.sweep.fleet import check_unique, road_files
 from truckmpc.sweep.grid import Axis, parse_axis
 
 MAX_SWEEP_ROWS = 1_000_000
@@ -60,8 +62,6 @@ def checked_axes(
 def load_profiles(roads: Sequence[RoadProfile | PathLike], reverse: bool) -> list[RoadProfile]:
     """The roads loaded (directories and globs expanded, every file readable), uniquely named,
     reversed if asked (keeping their names: rows are keyed by them)."""
-    from truckmpc.sweep.fleet import check_unique, road_files
-
     profiles = [road if isinstance(road, RoadProfile) else load_road(road) for road, _ in road_files(roads)]
     if not profiles:
         raise SweepError("--road: expected at least one road")

@@ -18,8 +18,10 @@ from typing import Any
 
 from truckmpc.config import SPEC_BY_KEY, RunConfig
 from truckmpc.convergence import halved_configs
-from truckmpc.road import PathLike, RoadProfile
-from truckmpc.sweep.columns import DEFAULT_CONTROLLERS, Layout, cell, check_controllers, yaml_text
+from truckmpc.roads import RoadProfile
+from truckmpc.roads.profile import PathLike
+from truckmpc.sweep.cells import cell, yaml_text
+from truckmpc.sweep.columns import DEFAULT_CONTROLLERS, Layout, check_controllers
 from truckmpc.sweep.errors import SweepError
 from truckmpc.sweep.fleet import load_fleet, vehicle_names
 from truckmpc.sweep.grid import Axis, expand_grid

@@ -9,7 +9,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from truckmpc.road import PathLike, RoadProfile
+from truckmpc.roads import RoadProfile
+from truckmpc.roads.profile import PathLike
 from truckmpc.sweep.columns import DEFAULT_CONTROLLERS
 from truckmpc.sweep.errors import SweepInterrupted
 from truckmpc.sweep.files import (

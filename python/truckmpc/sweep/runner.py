@@ -85,6 +85,7 @@ class Runner:
         yield from self._on_cluster(self._cluster, tasks)
 
     def _on_cluster(self, cluster: Cluster, tasks: Sequence[Task]) -> Iterator[tuple[Task, dict[str, Any]]]:
+        # distributed is loaded only when runs go to workers (start-up time)
         from distributed import as_completed
 
         client, prefix = cluster.client, f"truckmpc-{uuid.uuid4().hex[:12]}"
@@ -122,6 +123,7 @@ def _road(road: Road) -> Road:
 def _outcome(future: Any, cluster: Cluster) -> dict[str, Any]:
     """A finished future's figures; a run that killed its workers as its error; a lost cluster as
     :class:`SweepWorkerDied`."""
+    # distributed is loaded only when runs go to workers (start-up time)
     from distributed import KilledWorker
 
     try:

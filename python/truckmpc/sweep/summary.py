@@ -13,7 +13,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from truckmpc.atomic import atomic_write_text
-from truckmpc.sweep.columns import ERROR_COLUMN, delta_column, parse_cell
+from truckmpc.sweep.cells import parse_cell
+from truckmpc.sweep.columns import ERROR_COLUMN, delta_column
 from truckmpc.sweep.errors import SweepError
 from truckmpc.sweep.files import csv_line
 
@@ -141,6 +142,7 @@ def check_parquet() -> None:
 def write_parquet(path: Path, columns: Sequence[str], rows: Sequence[Sequence[str]]) -> Path:
     """Write the rows (cell text) as a Parquet file at `path`, each column typed as its cells read
     (numbers, booleans, text; blank as null): one call of pyarrow."""
+    # pyarrow is optional (the parquet extra), loaded only to write Parquet
     import pyarrow as pa
     import pyarrow.parquet as pq
 

@@ -13,7 +13,7 @@ from truckmpc.config import RunConfig, load_run_config
 from truckmpc.convergence import convergence_document, halved_configs, run_halves
 from truckmpc.equal_time import equal_time_baselines
 from truckmpc.errors import RoadError, TruckmpcError
-from truckmpc.road import RoadProfile
+from truckmpc.roads import RoadProfile
 from truckmpc.sim import RunResult, simulate
 from truckmpc.sweep.columns import CONVERGENCE_COLUMNS, ERROR_COLUMN, RUNS, equal_time_fields
 

@@ -1,4 +1,5 @@
-"""Read the points of a GPX file (track points, else route points) with gpxpy.
+"""GPX files: their points (track points, else route points) read with gpxpy, and the road along
+them imported with the defaults (:mod:`truckmpc.roads.gps.importer`).
 
 gpxpy (Apache-2.0, maintained since 2011, pure Python) parses GPX 1.0 and 1.1 with the standard
 library's XML parser. It accepts any XML and keeps no line numbers, so this module adds what a user
@@ -17,9 +18,17 @@ import gpxpy.gpx
 import numpy as np
 
 from truckmpc.errors import RoadError, read_user_text
-from truckmpc.geo.track import Track
+from truckmpc.roads.gps.importer import import_track
+from truckmpc.roads.gps.track import Track
+from truckmpc.roads.profile import PathLike, RoadProfile
 
-__all__ = ["read_gpx"]
+__all__ = ["gpx_road", "read_gpx"]
+
+
+def gpx_road(path: PathLike) -> RoadProfile:
+    """The road of GPX file `path`, imported with the defaults of ``truckmpc road import gpx``
+    (what :func:`~truckmpc.roads.loader.load_road` does for ``.gpx``)."""
+    return import_track(read_gpx(Path(path))).profile
 
 
 def read_gpx(path: Path) -> Track:

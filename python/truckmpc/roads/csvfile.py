@@ -1,12 +1,13 @@
-"""Road profile CSV files: reading and writing (:func:`truckmpc.road.load_road` and
-:func:`truckmpc.road.write_road` call these).
+"""Road profile CSV files: reading and writing (:func:`truckmpc.roads.loader.load_road` and
+:func:`~truckmpc.roads.loader.write_road` call these), and the CSV text helpers the other table
+formats share (:mod:`~truckmpc.roads.vdri`, :mod:`~truckmpc.roads.latlon`).
 
 Format: `#` comment lines, blank lines ignored; a header naming `distance_m` and `altitude_m` and/or
 `grade`, optionally `target_speed_kmh` and `stop_s`; other columns are ignored. With only `grade`,
 the grade on a row is that of the segment starting at the row, and the altitude is its integral.
 With both, the altitude is used. A row's `target_speed_kmh` is the target speed [km/h] from that
 row to the next; its `stop_s` the duration [s] of a stop at the row (0: none), as a VECTO driving
-cycle has them (:mod:`truckmpc.vdri`).
+cycle has them (:mod:`truckmpc.roads.vdri`).
 """
 
 from __future__ import annotations
@@ -18,9 +19,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .atomic import atomic_write_text
-from .errors import RoadError, read_user_text
-from .road import (
+from truckmpc.atomic import atomic_write_text
+from truckmpc.errors import RoadError, read_user_text
+from truckmpc.roads.profile import (
     GRADE_CHECK,
     MAX_ABS_DISTANCE_M,
     MAX_GRADE,
@@ -32,7 +33,10 @@ from .road import (
     altitude_from_grade,
 )
 
-__all__ = ["OPTIONAL_COLUMNS_COMMENT", "read_road_csv", "write_road_csv"]
+__all__ = ["COLUMNS_COMMENT", "OPTIONAL_COLUMNS_COMMENT", "read_road_csv", "write_road_csv"]
+
+COLUMNS_COMMENT = "distance_m [m]; altitude_m [m], relative; grade [-] of the segment starting at the row (0.01 = 1 %)"
+"""The comment line naming the columns of a written road CSV, with their units."""
 
 OPTIONAL_COLUMNS_COMMENT = {
     "target_speed_kmh": "target_speed_kmh [km/h] from the row to the next",

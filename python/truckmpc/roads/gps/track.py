@@ -1,6 +1,6 @@
 """A GPS track as read from a file, its checks, and its length along the WGS84 ellipsoid.
 
-A :class:`Track` is what every reader (:mod:`~truckmpc.geo.gpx`, :mod:`~truckmpc.geo.latlon`) hands
+A :class:`Track` is what every reader (:mod:`~truckmpc.roads.gpx`, :mod:`~truckmpc.roads.latlon`) hands
 on: latitude [deg], longitude [deg] and elevation [m] per point, with the optional time [s] and the
 line of the file each point came from, so that every complaint is one line ``FILE:LINE: ...``.
 
@@ -92,7 +92,7 @@ def smoothed_positions(
     the length at σ = 2 m and 1 Hz at 80 km/h, which shifts every feature of a long road by
     hundreds of metres. Latitude and longitude are each smoothed as functions of the distance along
     the raw track by a cubic smoothing spline of bandwidth `bandwidth_m` (as in
-    :mod:`truckmpc.geo.smooth`; 0: none). At 40 m, on 100 km logged at 1 Hz at 80 km/h, this
+    :mod:`truckmpc.roads.gps.smooth`; 0: none). At 40 m, on 100 km logged at 1 Hz at 80 km/h, this
     leaves 12 m of the 800 m that 2 m of jitter adds and takes 0.1 m off the clean path (motorway
     curves keep their radius); a junction's tight turn is cut short by a few metres."""
     if lat_deg.size < 5 or bandwidth_m <= 0:

@@ -15,8 +15,8 @@ from pathlib import Path
 import numpy as np
 
 from truckmpc.errors import RoadError, read_user_text
-from truckmpc.geo.track import Track
-from truckmpc.road_csv import data_lines, header_cells, number_cell
+from truckmpc.roads.csvfile import data_lines, header_cells, number_cell
+from truckmpc.roads.gps.track import Track
 
 __all__ = ["read_latlon_csv"]
 

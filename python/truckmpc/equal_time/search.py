@@ -1,16 +1,6 @@
-"""Comparisons that do not depend on trip time or end speed.
+"""The equal-time search: the baseline's set speed moved until its trip time is a target's.
 
-**End-speed correction.** Two runs that end at different speeds leave different kinetic energy in
-the truck. At a fixed engine speed, engine torque and fuel rate are both affine in the pedal, so
-each unit of ½v² [m²/s²] the engine adds costs the same fuel whatever the speed and load (the core's
-``Settings.kinetic_fuel_g_per_half_v2``, in the gear the PI's gear logic settles in at v_ref; about
-2.2 g per m²/s² for the 40 t truck, some 610 g for the whole of 85 km/h). A run's
-end-speed-corrected fuel is its fuel less the fuel worth the kinetic energy it gained from its
-start to its end speed (so it grows when the run ends slower than it started)::
-
-    fuel_corrected_kg = fuel_kg − c · ½(v_end² − v_start²) / 1000
-
-**Equal trip time.** The baseline's set speed v_ref is adjusted, the speed band moving with it and
+The baseline's set speed v_ref is adjusted, the speed band moving with it and
 the start speed kept (clipped into the moved band), until its trip time equals the look-ahead controller's within
 :data:`TIME_TOLERANCE`; the search is regula falsi (Illinois) on the trip time as a function of
 v_ref, started from the mean-speed estimate v_ref · t_base / t_target. Each evaluation is a whole
@@ -21,22 +11,33 @@ On a road with target speeds v_ref only caps the targets (the set speed is min(v
 target_offset_kmh), so raising it changes little: there the search moves `target_offset_kmh`
 instead, over x = v_ref + offset (the same search, the start speed kept as configured), and reports
 the offset found.
+
+The search only calls a function driving the baseline at a set speed;
+:mod:`truckmpc.equal_time.baselines` makes that function from the simulation.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from truckmpc.compare import delta_pct
-from truckmpc.units import G_PER_KG, KMH_PER_MPS
+from truckmpc.fuel import summary_corrected_kg
 
 if TYPE_CHECKING:
-    from truckmpc.config import RunConfig
-    from truckmpc.road import RoadProfile
     from truckmpc.sim import RunResult
+
+__all__ = [
+    "MAX_RUNS",
+    "SEARCH_KMH",
+    "TARGET_OFFSET_LIMIT_KMH",
+    "TIME_TOLERANCE",
+    "EqualTime",
+    "RunAt",
+    "equal_time",
+]
 
 TIME_TOLERANCE = 1e-4
 """Relative trip-time tolerance of the equal-time baseline (0.01 %)."""
@@ -50,40 +51,6 @@ MAX_RUNS = 16
 TARGET_OFFSET_LIMIT_KMH = 50.0
 """|target_offset_kmh| the configuration accepts [km/h]: the lower end of the search on a road with
 target speeds is v_ref − this."""
-
-
-def kinetic_correction_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
-    """Fuel [kg] worth the kinetic energy a run gained from its start to its end speed:
-    c · ½(v_end² − v_start²), c in grams per m²/s²."""
-    v_start, v_end = summary["start_speed_kmh"] / KMH_PER_MPS, summary["end_speed_kmh"] / KMH_PER_MPS
-    return float(g_per_half_v2 * 0.5 * (v_end**2 - v_start**2) / G_PER_KG)
-
-
-def corrected_fuel_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
-    """A run's fuel [kg] with its end speed brought back to its start speed (negative correction
-    when it ends faster than it started)."""
-    return float(summary["fuel_kg"]) - kinetic_correction_kg(summary, g_per_half_v2)
-
-
-def summary_corrected_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
-    """A run's corrected fuel [kg] (:func:`corrected_fuel_kg`); for a road driven in legs (a road
-    with stops, :mod:`truckmpc.legs`) the sum over its legs, each corrected to its own entry speed.
-    Not the summary's own `fuel_corrected_kg`: that prices kinetic energy in the gear at the run's
-    v_ref, while a re-tuned baseline must be priced at the original run's (`g_per_half_v2`)."""
-    legs = summary.get("legs")
-    if legs is None:
-        return corrected_fuel_kg(summary, g_per_half_v2)
-    return sum(
-        corrected_fuel_kg(
-            {
-                "fuel_kg": leg["fuel_kg"],
-                "start_speed_kmh": leg["entry_speed_kmh"],
-                "end_speed_kmh": leg["exit_speed_kmh"],
-            },
-            g_per_half_v2,
-        )
-        for leg in legs
-    )
 
 
 @dataclass
@@ -156,32 +123,6 @@ class EqualTime:
 
 RunAt = Callable[[float], "RunResult"]
 """Drive the baseline at a set speed [km/h] (on a road with target speeds: at x = v_ref + target offset)."""
-
-
-def baseline_runner(road: RoadProfile, config: RunConfig, controller: str = "pi") -> RunAt:
-    """A function driving `controller` over `road` at another v_ref, the band moving with it and
-    the start speed kept at the run's (clipped into the moved band: a truck starting above v_max
-    would only brake the difference away). On a road with target speeds it takes x = v_ref +
-    target_offset_kmh and moves the offset (x − v_ref), v_ref and the start speed kept as configured."""
-    from truckmpc.config import config_from_values
-    from truckmpc.sim import simulate
-
-    values = config.settings.values()
-    if road.target_speed_kmh is not None:
-
-        def run_offset(x_kmh: float) -> RunResult:
-            changed = {**values, "target_offset_kmh": x_kmh - values["v_ref_kmh"]}
-            return simulate(road, config_from_values(changed, "equal-time baseline"), controller)
-
-        return run_offset
-    start_kmh = values["start_speed_kmh"] if values["start_speed_kmh"] is not None else values["v_ref_kmh"]
-
-    def run_at(v_ref_kmh: float) -> RunResult:
-        band = (v_ref_kmh - values["v_dec_kmh"], v_ref_kmh + values["v_inc_kmh"])
-        changed = {**values, "v_ref_kmh": v_ref_kmh, "start_speed_kmh": min(max(start_kmh, band[0]), band[1])}
-        return simulate(road, config_from_values(changed, "equal-time baseline"), controller)
-
-    return run_at
 
 
 def equal_time(
@@ -323,46 +264,3 @@ def _extrapolate(points: list[tuple[float, float]], lo_kmh: float, hi_kmh: float
     if any(abs(v - tried) < 1e-9 for tried, _ in points):
         return None
     return v
-
-
-LOOK_AHEAD = ("pcc", "mpc", "optimal")
-"""The controllers compared with the PI at equal trip time."""
-
-OPTIMISERS = ("mpc", "optimal")
-"""The controllers also compared with the rule-based PCC (when it ran) at equal trip time."""
-
-
-def equal_time_baselines(
-    road: RoadProfile, config: RunConfig, results: Mapping[str, RunResult], baseline: str = "pi"
-) -> dict[str, EqualTime]:
-    """For every look-ahead run in `results` that did not stall, the baseline driven to its trip time
-    (the baseline's run at the configured v_ref is `results[baseline]`): against the PI every
-    look-ahead controller, against the PCC the optimising ones."""
-    base = results.get(baseline)
-    if base is None:
-        return {}
-    run_at = baseline_runner(road, config, baseline)
-    cruise = config.cruise
-    # The band needs v_ref > v_dec (its lower end above zero): keep 1 km/h clear of it, and inside
-    # the set speeds whose band the truck can drive.
-    lowest_kmh, ceiling_kmh = config.settings.v_ref_range_kmh
-    floor_kmh, start_kmh, offset_from_kmh = max(cruise.v_dec_kmh + 1.0, lowest_kmh), cruise.v_ref_kmh, None
-    if road.target_speed_kmh is not None:
-        # x = v_ref + target offset; the core keeps every stretch's set speed at 1 km/h or more.
-        offset_from_kmh = cruise.v_ref_kmh
-        start_kmh = cruise.v_ref_kmh + cruise.target_offset_kmh
-        floor_kmh, ceiling_kmh = cruise.v_ref_kmh - TARGET_OFFSET_LIMIT_KMH, math.inf
-    out = {}
-    for name in LOOK_AHEAD if baseline == "pi" else OPTIMISERS:
-        result = results.get(name)
-        if result is None or result.stalled:
-            continue
-        if base.stalled:
-            out[name] = EqualTime(float(result.summary["time_s"]), reason=f"not comparable: {base.message}")
-            continue
-        target_s = float(result.summary["time_s"])
-        g_per_half_v2 = config.settings.kinetic_fuel_g_per_half_v2
-        out[name] = equal_time(
-            run_at, start_kmh, floor_kmh, base, target_s, g_per_half_v2, offset_from_kmh, v_ceiling_kmh=ceiling_kmh
-        )
-    return out

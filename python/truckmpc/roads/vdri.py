@@ -24,10 +24,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import RoadError, read_user_text
-from .legs import STOPS_NOTE, leg_bounds
-from .road import (
-    COLUMNS_COMMENT,
+from truckmpc.errors import RoadError, read_user_text
+from truckmpc.roads.csvfile import COLUMNS_COMMENT, header_cells, number_cell
+from truckmpc.roads.profile import (
     GRADE_CHECK,
     MAX_ABS_DISTANCE_M,
     MAX_GRADE,
@@ -37,8 +36,8 @@ from .road import (
     Stop,
     altitude_from_grade,
 )
-from .road_csv import header_cells, number_cell
-from .units import KMH_PER_MPS, M_PER_KM, PCT_PER_FRACTION
+from truckmpc.roads.stops import STOPS_NOTE, leg_bounds
+from truckmpc.units import KMH_PER_MPS, M_PER_KM, PCT_PER_FRACTION
 
 __all__ = ["SUFFIX", "UNITS", "cycle_summary", "import_comments", "read_vdri"]
 

@@ -1,14 +1,16 @@
 """From a track (GPX or ``lat,lon,ele`` table) to a road profile.
 
-1. The points are checked (:func:`truckmpc.geo.track.checked`): a one-line error names the first bad point.
+1. The points are checked (:func:`~truckmpc.roads.gps.track.checked`): a one-line error names the
+   first bad point.
 2. Logged positions (GPX track points) are smoothed (a spline of 40 m bandwidth) to take out GPS
-   jitter, which would otherwise lengthen the road (:func:`~truckmpc.geo.track.smoothed_positions`); route points and
-   table rows, drawn on a map, are kept as they are.
-3. Distance along the track is geodesic on WGS84 (:func:`~truckmpc.geo.track.cumulative_distance_m`).
+   jitter, which would otherwise lengthen the road (:func:`~truckmpc.roads.gps.track.smoothed_positions`);
+   route points and table rows, drawn on a map, are kept as they are.
+3. Distance along the track is geodesic on WGS84
+   (:func:`~truckmpc.roads.gps.track.cumulative_distance_m`).
 4. The elevation is interpolated onto a uniform grid no finer than the source: the step is the
    median distance between the points (or a coarser `step_m`), stretched slightly so that a whole
    number of steps spans the track.
-5. The altitude on that grid is smoothed (:mod:`truckmpc.geo.smooth`; default: the cubic smoothing
+5. The altitude on that grid is smoothed (:mod:`truckmpc.roads.gps.smooth`; default: the cubic smoothing
    spline for an elevation noise of 2 m).
 6. Grades beyond `grade_limit` are reported (sections and the steepest value), never clipped.
 
@@ -25,10 +27,10 @@ from pathlib import Path
 import numpy as np
 
 from truckmpc.errors import RoadError
-from truckmpc.geo.options import DEFAULT_GRADE_LIMIT_PCT, DEFAULT_NOISE_M
-from truckmpc.geo.smooth import Smoothing
-from truckmpc.geo.track import POSITION_BANDWIDTH_M, Track, checked, cumulative_distance_m, smoothed_positions
-from truckmpc.road import RoadProfile
+from truckmpc.roads.gps import DEFAULT_GRADE_LIMIT_PCT, DEFAULT_NOISE_M
+from truckmpc.roads.gps.smooth import Smoothing
+from truckmpc.roads.gps.track import POSITION_BANDWIDTH_M, Track, checked, cumulative_distance_m, smoothed_positions
+from truckmpc.roads.profile import RoadProfile
 from truckmpc.units import M_PER_KM, PCT_PER_FRACTION
 
 __all__ = [
@@ -43,7 +45,7 @@ __all__ = [
 
 DEFAULT_GRADE_LIMIT = DEFAULT_GRADE_LIMIT_PCT / PCT_PER_FRACTION
 """|grade| [-] beyond which an imported road's grade is reported
-(:data:`~truckmpc.geo.options.DEFAULT_GRADE_LIMIT_PCT`)."""
+(:data:`~truckmpc.roads.gps.DEFAULT_GRADE_LIMIT_PCT`)."""
 
 NOTE_KEYS = ("source", "length", "positions", "resample", "smoothing", "grade limit", "raw grade")
 """The keys of an import's notes, in order."""

@@ -1,0 +1,79 @@
+"""The baselines driven to each look-ahead run's trip time (:mod:`truckmpc.equal_time.search`), by
+simulation."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+from truckmpc.config import RunConfig, config_from_values
+from truckmpc.equal_time.search import TARGET_OFFSET_LIMIT_KMH, EqualTime, RunAt, equal_time
+from truckmpc.roads.profile import RoadProfile
+from truckmpc.sim import RunResult, simulate
+
+__all__ = ["LOOK_AHEAD", "OPTIMISERS", "baseline_runner", "equal_time_baselines"]
+
+LOOK_AHEAD = ("pcc", "mpc", "optimal")
+"""The controllers compared with the PI at equal trip time."""
+
+OPTIMISERS = ("mpc", "optimal")
+"""The controllers also compared with the rule-based PCC (when it ran) at equal trip time."""
+
+
+def baseline_runner(road: RoadProfile, config: RunConfig, controller: str = "pi") -> RunAt:
+    """A function driving `controller` over `road` at another v_ref, the band moving with it and
+    the start speed kept at the run's (clipped into the moved band: a truck starting above v_max
+    would only brake the difference away). On a road with target speeds it takes x = v_ref +
+    target_offset_kmh and moves the offset (x − v_ref), v_ref and the start speed kept as configured."""
+    values = config.settings.values()
+    if road.target_speed_kmh is not None:
+
+        def run_offset(x_kmh: float) -> RunResult:
+            changed = {**values, "target_offset_kmh": x_kmh - values["v_ref_kmh"]}
+            return simulate(road, config_from_values(changed, "equal-time baseline"), controller)
+
+        return run_offset
+    start_kmh = values["start_speed_kmh"] if values["start_speed_kmh"] is not None else values["v_ref_kmh"]
+
+    def run_at(v_ref_kmh: float) -> RunResult:
+        band = (v_ref_kmh - values["v_dec_kmh"], v_ref_kmh + values["v_inc_kmh"])
+        changed = {**values, "v_ref_kmh": v_ref_kmh, "start_speed_kmh": min(max(start_kmh, band[0]), band[1])}
+        return simulate(road, config_from_values(changed, "equal-time baseline"), controller)
+
+    return run_at
+
+
+def equal_time_baselines(
+    road: RoadProfile, config: RunConfig, results: Mapping[str, RunResult], baseline: str = "pi"
+) -> dict[str, EqualTime]:
+    """For every look-ahead run in `results` that did not stall, the baseline driven to its trip time
+    (the baseline's run at the configured v_ref is `results[baseline]`): against the PI every
+    look-ahead controller, against the PCC the optimising ones."""
+    base = results.get(baseline)
+    if base is None:
+        return {}
+    run_at = baseline_runner(road, config, baseline)
+    cruise = config.cruise
+    # The band needs v_ref > v_dec (its lower end above zero): keep 1 km/h clear of it, and inside
+    # the set speeds whose band the truck can drive.
+    lowest_kmh, ceiling_kmh = config.settings.v_ref_range_kmh
+    floor_kmh, start_kmh, offset_from_kmh = max(cruise.v_dec_kmh + 1.0, lowest_kmh), cruise.v_ref_kmh, None
+    if road.target_speed_kmh is not None:
+        # x = v_ref + target offset; the core keeps every stretch's set speed at 1 km/h or more.
+        offset_from_kmh = cruise.v_ref_kmh
+        start_kmh = cruise.v_ref_kmh + cruise.target_offset_kmh
+        floor_kmh, ceiling_kmh = cruise.v_ref_kmh - TARGET_OFFSET_LIMIT_KMH, math.inf
+    out = {}
+    for name in LOOK_AHEAD if baseline == "pi" else OPTIMISERS:
+        result = results.get(name)
+        if result is None or result.stalled:
+            continue
+        if base.stalled:
+            out[name] = EqualTime(float(result.summary["time_s"]), reason=f"not comparable: {base.message}")
+            continue
+        target_s = float(result.summary["time_s"])
+        g_per_half_v2 = config.settings.kinetic_fuel_g_per_half_v2
+        out[name] = equal_time(
+            run_at, start_kmh, floor_kmh, base, target_s, g_per_half_v2, offset_from_kmh, v_ceiling_kmh=ceiling_kmh
+        )
+    return out

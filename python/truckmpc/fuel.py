@@ -1,0 +1,58 @@
+"""Fuel bookkeeping that the simulation and the comparisons share: the end-speed correction.
+
+**End-speed correction.** Two runs that end at different speeds leave different kinetic energy in
+the truck. At a fixed engine speed, engine torque and fuel rate are both affine in the pedal, so
+each unit of ½v² [m²/s²] the engine adds costs the same fuel whatever the speed and load (the core's
+``Settings.kinetic_fuel_g_per_half_v2``, in the gear the PI's gear logic settles in at v_ref; about
+2.2 g per m²/s² for the 40 t truck, some 610 g for the whole of 85 km/h). A run's
+end-speed-corrected fuel is its fuel less the fuel worth the kinetic energy it gained from its
+start to its end speed (so it grows when the run ends slower than it started)::
+
+    fuel_corrected_kg = fuel_kg − c · ½(v_end² − v_start²) / 1000
+
+:mod:`truckmpc.sim` puts each run's corrected fuel in its summary (``fuel_corrected_kg``);
+:mod:`truckmpc.equal_time` prices a re-tuned baseline's at the original run's rate.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from truckmpc.units import G_PER_KG, KMH_PER_MPS
+
+__all__ = ["corrected_fuel_kg", "kinetic_correction_kg", "summary_corrected_kg"]
+
+
+def kinetic_correction_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
+    """Fuel [kg] worth the kinetic energy a run gained from its start to its end speed:
+    c · ½(v_end² − v_start²), c in grams per m²/s²."""
+    v_start, v_end = summary["start_speed_kmh"] / KMH_PER_MPS, summary["end_speed_kmh"] / KMH_PER_MPS
+    return float(g_per_half_v2 * 0.5 * (v_end**2 - v_start**2) / G_PER_KG)
+
+
+def corrected_fuel_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
+    """A run's fuel [kg] with its end speed brought back to its start speed (negative correction
+    when it ends faster than it started)."""
+    return float(summary["fuel_kg"]) - kinetic_correction_kg(summary, g_per_half_v2)
+
+
+def summary_corrected_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
+    """A run's corrected fuel [kg] (:func:`corrected_fuel_kg`); for a road driven in legs (a road
+    with stops, :mod:`truckmpc.legs`) the sum over its legs, each corrected to its own entry speed.
+    Not the summary's own `fuel_corrected_kg`: that prices kinetic energy in the gear at the run's
+    v_ref, while a re-tuned baseline must be priced at the original run's (`g_per_half_v2`)."""
+    legs = summary.get("legs")
+    if legs is None:
+        return corrected_fuel_kg(summary, g_per_half_v2)
+    return sum(
+        corrected_fuel_kg(
+            {
+                "fuel_kg": leg["fuel_kg"],
+                "start_speed_kmh": leg["entry_speed_kmh"],
+                "end_speed_kmh": leg["exit_speed_kmh"],
+            },
+            g_per_half_v2,
+        )
+        for leg in legs
+    )
