@@ -41,13 +41,12 @@ from typing import Annotated, Any, NoReturn
 import typer
 from typer.core import TyperGroup
 
-from truckmpc import _core, robustness
+from truckmpc import robustness
 from truckmpc.atomic import atomic_write_text
 from truckmpc.bench import BENCH_HELP, bench_cmd
 from truckmpc.config import RunConfig, load_run_config
-from truckmpc.convergence import convergence_document, halved_configs, run_halves
-from truckmpc.equal_time import LOOK_AHEAD, OPTIMISERS, equal_time_baselines
-from truckmpc.errors import ConfigError, TruckmpcError
+from truckmpc.convergence import halved_configs
+from truckmpc.errors import TruckmpcError
 from truckmpc.geo import options as geo
 from truckmpc.legs import stops_line
 from truckmpc.record import RunRequest, load_replay, run_record, with_controller_road
@@ -61,12 +60,13 @@ from truckmpc.road import (
     write_road,
     write_shipped_roads,
 )
+from truckmpc.run import check_work, run_controllers
 from truckmpc.signals import Stopped, received_signal, stopping_on_signals
-from truckmpc.sim import CONTROLLERS, simulate
+from truckmpc.sim import CONTROLLERS
+from truckmpc.stationary import stationary_point
 from truckmpc.status import status_line
-from truckmpc.units import KMH_PER_MPS, M_PER_KM, PCT_PER_FRACTION
+from truckmpc.units import M_PER_KM
 from truckmpc.vdri import cycle_summary, import_comments, read_vdri
-from truckmpc.workload import EQUAL_TIME_RUNS, check_runs, duration
 
 USAGE_EXIT_CODE = 2
 
@@ -302,9 +302,6 @@ def simulate_cmd(
                 f"takes the whole run from {replay}; drop {', '.join(given)}", param_hint="'--replay'"
             )
         request, profile, run_config = load_replay(replay)
-        unknown = [name for name in request.controllers if name not in CONTROLLERS]
-        if unknown or not request.controllers:
-            raise ConfigError(f"{replay}: run.controllers: expected some of {', '.join(CONTROLLERS)}, got {unknown}")
     else:
         run_config = _run_config(vehicle, config, set_)
         profile = default_test_track() if road is None else load_road(road)
@@ -314,33 +311,19 @@ def simulate_cmd(
         told = _text(controller_road)
         request = RunRequest(_text(road), reverse, names, *inputs, check_convergence, controller_road_path=told)
     halves = _halved_configs(request, run_config)
-    # Each look-ahead run is also compared with the PI re-tuned to its trip time.
-    retuned = ["pi"] * EQUAL_TIME_RUNS * sum(name in LOOK_AHEAD for name in request.controllers)
-    if "pcc" in request.controllers:
-        retuned += ["pcc"] * EQUAL_TIME_RUNS * sum(name in OPTIMISERS for name in request.controllers)
-    runs = [*request.controllers, *retuned] if "pi" in request.controllers else list(request.controllers)
-    estimate_s = check_runs(profile, run_config, runs, force=force, extra=halves.values())
+    estimate_s = check_work(profile, run_config, request.controllers, force=force, halves=halves)
     out_dir = Path("out") / profile.name if out is None else out
     check_run_dir(out_dir)
     with stopping_on_signals():
         try:
-            results = {}
-            for name in request.controllers:
-                with status_line(f"{name}: driving {profile.name} (estimate for all: {duration(estimate_s)})"):
-                    results[name] = simulate(profile, run_config, name)
-            with status_line(f"pi re-tuned to each look-ahead run's trip time: driving {profile.name}"):
-                equal_times = equal_time_baselines(profile, run_config, results)
-                against_pcc = equal_time_baselines(profile, run_config, results, baseline="pcc")
-                equal_times.update({f"{name}_vs_pcc": found for name, found in against_pcc.items()})
-            extra = {}
-            if halves:
-                with status_line(f"mpc at half delta_kmh and half stage_m: driving {profile.name}"):
-                    extra["convergence"] = convergence_document(results, run_halves(profile, halves), halves)
+            runs = run_controllers(
+                profile, run_config, request.controllers, halves, status=status_line, estimate_s=estimate_s
+            )
             record = run_record(request, profile, run_config)
-            written = write_outputs(out_dir, profile, results, record, extra, equal_times)
+            written = write_outputs(out_dir, profile, runs.results, record, runs.extra, runs.equal_times)
         except KeyboardInterrupt:
             raise Stopped("nothing written", received_signal()) from None
-    typer.echo(format_table(profile, results, run_config, extra.get("convergence"), equal_times))
+    typer.echo(format_table(profile, runs.results, run_config, runs.extra.get("convergence"), runs.equal_times))
     typer.echo("wrote " + ", ".join(str(p) for p in written))
 
 
@@ -689,21 +672,8 @@ def stationary_cmd(
     if not speed_kmh > 0:
         raise typer.BadParameter(f"expected a speed > 0 km/h, got {speed_kmh:g}", param_hint="'--speed-kmh'")
     run_config = _run_config(vehicle, config, set_)
-    core = run_config.core_vehicle
-    v_mps = speed_kmh / KMH_PER_MPS
-    chosen = _parse_gear(gear, core.forward_gears)
-    if chosen is None:
-        chosen = _core.steady_gear(run_config.settings, v_mps)
-    point = core.stationary(v_mps, slope_pct / PCT_PER_FRACTION, chosen)
-    doc = {
-        "speed_kmh": speed_kmh,
-        "slope_pct": slope_pct,
-        "gear": chosen,
-        "pedal": point["pedal"],
-        "brake": point["brake"],
-        "feasible": bool(point["feasible"]),
-        "eigenvalue_per_m": point["eigenvalue_per_m"],
-    }
+    doc = stationary_point(run_config, speed_kmh, slope_pct, _parse_gear(gear, run_config.core_vehicle.forward_gears))
+    chosen = doc["gear"]
     if as_json:
         typer.echo(json.dumps(doc))
         return
