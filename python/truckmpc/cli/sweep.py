@@ -9,16 +9,7 @@ from typing import Annotated
 
 import typer
 
-from truckmpc.cli.options import (
-    ConfigOpt,
-    ForceOpt,
-    JobsOpt,
-    QuietOpt,
-    ReverseAllOpt,
-    RoadsOpt,
-    SchedulerOpt,
-    SetOpt,
-)
+from truckmpc.cli.options import ConfigOpt, ForceOpt, JobsOpt, QuietOpt, ReverseAllOpt, RoadsOpt, SchedulerOpt, SetOpt
 from truckmpc.cli.study import notice, pooled_study, stop_notes, study_inputs
 from truckmpc.status import status_line
 from truckmpc.sweep import plan_sweep, progress_bar, run_plan
