@@ -28,10 +28,9 @@ import subprocess
 import sys
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Any
 
 import numpy as np
-import typer
 
 from truckmpc.config import load_run_config
 from truckmpc.errors import TruckmpcError
@@ -41,11 +40,9 @@ from truckmpc.table import figure_lines, label_width
 from truckmpc.units import M_PER_KM
 
 __all__ = [
-    "BENCH_HELP",
     "SETTINGS",
     "BenchError",
     "BenchResult",
-    "bench_cmd",
     "default_road_path",
     "format_bench",
     "run_bench",
@@ -237,40 +234,6 @@ def format_bench(result: BenchResult) -> str:
             setting = f"S {r['stage_m']:g} m, δ {r['delta_kmh']:g} km/h"
             lines.append(f"{setting}: the truck stalled; figures cover the road up to there")
     return "\n".join(lines)
-
-
-BENCH_HELP = (
-    "Time closed-loop MPC runs at (S 25 m, δ 0.1 km/h, 3000 m) and (S 50 m, δ 0.2 km/h, 2000 m), "
-    "on the fixed and the moving grid, each in its own process.\n\n"
-    "Reports the realtime ratio (compute time / simulated time), the time per DP solve, the states and "
-    "transitions per solve, the time per transition and the peak memory of each run."
-)
-"""The help text of ``truckmpc bench``."""
-
-
-def bench_cmd(
-    road: Annotated[
-        Path | None,
-        typer.Option(
-            "--road",
-            help="Road profile CSV (default: the 108 km VECTO long-haul road of ../shared/roads, "
-            "else the bundled test track).",
-        ),
-    ] = None,
-    quick: Annotated[bool, typer.Option("--quick", help="Only the first 10 km of the road (for CI).")] = False,
-    set_: Annotated[
-        list[str] | None,
-        typer.Option(
-            "--set",
-            help="Any other key=value (e.g. neutral_rule=interpolate); "
-            "stage_m, delta_kmh, horizon_m, allow_neutral and grid are fixed.",
-        ),
-    ] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")] = False,
-) -> None:
-    """``truckmpc bench``: :func:`run_bench`, printed as a table or JSON (its help: :data:`BENCH_HELP`)."""
-    result = run_bench(road, quick=quick, overrides=tuple(set_ or ()))
-    typer.echo(json.dumps(result.document()) if as_json else format_bench(result))
 
 
 def _child(argv: list[str]) -> int:

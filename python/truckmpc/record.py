@@ -21,6 +21,7 @@ from typing import Any
 from truckmpc.config import RunConfig, config_from_values
 from truckmpc.errors import ConfigError, RoadError, read_user_text
 from truckmpc.roads import RoadProfile, default_test_track, load_road
+from truckmpc.sim import CONTROLLERS
 from truckmpc.units import PCT_PER_FRACTION
 
 MAP_SLACK = 0.02
@@ -119,7 +120,7 @@ def map_with_targets_of(profile: RoadProfile, told: RoadProfile) -> RoadProfile:
 
 def load_replay(path: Path) -> tuple[RunRequest, RoadProfile, RunConfig]:
     """The request, road and configuration recorded in a `summary.json`; the road must still hash
-    to the recorded SHA-256."""
+    to the recorded SHA-256, and the controllers be some of :data:`truckmpc.sim.CONTROLLERS`."""
     where = str(path)
     try:
         doc = json.loads(read_user_text(path, where, "a summary.json file", ConfigError))
@@ -148,6 +149,9 @@ def load_replay(path: Path) -> tuple[RunRequest, RoadProfile, RunConfig]:
     check = run.get("check_convergence", False)
     if not isinstance(check, bool):
         raise ConfigError(f"{where}: run: key 'check_convergence': expected bool, got {type(check).__name__}")
+    unknown = [name for name in controllers if name not in CONTROLLERS]
+    if unknown or not controllers:
+        raise ConfigError(f"{where}: run.controllers: expected some of {', '.join(CONTROLLERS)}, got {unknown}")
     request = RunRequest(
         road_path, reverse, controllers, *given, check_convergence=check, controller_road_path=told_path
     )

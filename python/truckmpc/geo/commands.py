@@ -1,5 +1,5 @@
 """The work of ``truckmpc road import gpx|csv``, ``road info`` and ``road plot`` (the Typer
-declarations are in :mod:`truckmpc.cli`; their shared options are here)."""
+declarations are in :mod:`truckmpc.cli.road`)."""
 
 from __future__ import annotations
 

@@ -1,0 +1,83 @@
+"""The ``truckmpc`` command line: a thin layer over the library, one module per command group.
+
+Commands::
+
+    truckmpc simulate [--road FILE] [--controller pi] [--vehicle FILE] [--config FILE ...]
+                      [--set key=value ...] [--out DIR] [--reverse] [--controller-road FILE]
+                      [--check-convergence] [--force] | --replay SUMMARY [--out DIR]
+    truckmpc robustness --road FILE [--controller mpc|optimal|pcc] [--seeds N] [--vehicle FILE]
+                        [--config FILE ...] [--set key=value ...] [--out JSON]
+    truckmpc sweep --road FILE|DIR|GLOB [--road ...] [--grid KEY=SPEC ...] [--reverse|--both-ways]
+                   [--jobs N | --scheduler ADDRESS] [--vehicle FILE ...] [--config FILE ...]
+                   [--set key=value ...] [--quiet] [--check-convergence] [--parquet] --out DIR
+    truckmpc pareto --road FILE|DIR|GLOB [--road ...] [--speeds SPEC] [--betas SPEC] [--curves LIST]
+                    [--reverse] [--jobs N | --scheduler ADDRESS] [--vehicle FILE] [--config FILE ...]
+                    [--set key=value ...] [--quiet] --out DIR
+    truckmpc model stationary --speed-kmh V --slope-pct A [--gear G|neutral] [--vehicle FILE] [--json]
+    truckmpc road make {flat,hill,crest,depression} --length-m L [--slope-pct A] [--lead-m X]
+                       [--tail-m Y] -o FILE
+    truckmpc road regenerate [--dir roads]
+    truckmpc road import vdri FILE -o FILE
+    truckmpc road import {gpx,csv} FILE -o ROAD.csv [--method spline|savgol|none] [--noise-m S]
+                         [--smooth-m L] [--step-m D] [--grade-limit-pct G]
+    truckmpc road info FILE
+    truckmpc road plot FILE [-o OUT.png] [--svg]
+    truckmpc config keys [--section SECTION] [--write FILE]
+    truckmpc config defaults [--dir DIR]
+    truckmpc bench [--json] [--road FILE] [--quick] [--set key=value ...]
+    truckmpc plot DIR [--svg] [--out FILE_OR_DIR]
+
+Modules: :mod:`~truckmpc.cli.simulate` (simulate, its --replay), :mod:`~truckmpc.cli.robustness`,
+:mod:`~truckmpc.cli.sweep`, :mod:`~truckmpc.cli.pareto` (and :mod:`~truckmpc.cli.study`, what those
+two share), :mod:`~truckmpc.cli.model`, :mod:`~truckmpc.cli.road`, :mod:`~truckmpc.cli.config`,
+:mod:`~truckmpc.cli.bench`, :mod:`~truckmpc.cli.plot`; :mod:`~truckmpc.cli.options` (the options
+several commands share) and :mod:`~truckmpc.cli.errors` (one-line errors). The library never
+imports this package.
+
+Every input problem (a :class:`~truckmpc.errors.TruckmpcError`, a usage error, an unreadable or
+unwritable file) ends the command with exactly one line ``error: ...`` on stderr and exit code 2, no
+traceback and no output files.
+"""
+
+from __future__ import annotations
+
+import typer
+
+from truckmpc.cli.bench import BENCH_HELP, bench_cmd
+from truckmpc.cli.config import config_app
+from truckmpc.cli.errors import OneLineErrors
+from truckmpc.cli.model import model_app
+from truckmpc.cli.pareto import pareto_cmd
+from truckmpc.cli.plot import plot_cmd
+from truckmpc.cli.road import road_app
+from truckmpc.cli.robustness import robustness_cmd
+from truckmpc.cli.simulate import simulate_cmd
+from truckmpc.cli.sweep import sweep_cmd
+
+__all__ = ["app", "main"]
+
+app = typer.Typer(
+    cls=OneLineErrors,
+    help="Look-ahead cruise control for heavy trucks: simulate a PI cruise controller and a look-ahead DP-MPC "
+    "over road profiles and compare their fuel and trip time.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+    # Plain help: rich markup would take the units in brackets ([km/h], [m]) for style tags and drop them.
+    rich_markup_mode=None,
+)
+# The order here is the order of `truckmpc --help`.
+app.command("bench", help=BENCH_HELP)(bench_cmd)
+app.command("simulate")(simulate_cmd)
+app.command("robustness")(robustness_cmd)
+app.command("sweep")(sweep_cmd)
+app.command("pareto")(pareto_cmd)
+app.command("plot")(plot_cmd)
+app.add_typer(model_app, name="model")
+app.add_typer(road_app, name="road")
+app.add_typer(config_app, name="config")
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Entry point of the ``truckmpc`` command."""
+    app(args=argv, prog_name="truckmpc")

@@ -1,0 +1,183 @@
+"""``truckmpc simulate``: controllers over one road (or a run replayed from its summary.json), the
+short table printed and the run directory written; the runs are :func:`truckmpc.run.run_controllers`'s."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from truckmpc.cli.options import ConfigOpt, ForceOpt, SetOpt, VehicleOpt, run_config_from
+from truckmpc.config import RunConfig
+from truckmpc.convergence import halved_configs
+from truckmpc.record import RunRequest, load_replay, run_record, with_controller_road
+from truckmpc.results import check_run_dir, format_table, write_outputs
+from truckmpc.roads import RoadProfile, default_test_track, load_road
+from truckmpc.run import check_work, run_controllers
+from truckmpc.signals import Stopped, received_signal, stopping_on_signals
+from truckmpc.sim import CONTROLLERS
+from truckmpc.status import status_line
+
+__all__ = ["BOTH", "GROUPS", "controller_names", "simulate_cmd"]
+
+BOTH = "both"
+"""``--controller both``: PI and MPC on the same road and vehicle, with Δfuel and Δtime."""
+
+GROUPS = {BOTH: ("pi", "mpc"), "all": ("pi", "mpc", "optimal")}
+"""``--controller`` values that run several controllers: ``both`` (PI and MPC) and ``all`` (PI, MPC
+and the whole-road optimum, with the MPC's gap to it)."""
+
+
+def controller_names(text: str) -> tuple[str, ...]:
+    """The controllers of a ``--controller`` value: a group (``both``, ``all``) or a comma list of
+    controllers from :data:`truckmpc.sim.CONTROLLERS` (``pi,mpc,optimal``), each once, in that order."""
+    if text in GROUPS:
+        return GROUPS[text]
+    names = tuple(name.strip() for name in text.split(","))
+    known = [*CONTROLLERS, *GROUPS]
+    bad = [name for name in names if name not in CONTROLLERS]
+    if bad or len(set(names)) < len(names):
+        raise typer.BadParameter(
+            f"expected one of {', '.join(known)}, or a comma list of {', '.join(CONTROLLERS)} each once, got {text!r}",
+            param_hint="'--controller'",
+        )
+    return names
+
+
+RoadOpt = Annotated[
+    Path | None,
+    typer.Option(
+        "--road",
+        metavar="FILE",
+        help="Road profile CSV or VECTO .vdri cycle (default: the bundled test track). A road with stops is "
+        "driven as its stop-free legs.",
+    ),
+]
+ControllerOpt = Annotated[
+    str | None,
+    typer.Option(
+        "--controller",
+        help="Controllers to run: a comma list of pi, mpc, optimal (pi,mpc,optimal), or both = pi,mpc "
+        "(default), all = pi,mpc,optimal. Each look-ahead controller is compared with the pi.",
+    ),
+]
+OutOpt = Annotated[Path | None, typer.Option("--out", help="Output directory (default: out/<road name>).")]
+ReverseOpt = Annotated[bool, typer.Option("--reverse", help="Drive the road in the opposite direction.")]
+ReplayOpt = Annotated[
+    Path | None,
+    typer.Option("--replay", metavar="SUMMARY", help="Rerun exactly what a summary.json records (road, settings)."),
+]
+ControllerRoadOpt = Annotated[
+    Path | None,
+    typer.Option(
+        "--controller-road",
+        metavar="FILE",
+        help="A road the controllers plan on while the truck drives --road (a noisy import, a grade bias).",
+    ),
+]
+CheckConvergenceOpt = Annotated[
+    bool,
+    typer.Option(
+        "--check-convergence",
+        help="Also run the MPC at half the speed step and at half the stage length, and report how far "
+        "delta fuel and delta time move (flagged beyond 0.3 points).",
+    ),
+]
+
+
+def simulate_cmd(
+    road: RoadOpt = None,
+    controller: ControllerOpt = None,
+    vehicle: VehicleOpt = None,
+    config: ConfigOpt = None,
+    set_: SetOpt = None,
+    out: OutOpt = None,
+    reverse: ReverseOpt = False,
+    replay: ReplayOpt = None,
+    force: ForceOpt = False,
+    controller_road: ControllerRoadOpt = None,
+    check_convergence: CheckConvergenceOpt = False,
+) -> None:
+    """Run controllers over a road; print a short table, write DIR/summary.json and DIR/trace-<controller>.csv.
+
+    The default, both, runs PI and MPC and reports delta fuel and delta time, (MPC - PI) / PI in %.
+    A directory holding an earlier run is replaced whole.
+    """
+    options = (road, controller, vehicle, config, set_, reverse, check_convergence, controller_road)
+    if replay is not None:
+        given = [name for name, value in _run_options(*options) if value]
+        if given:
+            raise typer.BadParameter(
+                f"takes the whole run from {replay}; drop {', '.join(given)}", param_hint="'--replay'"
+            )
+        request, profile, run_config = load_replay(replay)
+    else:
+        request, profile, run_config = _requested(*options)
+    halves = _halved_configs(request, run_config)
+    estimate_s = check_work(profile, run_config, request.controllers, force=force, halves=halves)
+    out_dir = Path("out") / profile.name if out is None else out
+    check_run_dir(out_dir)
+    with stopping_on_signals():
+        try:
+            runs = run_controllers(
+                profile, run_config, request.controllers, halves, status=status_line, estimate_s=estimate_s
+            )
+            record = run_record(request, profile, run_config)
+            written = write_outputs(out_dir, profile, runs.results, record, runs.extra, runs.equal_times)
+        except KeyboardInterrupt:
+            raise Stopped("nothing written", received_signal()) from None
+    typer.echo(format_table(profile, runs.results, run_config, runs.extra.get("convergence"), runs.equal_times))
+    typer.echo("wrote " + ", ".join(str(p) for p in written))
+
+
+def _requested(
+    road: Path | None,
+    controller: str | None,
+    vehicle: Path | None,
+    config: list[Path] | None,
+    set_: list[str] | None,
+    reverse: bool,
+    check_convergence: bool,
+    controller_road: Path | None,
+) -> tuple[RunRequest, RoadProfile, RunConfig]:
+    """The run the simulate options ask for: its request (as recorded), road and configuration."""
+    run_config = run_config_from(vehicle, config, set_)
+    profile = default_test_track() if road is None else load_road(road)
+    profile = with_controller_road(profile.reversed() if reverse else profile, controller_road, reverse)
+    names = controller_names(BOTH if controller is None else controller)
+    inputs = (_text(vehicle), tuple(map(str, config or ())), tuple(set_ or ()))
+    told = _text(controller_road)
+    request = RunRequest(_text(road), reverse, names, *inputs, check_convergence, controller_road_path=told)
+    return request, profile, run_config
+
+
+def _halved_configs(request: RunRequest, config: RunConfig) -> dict[str, RunConfig]:
+    """The configurations of `--check-convergence` (none without it); it needs the MPC and its baseline."""
+    if not request.check_convergence:
+        return {}
+    if not {"pi", "mpc"} <= set(request.controllers):
+        raise typer.BadParameter(
+            f"expected --controller both (the mpc against the pi), got {','.join(request.controllers)}",
+            param_hint="'--check-convergence'",
+        )
+    return halved_configs(config)
+
+
+def _run_options(*values: object) -> list[tuple[str, object]]:
+    """The simulate options that --replay replaces, with the values given."""
+    names = (
+        "--road",
+        "--controller",
+        "--vehicle",
+        "--config",
+        "--set",
+        "--reverse",
+        "--check-convergence",
+        "--controller-road",
+    )
+    return list(zip(names, values, strict=True))
+
+
+def _text(path: Path | None) -> str | None:
+    return None if path is None else str(path)

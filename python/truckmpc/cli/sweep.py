@@ -1,0 +1,143 @@
+"""``truckmpc sweep``: :func:`truckmpc.sweep.plan_sweep` and :func:`truckmpc.sweep.run_plan` over
+roads, a grid and a fleet, one line printed per row."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from truckmpc.cli.options import ConfigOpt, ForceOpt, JobsOpt, QuietOpt, ReverseAllOpt, RoadsOpt, SchedulerOpt, SetOpt
+from truckmpc.cli.study import notice, pooled_study, stop_notes, study_inputs
+from truckmpc.status import status_line
+from truckmpc.sweep import plan_sweep, progress_bar, run_plan
+from truckmpc.sweep.columns import check_controllers, delta_column
+from truckmpc.sweep.summary import check_parquet, fleet_outputs
+
+__all__ = ["sweep_cmd"]
+
+OutOpt = Annotated[
+    Path,
+    typer.Option("--out", help="Output directory: sweep.csv, sweep.json (and sweep.partial.csv while running)."),
+]
+GridOpt = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--grid", metavar="KEY=SPEC", help="Axis KEY=start:stop:step or KEY=v1,v2,...; any config key; repeatable."
+    ),
+]
+ControllerOpt = Annotated[
+    str,
+    typer.Option(
+        "--controller",
+        help="Look-ahead controllers to run on each row, a comma list of pcc, mpc; the pi always runs, "
+        "as the baseline.",
+    ),
+]
+BothWaysOpt = Annotated[bool, typer.Option("--both-ways", help="Drive every road in both directions (a row for each).")]
+FleetOpt = Annotated[
+    list[Path] | None,
+    typer.Option(
+        "--vehicle",
+        metavar="FILE",
+        help="Vehicle YAML file (default: packaged truck-40t.yaml); repeatable, for a fleet (a vehicle column).",
+    ),
+]
+ParquetOpt = Annotated[
+    bool, typer.Option("--parquet", help="Also write DIR/sweep.parquet (needs pyarrow: truckmpc[parquet]).")
+]
+CheckConvergenceOpt = Annotated[
+    bool,
+    typer.Option(
+        "--check-convergence",
+        help="Also drive each MPC row at half the speed step and at half the stage length; add how far "
+        "delta fuel and delta time move as columns.",
+    ),
+]
+
+
+def sweep_cmd(
+    road: RoadsOpt,
+    out: OutOpt,
+    grid: GridOpt = None,
+    controller: ControllerOpt = "mpc",
+    reverse: ReverseAllOpt = False,
+    both_ways: BothWaysOpt = False,
+    jobs: JobsOpt = None,
+    scheduler: SchedulerOpt = None,
+    vehicle: FleetOpt = None,
+    config: ConfigOpt = None,
+    set_: SetOpt = None,
+    quiet: QuietOpt = False,
+    force: ForceOpt = False,
+    parquet: ParquetOpt = False,
+    check_convergence: CheckConvergenceOpt = False,
+) -> None:
+    """Run the PI and the --controller list (default: the MPC) on every road for every combination of the
+    --grid axes; one row each in DIR/sweep.csv.
+
+    Rerun the same command with the same --out to resume an interrupted sweep.
+    """
+    controllers = _sweep_controllers(controller)
+    if parquet:
+        check_parquet()
+    with pooled_study("rows"):
+        with status_line("checking every combination of the grid"):
+            plan = plan_sweep(
+                road,
+                tuple(grid or ()),
+                **study_inputs(_directions(reverse, both_ways), _vehicles(vehicle), config, set_),
+                check_convergence=check_convergence,
+                controllers=controllers,
+            )
+        stop_notes(plan.roads)
+        with progress_bar(not quiet) as hook:
+            result = run_plan(plan, out, jobs=jobs, progress=hook, force=force, notice=notice, scheduler=scheduler)
+    axes = [axis.key for axis in plan.axes]
+    for row in result.rows:
+        figures = " ".join(f"{key}={row[key]}" for key in ("vehicle", *axes) if key in row)
+        typer.echo(f"{row['road']} {row['direction']} {figures}: {_sweep_deltas(row, plan.controllers)}")
+    runs = [f"{result.runs[name]} {name.upper()}" for name in (*plan.controllers, "pi")]
+    lines, files = fleet_outputs(out, plan, result, parquet)
+    for line in lines:
+        typer.echo(line)
+    written = [result.csv_path, *files]
+    typer.echo(
+        f"wrote {', '.join(map(str, written))} ({len(result.rows)} rows: {', '.join(runs[:-1])} and {runs[-1]} "
+        f"runs, {result.resumed_rows} rows resumed)"
+    )
+
+
+def _vehicles(given: list[Path] | None) -> Path | tuple[Path, ...] | None:
+    """``plan_sweep``'s `vehicle_path` from the --vehicle options: one file, several, or None."""
+    if not given:
+        return None
+    return given[0] if len(given) == 1 else tuple(given)
+
+
+def _directions(reverse: bool, both_ways: bool) -> bool | str:
+    """``plan_sweep``'s `reverse`: True, False or ``"both"``; not --reverse with --both-ways."""
+    if reverse and both_ways:
+        raise typer.BadParameter("expected --reverse or --both-ways, not both", param_hint="'--both-ways'")
+    return "both" if both_ways else reverse
+
+
+def _sweep_controllers(text: str) -> tuple[str, ...]:
+    """The look-ahead controllers of ``sweep --controller`` (``pcc``, ``mpc``), in column order."""
+    try:
+        return check_controllers(text.split(","))
+    except ValueError as err:
+        raise typer.BadParameter(str(err), param_hint="'--controller'") from None
+
+
+def _sweep_deltas(row: Mapping[str, str], controllers: Sequence[str]) -> str:
+    """`delta fuel -1.23 %, delta time +0.45 %` of each look-ahead controller against the PI (named
+    when there are several), `-` where blank."""
+    parts = []
+    for name in controllers:
+        shown = [f"{float(v):+.2f}" if v else "-" for v in (row[delta_column(name, k)] for k in ("fuel", "time"))]
+        named = f"{name} " if len(controllers) > 1 else ""
+        parts.append(f"{named}delta fuel {shown[0]} %, delta time {shown[1]} %")
+    return "; ".join(parts)

@@ -1,0 +1,101 @@
+"""What ``truckmpc simulate`` drives, as library calls: several controllers over one road, each
+look-ahead run against the PI (and against the PCC, when it ran) re-tuned to its trip time, and the
+MPC at half δ and half S when asked (:mod:`truckmpc.convergence`)::
+
+    from truckmpc import default_test_track, load_run_config, write_outputs
+    from truckmpc.run import run_controllers
+
+    road, config = default_test_track(), load_run_config()
+    runs = run_controllers(road, config, ("pi", "mpc"))
+    write_outputs("out/test-track", road, runs.results, extra=runs.extra, equal_times=runs.equal_times)
+"""
+
+from __future__ import annotations
+
+import contextlib
+from collections.abc import Callable, Mapping, Sequence
+from contextlib import AbstractContextManager
+from dataclasses import dataclass
+from typing import Any
+
+from truckmpc.config import RunConfig
+from truckmpc.convergence import convergence_document, run_halves
+from truckmpc.equal_time import LOOK_AHEAD, OPTIMISERS, EqualTime, equal_time_baselines
+from truckmpc.roads import RoadProfile
+from truckmpc.sim import RunResult, simulate
+from truckmpc.workload import EQUAL_TIME_RUNS, check_runs, duration
+
+__all__ = ["ControllerRuns", "Status", "check_work", "planned_runs", "run_controllers"]
+
+Status = Callable[[str], AbstractContextManager[object]]
+"""Shows a text while a block runs, e.g. :func:`truckmpc.status.status_line` (a spinner on stderr)."""
+
+
+@dataclass(frozen=True)
+class ControllerRuns:
+    """What :func:`run_controllers` drove: one result per controller, the equal-time baselines
+    (keyed by look-ahead controller; ``<name>_vs_pcc`` against the PCC) and the extra objects of
+    ``summary.json`` (``convergence``, with halved configurations)."""
+
+    results: dict[str, RunResult]
+    equal_times: dict[str, EqualTime]
+    extra: dict[str, Any]
+
+
+def planned_runs(controllers: Sequence[str]) -> list[str]:
+    """The runs :func:`run_controllers` makes, for the work estimate: the controllers and, when the
+    PI is among them, a typical equal-time search's PI runs per look-ahead controller (and PCC runs
+    per optimiser when the PCC is among them too)."""
+    retuned = ["pi"] * EQUAL_TIME_RUNS * sum(name in LOOK_AHEAD for name in controllers)
+    if "pcc" in controllers:
+        retuned += ["pcc"] * EQUAL_TIME_RUNS * sum(name in OPTIMISERS for name in controllers)
+    return [*controllers, *retuned] if "pi" in controllers else list(controllers)
+
+
+def check_work(
+    road: RoadProfile,
+    config: RunConfig,
+    controllers: Sequence[str],
+    *,
+    force: bool = False,
+    halves: Mapping[str, RunConfig] | None = None,
+) -> float:
+    """The estimated seconds [s] of :func:`run_controllers`; refuses too much work or memory as
+    :func:`truckmpc.workload.check_runs` does (a :class:`~truckmpc.workload.WorkError`)."""
+    return check_runs(road, config, planned_runs(controllers), force=force, extra=(halves or {}).values())
+
+
+def _silent(text: str) -> AbstractContextManager[object]:
+    return contextlib.nullcontext()
+
+
+def run_controllers(
+    road: RoadProfile,
+    config: RunConfig,
+    controllers: Sequence[str],
+    halves: Mapping[str, RunConfig] | None = None,
+    *,
+    status: Status = _silent,
+    estimate_s: float | None = None,
+) -> ControllerRuns:
+    """Drive each of `controllers` (names of :data:`truckmpc.sim.CONTROLLERS`) over `road`, then the
+    equal-time baselines; with `halves` (:func:`truckmpc.convergence.halved_configs`, which needs
+    the PI and the MPC among the controllers) the MPC at each halved configuration too.
+
+    `status` shows what is being driven; `estimate_s` [s], the estimate of all of it, is shown with
+    each controller's run.
+    """
+    told = "" if estimate_s is None else f" (estimate for all: {duration(estimate_s)})"
+    results = {}
+    for name in controllers:
+        with status(f"{name}: driving {road.name}{told}"):
+            results[name] = simulate(road, config, name)
+    with status(f"pi re-tuned to each look-ahead run's trip time: driving {road.name}"):
+        equal_times = equal_time_baselines(road, config, results)
+        against_pcc = equal_time_baselines(road, config, results, baseline="pcc")
+        equal_times.update({f"{name}_vs_pcc": found for name, found in against_pcc.items()})
+    extra = {}
+    if halves:
+        with status(f"mpc at half delta_kmh and half stage_m: driving {road.name}"):
+            extra["convergence"] = convergence_document(results, run_halves(road, halves), halves)
+    return ControllerRuns(results, equal_times, extra)
