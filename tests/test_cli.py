@@ -6,6 +6,7 @@ import json
 import re
 import subprocess
 import sys
+import tomllib
 from pathlib import Path
 
 import pytest
@@ -349,6 +350,10 @@ def test_ci_runs_exactly_the_readme_test_command():
     assert test_command in ci_lines
     # set -e: the command's failure is CI's; what runs after it (the benchmark) can only add a failure
     assert "set -euo pipefail" in ci_lines[: ci_lines.index(test_command)]
+    # every test: the default run leaves the slow tier out, so the command must run it too
+    addopts = tomllib.loads((REPO / "pyproject.toml").read_text())["tool"]["pytest"]["ini_options"]["addopts"]
+    assert addopts[-2:] == ["-m", "not slow"]
+    assert "python -m pytest -q && python -m pytest -q -m slow" in test_command
 
 
 @pytest.mark.parametrize(

@@ -143,6 +143,7 @@ def test_the_thesis_preset_does_not_converge_on_a_descent_and_a_climb(section):
     assert max(abs(move) for move in thesis) > 0.3, thesis
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("section", ["hill_L500_A-3", pytest.param("hill_L500_A2", marks=NOT_CONVERGED)])
 def test_the_default_converges_on_a_descent_and_a_climb(section):
     default = fuel_moves(ROADS / f"{section}.csv")

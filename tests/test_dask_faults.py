@@ -111,6 +111,7 @@ def cluster(tmp_path: Path) -> Iterator[Cluster]:
         started.close()
 
 
+@pytest.mark.slow
 def test_a_worker_killed_mid_sweep_loses_no_row(cluster: Cluster, tmp_path: Path, reference) -> None:
     """SIGKILL one of the two workers once the first row is in: the sweep finishes on the other one,
     every row once, the same numbers as without the kill."""
@@ -135,6 +136,7 @@ def test_a_worker_killed_mid_sweep_loses_no_row(cluster: Cluster, tmp_path: Path
     assert rows == reference and f"({ROWS} rows: {ROWS} MPC and 1 PI runs, 0 rows resumed)" in stdout
 
 
+@pytest.mark.slow
 def test_the_client_killed_mid_sweep_is_resumed(tmp_path: Path, reference) -> None:
     """SIGKILL the command and its embedded cluster once the first row is in: the same command
     again keeps the finished rows, runs the others, and gives the uninterrupted run's numbers."""

@@ -49,6 +49,7 @@ def swept(fleet, tmp_path_factory: pytest.TempPathFactory):
     return out, result, read_csv(out / "sweep.csv")
 
 
+@pytest.mark.slow
 def test_one_row_per_road_direction_vehicle_and_combination(swept) -> None:
     _, _, rows = swept
     assert list(rows[0])[:5] == ["road", "direction", "vehicle", "horizon_m", "error"]

@@ -25,6 +25,7 @@ def steady_speeds_kmh(result, after_m: float = 1500.0) -> np.ndarray:
     return trace["speed_kmh"][trace["distance_m"] > after_m]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("truck", TRUCKS)
 @pytest.mark.parametrize("v_ref_kmh", [70.0, 85.0, 90.0])
 def test_in_gear_without_a_price_on_speed_changes_it_holds_v_ref_on_a_flat_road(v_ref_kmh, truck):
@@ -45,6 +46,7 @@ def test_on_euler_stages_the_same_cost_pulses_on_a_flat_road():
     assert speeds.max() - speeds.min() > 0.3
 
 
+@pytest.mark.slow
 def test_with_neutral_allowed_the_default_does_not_pulse_and_glide_on_a_flat_road():
     """Coasting in neutral saves fuel in this plant on a flat road (pulse and glide), which no driver
     accepts: the price per neutral engagement keeps the default at v_ref, while without it the

@@ -71,6 +71,7 @@ def test_equal_time_pi_hits_a_time_made_by_another_set_speed() -> None:
     assert found.v_ref_kmh == pytest.approx(83.4, abs=0.05)
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not EPA.is_file(), reason="shared road profiles (../shared/roads) not present")
 def test_simulate_reports_the_mpc_at_equal_time(tmp_path: Path) -> None:
     """`truckmpc simulate` compares the MPC with the PI driven to the MPC's trip time: the PI's time

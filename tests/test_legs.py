@@ -39,6 +39,7 @@ def whole_road() -> RoadProfile:
     return RoadProfile("whole", distance, altitude, target_speed_kmh=targets, stops=(Stop(JOIN_M, 45.0),))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("controller", ["pi", "pcc", "mpc"])
 def test_a_road_with_a_stop_adds_up_its_legs_driven_alone(controller: str) -> None:
     config = load_run_config()

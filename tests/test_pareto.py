@@ -30,6 +30,7 @@ def study(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, list[dict[str
         return out, list(csv.DictReader(handle))
 
 
+@pytest.mark.slow
 def test_every_look_ahead_curve_lies_below_the_pi_on_a_hilly_road(study) -> None:
     """At every trip time both the PI and a look-ahead controller reach, the look-ahead controller
     uses less fuel (end speed corrected), by at least 0.5 % of the PI's."""

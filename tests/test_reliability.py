@@ -41,6 +41,7 @@ def climb(length_m: float, slope_pct: float, mass_kg: float) -> tuple[RunResult,
     return simulate(road, config, "pi"), simulate(road, config, "mpc")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("slope_pct", [6, 8, 10, 12, 15, 20])
 def test_the_mpc_climbs_the_hills_that_used_to_stall_it(slope_pct: float) -> None:
     pi, mpc = climb(1000, slope_pct, 40000)
@@ -71,6 +72,7 @@ def check_hill(length_m: float, slope_pct: float, mass_kg: float) -> None:
         assert_engine_in_range(result, mass_kg)
 
 
+@pytest.mark.slow
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(HILLS)
 def test_on_every_hill_the_pi_climbs_the_mpc_climbs_too(hill: tuple[float, float, float]) -> None:

@@ -41,6 +41,7 @@ def group_members(pgid: int) -> list[int]:
     return members
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("signum", "to_group"),
     [(signal.SIGTERM, False), (signal.SIGTERM, True), (signal.SIGINT, True)],

@@ -104,6 +104,7 @@ def test_force_runs_a_sweep_the_estimate_refuses(in_tmp, monkeypatch):
     assert len((in_tmp / "sw" / "sweep.csv").read_text().splitlines()) == 3
 
 
+@pytest.mark.slow
 def test_a_sweep_counts_the_memory_of_the_runs_it_holds_at_once(in_tmp, monkeypatch):
     # Over a 10 km/h band (v_dec 5), DPs of 150.3 MB (δ 0.01 km/h) and 124.2 MB (δ 0.011): either fits
     # in 200 MB, both at once do not; the PI holds none, and a δ 0.2 DP (0.4 MB) beside the 150 MB one fits.
@@ -133,6 +134,7 @@ def test_the_estimate_is_within_a_factor_of_ten_of_a_measured_run():
             assert measured_s / 10 < estimate_s < measured_s * 10, (overrides, controller, measured_s, estimate_s)
 
 
+@pytest.mark.slow
 def test_a_sweep_of_many_combinations_is_validated_quickly_and_refused_with_its_estimate(in_tmp):
     # 30 000 combinations of MPC runs of about a second each (δ 0.05 km/h over the test track): hours
     # on 2 processes. Validating them through the files took 6.7 ms each (over three minutes) before
