@@ -6,6 +6,8 @@
 //! - [`road`]: a road profile with piecewise-constant slope (and target speeds, if it has them);
 //! - [`band`]: the speed band every cruise controller works to along a road;
 //! - [`plant`]: the truck integrated in time at a fine step, for closed-loop simulation;
+//! - [`powertrain`]: a truck from component data (fuel map, full-load curve, driveline), as VECTO
+//!   describes one;
 //! - [`dp`]: the look-ahead controller's search space and backward dynamic program (chapter 5);
 //! - [`control`]: the built-in cruise controllers, PI (section 2.5) and receding-horizon DP-MPC
 //!   (section 5.6);
@@ -18,6 +20,7 @@ pub mod error;
 pub mod levels;
 pub mod params;
 pub mod plant;
+pub mod powertrain;
 pub mod road;
 pub mod sim;
 pub mod vehicle;

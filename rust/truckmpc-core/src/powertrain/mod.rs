@@ -1,0 +1,30 @@
+//! A truck described by its component data, as VECTO (the EU's certification tool for heavy trucks)
+//! describes it: an engine with a fuel map and full-load and drag curves, a gearbox and axle with
+//! ratios and efficiencies, tyres, air drag, rolling resistance, mass and auxiliary power.
+//!
+//! This sits beside the thesis's model ([`crate::vehicle`]), whose torque and fuel are affine in
+//! fueling; here the fuel rate is whatever the engine's map says at its speed and torque.
+//!
+//! - [`curve`]: a torque curve over engine speed (full load, drag), linear between its points;
+//! - [`fuel_map`]: the fuel rate over engine speed and torque, linear on a Delaunay triangulation;
+//! - [`engine`]: the engine built from those;
+//! - [`driveline`]: gear and axle ratios, their efficiencies, the tyre radius;
+//! - [`truck`]: the whole truck: road loads, engine operating points, the fuel to hold a speed.
+
+pub mod curve;
+pub mod driveline;
+pub mod engine;
+pub mod fuel_map;
+pub mod truck;
+
+#[cfg(test)]
+mod tests;
+
+pub use curve::Curve;
+pub use driveline::Driveline;
+pub use engine::Engine;
+pub use fuel_map::FuelMap;
+pub use truck::{Body, MapTruck, OperatingPoint, RoadLoads, G_MPS2};
+
+/// Engine speed [rpm] per angular speed [rad/s].
+pub const RPM_PER_RAD_S: f64 = 60.0 / (2.0 * std::f64::consts::PI);

@@ -1,0 +1,129 @@
+//! Tests of the map-based truck against truths constructed by hand: planes a linear interpolation
+//! must reproduce, boundaries, and the energy balance.
+
+use super::*;
+use crate::CoreError;
+
+/// z = 5000 + 2·n + 30·T [g/h], positive over the map: linear interpolation on any triangulation reproduces a plane.
+fn plane(n: f64, t: f64) -> f64 {
+    5000.0 + 2.0 * n + 30.0 * t
+}
+
+/// Scattered points of the plane: a grid of speeds with torques that differ from speed to speed.
+fn plane_points() -> Vec<(f64, f64, f64)> {
+    let mut pts = Vec::new();
+    for (k, n) in [600.0, 900.0, 1200.0, 1500.0, 1800.0].into_iter().enumerate() {
+        for j in 0..6 {
+            let t = -100.0 + j as f64 * (300.0 + 17.0 * k as f64);
+            pts.push((n, t, plane(n, t)));
+        }
+    }
+    pts
+}
+
+#[test]
+fn a_curve_is_linear_between_its_points_and_continues_its_end_segments() {
+    let c = Curve::new("c", &[(600.0, 1000.0), (1000.0, 2000.0), (2000.0, 1500.0)]).unwrap();
+    assert_eq!(c.at(800.0), 1500.0);
+    assert_eq!(c.at(1500.0), 1750.0);
+    assert_eq!(c.at(2200.0), 1400.0);
+    assert_eq!(c.at(500.0), 750.0);
+    assert!(c.covers(600.0) && c.covers(2000.0) && !c.covers(2000.1));
+}
+
+#[test]
+fn a_curve_refuses_x_that_does_not_increase() {
+    let err = Curve::new("full_load_curve", &[(600.0, 1.0), (600.0, 2.0)]).unwrap_err();
+    assert_eq!(err.key(), "full_load_curve");
+    assert!(err.to_string().contains("increasing x at point 2"), "{err}");
+}
+
+#[test]
+fn the_fuel_map_reproduces_a_plane_anywhere_inside_it() {
+    let map = FuelMap::new("fuel_map", &plane_points()).unwrap();
+    for (n, t) in [(700.0, 0.0), (1000.0, 600.0), (1333.0, 1111.0), (1799.0, 1300.0), (600.0, -100.0)] {
+        let got = map.interpolate(n, t).expect("inside the map");
+        assert!((got - plane(n, t)).abs() < 1e-6 * plane(n, t).abs().max(1.0), "({n}, {t}): {got}");
+    }
+}
+
+#[test]
+fn outside_the_map_the_fuel_rate_is_the_boundary_value_nearest_to_it() {
+    // The unit square in scaled coordinates: speeds 1000–2000 rpm, torques 0–1000 Nm.
+    let pts = [(1000.0, 0.0, 0.0), (2000.0, 0.0, 100.0), (1000.0, 1000.0, 10.0), (2000.0, 1000.0, 110.0)];
+    let map = FuelMap::new("fuel_map", &pts).unwrap();
+    assert_eq!(map.interpolate(1500.0, 1200.0), None);
+    // Above the top edge (torque 1000 Nm) at 1500 rpm: the top edge's value there, 60 g/h.
+    assert!((map.extrapolate(1500.0, 1200.0) - 60.0).abs() < 1e-9);
+    // Beyond the corner (2000 rpm, 1000 Nm): the corner's value.
+    assert!((map.extrapolate(2500.0, 1500.0) - 110.0).abs() < 1e-9);
+}
+
+#[test]
+fn the_fuel_map_refuses_a_repeated_point_and_points_on_a_line() {
+    let mut pts = plane_points();
+    pts.push(pts[3]);
+    let err = FuelMap::new("fuel_map", &pts).unwrap_err();
+    assert!(err.to_string().contains("point 31 repeats"), "{err}");
+    let line = [(600.0, 0.0, 1.0), (700.0, 100.0, 2.0), (800.0, 200.0, 3.0)];
+    assert!(matches!(FuelMap::new("fuel_map", &line), Err(CoreError::Invalid { .. })));
+}
+
+fn engine() -> Engine {
+    let full_load = [(600.0, 1000.0, -100.0), (1200.0, 2000.0, -150.0), (1800.0, 1600.0, -200.0)];
+    Engine::new(600.0, 4.0, &full_load, &plane_points()).unwrap()
+}
+
+#[test]
+fn the_engine_cuts_fuel_at_or_below_its_drag_torque_and_reads_its_map_above() {
+    let e = engine();
+    assert_eq!(e.drag_torque_nm(900.0), -125.0);
+    assert_eq!(e.fuel_rate_g_per_h(900.0, -125.0), 0.0);
+    assert!((e.fuel_rate_g_per_h(900.0, 500.0) - plane(900.0, 500.0)).abs() < 1e-6);
+    let (power_w, at_rpm) = e.rated_power();
+    assert_eq!(at_rpm, 1800.0);
+    assert!((power_w - 1600.0 * 1800.0 * 2.0 * std::f64::consts::PI / 60.0).abs() < 1e-6);
+}
+
+fn truck() -> MapTruck {
+    let driveline = Driveline::new(&[3.0, 2.0, 1.0], 3.0, 0.98, 0.97, 0.5).unwrap();
+    let body = Body {
+        mass_kg: 40_000.0,
+        wheels_inertia_kgm2: 60.0,
+        cda_m2: 6.0,
+        air_density_kg_m3: 1.2,
+        rolling_resistance: 0.006,
+        aux_power_w: 4_000.0,
+    };
+    MapTruck::new(engine(), driveline, body).unwrap()
+}
+
+#[test]
+fn engine_speed_follows_from_road_speed_ratio_and_tyre_radius() {
+    let t = truck();
+    // 20 m/s on a 0.5 m radius is 40 rad/s at the wheel; gear 2 and axle 3 make 240 rad/s.
+    let expected = 240.0 * 60.0 / (2.0 * std::f64::consts::PI);
+    assert!((t.driveline().engine_speed_rpm(20.0, 2) - expected).abs() < 1e-9);
+}
+
+#[test]
+fn at_steady_speed_the_engine_delivers_the_road_load_its_losses_and_the_auxiliaries() {
+    let t = truck();
+    let (v, slope) = (22.0, 0.01_f64.atan());
+    let loads = t.road_loads(v, 0.0, slope);
+    let expected_air = 0.5 * 1.2 * 6.0 * v.powi(3);
+    assert!((loads.air_w - expected_air).abs() < 1e-6);
+    assert!((loads.slope_w - 40_000.0 * G_MPS2 * slope.sin() * v).abs() < 1e-6);
+    let op = t.operating_point(v, 0.0, slope, 3);
+    let engine_w = op.engine_torque_nm * op.engine_speed_rpm / RPM_PER_RAD_S;
+    let balance = (engine_w - 4_000.0) * 0.98 * 0.97 - loads.wheel_w();
+    assert!(balance.abs() < 1e-6 * engine_w, "engine {engine_w} W, wheels {} W", loads.wheel_w());
+    assert!(op.feasible);
+}
+
+#[test]
+fn a_driveline_refuses_ratios_that_do_not_fall_and_efficiencies_outside_0_1() {
+    let err = Driveline::new(&[3.0, 3.0], 3.0, 0.98, 0.97, 0.5).unwrap_err();
+    assert!(err.to_string().contains("gear 2 below gear 1"), "{err}");
+    assert_eq!(Driveline::new(&[3.0], 3.0, 1.2, 0.97, 0.5).unwrap_err().key(), "gear_efficiency");
+}
