@@ -4,6 +4,7 @@
 
 mod errors;
 mod params;
+mod powertrain;
 mod road;
 mod run;
 mod vehicle;
@@ -19,6 +20,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<params::PySettings>()?;
     m.add_class::<vehicle::PyVehicle>()?;
     m.add_class::<road::PyRoad>()?;
+    m.add_class::<powertrain::PyMapTruck>()?;
     run::register(m)?;
     Ok(())
 }

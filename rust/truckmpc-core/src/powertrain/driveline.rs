@@ -4,25 +4,26 @@
 use super::RPM_PER_RAD_S;
 use crate::{CoreError, CoreResult};
 
-/// Gearbox, axle and wheels. Gears are numbered 1..=n; the losses are constant efficiencies,
-/// applied in the direction the power flows.
+/// Gearbox, axle and wheels. Gears are numbered 1..=n. The losses, as torque at the gearbox's input,
+/// are affine in the torque passed on: a drag torque (churning, bearings) plus a share of the
+/// torque (tooth friction), the form VECTO's loss maps take at a given speed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Driveline {
     gear_ratios: Vec<f64>,
     axle_ratio: f64,
     gear_efficiency: f64,
     axle_efficiency: f64,
+    loss_torque_nm: f64,
     wheel_radius_m: f64,
 }
 
 impl Driveline {
     /// A driveline from its gear ratios (first gear first, decreasing), axle ratio, the
-    /// efficiencies of gearbox and axle (0, 1], and the tyres' dynamic radius [m].
+    /// efficiencies of gearbox and axle (0, 1], the drag torque [Nm] (≥ 0, at the gearbox input)
+    /// and the tyres' dynamic radius [m].
     pub fn new(
-        gear_ratios: &[f64],
-        axle_ratio: f64,
-        gear_efficiency: f64,
-        axle_efficiency: f64,
+        (gear_ratios, axle_ratio): (&[f64], f64),
+        (gear_efficiency, axle_efficiency, loss_torque_nm): (f64, f64, f64),
         wheel_radius_m: f64,
     ) -> CoreResult<Self> {
         if gear_ratios.is_empty() {
@@ -47,8 +48,11 @@ impl Driveline {
                 return Err(CoreError::invalid(key, "a number in (0, 1]").got(value));
             }
         }
+        if !(loss_torque_nm.is_finite() && loss_torque_nm >= 0.0) {
+            return Err(CoreError::invalid("loss_torque_nm", "a number >= 0").got(loss_torque_nm));
+        }
         let gear_ratios = gear_ratios.to_vec();
-        Ok(Driveline { gear_ratios, axle_ratio, gear_efficiency, axle_efficiency, wheel_radius_m })
+        Ok(Driveline { gear_ratios, axle_ratio, gear_efficiency, axle_efficiency, loss_torque_nm, wheel_radius_m })
     }
 
     /// Number of forward gears.
@@ -89,14 +93,17 @@ impl Driveline {
         v_mps / self.wheel_radius_m * self.ratio(gear) * RPM_PER_RAD_S
     }
 
-    /// Engine torque [Nm] that gives `wheel_torque_nm` at the wheels in `gear`: losses are taken
-    /// from the engine's side when it drives, from the wheels' side when they drive.
+    /// Drag torque of the driveline [Nm] at the gearbox input, lost whatever the load.
+    pub fn loss_torque_nm(&self) -> f64 {
+        self.loss_torque_nm
+    }
+
+    /// Engine torque [Nm] that gives `wheel_torque_nm` at the wheels in `gear`: the share lost is
+    /// taken from the engine's side when it drives, from the wheels' side when they drive, and the
+    /// drag torque always.
     pub fn engine_torque_nm(&self, wheel_torque_nm: f64, gear: usize) -> f64 {
         let ideal = wheel_torque_nm / self.ratio(gear);
-        if ideal >= 0.0 {
-            ideal / self.efficiency()
-        } else {
-            ideal * self.efficiency()
-        }
+        let passed = if ideal >= 0.0 { ideal / self.efficiency() } else { ideal * self.efficiency() };
+        passed + self.loss_torque_nm
     }
 }

@@ -86,7 +86,7 @@ fn the_engine_cuts_fuel_at_or_below_its_drag_torque_and_reads_its_map_above() {
 }
 
 fn truck() -> MapTruck {
-    let driveline = Driveline::new(&[3.0, 2.0, 1.0], 3.0, 0.98, 0.97, 0.5).unwrap();
+    let driveline = Driveline::new((&[3.0, 2.0, 1.0], 3.0), (0.98, 0.97, 20.0), 0.5).unwrap();
     let body = Body {
         mass_kg: 40_000.0,
         wheels_inertia_kgm2: 60.0,
@@ -107,7 +107,7 @@ fn engine_speed_follows_from_road_speed_ratio_and_tyre_radius() {
 }
 
 #[test]
-fn at_steady_speed_the_engine_delivers_the_road_load_its_losses_and_the_auxiliaries() {
+fn at_steady_speed_the_engine_delivers_the_road_load_the_driveline_losses_and_the_auxiliaries() {
     let t = truck();
     let (v, slope) = (22.0, 0.01_f64.atan());
     let loads = t.road_loads(v, 0.0, slope);
@@ -115,15 +115,25 @@ fn at_steady_speed_the_engine_delivers_the_road_load_its_losses_and_the_auxiliar
     assert!((loads.air_w - expected_air).abs() < 1e-6);
     assert!((loads.slope_w - 40_000.0 * G_MPS2 * slope.sin() * v).abs() < 1e-6);
     let op = t.operating_point(v, 0.0, slope, 3);
-    let engine_w = op.engine_torque_nm * op.engine_speed_rpm / RPM_PER_RAD_S;
-    let balance = (engine_w - 4_000.0) * 0.98 * 0.97 - loads.wheel_w();
+    let omega = op.engine_speed_rpm / RPM_PER_RAD_S;
+    let engine_w = op.engine_torque_nm * omega;
+    let balance = (engine_w - 4_000.0 - 20.0 * omega) * 0.98 * 0.97 - loads.wheel_w();
     assert!(balance.abs() < 1e-6 * engine_w, "engine {engine_w} W, wheels {} W", loads.wheel_w());
     assert!(op.feasible);
 }
 
 #[test]
 fn a_driveline_refuses_ratios_that_do_not_fall_and_efficiencies_outside_0_1() {
-    let err = Driveline::new(&[3.0, 3.0], 3.0, 0.98, 0.97, 0.5).unwrap_err();
+    let err = Driveline::new((&[3.0, 3.0], 3.0), (0.98, 0.97, 0.0), 0.5).unwrap_err();
     assert!(err.to_string().contains("gear 2 below gear 1"), "{err}");
-    assert_eq!(Driveline::new(&[3.0], 3.0, 1.2, 0.97, 0.5).unwrap_err().key(), "gear_efficiency");
+    assert_eq!(Driveline::new((&[3.0], 3.0), (1.2, 0.97, 0.0), 0.5).unwrap_err().key(), "gear_efficiency");
+}
+
+#[test]
+fn a_drag_area_curve_replaces_the_constant_and_is_linear_in_speed() {
+    let t = truck().with_cda_curve(&[(10.0, 7.0), (30.0, 6.0)]).unwrap();
+    assert_eq!(t.cda_m2(20.0), 6.5);
+    let expected = 0.5 * 1.2 * 6.5 * 20.0_f64.powi(3);
+    assert!((t.road_loads(20.0, 0.0, 0.0).air_w - expected).abs() < 1e-9);
+    assert_eq!(truck().with_cda_curve(&[(10.0, -1.0), (30.0, 6.0)]).unwrap_err().key(), "cda_curve");
 }

@@ -1,11 +1,11 @@
 //! The whole map-based truck: the loads the road puts on it, and the engine's operating point
 //! (speed, torque, fuel rate) that meets them in a gear.
 
-use super::{Driveline, Engine, RPM_PER_RAD_S};
+use super::{Curve, Driveline, Engine, RPM_PER_RAD_S};
 use crate::{CoreError, CoreResult};
 
-/// Gravitational acceleration [m/s²], the value VECTO uses.
-pub const G_MPS2: f64 = 9.81;
+/// Gravitational acceleration [m/s²], the standard value VECTO 3 uses (the thesis's model keeps its 9.81).
+pub const G_MPS2: f64 = 9.80665;
 
 /// The vehicle body: what the road, the air and the wheels' inertia see.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -14,7 +14,7 @@ pub struct Body {
     pub mass_kg: f64,
     /// Rotating inertia of all wheels [kg m²].
     pub wheels_inertia_kgm2: f64,
-    /// Air drag area Cd·A [m²].
+    /// Air drag area Cd·A [m²] (when no speed-dependent curve is given, see [`MapTruck::with_cda_curve`]).
     pub cda_m2: f64,
     /// Air density [kg/m³].
     pub air_density_kg_m3: f64,
@@ -29,7 +29,7 @@ pub struct Body {
 /// they resist motion.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RoadLoads {
-    /// Air drag ½ρ·CdA·v³.
+    /// Air drag ½ρ·CdA(v)·v³.
     pub air_w: f64,
     /// Rolling resistance m·g·cos α·c_r·v.
     pub rolling_w: f64,
@@ -68,6 +68,9 @@ pub struct MapTruck {
     engine: Engine,
     driveline: Driveline,
     body: Body,
+    /// Cd·A [m²] over speed [m/s], when the drag area depends on speed (VECTO's cross-wind
+    /// correction); `None`: the body's constant `cda_m2`.
+    cda_curve: Option<Curve>,
 }
 
 impl MapTruck {
@@ -86,7 +89,22 @@ impl MapTruck {
                 return Err(CoreError::invalid(key, expected).got(value));
             }
         }
-        Ok(MapTruck { engine, driveline, body })
+        Ok(MapTruck { engine, driveline, body, cda_curve: None })
+    }
+
+    /// The same truck with a drag area that depends on speed: `(speed [m/s], Cd·A [m²])` points,
+    /// linear between them (the end segments continued).
+    pub fn with_cda_curve(mut self, points: &[(f64, f64)]) -> CoreResult<Self> {
+        if let Some(&(v, cda)) = points.iter().find(|p| !(p.1 >= 0.0)) {
+            return Err(CoreError::invalid("cda_curve", "Cd·A >= 0 at every speed").got(format!("{cda} m² at {v} m/s")));
+        }
+        self.cda_curve = Some(Curve::new("cda_curve", points)?);
+        Ok(self)
+    }
+
+    /// The drag area Cd·A [m²] at `v_mps`.
+    pub fn cda_m2(&self, v_mps: f64) -> f64 {
+        self.cda_curve.as_ref().map_or(self.body.cda_m2, |c| c.at(v_mps))
     }
 
     /// The engine.
@@ -109,7 +127,7 @@ impl MapTruck {
         let b = &self.body;
         let r = self.driveline.wheel_radius_m();
         RoadLoads {
-            air_w: 0.5 * b.air_density_kg_m3 * b.cda_m2 * v_mps.powi(3),
+            air_w: 0.5 * b.air_density_kg_m3 * self.cda_m2(v_mps) * v_mps.powi(3),
             rolling_w: b.mass_kg * G_MPS2 * slope_rad.cos() * b.rolling_resistance * v_mps,
             slope_w: b.mass_kg * G_MPS2 * slope_rad.sin() * v_mps,
             vehicle_inertia_w: b.mass_kg * acc_mps2 * v_mps,
