@@ -10,7 +10,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-__all__ = ["ConfigError", "RoadError", "TruckmpcError", "read_user_text"]
+__all__ = ["ConfigError", "RoadError", "TruckmpcError", "VehicleError", "read_user_text"]
 
 
 class TruckmpcError(ValueError):
@@ -28,6 +28,11 @@ class ConfigError(TruckmpcError):
 
 class RoadError(TruckmpcError):
     """A road profile (CSV file or generated section) is missing or invalid."""
+
+
+class VehicleError(TruckmpcError):
+    """A vehicle's component files (VECTO job, engine, gearbox, maps) are missing, malformed or
+    inconsistent."""
 
 
 def read_user_text(path: Path, where: str, expected: str, error: type[TruckmpcError], encoding: str = "utf-8") -> str:

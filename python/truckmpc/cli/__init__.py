@@ -22,6 +22,7 @@ Commands::
                          [--smooth-m L] [--step-m D] [--grade-limit-pct G]
     truckmpc road info FILE
     truckmpc road plot FILE [-o OUT.png] [--svg]
+    truckmpc vehicle info JOB.vecto [--set key=value ...] [--json]
     truckmpc config keys [--section SECTION] [--write FILE]
     truckmpc config defaults [--dir DIR]
     truckmpc bench [--json] [--road FILE] [--quick] [--set key=value ...]
@@ -29,7 +30,8 @@ Commands::
 
 Modules: :mod:`~truckmpc.cli.simulate` (simulate, its --replay), :mod:`~truckmpc.cli.robustness`,
 :mod:`~truckmpc.cli.sweep`, :mod:`~truckmpc.cli.pareto` (and :mod:`~truckmpc.cli.study`, what those
-two share), :mod:`~truckmpc.cli.model`, :mod:`~truckmpc.cli.road`, :mod:`~truckmpc.cli.config`,
+two share), :mod:`~truckmpc.cli.model`, :mod:`~truckmpc.cli.road`, :mod:`~truckmpc.cli.vehicle`,
+:mod:`~truckmpc.cli.config`,
 :mod:`~truckmpc.cli.bench`, :mod:`~truckmpc.cli.plot`; :mod:`~truckmpc.cli.options` (the options
 several commands share) and :mod:`~truckmpc.cli.errors` (one-line errors). The library never
 imports this package.
@@ -53,6 +55,7 @@ from truckmpc.cli.road import road_app
 from truckmpc.cli.robustness import robustness_cmd
 from truckmpc.cli.simulate import simulate_cmd
 from truckmpc.cli.sweep import sweep_cmd
+from truckmpc.cli.vehicle import vehicle_app
 
 __all__ = ["app", "main"]
 
@@ -75,6 +78,7 @@ app.command("pareto")(pareto_cmd)
 app.command("plot")(plot_cmd)
 app.add_typer(model_app, name="model")
 app.add_typer(road_app, name="road")
+app.add_typer(vehicle_app, name="vehicle")
 app.add_typer(config_app, name="config")
 
 

@@ -1,0 +1,72 @@
+"""``truckmpc vehicle``: what truckmpc reads of a truck's component files (``vehicle info``:
+:func:`truckmpc.vecto.info.truck_info`, printed)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from truckmpc.cli.options import SetOpt
+from truckmpc.errors import VehicleError
+from truckmpc.vecto import load_vecto_truck
+from truckmpc.vecto.info import truck_info
+
+__all__ = ["vehicle_app"]
+
+vehicle_app = typer.Typer(
+    help="Read a truck's component files (VECTO .vecto jobs).", no_args_is_help=True, rich_markup_mode=None
+)
+
+
+def _values(set_: list[str] | None) -> dict[str, str]:
+    out = {}
+    for item in set_ or []:
+        key, sep, value = item.partition("=")
+        if not sep or not key.strip():
+            raise VehicleError(f"--set {item}: expected key=value, got no '='")
+        out[key.strip()] = value.strip()
+    return out
+
+
+@vehicle_app.command("info")
+def info_cmd(
+    job: Annotated[
+        Path, typer.Argument(metavar="FILE", help="A VECTO job (.vecto) naming its vehicle, engine and gearbox files.")
+    ],
+    set_: SetOpt = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of text.")] = False,
+) -> None:
+    """Masses, ratios, air drag, rolling resistance, rated power and the maps' ranges, as simulated
+    (VECTO's declaration-mode trailer, load and auxiliaries included; --set payload_kg=… and so on)."""
+    doc = truck_info(load_vecto_truck(job, _values(set_)))
+    if as_json:
+        typer.echo(json.dumps(doc, indent=2))
+        return
+    typer.echo("\n".join(_text(doc)))
+
+
+def _text(d: dict[str, Any]) -> list[str]:
+    ratios = ", ".join(f"{r:g}" for r in d["gear_ratios"])
+    (n_lo, n_hi), (m_lo, m_hi) = d["full_load_speed_range_rpm"], d["fuel_map_speed_range_rpm"]
+    t_lo, t_hi = d["fuel_map_torque_range_nm"]
+    covers = "" if d["fuel_map_covers_full_load_curve"] else " (short of the full-load curve: nearest map value beyond)"
+    masses = f"vehicle {d['curb_mass_kg']:.0f} + trailer {d['trailer_mass_kg']:.0f} + load {d['payload_kg']:.0f}"
+    power = f"{d['rated_power_w'] / 1e3:.0f} kW at {d['rated_speed_rpm']:.0f} rpm"
+    cda = f"{d['cda_declared_m2']:g} m² declared, {d['cda_at_80_kmh_m2']:.3f} m² at 80 km/h"
+    return [
+        f"{d['job']}: {d['group']}",
+        f"  mass            {d['mass_kg']:.0f} kg = {masses}",
+        f"  engine          {power}, idle {d['idle_speed_rpm']:.0f} rpm",
+        f"  full-load curve {n_lo:.0f}-{n_hi:.0f} rpm",
+        f"  fuel map        {m_lo:.0f}-{m_hi:.0f} rpm, {t_lo:.0f} to {t_hi:.0f} Nm{covers}",
+        f"  gearbox         {d['gearbox']}: {len(d['gear_ratios'])} gears ({ratios}), axle {d['axle_ratio']:g}",
+        f"  tyres           dynamic radius {d['wheel_radius_m']:.4f} m",
+        f"  air drag        Cd·A {cda} ({d['cross_wind']} cross-wind correction)",
+        f"  rolling         RRC {d['rolling_resistance']:.5f} (the whole combination at this mass)",
+        f"  auxiliaries     {d['aux_power_w'] / 1e3:.2f} kW",
+        f"  shifts          traction interrupted {d['traction_interruption_s']:g} s",
+        f"  note            {d['driveline_losses']}",
+    ]

@@ -1,0 +1,218 @@
+"""A VECTO job and the component files it names, read and checked: the engine (with its full-load
+curve and fuel map), the gearbox (with the axle ratio) and the vehicle (masses, air drag, axles).
+
+Paths inside a file are relative to that file's folder, as VECTO resolves them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from truckmpc.errors import VehicleError
+from truckmpc.vecto.files import json_body, number, numbers_table, text
+
+__all__ = ["Axle", "EngineData", "GearboxData", "VectoJob", "VehicleData", "read_job"]
+
+
+@dataclass(frozen=True)
+class EngineData:
+    """An engine: its ``.veng`` file and the full-load curve and fuel map it names."""
+
+    path: Path
+    model: str
+    idle_speed_rpm: float
+    inertia_kgm2: float
+    displacement_cm3: float
+    full_load: tuple[tuple[float, float, float], ...]
+    """(engine speed [rpm], full-load torque [Nm], drag torque [Nm]) rows."""
+    fuel_map: tuple[tuple[float, float, float], ...]
+    """(engine speed [rpm], torque [Nm], fuel rate [g/h]) points."""
+    files: tuple[Path, ...]
+
+
+@dataclass(frozen=True)
+class GearboxData:
+    """A gearbox (``.vgbx``): its ratios, the axle ratio (VECTO's first entry) and its type."""
+
+    path: Path
+    model: str
+    gearbox_type: str
+    axle_ratio: float
+    gear_ratios: tuple[float, ...]
+    traction_interruption_s: float
+
+
+@dataclass(frozen=True)
+class Axle:
+    """One axle of the vehicle (``.vveh``)."""
+
+    tyre: str
+    rolling_resistance: float
+    tyre_test_load_n: float
+    twin_tyres: bool
+    wheel_inertia_kgm2: float
+    driven: bool
+
+
+@dataclass(frozen=True)
+class VehicleData:
+    """The vehicle (``.vveh``): category, masses, air drag and axles."""
+
+    path: Path
+    category: str
+    curb_mass_kg: float
+    cda_m2: float
+    gross_mass_t: float
+    axles: tuple[Axle, ...]
+
+
+@dataclass(frozen=True)
+class VectoJob:
+    """A VECTO job (``.vecto``) with its components."""
+
+    path: Path
+    declaration_mode: bool
+    vehicle: VehicleData
+    engine: EngineData
+    gearbox: GearboxData
+    auxiliaries: tuple[tuple[str, str], ...]
+    """(id, technology) of each auxiliary."""
+
+    @property
+    def files(self) -> tuple[Path, ...]:
+        """Every file the job was read from, the job first."""
+        return (self.path, self.vehicle.path, self.engine.path, *self.engine.files, self.gearbox.path)
+
+
+def read_job(path: Path) -> VectoJob:
+    """Read a ``.vecto`` job and every component file it names."""
+    body = json_body(path)
+    aux = []
+    for i, entry in enumerate(body.get("Aux") or []):
+        techs = entry.get("Technology") if isinstance(entry, dict) else None
+        if not isinstance(entry, dict) or not isinstance(techs, list) or not techs:
+            raise VehicleError(f"{path}: Aux[{i}]: expected an object with an ID and a Technology list, got {entry!r}")
+        aux.append((str(entry.get("ID", "")), str(techs[0])))
+    return VectoJob(
+        path=path,
+        declaration_mode=bool(body.get("SavedInDeclMode", False)),
+        vehicle=read_vehicle(_component(body, "VehicleFile", path)),
+        engine=read_engine(_component(body, "EngineFile", path)),
+        gearbox=read_gearbox(_component(body, "GearboxFile", path)),
+        auxiliaries=tuple(aux),
+    )
+
+
+def _component(body: dict[str, Any], key: str, path: Path) -> Path:
+    target = path.parent / text(body, key, path)
+    if not target.is_file():
+        raise VehicleError(f"{path}: {key}: expected a file beside the job, got {target.name!r} (not found)")
+    return target
+
+
+def read_engine(path: Path) -> EngineData:
+    """Read a ``.veng`` engine and its ``.vfld`` and ``.vmap``."""
+    body = json_body(path)
+    fld = path.parent / text(body, "FullLoadCurve", path)
+    fmap = path.parent / text(body, "FuelMap", path)
+    for key, file in (("FullLoadCurve", fld), ("FuelMap", fmap)):
+        if not file.is_file():
+            raise VehicleError(f"{path}: {key}: expected a file beside the engine, got {file.name!r} (not found)")
+    return EngineData(
+        path=path,
+        model=str(body.get("ModelName", "")),
+        idle_speed_rpm=number(body, "IdlingSpeed", path, positive=True),
+        inertia_kgm2=number(body, "Inertia", path, minimum=0.0),
+        displacement_cm3=number(body, "Displacement", path, minimum=0.0),
+        full_load=_full_load(fld),
+        fuel_map=_fuel_map(fmap),
+        files=(fld, fmap),
+    )
+
+
+def _full_load(path: Path) -> tuple[tuple[float, float, float], ...]:
+    rows = numbers_table(path, 3, "a full-load curve (engine speed, full-load torque, drag torque)")
+    for (line, (n, _, _)), (_, (n_prev, _, _)) in zip(rows[1:], rows[:-1], strict=True):
+        if n <= n_prev:
+            raise VehicleError(f"{path}:{line}: expected engine speeds that increase, got {n:g} after {n_prev:g}")
+    for line, (_, full, drag) in rows:
+        if drag > full:
+            raise VehicleError(
+                f"{path}:{line}: expected a drag torque <= the full-load torque, got {drag:g} > {full:g}"
+            )
+    return tuple((r[0], r[1], r[2]) for _, r in rows)
+
+
+def _fuel_map(path: Path) -> tuple[tuple[float, float, float], ...]:
+    rows = numbers_table(path, 3, "a fuel map (engine speed, torque, fuel rate)")
+    seen: dict[tuple[float, float], int] = {}
+    for line, (n, torque, fuel) in rows:
+        if fuel < 0:
+            raise VehicleError(f"{path}:{line}: expected a fuel rate >= 0 [g/h], got {fuel:g}")
+        if (n, torque) in seen:
+            raise VehicleError(
+                f"{path}:{line}: expected each (speed, torque) once, "
+                f"got {n:g} rpm, {torque:g} Nm again (line {seen[(n, torque)]})"
+            )
+        seen[(n, torque)] = line
+    return tuple((r[0], r[1], r[2]) for _, r in rows)
+
+
+def read_gearbox(path: Path) -> GearboxData:
+    """Read a ``.vgbx`` gearbox: VECTO lists the axle first, then the gears from first to top."""
+    body = json_body(path)
+    gears = body.get("Gears")
+    if not isinstance(gears, list) or len(gears) < 2:
+        raise VehicleError(f"{path}: Gears: expected the axle and at least one gear, got {gears!r}")
+    ratios = []
+    for i, gear in enumerate(gears):
+        if not isinstance(gear, dict):
+            raise VehicleError(f"{path}: Gears[{i}]: expected an object with a Ratio, got {gear!r}")
+        ratios.append(number(gear, "Ratio", f"{path}: Gears[{i}]", positive=True))
+    for i, r in enumerate(ratios[2:], start=2):
+        if r >= ratios[i - 1]:
+            raise VehicleError(
+                f"{path}: Gears[{i}].Ratio: expected a ratio below gear {i - 1}'s {ratios[i - 1]:g}, got {r:g}"
+            )
+    return GearboxData(
+        path=path,
+        model=str(body.get("ModelName", "")),
+        gearbox_type=str(body.get("GearboxType", "")),
+        axle_ratio=ratios[0],
+        gear_ratios=tuple(ratios[1:]),
+        traction_interruption_s=number(body, "TracInt", path, minimum=0.0) if "TracInt" in body else 0.0,
+    )
+
+
+def read_vehicle(path: Path) -> VehicleData:
+    """Read a ``.vveh`` vehicle."""
+    body = json_body(path)
+    config = body.get("AxleConfig")
+    axles_raw = config.get("Axles") if isinstance(config, dict) else None
+    if not isinstance(axles_raw, list) or not axles_raw:
+        raise VehicleError(f"{path}: AxleConfig.Axles: expected a list of axles, got {axles_raw!r}")
+    axles = tuple(_axle(a, i, path) for i, a in enumerate(axles_raw))
+    return VehicleData(
+        path=path,
+        category=str(body.get("VehCat", "")),
+        curb_mass_kg=number(body, "CurbWeight", path, positive=True),
+        cda_m2=number(body, "CdA", path, positive=True),
+        gross_mass_t=number(body, "MassMax", path, positive=True),
+        axles=axles,
+    )
+
+
+def _axle(raw: Any, i: int, path: Path) -> Axle:
+    if not isinstance(raw, dict):
+        raise VehicleError(f"{path}: AxleConfig.Axles[{i}]: expected an object, got {raw!r}")
+    where = f"{path}: AxleConfig.Axles[{i}]"
+    return Axle(
+        tyre=text(raw, "Wheels", where),
+        rolling_resistance=number(raw, "RRCISO", where, minimum=0.0),
+        tyre_test_load_n=number(raw, "FzISO", where, positive=True),
+        twin_tyres=bool(raw.get("TwinTyres", False)),
+        wheel_inertia_kgm2=number(raw, "Inertia", where, minimum=0.0),
+        driven=str(raw.get("Type", "")) == "VehicleDriven",
+    )

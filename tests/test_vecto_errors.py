@@ -1,0 +1,95 @@
+"""Bad VECTO files get one line naming the file and the line or key, exit 2, from ``vehicle info``."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from truckmpc.cli import app
+from vecto_files import write_job
+
+runner = CliRunner()
+
+
+def _edit_json(path: Path, edit) -> None:
+    doc = json.loads(path.read_text())
+    edit(doc["Body"])
+    path.write_text(json.dumps(doc))
+
+
+def _replace_line(path: Path, line: int, text: str) -> None:
+    lines = path.read_text().splitlines()
+    lines[line - 1] = text
+    path.write_text("\n".join(lines) + "\n")
+
+
+def _gears_not_falling(body):
+    body["Gears"][3]["Ratio"] = 2.5
+
+
+CASES = {
+    "an unreadable number in the fuel map": (
+        lambda d: _replace_line(d / "e.vmap", 5, "600,400,abc"),
+        ["e.vmap:5", "expected 3 numbers"],
+    ),
+    "a fuel rate below zero": (lambda d: _replace_line(d / "e.vmap", 3, "600,0,-5"), ["e.vmap:3", "fuel rate >= 0"]),
+    "a fuel map point twice": (lambda d: _replace_line(d / "e.vmap", 3, "600,-200,5"), ["e.vmap:3", "once"]),
+    "engine speeds that do not increase": (
+        lambda d: _replace_line(d / "e.vfld", 3, "600,1800,-150"),
+        ["e.vfld:3", "increase"],
+    ),
+    "drag above full load": (lambda d: _replace_line(d / "e.vfld", 2, "600,100,200"), ["e.vfld:2", "drag torque"]),
+    "gear ratios that do not fall": (
+        lambda d: _edit_json(d / "g.vgbx", _gears_not_falling),
+        ["g.vgbx", "Gears[3].Ratio"],
+    ),
+    "a negative mass": (
+        lambda d: _edit_json(d / "v.vveh", lambda b: b.update(CurbWeight=-1)),
+        ["v.vveh", "CurbWeight", "> 0"],
+    ),
+    "a missing component file": (lambda d: (d / "e.veng").unlink(), ["t.vecto", "EngineFile", "not found"]),
+    "a JSON syntax error": (
+        lambda d: (d / "v.vveh").write_text('{"Body": {\n  "CdA": ,\n}}'),
+        ["v.vveh:2", "expected JSON"],
+    ),
+    "an unknown tyre": (
+        lambda d: _edit_json(d / "v.vveh", lambda b: b["AxleConfig"]["Axles"][1].update(Wheels="999/99 R99")),
+        ["v.vveh", "Axles", "999/99 R99"],
+    ),
+}
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_a_bad_file_is_one_line_naming_it_and_exit_2(tmp_path: Path, case: str) -> None:
+    job = write_job(tmp_path)
+    damage, expected = CASES[case]
+    damage(tmp_path)
+    result = runner.invoke(app, ["vehicle", "info", str(job)])
+    assert result.exit_code == 2, result.output
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), result.stderr
+    for part in expected:
+        assert part in lines[0], lines[0]
+    assert result.stdout == ""
+
+
+def test_an_unknown_key_is_one_line(tmp_path: Path) -> None:
+    result = runner.invoke(app, ["vehicle", "info", str(write_job(tmp_path)), "--set", "cda=7"])
+    assert result.exit_code == 2
+    assert "cda: expected one of mission, payload_kg" in result.stderr
+
+
+def test_info_prints_the_truck_and_json_names_units(tmp_path: Path) -> None:
+    job = write_job(tmp_path)
+    text = runner.invoke(app, ["vehicle", "info", str(job)])
+    assert text.exit_code == 0, text.output
+    assert "vehicle 8000 + trailer 7500 + load 19300" in text.stdout
+    doc = json.loads(runner.invoke(app, ["vehicle", "info", str(job), "--json"]).stdout)
+    assert doc["mass_kg"] == 8000 + 7500 + 19300
+    assert doc["gear_ratios"] == [4.0, 2.0, 1.0]
+    assert set(doc["files"]) == {
+        str(tmp_path / f) for f in ("t.vecto", "v.vveh", "e.veng", "e.vfld", "e.vmap", "g.vgbx")
+    }

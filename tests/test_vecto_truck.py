@@ -1,0 +1,114 @@
+"""A truck from VECTO's files, checked against VECTO: its second-by-second output for the generic
+tractor (engine speed, the road's loads, the fuel map, the fuel to hold a speed), VECTO's own
+unit-test values for the cross-wind correction, and truths constructed by hand."""
+
+from __future__ import annotations
+
+import csv
+import math
+
+import pytest
+
+from truckmpc.vecto import load_vecto_truck
+from truckmpc.vecto.declaration import combination_rolling_resistance, cross_wind_cda_curve
+from truckmpc.vecto.truck import TruckKeys
+from vecto_files import SHARED_TRACTOR, TRACTOR_JOB, needs_tractor, write_job
+
+KMH_PER_MPS = 3.6
+
+
+def excerpt_rows() -> list[dict[str, float]]:
+    path = SHARED_TRACTOR / "Class5_Tractor_DECL_LongHaulReferenceLoad.excerpt.vmod"
+    with path.open() as f:
+        return [{k: float(v) if v else math.nan for k, v in row.items()} for row in csv.DictReader(f)]
+
+
+def in_gear(rows: list[dict[str, float]]) -> list[dict[str, float]]:
+    return [r for r in rows if r["Gear [-]"] > 0]
+
+
+@needs_tractor
+def test_engine_speed_road_loads_and_fuel_map_match_vecto_at_every_row_in_gear() -> None:
+    truck = load_vecto_truck(TRACTOR_JOB).core
+    rows = in_gear(excerpt_rows())
+    assert len(rows) == 38
+    for r in rows:
+        v_mps, gear = r["v_act [km/h]"] / KMH_PER_MPS, int(r["Gear [-]"])
+        assert truck.engine_speed_rpm(v_mps, gear) == pytest.approx(r["n_eng_avg [1/min]"], rel=0.005)
+        loads = truck.road_loads(v_mps, r["acc [m/s^2]"], math.atan(r["grad [%]"] / 100))
+        for key, column in (("air_w", "P_air [kW]"), ("rolling_w", "P_roll [kW]"), ("slope_w", "P_slope [kW]")):
+            assert loads[key] / 1e3 == pytest.approx(r[column], rel=0.01), column
+        fuel = truck.fuel_rate_g_per_h(r["n_eng_avg [1/min]"], r["T_eng_fcmap [Nm]"])
+        assert fuel == pytest.approx(r["FC-Map [g/h]"], rel=0.01)
+
+
+@needs_tractor
+def test_driveline_losses_fitted_on_the_full_load_rows_give_the_steady_rows_fuel_within_2_percent() -> None:
+    rows = in_gear(excerpt_rows())
+    full = [r for r in rows if abs(r["P_eng_fcmap [kW]"] - r["P_eng_full [kW]"]) < 1e-3]
+    steady = [r for r in rows if r["acc [m/s^2]"] == 0.0]
+    assert len(full) == 35 and len(steady) == 2
+    # Loss torque at the gearbox input (gearbox, retarder, axle) against the input torque: a line.
+    pts = []
+    for r in full:
+        omega = r["n_eng_avg [1/min]"] * math.pi / 30
+        loss_kw = r["P_gbx_loss [kW]"] + r["P_ret_loss [kW]"] + r["P_axle_loss [kW]"]
+        pts.append((r["P_gbx_in [kW]"] * 1e3 / omega, loss_kw * 1e3 / omega))
+    mx, my = (sum(p[i] for p in pts) / len(pts) for i in (0, 1))
+    slope = sum((x - mx) * (y - my) for x, y in pts) / sum((x - mx) ** 2 for x, _ in pts)
+    drag_nm = my - slope * mx
+    keys = {"gear_efficiency": 1 - slope, "axle_efficiency": 1.0, "loss_torque_nm": drag_nm / (1 - slope)}
+    # The defaults are this fit (rounded), so a VECTO truck without loss maps gets these losses.
+    defaults = TruckKeys()
+    assert defaults.gear_efficiency == pytest.approx(keys["gear_efficiency"], abs=1e-4)
+    assert defaults.loss_torque_nm == pytest.approx(keys["loss_torque_nm"], rel=1e-3)
+    truck = load_vecto_truck(TRACTOR_JOB, keys).core
+    for r in steady:
+        op = truck.operating_point(
+            r["v_act [km/h]"] / KMH_PER_MPS, 0.0, math.atan(r["grad [%]"] / 100), int(r["Gear [-]"])
+        )
+        assert op["feasible"]
+        assert op["engine_speed_rpm"] == pytest.approx(r["n_eng_avg [1/min]"], rel=0.005)
+        assert op["fuel_rate_g_per_h"] == pytest.approx(r["FC-Map [g/h]"], rel=0.02)
+
+
+@needs_tractor
+def test_the_generic_tractor_has_vectos_masses_and_auxiliary_power() -> None:
+    truck = load_vecto_truck(TRACTOR_JOB)
+    assert truck.mass_kg == 35029.0  # VECTO's summary: 15 729 kg before the 19 300 kg reference load
+    assert truck.aux_power_w == pytest.approx(4443.3, abs=0.05)  # the excerpt's P_aux
+    assert load_vecto_truck(TRACTOR_JOB, {"payload_kg": 0}).mass_kg == 15729.0
+
+
+@pytest.mark.parametrize(
+    ("method", "kmh", "height_m", "expected_m2", "tol"),
+    [
+        # VECTO's own unit tests (TractorSemitrailer, Cd·A 6.46 m²): today's method ...
+        ("height_profile", 60, 4.0, 7.71712257, 1e-6),
+        ("height_profile", 75, 3.75, 7.35129203, 1e-6),
+        ("height_profile", 100, 4.0, 7.03986404, 1e-6),
+        # ... and VECTO 3's, which has no height.
+        ("vecto3", 60, 4.0, 8.12204, 1e-4),
+        ("vecto3", 75, 4.0, 7.67058, 1e-4),
+        ("vecto3", 100, 4.0, 7.23735, 1e-4),
+    ],
+)
+def test_the_cross_wind_correction_gives_vectos_unit_test_values(method, kmh, height_m, expected_m2, tol) -> None:
+    curve = dict(cross_wind_cda_curve(6.46, method, "TractorSemitrailer", height_m))
+    assert curve[kmh / KMH_PER_MPS] == pytest.approx(expected_m2, abs=tol)
+
+
+def test_a_tyre_loaded_at_its_test_load_rolls_with_its_own_coefficient() -> None:
+    # One axle carrying everything, two tyres each at exactly F_z,ISO: the load correction is 1.
+    mass_kg = 2 * 30_000.0 / 9.80665
+    assert combination_rolling_resistance([(1.0, 0.006, 30_000.0, 2)], mass_kg) == pytest.approx(0.006, rel=1e-12)
+    # At twice the load the coefficient falls by 2^(0.9-1).
+    assert combination_rolling_resistance([(1.0, 0.006, 30_000.0, 2)], 2 * mass_kg) == pytest.approx(0.006 * 2**-0.1)
+
+
+def test_a_written_job_reads_back_its_plane_fuel_map_and_its_masses(tmp_path) -> None:
+    truck = load_vecto_truck(write_job(tmp_path), {"payload_kg": 10_000})
+    assert truck.mass_kg == 8000 + 7500 + 10_000
+    for n, t in [(700.0, 100.0), (1234.0, 1555.0), (1999.0, -150.0)]:
+        assert truck.core.fuel_rate_g_per_h(n, t) == pytest.approx(2 * n + 10 * t + 5000, rel=1e-9)
+    assert truck.core.gears == 3
