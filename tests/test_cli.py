@@ -367,3 +367,20 @@ def test_help_keeps_units_and_shows_flags_as_flags(command: list[str], units: li
         assert unit in result.stdout, (unit, result.stdout)
     assert "<bool>" not in result.stdout and "list[" not in result.stdout
     assert "next" not in runner.invoke(app, ["--help"]).stdout  # the DP-MPC is here
+
+
+def test_model_stationary_names_the_engine_operating_point():
+    def point(slope: str) -> dict:
+        result = run("model", "stationary", "--speed-kmh", "80", "--slope-pct", slope, "--gear", "12", "--json")
+        assert result.exit_code == 0, result.output
+        return json.loads(result.stdout)
+
+    up, down = point("1"), point("-6")
+    # Climbing: fuel flows and the engine drives; a steep descent needs the brake: fuel cut, drag torque.
+    assert up["fuel_rate_g_per_h"] > 0 and up["engine_torque_nm"] > 0 and up["brake"] == 0
+    assert down["brake"] > 0 and down["fuel_rate_g_per_h"] == 0 and down["engine_torque_nm"] < 0
+    # In one gear the engine speed is proportional to road speed.
+    slower = json.loads(
+        run("model", "stationary", "--speed-kmh", "60", "--slope-pct", "1", "--gear", "12", "--json").stdout
+    )
+    assert slower["engine_speed_rpm"] / 60 == pytest.approx(up["engine_speed_rpm"] / 80)

@@ -5,6 +5,7 @@ unit-test values for the cross-wind correction, and truths constructed by hand."
 from __future__ import annotations
 
 import csv
+import json
 import math
 
 import pytest
@@ -112,3 +113,33 @@ def test_a_written_job_reads_back_its_plane_fuel_map_and_its_masses(tmp_path) ->
     for n, t in [(700.0, 100.0), (1234.0, 1555.0), (1999.0, -150.0)]:
         assert truck.core.fuel_rate_g_per_h(n, t) == pytest.approx(2 * n + 10 * t + 5000, rel=1e-9)
     assert truck.core.gears == 3
+
+
+@needs_tractor
+def test_model_stationary_gives_vectos_steady_fuel_rate_in_vectos_gear() -> None:
+    from typer.testing import CliRunner
+
+    from truckmpc.cli import app
+
+    row = next(r for r in in_gear(excerpt_rows()) if r["acc [m/s^2]"] == 0.0)
+    args = ["model", "stationary", "--vehicle", str(TRACTOR_JOB), "--speed-kmh", "85", "--gear", "11", "--json"]
+    result = CliRunner().invoke(app, [*args, "--slope-pct", str(row["grad [%]"])])
+    assert result.exit_code == 0, result.output
+    doc = json.loads(result.stdout)
+    assert doc["engine_speed_rpm"] == pytest.approx(row["n_eng_avg [1/min]"], rel=0.005)
+    assert doc["fuel_rate_g_per_h"] == pytest.approx(row["FC-Map [g/h]"], rel=0.02)
+    assert doc["feasible"] and doc["brake_power_w"] == 0.0
+
+
+def test_on_a_steep_descent_the_written_truck_cuts_fuel_and_brakes(tmp_path) -> None:
+    from truckmpc.stationary import map_truck_stationary_point
+
+    truck = load_vecto_truck(write_job(tmp_path))
+    down = map_truck_stationary_point(truck, 80.0, -6.0)
+    assert down["fuel_rate_g_per_h"] == 0.0 and down["brake_power_w"] > 0.0
+    assert down["engine_torque_nm"] == pytest.approx(truck.core.drag_torque_nm(down["engine_speed_rpm"]))
+    up = map_truck_stationary_point(truck, 80.0, 1.0)
+    assert up["feasible"] and up["brake_power_w"] == 0.0 and up["gear"] == 3
+    # Its fuel is the plane's at its operating point (the map is that plane).
+    n, t = up["engine_speed_rpm"], up["engine_torque_nm"]
+    assert up["fuel_rate_g_per_h"] == pytest.approx(2 * n + 10 * t + 5000, rel=1e-9)

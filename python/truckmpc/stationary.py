@@ -1,16 +1,18 @@
-"""The truck held at a constant speed on a constant grade (``truckmpc model stationary``): the
-pedal or brake level that holds it, whether the levels reach, and the eigenvalue of the speed
-dynamics there."""
+"""The truck held at a constant speed on a constant grade (``truckmpc model stationary``): for the
+thesis's truck the pedal or brake level that holds it, whether the levels reach, and the eigenvalue
+of the speed dynamics there; for any truck the engine's speed, torque and fuel rate."""
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from truckmpc import _core
 from truckmpc.config import RunConfig
 from truckmpc.units import KMH_PER_MPS, PCT_PER_FRACTION
+from truckmpc.vecto import VectoTruck
 
-__all__ = ["stationary_point"]
+__all__ = ["map_truck_stationary_point", "stationary_point"]
 
 
 def stationary_point(config: RunConfig, speed_kmh: float, slope_pct: float, gear: int | None = None) -> dict[str, Any]:
@@ -18,8 +20,9 @@ def stationary_point(config: RunConfig, speed_kmh: float, slope_pct: float, gear
     downhill] in `gear` (0: neutral; None: the gear the PI gear logic settles in at that speed).
 
     Returns ``speed_kmh``, ``slope_pct``, ``gear``, ``pedal`` and ``brake`` (levels 0..1),
-    ``feasible`` (False when the levels were clipped to [0, 1]) and ``eigenvalue_per_m``,
-    λ = ∂(dv/ds)/∂v [1/m].
+    ``feasible`` (False when the levels were clipped to [0, 1]), ``eigenvalue_per_m``,
+    λ = ∂(dv/ds)/∂v [1/m], and the engine's ``engine_speed_rpm``, ``engine_torque_nm`` and
+    ``fuel_rate_g_per_h`` there.
     """
     v_mps = speed_kmh / KMH_PER_MPS
     chosen = _core.steady_gear(config.settings, v_mps) if gear is None else gear
@@ -32,4 +35,43 @@ def stationary_point(config: RunConfig, speed_kmh: float, slope_pct: float, gear
         "brake": point["brake"],
         "feasible": bool(point["feasible"]),
         "eigenvalue_per_m": point["eigenvalue_per_m"],
+        "engine_speed_rpm": point["engine_speed_rpm"],
+        "engine_torque_nm": point["engine_torque_nm"],
+        "fuel_rate_g_per_h": point["fuel_rate_g_per_h"],
+    }
+
+
+def map_truck_stationary_point(
+    truck: VectoTruck, speed_kmh: float, slope_pct: float, gear: int | None = None
+) -> dict[str, Any]:
+    """The operating point of a truck from component data holding `speed_kmh` on `slope_pct` in
+    `gear` (None: the highest gear that holds it within the engine's full-load curve, else the
+    lowest gear whose engine speed the curve covers).
+
+    Returns ``speed_kmh``, ``slope_pct``, ``gear``, ``engine_speed_rpm``, ``engine_torque_nm`` (the
+    drag torque when the grade needs braking), ``fuel_rate_g_per_h``, ``brake_power_w`` (what the
+    brakes must take beyond the engine's drag, referred to the engine's side of the driveline) and
+    ``feasible`` (the engine can deliver the torque at that speed).
+    """
+    core = truck.core
+    v_mps, slope_rad = speed_kmh / KMH_PER_MPS, math.atan(slope_pct / PCT_PER_FRACTION)
+    points = {g: core.operating_point(v_mps, 0.0, slope_rad, g) for g in range(1, core.gears + 1)}
+    if gear is None:
+        feasible = [g for g, p in points.items() if p["feasible"]]
+        lo, hi = core.speed_range_rpm
+        covered = [g for g, p in points.items() if lo <= p["engine_speed_rpm"] <= hi]
+        gear = max(feasible) if feasible else min(covered) if covered else 1
+    op = points[gear]
+    n_rpm, torque_nm = op["engine_speed_rpm"], op["engine_torque_nm"]
+    drag_nm = core.drag_torque_nm(n_rpm)
+    omega = n_rpm * math.pi / 30.0
+    return {
+        "speed_kmh": speed_kmh,
+        "slope_pct": slope_pct,
+        "gear": gear,
+        "engine_speed_rpm": n_rpm,
+        "engine_torque_nm": max(torque_nm, drag_nm),
+        "fuel_rate_g_per_h": op["fuel_rate_g_per_h"],
+        "brake_power_w": max(drag_nm - torque_nm, 0.0) * omega,
+        "feasible": bool(op["feasible"]),
     }

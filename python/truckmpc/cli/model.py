@@ -4,12 +4,15 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 from typing import Annotated
 
 import typer
 
-from truckmpc.cli.options import ConfigOpt, SetOpt, VehicleOpt, run_config_from
-from truckmpc.stationary import stationary_point
+from truckmpc.cli.options import ConfigOpt, SetOpt, VehicleOpt, key_values, run_config_from
+from truckmpc.errors import VehicleError
+from truckmpc.stationary import map_truck_stationary_point, stationary_point
+from truckmpc.vecto import load_vecto_truck
 
 __all__ = ["model_app"]
 
@@ -43,9 +46,14 @@ def stationary_cmd(
     set_: SetOpt = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of text.")] = False,
 ) -> None:
-    """Pedal or brake level holding a speed on a grade, its feasibility and eigenvalue λ = ∂(dv/ds)/∂v [1/m]."""
+    """The engine's speed, torque and fuel rate holding a speed on a grade; for the thesis's truck also
+    the pedal or brake level, its feasibility and the eigenvalue λ = ∂(dv/ds)/∂v [1/m]. --vehicle may
+    be a VECTO job (.vecto)."""
     if not speed_kmh > 0:
         raise typer.BadParameter(f"expected a speed > 0 km/h, got {speed_kmh:g}", param_hint="'--speed-kmh'")
+    if vehicle is not None and vehicle.suffix.lower() == ".vecto":
+        _map_truck_point(vehicle, speed_kmh, slope_pct, gear, config, set_, as_json)
+        return
     run_config = run_config_from(vehicle, config, set_)
     doc = stationary_point(run_config, speed_kmh, slope_pct, _parse_gear(gear, run_config.core_vehicle.forward_gears))
     if as_json:
@@ -57,3 +65,36 @@ def stationary_cmd(
     typer.echo(f"  brake       {doc['brake']:.4f}")
     typer.echo(f"  feasible    {'yes' if doc['feasible'] else 'no (levels clipped to [0, 1])'}")
     typer.echo(f"  eigenvalue  {doc['eigenvalue_per_m'] * 1e3:.4f}e-3 1/m")
+    _echo_engine(doc)
+
+
+def _echo_engine(doc: dict[str, float]) -> None:
+    typer.echo(f"  engine      {doc['engine_speed_rpm']:.0f} rpm, {doc['engine_torque_nm']:.0f} Nm")
+    typer.echo(f"  fuel rate   {doc['fuel_rate_g_per_h']:.0f} g/h")
+
+
+def _map_truck_point(
+    job: Path,
+    speed_kmh: float,
+    slope_pct: float,
+    gear: str | None,
+    config: list[Path] | None,
+    set_: list[str] | None,
+    as_json: bool,
+) -> None:
+    if config:
+        raise VehicleError(f"--config: expected none with a VECTO truck ({job.name}): its keys are set with --set")
+    truck = load_vecto_truck(job, key_values(set_))
+    parsed = _parse_gear(gear, truck.core.gears)
+    if parsed == 0:
+        raise typer.BadParameter(
+            f"expected 1..{truck.core.gears} for a VECTO truck, got {gear!r}", param_hint="'--gear'"
+        )
+    doc = map_truck_stationary_point(truck, speed_kmh, slope_pct, parsed)
+    if as_json:
+        typer.echo(json.dumps(doc))
+        return
+    typer.echo(f"speed {speed_kmh:g} km/h on {slope_pct:g} % in gear {doc['gear']}")
+    _echo_engine(doc)
+    typer.echo(f"  brakes      {doc['brake_power_w'] / 1e3:.1f} kW beyond the engine's drag")
+    typer.echo(f"  feasible    {'yes' if doc['feasible'] else 'no (beyond the full-load curve)'}")

@@ -9,6 +9,7 @@ from typing import Annotated
 import typer
 
 from truckmpc.config import RunConfig, load_run_config
+from truckmpc.errors import VehicleError
 from truckmpc.geo.options import Method
 
 __all__ = [
@@ -29,6 +30,7 @@ __all__ = [
     "StepOpt",
     "TrackArg",
     "VehicleOpt",
+    "key_values",
     "run_config_from",
 ]
 
@@ -102,6 +104,18 @@ GradeLimitOpt = Annotated[
     float, typer.Option("--grade-limit-pct", min=0.0, help="Report grades steeper than this [%] (never clipped).")
 ]
 RoadFileArg = Annotated[Path, typer.Argument(metavar="FILE", help="A road CSV or a GPX track.")]
+
+
+def key_values(set_: list[str] | None) -> dict[str, str]:
+    """``--set key=value`` items as a mapping (for keys that are not run-configuration keys, such as a
+    VECTO truck's)."""
+    out = {}
+    for item in set_ or []:
+        key, sep, value = item.partition("=")
+        if not sep or not key.strip():
+            raise VehicleError(f"--set {item}: expected key=value, got no '='")
+        out[key.strip()] = value.strip()
+    return out
 
 
 def run_config_from(vehicle: Path | None, config: list[Path] | None, set_: list[str] | None) -> RunConfig:

@@ -9,8 +9,7 @@ from typing import Annotated, Any
 
 import typer
 
-from truckmpc.cli.options import SetOpt
-from truckmpc.errors import VehicleError
+from truckmpc.cli.options import SetOpt, key_values
 from truckmpc.vecto import load_vecto_truck
 from truckmpc.vecto.info import truck_info
 
@@ -19,16 +18,6 @@ __all__ = ["vehicle_app"]
 vehicle_app = typer.Typer(
     help="Read a truck's component files (VECTO .vecto jobs).", no_args_is_help=True, rich_markup_mode=None
 )
-
-
-def _values(set_: list[str] | None) -> dict[str, str]:
-    out = {}
-    for item in set_ or []:
-        key, sep, value = item.partition("=")
-        if not sep or not key.strip():
-            raise VehicleError(f"--set {item}: expected key=value, got no '='")
-        out[key.strip()] = value.strip()
-    return out
 
 
 @vehicle_app.command("info")
@@ -41,7 +30,7 @@ def info_cmd(
 ) -> None:
     """Masses, ratios, air drag, rolling resistance, rated power and the maps' ranges, as simulated
     (VECTO's declaration-mode trailer, load and auxiliaries included; --set payload_kg=… and so on)."""
-    doc = truck_info(load_vecto_truck(job, _values(set_)))
+    doc = truck_info(load_vecto_truck(job, key_values(set_)))
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
         return

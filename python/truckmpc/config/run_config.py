@@ -222,6 +222,11 @@ def load_run_config(
     defaults of the other sections, overlay files in order, then `key=value` overrides."""
     layers = _Layers()
     vehicle_file = default_config_path("truck-40t.yaml") if vehicle_path is None else vehicle_path
+    if str(vehicle_file).lower().endswith(".vecto"):
+        raise ConfigError(
+            f"{vehicle_file}: expected a vehicle YAML file here, got a VECTO job: `truckmpc vehicle info` and "
+            "`truckmpc model stationary` read VECTO trucks; the closed-loop simulation does not drive them yet"
+        )
     layers.read_file(vehicle_file, VEHICLE_KEYS, complete=True, refuse_vehicle=False)
     others = [key for key in KEYS if key not in VEHICLE_KEYS]
     for section, name in SECTION_FILES.items():

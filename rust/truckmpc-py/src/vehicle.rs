@@ -57,7 +57,8 @@ impl PyVehicle {
     }
 
     /// Levels holding `v_mps` on grade `slope` in `gear`: dict with `pedal`, `brake`, `feasible`,
-    /// `eigenvalue_per_m` (∂(dv/ds)/∂v [1/m], tables B.1/B.2).
+    /// `eigenvalue_per_m` (∂(dv/ds)/∂v [1/m], tables B.1/B.2), and the engine's operating point
+    /// there: `engine_speed_rpm`, `engine_torque_nm`, `fuel_rate_g_per_h`.
     fn stationary<'py>(&self, py: Python<'py>, v_mps: f64, slope: f64, gear: usize) -> PyResult<Bound<'py, PyDict>> {
         self.check_gear(gear)?;
         if !(v_mps > 0.0) {
@@ -69,6 +70,10 @@ impl PyVehicle {
         out.set_item("brake", s.brake)?;
         out.set_item("feasible", s.feasible)?;
         out.set_item("eigenvalue_per_m", s.eigenvalue_per_m)?;
+        let n_rpm = self.inner.engine_speed_rpm(v_mps, gear);
+        out.set_item("engine_speed_rpm", n_rpm)?;
+        out.set_item("engine_torque_nm", self.inner.engine_torque_nm(n_rpm, s.pedal, gear))?;
+        out.set_item("fuel_rate_g_per_h", self.inner.fuel_rate_gps(v_mps, s.pedal, gear) * 3600.0)?;
         Ok(out)
     }
 }
