@@ -1,4 +1,5 @@
-"""Bad VECTO files get one line naming the file and the line or key, exit 2, from ``vehicle info``."""
+"""Bad VECTO files get one line naming the file and the line or key, exit 2, from ``vehicle info``; what
+``vehicle info`` and ``vehicle plot`` write for a good one."""
 
 from __future__ import annotations
 
@@ -93,3 +94,12 @@ def test_info_prints_the_truck_and_json_names_units(tmp_path: Path) -> None:
     assert set(doc["files"]) == {
         str(tmp_path / f) for f in ("t.vecto", "v.vveh", "e.veng", "e.vfld", "e.vmap", "g.vgbx")
     }
+
+
+def test_plot_draws_the_fuel_map_to_the_file_named(tmp_path: Path) -> None:
+    job = write_job(tmp_path / "job")
+    out = tmp_path / "map.png"
+    result = runner.invoke(app, ["vehicle", "plot", str(job), "-o", str(out), "--svg"])
+    assert result.exit_code == 0, result.output
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert out.with_suffix(".svg").read_text().lstrip().startswith("<?xml")

@@ -23,6 +23,7 @@ Commands::
     truckmpc road info FILE
     truckmpc road plot FILE [-o OUT.png] [--svg]
     truckmpc vehicle info JOB.vecto [--set key=value ...] [--json]
+    truckmpc vehicle plot JOB.vecto [-o OUT.png] [--svg]
     truckmpc config keys [--section SECTION] [--write FILE]
     truckmpc config defaults [--dir DIR]
     truckmpc bench [--json] [--road FILE] [--quick] [--set key=value ...]

@@ -37,6 +37,22 @@ def info_cmd(
     typer.echo("\n".join(_text(doc)))
 
 
+@vehicle_app.command("plot")
+def plot_cmd(
+    job: Annotated[Path, typer.Argument(metavar="FILE", help="A VECTO job (.vecto).")],
+    out: Annotated[
+        Path | None, typer.Option("-o", "--out", help="A .png or .svg file (default: <job name>-fuel-map.png here).")
+    ] = None,
+    svg: Annotated[bool, typer.Option("--svg", help="Also write an SVG beside the PNG.")] = False,
+) -> None:
+    """Draw the engine's fuel map (specific consumption [g/kWh] over speed and torque) with its
+    full-load and drag curves. Needs matplotlib."""
+    from truckmpc.plot.vehicle import plot_fuel_map  # lazy: matplotlib, which other commands do not need
+
+    written = plot_fuel_map(load_vecto_truck(job), out or Path(f"{job.stem}-fuel-map.png"), svg=svg)
+    typer.echo("wrote " + ", ".join(str(p) for p in written))
+
+
 def _text(d: dict[str, Any]) -> list[str]:
     ratios = ", ".join(f"{r:g}" for r in d["gear_ratios"])
     (n_lo, n_hi), (m_lo, m_hi) = d["full_load_speed_range_rpm"], d["fuel_map_speed_range_rpm"]

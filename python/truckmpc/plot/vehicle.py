@@ -1,0 +1,48 @@
+"""The picture of a truck's engine (``truckmpc vehicle plot``): the fuel map as specific fuel
+consumption [g/kWh] over engine speed [rpm] and torque [Nm], the full-load and drag curves, and the
+map's measured points."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from truckmpc.plot.figures import figure_class, save
+from truckmpc.vecto import VectoTruck
+
+__all__ = ["plot_fuel_map"]
+
+_BSFC_LEVELS_G_PER_KWH = [180, 185, 190, 195, 200, 205, 210, 220, 230, 250, 280, 320, 400]
+
+
+def plot_fuel_map(truck: VectoTruck, out: Path, svg: bool = False) -> list[Path]:
+    """Draw `truck`'s fuel map to `out` (.png or .svg); returns the files written."""
+    core, engine = truck.core, truck.job.engine
+    n_lo, n_hi = core.speed_range_rpm
+    speeds = np.linspace(n_lo, n_hi, 161)
+    full = np.array([core.max_torque_nm(n) for n in speeds])
+    drag = np.array([core.drag_torque_nm(n) for n in speeds])
+    torques = np.linspace(1.0, float(full.max()), 141)
+    n_grid, t_grid = np.meshgrid(speeds, torques)
+    fuel = np.vectorize(core.fuel_rate_g_per_h)(n_grid, t_grid)
+    power_kw = t_grid * n_grid * np.pi / 30.0 / 1e3
+    bsfc = np.where(t_grid <= np.interp(n_grid, speeds, full), fuel / power_kw, np.nan)
+    fig = figure_class()(figsize=(9, 6), layout="constrained")
+    ax = fig.subplots()
+    filled = ax.contourf(n_grid, t_grid, bsfc, levels=_BSFC_LEVELS_G_PER_KWH, cmap="viridis_r", extend="both")
+    lines = ax.contour(n_grid, t_grid, bsfc, levels=_BSFC_LEVELS_G_PER_KWH[:9], colors="white", linewidths=0.5)
+    ax.clabel(lines, fmt="%d", fontsize="x-small")
+    fig.colorbar(filled, ax=ax, label="specific fuel consumption [g/kWh]")
+    ax.plot(speeds, full, color="black", lw=1.5, label="full load")
+    ax.plot(speeds, drag, color="black", lw=1.0, ls="--", label="drag (fuel cut)")
+    points = np.array(engine.fuel_map)
+    ax.plot(points[:, 0], points[:, 1], ".", color="0.4", ms=2.5, label="fuel map points")
+    power_kw_rated = core.rated_power_w / 1e3
+    ax.set_title(f"{engine.model or engine.path.stem}: {power_kw_rated:.0f} kW at {core.rated_speed_rpm:.0f} rpm")
+    ax.set_xlabel("engine speed [rpm]")
+    ax.set_ylabel("engine torque [Nm]")
+    ax.axhline(0.0, color="black", lw=0.4)
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="lower right", fontsize="small")
+    return save([(fig, out)], svg=svg)
