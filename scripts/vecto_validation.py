@@ -1,0 +1,72 @@
+"""Print how closely truckmpc's model of a VECTO truck reproduces VECTO's second-by-second output.
+
+Usage: python scripts/vecto_validation.py [JOB.vecto [EXCERPT.vmod]]
+(default: VECTO's generic group-5 tractor and its Long Haul excerpt in ../shared/vehicles/).
+
+For every row in gear it compares engine speed, the air-drag, rolling, slope and inertia powers,
+and the fuel map at VECTO's engine speed and torque; for the rows at steady speed, the fuel rate the
+model needs to hold that speed on that grade in VECTO's gear. Prints the worst relative error of
+each with the criterion of issue 27.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import sys
+from pathlib import Path
+
+from truckmpc.vecto import load_vecto_truck
+
+HERE = Path(__file__).resolve().parents[1] / ".." / "shared" / "vehicles" / "vecto-generic-class5-tractor"
+KMH_PER_MPS = 3.6
+LOADS = {
+    "air drag power": ("air_w", "P_air [kW]", 0.01),
+    "rolling power": ("rolling_w", "P_roll [kW]", 0.01),
+    "slope power": ("slope_w", "P_slope [kW]", 0.01),
+    "vehicle inertia power": ("vehicle_inertia_w", "P_veh_inertia [kW]", None),
+}
+
+
+def main() -> None:
+    job = Path(sys.argv[1]) if len(sys.argv) > 1 else HERE / "Class5_Tractor_DECL.vecto"
+    vmod = Path(sys.argv[2]) if len(sys.argv) > 2 else HERE / "Class5_Tractor_DECL_LongHaulReferenceLoad.excerpt.vmod"
+    truck = load_vecto_truck(job).core
+    with vmod.open() as f:
+        rows = [{k: float(v) if v else math.nan for k, v in r.items()} for r in csv.DictReader(f)]
+    in_gear = [r for r in rows if r["Gear [-]"] > 0]
+    worst: dict[str, list[float]] = {}
+
+    def note(name: str, ours: float, vecto: float) -> None:
+        if abs(vecto) > 1e-6:
+            worst.setdefault(name, []).append(ours / vecto - 1)
+
+    for r in in_gear:
+        v_mps, gear, slope = r["v_act [km/h]"] / KMH_PER_MPS, int(r["Gear [-]"]), math.atan(r["grad [%]"] / 100)
+        note("engine speed", truck.engine_speed_rpm(v_mps, gear), r["n_eng_avg [1/min]"])
+        loads = truck.road_loads(v_mps, r["acc [m/s^2]"], slope)
+        for name, (key, column, _) in LOADS.items():
+            note(name, loads[key] / 1e3, r[column])
+        note(
+            "fuel map at VECTO's speed and torque",
+            truck.fuel_rate_g_per_h(r["n_eng_avg [1/min]"], r["T_eng_fcmap [Nm]"]),
+            r["FC-Map [g/h]"],
+        )
+        if r["acc [m/s^2]"] == 0.0:
+            op = truck.operating_point(v_mps, 0.0, slope, gear)
+            note("fuel to hold a steady speed", op["fuel_rate_g_per_h"], r["FC-Map [g/h]"])
+    criteria = {
+        "engine speed": 0.005,
+        "fuel map at VECTO's speed and torque": 0.01,
+        "fuel to hold a steady speed": 0.02,
+    }
+    criteria.update({name: tol for name, (_, _, tol) in LOADS.items() if tol})
+    print(f"{job.name} against {vmod.name}: {len(in_gear)} rows in gear")
+    for name, errors in worst.items():
+        top = max(errors, key=abs)
+        goal = f"(criterion {100 * criteria[name]:g} %)" if name in criteria else ""
+        print(f"  {name:38s} worst {100 * top:+.4f} % over {len(errors)} rows {goal}")
+
+
+if __name__ == "__main__":
+    main()
