@@ -42,7 +42,10 @@ CASES = {
         lambda d: _replace_line(d / "e.vfld", 3, "600,1800,-150"),
         ["e.vfld:3", "increase"],
     ),
-    "drag above full load": (lambda d: _replace_line(d / "e.vfld", 2, "600,100,200"), ["e.vfld:2", "drag torque"]),
+    "drag above full load": (
+        lambda d: _replace_line(d / "e.vfld", 2, "600,-300,-200"),
+        ["e.vfld:2", "drag torque <= the full-load"],
+    ),
     "gear ratios that do not fall": (
         lambda d: _edit_json(d / "g.vgbx", _gears_not_falling),
         ["g.vgbx", "Gears[3].Ratio"],
@@ -55,6 +58,35 @@ CASES = {
     "a JSON syntax error": (
         lambda d: (d / "v.vveh").write_text('{"Body": {\n  "CdA": ,\n}}'),
         ["v.vveh:2", "expected JSON"],
+    ),
+    "a fuel map at one speed": (
+        lambda d: (d / "e.vmap").write_text("n,T,fc\n" + "".join(f"600,{t},{t + 500}\n" for t in range(0, 900, 100))),
+        ["e.vmap", "fuel_map", "range of engine speeds"],
+    ),
+    "a positive drag torque": (
+        lambda d: _replace_line(d / "e.vfld", 2, "600,1800,50"),
+        ["e.vfld:2", "drag (motoring) torque <= 0"],
+    ),
+    "an engineering-mode job": (
+        lambda d: _edit_json(d / "t.vecto", lambda b: b.update(SavedInDeclMode=False)),
+        ["t.vecto", "SavedInDeclMode"],
+    ),
+    "a 4x4 tractor": (
+        lambda d: _edit_json(d / "v.vveh", lambda b: b["AxleConfig"].update(Type="4x4")),
+        ["v.vveh", "Tractor 4x4"],
+    ),
+    "a tractor of 16 t": (
+        lambda d: _edit_json(d / "v.vveh", lambda b: b.update(MassMax=16.0)),
+        ["v.vveh", "MassMax", "of 16 t"],
+    ),
+    "a gear ratio of true": (
+        lambda d: _edit_json(d / "g.vgbx", lambda b: b["Gears"][1].update(Ratio=True)),
+        ["g.vgbx", "Gears[1]", "Ratio"],
+    ),
+    "a JSON list": (lambda d: (d / "v.vveh").write_text("[1, 2]"), ["v.vveh", "got a list"]),
+    "Aux as a string": (
+        lambda d: _edit_json(d / "t.vecto", lambda b: b.update(Aux="FAN")),
+        ["t.vecto", "Aux", "got a str"],
     ),
     "an unknown tyre": (
         lambda d: _edit_json(d / "v.vveh", lambda b: b["AxleConfig"]["Axles"][1].update(Wheels="999/99 R99")),
@@ -75,6 +107,23 @@ def test_a_bad_file_is_one_line_naming_it_and_exit_2(tmp_path: Path, case: str) 
     for part in expected:
         assert part in lines[0], lines[0]
     assert result.stdout == ""
+
+
+@pytest.mark.parametrize(
+    ("setting", "expected"),
+    [
+        ("payload_kg=-5", "payload_kg: expected a mass >= 0 [kg], got '-5'"),
+        ("payload_kg=nan", "payload_kg: expected a mass >= 0 [kg], got 'nan'"),
+        ("gear_efficiency=2", "gear_efficiency: expected an efficiency in (0, 1], got '2'"),
+        ("air_density_kg_m3=-1", "air_density_kg_m3: expected a density > 0"),
+        ("cross_wind=foo", "cross_wind: expected one of vecto3, height_profile, none, got 'foo'"),
+        ("=5", "--set =5: expected key=value, got no key before '='"),
+    ],
+)
+def test_a_bad_setting_is_one_line(tmp_path: Path, setting: str, expected: str) -> None:
+    result = runner.invoke(app, ["vehicle", "info", str(write_job(tmp_path)), "--set", setting])
+    assert result.exit_code == 2, result.output
+    assert len(result.stderr.strip().splitlines()) == 1 and expected in result.stderr, result.stderr
 
 
 def test_an_unknown_key_is_one_line(tmp_path: Path) -> None:

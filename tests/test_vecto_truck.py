@@ -35,12 +35,15 @@ def test_engine_speed_road_loads_and_fuel_map_match_vecto_at_every_row_in_gear()
     assert len(rows) == 38
     for r in rows:
         v_mps, gear = r["v_act [km/h]"] / KMH_PER_MPS, int(r["Gear [-]"])
-        assert truck.engine_speed_rpm(v_mps, gear) == pytest.approx(r["n_eng_avg [1/min]"], rel=0.005)
+        # Issue 27 asks for 0.5 % (speed) and 1 % (powers, fuel map); the model is as VECTO's to the
+        # excerpt's rounding, so the checks are tight enough to catch g = 9.81 or a trailer tyre's
+        # RRC off by 1 %.
+        assert truck.engine_speed_rpm(v_mps, gear) == pytest.approx(r["n_eng_avg [1/min]"], rel=1e-5)
         loads = truck.road_loads(v_mps, r["acc [m/s^2]"], math.atan(r["grad [%]"] / 100))
         for key, column in (("air_w", "P_air [kW]"), ("rolling_w", "P_roll [kW]"), ("slope_w", "P_slope [kW]")):
-            assert loads[key] / 1e3 == pytest.approx(r[column], rel=0.01), column
+            assert loads[key] / 1e3 == pytest.approx(r[column], rel=2e-4), column
         fuel = truck.fuel_rate_g_per_h(r["n_eng_avg [1/min]"], r["T_eng_fcmap [Nm]"])
-        assert fuel == pytest.approx(r["FC-Map [g/h]"], rel=0.01)
+        assert fuel == pytest.approx(r["FC-Map [g/h]"], rel=1e-5)
 
 
 @needs_tractor
@@ -143,3 +146,17 @@ def test_on_a_steep_descent_the_written_truck_cuts_fuel_and_brakes(tmp_path) -> 
     # Its fuel is the plane's at its operating point (the map is that plane).
     n, t = up["engine_speed_rpm"], up["engine_torque_nm"]
     assert up["fuel_rate_g_per_h"] == pytest.approx(2 * n + 10 * t + 5000, rel=1e-9)
+
+
+@needs_tractor
+def test_a_speed_the_truck_cannot_hold_gives_no_fuel_rate_but_says_why() -> None:
+    from truckmpc.stationary import map_truck_stationary_point
+
+    truck = load_vecto_truck(TRACTOR_JOB)
+    over = map_truck_stationary_point(truck, 85.0, 0.0, gear=1)
+    assert over["fuel_rate_g_per_h"] is None and "outside its full-load curve" in over["not_feasible"]
+    steep = map_truck_stationary_point(truck, 85.0, 8.0)
+    assert steep["fuel_rate_g_per_h"] is None and "Nm needed" in steep["not_feasible"]
+    # A descent VECTO's tractor brakes on: no fuel; the brakes take power at the wheels.
+    down = map_truck_stationary_point(truck, 80.0, -3.0)
+    assert down["feasible"] and down["fuel_rate_g_per_h"] == 0.0 and down["brake_power_w"] > 50e3

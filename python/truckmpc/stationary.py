@@ -45,33 +45,40 @@ def map_truck_stationary_point(
     truck: VectoTruck, speed_kmh: float, slope_pct: float, gear: int | None = None
 ) -> dict[str, Any]:
     """The operating point of a truck from component data holding `speed_kmh` on `slope_pct` in
-    `gear` (None: the highest gear that holds it within the engine's full-load curve, else the
-    lowest gear whose engine speed the curve covers).
+    `gear` (None: the highest gear that holds it within the engine's full-load curve; where none
+    does, the lowest gear whose engine speed the curve covers, else the one nearest its range).
 
     Returns ``speed_kmh``, ``slope_pct``, ``gear``, ``engine_speed_rpm``, ``engine_torque_nm`` (the
     drag torque when the grade needs braking), ``fuel_rate_g_per_h``, ``brake_power_w`` (what the
-    brakes must take beyond the engine's drag, referred to the engine's side of the driveline) and
-    ``feasible`` (the engine can deliver the torque at that speed).
+    wheel brakes take beyond the engine's drag), ``feasible`` (the engine can deliver the torque at
+    that speed) and ``not_feasible`` (why not, or None). Where it is not feasible the fuel rate and
+    brake power are None: the truck cannot hold that speed there.
     """
     core = truck.core
     v_mps, slope_rad = speed_kmh / KMH_PER_MPS, math.atan(slope_pct / PCT_PER_FRACTION)
     points = {g: core.operating_point(v_mps, 0.0, slope_rad, g) for g in range(1, core.gears + 1)}
+    lo, hi = core.speed_range_rpm
     if gear is None:
         feasible = [g for g, p in points.items() if p["feasible"]]
-        lo, hi = core.speed_range_rpm
-        covered = [g for g, p in points.items() if lo <= p["engine_speed_rpm"] <= hi]
-        gear = max(feasible) if feasible else min(covered) if covered else 1
+        outside = {g: max(lo - p["engine_speed_rpm"], p["engine_speed_rpm"] - hi, 0.0) for g, p in points.items()}
+        gear = max(feasible) if feasible else min(outside, key=lambda g: (outside[g], g))
     op = points[gear]
     n_rpm, torque_nm = op["engine_speed_rpm"], op["engine_torque_nm"]
-    drag_nm = core.drag_torque_nm(n_rpm)
-    omega = n_rpm * math.pi / 30.0
+    reason = None
+    if not lo <= n_rpm <= hi:
+        reason = f"gear {gear} turns the engine at {n_rpm:.0f} rpm, outside its full-load curve ({lo:.0f}-{hi:.0f} rpm)"
+    elif not op["feasible"]:
+        reason = (
+            f"the engine gives at most {core.max_torque_nm(n_rpm):.0f} Nm at {n_rpm:.0f} rpm, {torque_nm:.0f} Nm needed"
+        )
     return {
         "speed_kmh": speed_kmh,
         "slope_pct": slope_pct,
         "gear": gear,
         "engine_speed_rpm": n_rpm,
-        "engine_torque_nm": max(torque_nm, drag_nm),
-        "fuel_rate_g_per_h": op["fuel_rate_g_per_h"],
-        "brake_power_w": max(drag_nm - torque_nm, 0.0) * omega,
+        "engine_torque_nm": max(torque_nm, core.drag_torque_nm(n_rpm)),
+        "fuel_rate_g_per_h": op["fuel_rate_g_per_h"] if reason is None else None,
+        "brake_power_w": op["brake_power_w"] if reason is None else None,
         "feasible": bool(op["feasible"]),
+        "not_feasible": reason,
     }

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 from typing import Annotated
 
@@ -49,8 +50,10 @@ def stationary_cmd(
     """The engine's speed, torque and fuel rate holding a speed on a grade; for the thesis's truck also
     the pedal or brake level, its feasibility and the eigenvalue λ = ∂(dv/ds)/∂v [1/m]. --vehicle may
     be a VECTO job (.vecto)."""
-    if not speed_kmh > 0:
+    if not (speed_kmh > 0 and math.isfinite(speed_kmh)):
         raise typer.BadParameter(f"expected a speed > 0 km/h, got {speed_kmh:g}", param_hint="'--speed-kmh'")
+    if not math.isfinite(slope_pct):
+        raise typer.BadParameter(f"expected a finite grade, got {slope_pct:g}", param_hint="'--slope-pct'")
     if vehicle is not None and vehicle.suffix.lower() == ".vecto":
         _map_truck_point(vehicle, speed_kmh, slope_pct, gear, config, set_, as_json)
         return
@@ -95,6 +98,9 @@ def _map_truck_point(
         typer.echo(json.dumps(doc))
         return
     typer.echo(f"speed {speed_kmh:g} km/h on {slope_pct:g} % in gear {doc['gear']}")
+    if doc["fuel_rate_g_per_h"] is None:
+        typer.echo(f"  not feasible: {doc['not_feasible']}")
+        return
     _echo_engine(doc)
-    typer.echo(f"  brakes      {doc['brake_power_w'] / 1e3:.1f} kW beyond the engine's drag")
-    typer.echo(f"  feasible    {'yes' if doc['feasible'] else 'no (beyond the full-load curve)'}")
+    typer.echo(f"  brakes      {doc['brake_power_w'] / 1e3:.1f} kW at the wheels, beyond the engine's drag")
+    typer.echo("  feasible    yes")

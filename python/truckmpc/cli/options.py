@@ -112,8 +112,10 @@ def key_values(set_: list[str] | None) -> dict[str, str]:
     out = {}
     for item in set_ or []:
         key, sep, value = item.partition("=")
-        if not sep or not key.strip():
+        if not sep:
             raise VehicleError(f"--set {item}: expected key=value, got no '='")
+        if not key.strip():
+            raise VehicleError(f"--set {item}: expected key=value, got no key before '='")
         out[key.strip()] = value.strip()
     return out
 

@@ -62,6 +62,7 @@ class VehicleData:
 
     path: Path
     category: str
+    axle_config: str
     curb_mass_kg: float
     cda_m2: float
     gross_mass_t: float
@@ -90,7 +91,10 @@ def read_job(path: Path) -> VectoJob:
     """Read a ``.vecto`` job and every component file it names."""
     body = json_body(path)
     aux = []
-    for i, entry in enumerate(body.get("Aux") or []):
+    entries = body.get("Aux") or []
+    if not isinstance(entries, list):
+        raise VehicleError(f"{path}: Aux: expected a list of auxiliaries, got a {type(entries).__name__}")
+    for i, entry in enumerate(entries):
         techs = entry.get("Technology") if isinstance(entry, dict) else None
         if not isinstance(entry, dict) or not isinstance(techs, list) or not techs:
             raise VehicleError(f"{path}: Aux[{i}]: expected an object with an ID and a Technology list, got {entry!r}")
@@ -137,6 +141,9 @@ def _full_load(path: Path) -> tuple[tuple[float, float, float], ...]:
     for (line, (n, _, _)), (_, (n_prev, _, _)) in zip(rows[1:], rows[:-1], strict=True):
         if n <= n_prev:
             raise VehicleError(f"{path}:{line}: expected engine speeds that increase, got {n:g} after {n_prev:g}")
+    for line, (_, _, drag) in rows:
+        if drag > 0:
+            raise VehicleError(f"{path}:{line}: expected a drag (motoring) torque <= 0, got {drag:g}")
     for line, (_, full, drag) in rows:
         if drag > full:
             raise VehicleError(
@@ -197,6 +204,7 @@ def read_vehicle(path: Path) -> VehicleData:
     return VehicleData(
         path=path,
         category=str(body.get("VehCat", "")),
+        axle_config=str(config.get("Type", "")) if isinstance(config, dict) else "",
         curb_mass_kg=number(body, "CurbWeight", path, positive=True),
         cda_m2=number(body, "CdA", path, positive=True),
         gross_mass_t=number(body, "MassMax", path, positive=True),

@@ -24,9 +24,17 @@ def json_body(path: Path) -> dict[str, Any]:
         doc = json.loads(raw)
     except json.JSONDecodeError as e:
         raise VehicleError(f"{path}:{e.lineno}: expected JSON, got a syntax error ({e.msg})") from None
-    body = doc.get("Body") if isinstance(doc, dict) else None
+    except (RecursionError, ValueError) as e:  # nested too deeply; an integer too long to convert
+        raise VehicleError(
+            f"{path}: expected a VECTO JSON file, got JSON Python cannot read ({type(e).__name__})"
+        ) from None
+    if not isinstance(doc, dict):
+        raise VehicleError(f"{path}: expected a JSON object with a 'Body' object, got a {type(doc).__name__}")
+    body = doc.get("Body")
     if not isinstance(body, dict):
-        raise VehicleError(f"{path}: expected a JSON object with a 'Body' object, got {type(body).__name__}")
+        raise VehicleError(
+            f"{path}: Body: expected an object, got {'nothing' if body is None else type(body).__name__}"
+        )
     return body
 
 
@@ -38,6 +46,8 @@ def number(
     if key not in body:
         raise VehicleError(f"{where}: {key}: expected a number, got nothing (the key is missing)")
     value = body[key]
+    if isinstance(value, bool):
+        raise VehicleError(f"{where}: {key}: expected a number, got {value!r}")
     try:
         x = float(value)
     except (TypeError, ValueError):

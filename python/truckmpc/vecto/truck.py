@@ -5,6 +5,7 @@ key a user can see and override.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
 from typing import Any
@@ -17,10 +18,20 @@ from truckmpc.vecto.components import VectoJob, read_job
 __all__ = ["DRIVELINE_LOSS_NOTE", "TruckKeys", "VectoTruck", "load_vecto_truck"]
 
 DRIVELINE_LOSS_NOTE = (
-    "gearbox and axle losses: VECTO's loss maps are not read yet; the defaults are a loss affine in "
-    "torque fitted on VECTO's generic tractor's full-load climb in gear 11 (4.5 % of the torque plus "
-    "102 Nm of drag at the gearbox input)"
+    "gearbox and axle losses: VECTO's loss maps are not read yet; the defaults (gear_efficiency 0.9546, "
+    "loss_torque_nm 107) are a loss affine in torque fitted on VECTO's generic tractor's full-load climb "
+    "in gear 11, used in every gear"
 )
+_MIN_GROSS_MASS_T = 16.0  # group 5 is a 4x2 tractor above 16 t
+_RANGES = {  # key: (lowest, highest, lowest allowed itself, what)
+    "payload_kg": (0.0, math.inf, True, "a mass >= 0 [kg]"),
+    "trailer_mass_kg": (0.0, math.inf, True, "a mass >= 0 [kg]"),
+    "air_density_kg_m3": (0.0, math.inf, False, "a density > 0 [kg/m³]"),
+    "aux_power_w": (0.0, math.inf, True, "a power >= 0 [W]"),
+    "gear_efficiency": (0.0, 1.0, False, "an efficiency in (0, 1]"),
+    "axle_efficiency": (0.0, 1.0, False, "an efficiency in (0, 1]"),
+    "loss_torque_nm": (0.0, math.inf, True, "a torque >= 0 [Nm]"),
+}
 
 
 @dataclass(frozen=True)
@@ -53,10 +64,14 @@ class TruckKeys:
             if key in ("mission", "cross_wind"):
                 out[key] = str(value)
                 continue
+            lo, hi, closed, what = _RANGES[key]
             try:
-                out[key] = float(value)
+                number = float(value)
             except (TypeError, ValueError):
-                raise VehicleError(f"{where}: {key}: expected a number, got {value!r}") from None
+                number = math.nan
+            if not (math.isfinite(number) and (number >= lo if closed else number > lo) and number <= hi):
+                raise VehicleError(f"{where}: {key}: expected {what}, got {value!r}")
+            out[key] = number
         keys = replace(self, **out)
         if keys.cross_wind not in decl.CROSS_WIND:
             raise VehicleError(
@@ -87,63 +102,92 @@ def load_vecto_truck(path: Path, values: dict[str, Any] | None = None) -> VectoT
     override :class:`TruckKeys`)."""
     job = read_job(path)
     keys = TruckKeys().with_values(values or {}, str(path))
+    segment = _segment(job, keys)
     vehicle = job.vehicle
-    axle_config = "4x2" if len(vehicle.axles) == 2 else f"{len(vehicle.axles)} axles"
-    segment = decl.SEGMENTS.get((vehicle.category, axle_config, keys.mission))
-    if segment is None:
-        carried = "; ".join(s.name for s in decl.SEGMENTS.values())
-        raise VehicleError(
-            f"{vehicle.path}: VehCat/AxleConfig: expected a group truckmpc carries ({carried}), "
-            f"got {vehicle.category} {axle_config} on {keys.mission}"
-        )
-    if len(segment.vehicle_axle_shares) != len(vehicle.axles):
-        raise VehicleError(
-            f"{vehicle.path}: AxleConfig.Axles: "
-            f"expected {len(segment.vehicle_axle_shares)} axles, got {len(vehicle.axles)}"
-        )
     payload = segment.reference_load_kg if keys.payload_kg is None else keys.payload_kg
     trailer = segment.trailer_mass_kg if keys.trailer_mass_kg is None else keys.trailer_mass_kg
     mass = vehicle.curb_mass_kg + trailer + payload
     where = f"{vehicle.path}: AxleConfig.Axles"
     driven = [a for a in vehicle.axles if a.driven] or list(vehicle.axles)
     radius = sum(decl.dynamic_radius_m(a.tyre, where) for a in driven) / len(driven)
-    ta = segment.trailer_axles
+    rrc, wheels_inertia = _wheels(job, segment, mass)
+    cda0 = vehicle.cda_m2 + segment.trailer_delta_cda_m2
+    curve = decl.cross_wind_cda_curve(cda0, keys.cross_wind, segment.cross_wind_parameters, segment.height_m)
+    aux = decl.auxiliary_power_w(job.auxiliaries, str(job.path)) if keys.aux_power_w is None else keys.aux_power_w
+    body = {
+        "mass_kg": mass,
+        "wheels_inertia_kgm2": wheels_inertia,
+        "cda_m2": cda0,
+        "cda_curve": curve,
+        "air_density_kg_m3": keys.air_density_kg_m3,
+        "rolling_resistance": rrc,
+        "aux_power_w": aux,
+    }
+    driveline = {
+        "gear_ratios": list(job.gearbox.gear_ratios),
+        "axle_ratio": job.gearbox.axle_ratio,
+        "gear_efficiency": keys.gear_efficiency,
+        "axle_efficiency": keys.axle_efficiency,
+        "loss_torque_nm": keys.loss_torque_nm,
+        "wheel_radius_m": radius,
+    }
+    core = _core_truck(job, driveline, body)
+    return VectoTruck(job, segment, mass, payload, trailer, radius, rrc, tuple(curve), aux, keys, core)
+
+
+def _segment(job: VectoJob, keys: TruckKeys) -> decl.Segment:
+    """VECTO's group of a declaration-mode job's vehicle on the mission."""
+    vehicle = job.vehicle
+    if not job.declaration_mode:
+        raise VehicleError(
+            f"{job.path}: SavedInDeclMode: expected a declaration-mode job (truckmpc adds declaration mode's "
+            "trailer, load and air drag; an engineering-mode job's own are not read yet), got false"
+        )
+    segment = decl.SEGMENTS.get((vehicle.category, vehicle.axle_config, keys.mission))
+    if segment is None or vehicle.gross_mass_t <= _MIN_GROSS_MASS_T:
+        carried = "; ".join(s.name for s in decl.SEGMENTS.values())
+        raise VehicleError(
+            f"{vehicle.path}: VehCat/AxleConfig/MassMax: expected a group truckmpc carries ({carried}), "
+            f"got {vehicle.category} {vehicle.axle_config} of {vehicle.gross_mass_t:g} t on {keys.mission}"
+        )
+    if len(segment.vehicle_axle_shares) != len(vehicle.axles):
+        raise VehicleError(
+            f"{vehicle.path}: AxleConfig.Axles: "
+            f"expected {len(segment.vehicle_axle_shares)} axles, got {len(vehicle.axles)}"
+        )
+    return segment
+
+
+def _wheels(job: VectoJob, segment: decl.Segment, mass_kg: float) -> tuple[float, float]:
+    """The combination's rolling resistance coefficient and its wheels' inertia [kg m²], the
+    vehicle's axles and the standard trailer's."""
+    vehicle, ta = job.vehicle, segment.trailer_axles
     share = segment.trailer_axle_share / ta.count
     axles = [
         (s, a.rolling_resistance, a.tyre_test_load_n, 4 if a.twin_tyres else 2)
         for s, a in zip(segment.vehicle_axle_shares, vehicle.axles, strict=True)
     ]
     axles += [(share, ta.rolling_resistance, ta.tyre_test_load_n, 2)] * ta.count
-    rrc = decl.combination_rolling_resistance(axles, mass)
-    wheels_inertia = sum((4 if a.twin_tyres else 2) * a.wheel_inertia_kgm2 for a in vehicle.axles)
-    wheels_inertia += 2 * ta.count * decl.wheel_inertia_kgm2(ta.tyre, "the standard trailer")
-    cda0 = vehicle.cda_m2 + segment.trailer_delta_cda_m2
-    curve = decl.cross_wind_cda_curve(cda0, keys.cross_wind, segment.cross_wind_parameters, segment.height_m)
-    aux = decl.auxiliary_power_w(job.auxiliaries, str(job.path)) if keys.aux_power_w is None else keys.aux_power_w
+    inertia = sum((4 if a.twin_tyres else 2) * a.wheel_inertia_kgm2 for a in vehicle.axles)
+    inertia += 2 * ta.count * decl.wheel_inertia_kgm2(ta.tyre, "the standard trailer")
+    return decl.combination_rolling_resistance(axles, mass_kg), inertia
+
+
+def _core_truck(job: VectoJob, driveline: dict[str, Any], body: dict[str, Any]) -> _core.MapTruck:
+    """The core's truck; its checks' errors name the file the offending data came from."""
     engine = job.engine
-    core = _core.MapTruck(
-        {
-            "idle_speed_rpm": engine.idle_speed_rpm,
-            "inertia_kgm2": engine.inertia_kgm2,
-            "full_load": list(engine.full_load),
-            "fuel_map": list(engine.fuel_map),
-        },
-        {
-            "gear_ratios": list(job.gearbox.gear_ratios),
-            "axle_ratio": job.gearbox.axle_ratio,
-            "gear_efficiency": keys.gear_efficiency,
-            "axle_efficiency": keys.axle_efficiency,
-            "loss_torque_nm": keys.loss_torque_nm,
-            "wheel_radius_m": radius,
-        },
-        {
-            "mass_kg": mass,
-            "wheels_inertia_kgm2": wheels_inertia,
-            "cda_m2": cda0,
-            "cda_curve": curve,
-            "air_density_kg_m3": keys.air_density_kg_m3,
-            "rolling_resistance": rrc,
-            "aux_power_w": aux,
-        },
-    )
-    return VectoTruck(job, segment, mass, payload, trailer, radius, rrc, tuple(curve), aux, keys, core)
+    files = {"fuel_map": engine.files[1], "full_load_curve": engine.files[0], "idle_speed_rpm": engine.path}
+    files |= {"engine_inertia_kgm2": engine.path, "gear_ratios": job.gearbox.path, "axle_ratio": job.gearbox.path}
+    try:
+        return _core.MapTruck(
+            {
+                "idle_speed_rpm": engine.idle_speed_rpm,
+                "inertia_kgm2": engine.inertia_kgm2,
+                "full_load": list(engine.full_load),
+                "fuel_map": list(engine.fuel_map),
+            },
+            driveline,
+            body,
+        )
+    except _core.ParamError as e:
+        raise VehicleError(f"{files.get(e.key, job.path)}: {e}") from None

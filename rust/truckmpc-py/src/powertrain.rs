@@ -124,13 +124,15 @@ impl PyMapTruck {
 
     /// Fuel rate [g/h] at `speed_rpm` and `torque_nm` (0 at or below the drag torque; the nearest
     /// boundary value outside the map).
-    fn fuel_rate_g_per_h(&self, speed_rpm: f64, torque_nm: f64) -> f64 {
-        self.inner.engine().fuel_rate_g_per_h(speed_rpm, torque_nm)
+    fn fuel_rate_g_per_h(&self, speed_rpm: f64, torque_nm: f64) -> PyResult<f64> {
+        finite(speed_rpm, torque_nm)?;
+        Ok(self.inner.engine().fuel_rate_g_per_h(speed_rpm, torque_nm))
     }
 
     /// Whether (`speed_rpm`, `torque_nm`) lies inside the fuel map's convex hull.
-    fn in_fuel_map(&self, speed_rpm: f64, torque_nm: f64) -> bool {
-        self.inner.engine().fuel_map().interpolate(speed_rpm, torque_nm).is_some()
+    fn in_fuel_map(&self, speed_rpm: f64, torque_nm: f64) -> PyResult<bool> {
+        finite(speed_rpm, torque_nm)?;
+        Ok(self.inner.engine().fuel_map().interpolate(speed_rpm, torque_nm).is_some())
     }
 
     /// Engine speed [rpm] at `v_mps` in `gear` (1..=gears).
@@ -164,7 +166,9 @@ impl PyMapTruck {
     }
 
     /// The engine's operating point at `v_mps` (> 0), `acc_mps2`, `slope_rad` in `gear`: dict with
-    /// `engine_speed_rpm`, `engine_torque_nm`, `engine_power_w`, `fuel_rate_g_per_h`, `feasible`.
+    /// `engine_speed_rpm`, `engine_torque_nm`, `engine_power_w`, `fuel_rate_g_per_h` (NaN beyond the
+    /// full-load curve's speeds), `brake_power_w` (at the wheels, beyond the engine's drag),
+    /// `feasible`.
     fn operating_point<'py>(
         &self,
         py: Python<'py>,
@@ -174,17 +178,29 @@ impl PyMapTruck {
         gear: usize,
     ) -> PyResult<Bound<'py, PyDict>> {
         self.check_gear(gear)?;
-        if !(v_mps.is_finite() && v_mps > 0.0) {
-            return Err(bad_argument("v_mps", "a speed > 0", v_mps));
-        }
-        let op = self.inner.operating_point(v_mps, acc_mps2, slope_rad, gear);
+        let op = self.inner.operating_point(v_mps, acc_mps2, slope_rad, gear).ok_or_else(|| {
+            bad_argument(
+                "v_mps, acc_mps2, slope_rad",
+                "a finite speed > 0 and finite values",
+                format!("{v_mps}, {acc_mps2}, {slope_rad}"),
+            )
+        })?;
         let d = PyDict::new(py);
         d.set_item("engine_speed_rpm", op.engine_speed_rpm)?;
         d.set_item("engine_torque_nm", op.engine_torque_nm)?;
         d.set_item("engine_power_w", op.engine_torque_nm * op.engine_speed_rpm / RPM_PER_RAD_S)?;
         d.set_item("fuel_rate_g_per_h", op.fuel_g_per_h)?;
+        d.set_item("brake_power_w", op.brake_power_w)?;
         d.set_item("feasible", op.feasible)?;
         Ok(d)
+    }
+}
+
+fn finite(speed_rpm: f64, torque_nm: f64) -> PyResult<()> {
+    if speed_rpm.is_finite() && torque_nm.is_finite() {
+        Ok(())
+    } else {
+        Err(bad_argument("speed_rpm, torque_nm", "finite numbers", format!("{speed_rpm}, {torque_nm}")))
     }
 }
 

@@ -3,8 +3,9 @@
 
 use crate::{CoreError, CoreResult};
 
-/// A piecewise-linear curve. Beyond its first and last points it continues the end segments
-/// linearly, as VECTO reads its full-load curves; [`Curve::covers`] says whether x is inside.
+/// A piecewise-linear curve. Beyond its first and last points it holds their values (an engine
+/// curve extrapolated far past its last point turns into nonsense); [`Curve::covers`] says whether
+/// x is inside.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Curve {
     x: Vec<f64>,
@@ -35,9 +36,10 @@ impl Curve {
         Ok(Curve { x: points.iter().map(|p| p.0).collect(), y: points.iter().map(|p| p.1).collect() })
     }
 
-    /// y at `x`, linear between the neighbouring points (the end segments continued outside).
+    /// y at `x`, linear between the neighbouring points, the end values outside.
     pub fn at(&self, x: f64) -> f64 {
         let n = self.x.len();
+        let x = x.clamp(self.x[0], self.x[n - 1]);
         let i = self.x.partition_point(|&xi| xi <= x).clamp(1, n - 1);
         let (x0, x1, y0, y1) = (self.x[i - 1], self.x[i], self.y[i - 1], self.y[i]);
         y0 + (y1 - y0) * (x - x0) / (x1 - x0)

@@ -98,6 +98,14 @@ impl Driveline {
         self.loss_torque_nm
     }
 
+    /// Wheel torque [Nm] that `engine_torque_nm` gives in `gear`: the inverse of
+    /// [`Driveline::engine_torque_nm`].
+    pub fn wheel_torque_nm(&self, engine_torque_nm: f64, gear: usize) -> f64 {
+        let passed = engine_torque_nm - self.loss_torque_nm;
+        let ideal = if passed >= 0.0 { passed * self.efficiency() } else { passed / self.efficiency() };
+        ideal * self.ratio(gear)
+    }
+
     /// Engine torque [Nm] that gives `wheel_torque_nm` at the wheels in `gear`: the share lost is
     /// taken from the engine's side when it drives, from the wheels' side when they drive, and the
     /// drag torque always.

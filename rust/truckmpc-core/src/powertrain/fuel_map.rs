@@ -3,8 +3,12 @@
 //!
 //! Like VECTO, the triangulation is made after scaling torque and speed each to [0, 1] over the
 //! map's range: a Delaunay triangulation depends on the scales of its axes, and the scaled one is
-//! the one VECTO's results come from. Outside the map's convex hull VECTO (when it allows it at
-//! all) takes the value at the nearest point of the hull's boundary; so does [`FuelMap::extrapolate`].
+//! the one VECTO's results come from. Where four points lie on one circle (the rectangular cells of
+//! a map measured on a grid) either diagonal is a Delaunay triangulation; this one and VECTO's may
+//! pick different ones there, and differ by a few per cent inside such a cell away from its edges.
+//! Outside the map's convex hull, [`FuelMap::extrapolate`] takes the value at the nearest point of
+//! the hull's boundary (VECTO starts from the nearest hull vertex and projects onto an edge next to
+//! it; the two agree wherever the nearest boundary point lies on one of those edges).
 
 use spade::{DelaunayTriangulation, FloatTriangulation, HasPosition, Point2, Triangulation};
 
@@ -67,19 +71,31 @@ impl FuelMap {
         Ok(FuelMap { triangulation, torque_nm, speed_rpm, hull })
     }
 
-    /// Fuel rate [g/h] at `speed_rpm` and `torque_nm`, or `None` outside the map's convex hull.
+    /// Fuel rate [g/h] at `speed_rpm` and `torque_nm`, or `None` outside the map's convex hull (and
+    /// for a speed or torque that is not finite).
     pub fn interpolate(&self, speed_rpm: f64, torque_nm: f64) -> Option<f64> {
-        let p = Point2::new(scale(torque_nm, self.torque_nm), scale(speed_rpm, self.speed_rpm));
-        self.triangulation.barycentric().interpolate(|v| v.data().fuel_g_per_h, p)
+        // Checked here: the triangulation's point location must never see a point far outside it.
+        const EDGE: f64 = 1e-9;
+        let (x, y) = (scale(torque_nm, self.torque_nm), scale(speed_rpm, self.speed_rpm));
+        let inside = -EDGE..=1.0 + EDGE;
+        if !(inside.contains(&x) && inside.contains(&y)) {
+            return None;
+        }
+        self.triangulation.barycentric().interpolate(|v| v.data().fuel_g_per_h, Point2::new(x, y))
     }
 
     /// Fuel rate [g/h] at `speed_rpm` and `torque_nm`: interpolated inside the map, else the
     /// value at the nearest point of its boundary (in scaled coordinates).
     pub fn extrapolate(&self, speed_rpm: f64, torque_nm: f64) -> f64 {
+        if !(speed_rpm.is_finite() && torque_nm.is_finite()) {
+            return f64::NAN;
+        }
         if let Some(fuel) = self.interpolate(speed_rpm, torque_nm) {
             return fuel;
         }
-        let (x, y) = (scale(torque_nm, self.torque_nm), scale(speed_rpm, self.speed_rpm));
+        // Far outside, squared distances would overflow; the nearest boundary point is the same.
+        let clamp = |v: f64| v.clamp(-1e6, 1e6);
+        let (x, y) = (clamp(scale(torque_nm, self.torque_nm)), clamp(scale(speed_rpm, self.speed_rpm)));
         let mut best = (f64::INFINITY, 0.0);
         for [(x0, y0, z0), (x1, y1, z1)] in &self.hull {
             let (dx, dy) = (x1 - x0, y1 - y0);

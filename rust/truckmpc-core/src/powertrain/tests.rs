@@ -22,12 +22,12 @@ fn plane_points() -> Vec<(f64, f64, f64)> {
 }
 
 #[test]
-fn a_curve_is_linear_between_its_points_and_continues_its_end_segments() {
+fn a_curve_is_linear_between_its_points_and_holds_its_end_values() {
     let c = Curve::new("c", &[(600.0, 1000.0), (1000.0, 2000.0), (2000.0, 1500.0)]).unwrap();
     assert_eq!(c.at(800.0), 1500.0);
     assert_eq!(c.at(1500.0), 1750.0);
-    assert_eq!(c.at(2200.0), 1400.0);
-    assert_eq!(c.at(500.0), 750.0);
+    assert_eq!(c.at(2200.0), 1500.0);
+    assert_eq!(c.at(500.0), 1000.0);
     assert!(c.covers(600.0) && c.covers(2000.0) && !c.covers(2000.1));
 }
 
@@ -57,6 +57,18 @@ fn outside_the_map_the_fuel_rate_is_the_boundary_value_nearest_to_it() {
     assert!((map.extrapolate(1500.0, 1200.0) - 60.0).abs() < 1e-9);
     // Beyond the corner (2000 rpm, 1000 Nm): the corner's value.
     assert!((map.extrapolate(2500.0, 1500.0) - 110.0).abs() < 1e-9);
+}
+
+#[test]
+fn the_fuel_map_answers_nan_and_huge_inputs_without_panicking() {
+    let map = FuelMap::new("fuel_map", &plane_points()).unwrap();
+    for (n, t) in [(f64::NAN, 0.0), (f64::INFINITY, 0.0), (1000.0, f64::INFINITY), (1e300, 1e300), (-1e300, 5.0)] {
+        assert_eq!(map.interpolate(n, t), None);
+        let x = map.extrapolate(n, t);
+        assert_eq!(x.is_nan(), !(n.is_finite() && t.is_finite()), "({n}, {t}) -> {x}");
+    }
+    // Far beyond the top right corner: the corner's value.
+    assert!((map.extrapolate(1e300, 1e300) - plane(1800.0, -100.0 + 5.0 * 368.0)).abs() < 1e-6);
 }
 
 #[test]
@@ -114,7 +126,7 @@ fn at_steady_speed_the_engine_delivers_the_road_load_the_driveline_losses_and_th
     let expected_air = 0.5 * 1.2 * 6.0 * v.powi(3);
     assert!((loads.air_w - expected_air).abs() < 1e-6);
     assert!((loads.slope_w - 40_000.0 * G_MPS2 * slope.sin() * v).abs() < 1e-6);
-    let op = t.operating_point(v, 0.0, slope, 3);
+    let op = t.operating_point(v, 0.0, slope, 3).unwrap();
     let omega = op.engine_speed_rpm / RPM_PER_RAD_S;
     let engine_w = op.engine_torque_nm * omega;
     let balance = (engine_w - 4_000.0 - 20.0 * omega) * 0.98 * 0.97 - loads.wheel_w();
@@ -136,4 +148,40 @@ fn a_drag_area_curve_replaces_the_constant_and_is_linear_in_speed() {
     let expected = 0.5 * 1.2 * 6.5 * 20.0_f64.powi(3);
     assert!((t.road_loads(20.0, 0.0, 0.0).air_w - expected).abs() < 1e-9);
     assert_eq!(truck().with_cda_curve(&[(10.0, -1.0), (30.0, 6.0)]).unwrap_err().key(), "cda_curve");
+}
+
+#[test]
+fn on_a_descent_the_wheels_drive_the_engine_and_the_brakes_take_the_rest() {
+    let t = truck();
+    let (v, gear) = (22.0, 3);
+    // Gentle: the engine's drag is enough; the power from the wheels, less the driveline's share,
+    // turns the engine against its torque, the auxiliaries and the driveline's drag.
+    let slope = (-0.013_f64).atan();
+    let op = t.operating_point(v, 0.0, slope, gear).unwrap();
+    let omega = op.engine_speed_rpm / RPM_PER_RAD_S;
+    let wheel_w = t.road_loads(v, 0.0, slope).wheel_w();
+    assert!(wheel_w < 0.0 && op.engine_torque_nm < 0.0 && op.brake_power_w == 0.0, "{op:?}");
+    let engine_side_w = (op.engine_torque_nm - 4_000.0 / omega - 20.0) * omega;
+    assert!((engine_side_w - wheel_w * 0.98 * 0.97).abs() < 1e-6 * wheel_w.abs());
+    // Above its drag torque the engine is fuelled, less than at zero torque.
+    assert!(op.fuel_g_per_h > 0.0 && op.fuel_g_per_h < plane(op.engine_speed_rpm, 0.0));
+    // Steep: below the drag torque; the brakes take what the drag does not, at the wheels.
+    let slope = (-0.08_f64).atan();
+    let op = t.operating_point(v, 0.0, slope, gear).unwrap();
+    let drag = t.engine().drag_torque_nm(op.engine_speed_rpm);
+    let held_w = ((drag - 4_000.0 / omega - 20.0) / (0.98 * 0.97)) * omega;
+    let expected = held_w - t.road_loads(v, 0.0, slope).wheel_w();
+    assert!(op.brake_power_w > 0.0 && (op.brake_power_w - expected).abs() < 1e-6 * expected);
+    assert_eq!(op.fuel_g_per_h, 0.0);
+}
+
+#[test]
+fn beyond_the_full_load_curve_there_is_no_fuel_rate_and_no_point_without_a_speed() {
+    let t = truck();
+    let op = t.operating_point(60.0, 0.0, 0.0, 1).unwrap(); // 60 m/s in gear 1: far above 1800 rpm
+    assert!(!op.feasible && op.fuel_g_per_h.is_nan());
+    let bad = [(0.0, 0.0, 0.0, 1), (f64::NAN, 0.0, 0.0, 1), (20.0, f64::NAN, 0.0, 1), (20.0, 0.0, f64::INFINITY, 1)];
+    for (v, a, s, g) in bad.into_iter().chain([(20.0, 0.0, 0.0, 0), (20.0, 0.0, 0.0, 4)]) {
+        assert!(t.operating_point(v, a, s, g).is_none());
+    }
 }

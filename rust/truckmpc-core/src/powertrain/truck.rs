@@ -53,10 +53,13 @@ impl RoadLoads {
 pub struct OperatingPoint {
     /// Engine speed [rpm].
     pub engine_speed_rpm: f64,
-    /// Engine torque [Nm], including what the auxiliaries and the engine's own inertia take.
+    /// Engine torque [Nm] the road asks for, including what the auxiliaries and the engine's own
+    /// inertia take; below the drag torque the engine gives its drag torque and the brakes the rest.
     pub engine_torque_nm: f64,
-    /// Fuel rate [g/h].
+    /// Fuel rate [g/h]; NaN at an engine speed the full-load curve does not cover.
     pub fuel_g_per_h: f64,
+    /// Power the service brakes take at the wheels [W] where the engine's drag is not enough.
+    pub brake_power_w: f64,
     /// Whether the engine can deliver the torque (at most its full-load torque) at a speed its
     /// full-load curve covers.
     pub feasible: bool,
@@ -135,23 +138,33 @@ impl MapTruck {
         }
     }
 
-    /// The engine's operating point meeting the road's loads in `gear` (1..=n) at `v_mps > 0`,
-    /// accelerating at `acc_mps2` on `slope_rad`.
-    pub fn operating_point(&self, v_mps: f64, acc_mps2: f64, slope_rad: f64, gear: usize) -> OperatingPoint {
+    /// The engine's operating point meeting the road's loads in `gear` (1..=n) at `v_mps`,
+    /// accelerating at `acc_mps2` on `slope_rad`: `None` unless the speed is positive and the
+    /// inputs finite, or for a gear the truck does not have.
+    pub fn operating_point(&self, v_mps: f64, acc_mps2: f64, slope_rad: f64, gear: usize) -> Option<OperatingPoint> {
+        let inputs_ok = v_mps > 0.0 && v_mps.is_finite() && acc_mps2.is_finite() && slope_rad.is_finite();
+        if !inputs_ok || gear == 0 || gear > self.driveline.gears() {
+            return None;
+        }
+        let r = self.driveline.wheel_radius_m();
         let speed_rpm = self.driveline.engine_speed_rpm(v_mps, gear);
         let omega = speed_rpm / RPM_PER_RAD_S;
-        let wheel_torque =
-            self.road_loads(v_mps, acc_mps2, slope_rad).wheel_w() / v_mps * self.driveline.wheel_radius_m();
-        let engine_accel = acc_mps2 / self.driveline.wheel_radius_m() * self.driveline.ratio(gear);
-        let torque = self.driveline.engine_torque_nm(wheel_torque, gear)
-            + self.body.aux_power_w / omega
-            + self.engine.inertia_kgm2() * engine_accel;
+        let wheel_torque = self.road_loads(v_mps, acc_mps2, slope_rad).wheel_w() / v_mps * r;
+        let engine_accel = acc_mps2 / r * self.driveline.ratio(gear);
+        let extra = self.body.aux_power_w / omega + self.engine.inertia_kgm2() * engine_accel;
+        let torque = self.driveline.engine_torque_nm(wheel_torque, gear) + extra;
         let (lo, hi) = self.engine.speed_range_rpm();
-        OperatingPoint {
+        let in_range = speed_rpm >= lo && speed_rpm <= hi;
+        let drag = self.engine.drag_torque_nm(speed_rpm);
+        // Braking: the wheel torque the engine's drag holds, less what the road asks for.
+        let held = self.driveline.wheel_torque_nm(drag - extra, gear);
+        let brake_power_w = if torque < drag { (held - wheel_torque) / r * v_mps } else { 0.0 };
+        Some(OperatingPoint {
             engine_speed_rpm: speed_rpm,
             engine_torque_nm: torque,
-            fuel_g_per_h: self.engine.fuel_rate_g_per_h(speed_rpm, torque),
-            feasible: speed_rpm >= lo && speed_rpm <= hi && torque <= self.engine.max_torque_nm(speed_rpm),
-        }
+            fuel_g_per_h: if in_range { self.engine.fuel_rate_g_per_h(speed_rpm, torque) } else { f64::NAN },
+            brake_power_w,
+            feasible: in_range && torque <= self.engine.max_torque_nm(speed_rpm),
+        })
     }
 }
