@@ -2,41 +2,22 @@
 //! interpolated linearly on the Delaunay triangulation of the points, as VECTO does.
 //!
 //! Like VECTO, the triangulation is made after scaling torque and speed each to [0, 1] over the
-//! map's range: a Delaunay triangulation depends on the scales of its axes, and the scaled one is
-//! the one VECTO's results come from. Where four points lie on one circle (the rectangular cells of
-//! a map measured on a grid) either diagonal is a Delaunay triangulation; this one and VECTO's may
-//! pick different ones there, and differ by a few per cent inside such a cell away from its edges.
-//! Outside the map's convex hull, [`FuelMap::extrapolate`] takes the value at the nearest point of
-//! the hull's boundary (VECTO starts from the nearest hull vertex and projects onto an edge next to
-//! it; the two agree wherever the nearest boundary point lies on one of those edges).
+//! map's range (a Delaunay triangulation depends on the scales of its axes), and built the way
+//! VECTO builds it ([`super::delaunay`]), so that where a cell's diagonal is a tie the same one is
+//! chosen. Outside the map's convex hull, [`FuelMap::extrapolate`] takes the value at the nearest
+//! point of the hull's boundary (VECTO starts from the nearest hull vertex and projects onto an edge
+//! next to it; the two agree wherever the nearest boundary point lies on one of those edges).
 
-use spade::{DelaunayTriangulation, FloatTriangulation, HasPosition, Point2, Triangulation};
-
+use super::delaunay::Triangulation;
 use crate::{CoreError, CoreResult};
-
-/// One point of the map, in scaled coordinates, with its fuel rate.
-#[derive(Debug, Clone, Copy)]
-struct MapPoint {
-    torque: f64,
-    speed: f64,
-    fuel_g_per_h: f64,
-}
-
-impl HasPosition for MapPoint {
-    type Scalar = f64;
-    fn position(&self) -> Point2<f64> {
-        Point2::new(self.torque, self.speed)
-    }
-}
 
 /// A fuel map, ready to interpolate.
 #[derive(Debug, Clone)]
 pub struct FuelMap {
-    triangulation: DelaunayTriangulation<MapPoint>,
+    /// Over (torque, speed) scaled to [0, 1], carrying the fuel rate [g/h].
+    triangulation: Triangulation,
     torque_nm: (f64, f64),
     speed_rpm: (f64, f64),
-    /// The hull's boundary as segments of (torque, speed, fuel) in scaled coordinates.
-    hull: Vec<[(f64, f64, f64); 2]>,
 }
 
 impl FuelMap {
@@ -52,36 +33,24 @@ impl FuelMap {
         if speed_rpm.1 <= speed_rpm.0 || torque_nm.1 <= torque_nm.0 {
             return Err(CoreError::invalid(key, "points spanning a range of engine speeds and of torques"));
         }
-        let scaled: Vec<MapPoint> = points
-            .iter()
-            .map(|&(n, t, f)| MapPoint { torque: scale(t, torque_nm), speed: scale(n, speed_rpm), fuel_g_per_h: f })
-            .collect();
-        let triangulation = DelaunayTriangulation::<MapPoint>::bulk_load(scaled)
-            .map_err(|e| CoreError::invalid(key, "points a triangulation accepts").got(format!("{e:?}")))?;
-        if triangulation.num_inner_faces() == 0 {
-            return Err(CoreError::invalid(key, "points not all on one line"));
-        }
-        let hull = triangulation
-            .convex_hull()
-            .map(|edge| {
-                let [a, b] = edge.vertices().map(|v| *v.data());
-                [(a.torque, a.speed, a.fuel_g_per_h), (b.torque, b.speed, b.fuel_g_per_h)]
-            })
-            .collect();
-        Ok(FuelMap { triangulation, torque_nm, speed_rpm, hull })
+        let scaled: Vec<[f64; 3]> =
+            points.iter().map(|&(n, t, f)| [scale(t, torque_nm), scale(n, speed_rpm), f]).collect();
+        let triangulation =
+            Triangulation::new(&scaled).ok_or_else(|| CoreError::invalid(key, "points not all on one line"))?;
+        Ok(FuelMap { triangulation, torque_nm, speed_rpm })
     }
 
     /// Fuel rate [g/h] at `speed_rpm` and `torque_nm`, or `None` outside the map's convex hull (and
     /// for a speed or torque that is not finite).
     pub fn interpolate(&self, speed_rpm: f64, torque_nm: f64) -> Option<f64> {
-        // Checked here: the triangulation's point location must never see a point far outside it.
+        // Outside the unit square (or not a number) no triangle holds the point: no lookup needed.
         const EDGE: f64 = 1e-9;
         let (x, y) = (scale(torque_nm, self.torque_nm), scale(speed_rpm, self.speed_rpm));
         let inside = -EDGE..=1.0 + EDGE;
         if !(inside.contains(&x) && inside.contains(&y)) {
             return None;
         }
-        self.triangulation.barycentric().interpolate(|v| v.data().fuel_g_per_h, Point2::new(x, y))
+        self.triangulation.interpolate(x, y)
     }
 
     /// Fuel rate [g/h] at `speed_rpm` and `torque_nm`: interpolated inside the map, else the
@@ -97,7 +66,7 @@ impl FuelMap {
         let clamp = |v: f64| v.clamp(-1e6, 1e6);
         let (x, y) = (clamp(scale(torque_nm, self.torque_nm)), clamp(scale(speed_rpm, self.speed_rpm)));
         let mut best = (f64::INFINITY, 0.0);
-        for [(x0, y0, z0), (x1, y1, z1)] in &self.hull {
+        for [[x0, y0, z0], [x1, y1, z1]] in self.triangulation.hull() {
             let (dx, dy) = (x1 - x0, y1 - y0);
             let t = (((x - x0) * dx + (y - y0) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
             let d2 = (x0 + t * dx - x).powi(2) + (y0 + t * dy - y).powi(2);
@@ -120,7 +89,7 @@ impl FuelMap {
 
     /// Number of points of the map.
     pub fn len(&self) -> usize {
-        self.triangulation.num_vertices()
+        self.triangulation.len()
     }
 
     /// Whether the map has no points (never: a map has at least three).

@@ -6,12 +6,14 @@
 //! fueling; here the fuel rate is whatever the engine's map says at its speed and torque.
 //!
 //! - [`curve`]: a torque curve over engine speed (full load, drag), linear between its points;
-//! - [`fuel_map`]: the fuel rate over engine speed and torque, linear on a Delaunay triangulation;
+//! - [`delaunay`]: a Delaunay triangulation built the way VECTO builds its maps;
+//! - [`fuel_map`]: the fuel rate over engine speed and torque, linear on that triangulation;
 //! - [`engine`]: the engine built from those;
 //! - [`driveline`]: gear and axle ratios, their efficiencies, the tyre radius;
 //! - [`truck`]: the whole truck: road loads, engine operating points, the fuel to hold a speed.
 
 pub mod curve;
+pub mod delaunay;
 pub mod driveline;
 pub mod engine;
 pub mod fuel_map;

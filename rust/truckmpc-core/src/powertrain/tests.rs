@@ -185,3 +185,18 @@ fn beyond_the_full_load_curve_there_is_no_fuel_rate_and_no_point_without_a_speed
         assert!(t.operating_point(v, a, s, g).is_none());
     }
 }
+
+#[test]
+fn in_a_square_cell_the_insertion_order_picks_the_diagonal_as_vectos_map_does() {
+    // Four corners on one circle, not on one plane: the diagonal decides the value inside. Inserted
+    // (0,0), (1,0), (0,1), (1,1), the last corner finds the first triangle's circumcircle only
+    // touching it, so that triangle stays and the diagonal is (1,0)–(0,1).
+    let z = |n: f64, t: f64| if (n, t) == (1.0, 1.0) { 10.0 } else { 0.0 };
+    let corners = [(0.0, 0.0), (0.0, 1.0), (1.0, 0.0), (1.0, 1.0)]; // (speed, torque): torque is x
+    let map = FuelMap::new("fuel_map", &corners.map(|(n, t)| (n, t, z(n, t)))).unwrap();
+    // Beyond the diagonal (1,0)–(0,1), in the triangle holding the raised corner: linear towards it.
+    assert!((map.interpolate(0.75, 0.75).unwrap() - 5.0).abs() < 1e-12);
+    // On the near side, in the flat triangle: zero (the other diagonal would give 2.5 at (0.25, 0.75)).
+    assert!(map.interpolate(0.25, 0.25).unwrap().abs() < 1e-12);
+    assert!(map.interpolate(0.25, 0.75).unwrap().abs() < 1e-12);
+}
