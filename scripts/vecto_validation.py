@@ -16,10 +16,10 @@ import math
 import sys
 from pathlib import Path
 
+from truckmpc.units import KMH_PER_MPS
 from truckmpc.vecto import load_vecto_truck
 
 HERE = Path(__file__).resolve().parents[1] / ".." / "shared" / "vehicles" / "vecto-generic-class5-tractor"
-KMH_PER_MPS = 3.6
 LOADS = {
     "air drag power": ("air_w", "P_air [kW]", 0.01),
     "rolling power": ("rolling_w", "P_roll [kW]", 0.01),

@@ -10,6 +10,7 @@ import numpy as np
 import numpy.typing as npt
 
 __all__ = [
+    "G_MPS2",
     "MapTruck",
     "ParamError",
     "ParamSpec",
@@ -94,6 +95,9 @@ class Vehicle:
     def stall_speed_mps(self) -> float: ...
     def engine_speed_rpm(self, v_mps: float, gear: int) -> float: ...
     def stationary(self, v_mps: float, slope: float, gear: int) -> dict[str, Any]: ...
+
+G_MPS2: float
+"""Gravitational acceleration [m/s²] of the map-based truck (VECTO 3's)."""
 
 @final
 class MapTruck:

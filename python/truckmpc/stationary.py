@@ -56,8 +56,9 @@ def map_truck_stationary_point(
     """
     core = truck.core
     v_mps, slope_rad = speed_kmh / KMH_PER_MPS, math.atan(slope_pct / PCT_PER_FRACTION)
-    points = {g: core.operating_point(v_mps, 0.0, slope_rad, g) for g in range(1, core.gears + 1)}
     lo, hi = core.speed_range_rpm
+    gears = range(1, core.gears + 1) if gear is None else [gear]
+    points = {g: core.operating_point(v_mps, 0.0, slope_rad, g) for g in gears}
     if gear is None:
         feasible = [g for g, p in points.items() if p["feasible"]]
         outside = {g: max(lo - p["engine_speed_rpm"], p["engine_speed_rpm"] - hi, 0.0) for g, p in points.items()}

@@ -6,6 +6,8 @@ Multiply by a factor to go from the unit after ``PER`` to the one before it:
 
 from __future__ import annotations
 
+import math
+
 KMH_PER_MPS = 3.6
 """km/h per m/s."""
 
@@ -20,3 +22,9 @@ G_PER_KG = 1000.0
 
 KG_PER_T = 1000.0
 """Kilograms per tonne."""
+
+W_PER_KW = 1000.0
+"""Watts per kilowatt."""
+
+RPM_PER_RAD_S = 30.0 / math.pi
+"""Engine speed in rpm per angular speed in rad/s."""

@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from truckmpc.plot.figures import figure_class, save
+from truckmpc.units import RPM_PER_RAD_S, W_PER_KW
 from truckmpc.vecto import VectoTruck
 
 __all__ = ["plot_fuel_map"]
@@ -26,7 +27,7 @@ def plot_fuel_map(truck: VectoTruck, out: Path, svg: bool = False) -> list[Path]
     torques = np.linspace(1.0, float(full.max()), 141)
     n_grid, t_grid = np.meshgrid(speeds, torques)
     fuel = np.vectorize(core.fuel_rate_g_per_h)(n_grid, t_grid)
-    power_kw = t_grid * n_grid * np.pi / 30.0 / 1e3
+    power_kw = t_grid * n_grid / RPM_PER_RAD_S / W_PER_KW
     bsfc = np.where(t_grid <= np.interp(n_grid, speeds, full), fuel / power_kw, np.nan)
     fig = figure_class()(figsize=(9, 6), layout="constrained")
     ax = fig.subplots()

@@ -10,10 +10,12 @@ Only the groups listed in :data:`SEGMENTS` are carried; for another truck, set t
 from __future__ import annotations
 
 import csv
+import functools
 import math
 from dataclasses import dataclass
 from importlib import resources
 
+from truckmpc import _core
 from truckmpc.errors import VehicleError
 from truckmpc.units import KMH_PER_MPS
 
@@ -31,7 +33,8 @@ __all__ = [
 
 AIR_DENSITY_KG_M3 = 1.188
 """VECTO's air density [kg/m³]."""
-GRAVITY_MPS2 = 9.80665
+GRAVITY_MPS2 = _core.G_MPS2
+"""Gravitational acceleration [m/s²], the core's for the map-based truck."""
 ROLL_RESISTANCE_EXPONENT = 0.9
 """β of VECTO's load dependence of a tyre's rolling resistance, c_r·(F_z/F_z,ISO)^(β−1)."""
 
@@ -122,6 +125,7 @@ def cross_wind_cda_curve(cda_m2: float, method: str, parameters: str, height_m: 
     return [(0.0, points[0][1]), *points]
 
 
+@functools.cache
 def _wheels() -> dict[str, tuple[float, float, float]]:
     text = resources.files("truckmpc.vecto").joinpath("data/wheels.csv").read_text(encoding="utf-8")
     rows = csv.DictReader(line for line in text.splitlines() if not line.startswith("#"))

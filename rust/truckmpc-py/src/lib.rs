@@ -21,6 +21,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<vehicle::PyVehicle>()?;
     m.add_class::<road::PyRoad>()?;
     m.add_class::<powertrain::PyMapTruck>()?;
+    m.add("G_MPS2", truckmpc_core::powertrain::G_MPS2)?;
     run::register(m)?;
     Ok(())
 }

@@ -157,8 +157,11 @@ impl MapTruck {
         let in_range = speed_rpm >= lo && speed_rpm <= hi;
         let drag = self.engine.drag_torque_nm(speed_rpm);
         // Braking: the wheel torque the engine's drag holds, less what the road asks for.
-        let held = self.driveline.wheel_torque_nm(drag - extra, gear);
-        let brake_power_w = if torque < drag { (held - wheel_torque) / r * v_mps } else { 0.0 };
+        let brake_power_w = if torque < drag {
+            (self.driveline.wheel_torque_nm(drag - extra, gear) - wheel_torque) / r * v_mps
+        } else {
+            0.0
+        };
         Some(OperatingPoint {
             engine_speed_rpm: speed_rpm,
             engine_torque_nm: torque,
