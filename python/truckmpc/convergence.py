@@ -48,9 +48,9 @@ def halved_configs(config: RunConfig) -> dict[str, RunConfig]:
         pinned["q_speed_below"] = settings.q_speed_below_weight
     where = "--check-convergence"
     return {
-        "half_delta": config_from_values({**pinned, "delta_kmh": values["delta_kmh"] / 2}, where),
+        "half_delta": config_from_values({**pinned, "delta_kmh": values["delta_kmh"] / 2}, where, config.truck),
         "half_stage": config_from_values(
-            {**pinned, "stage_m": values["stage_m"] / 2, "k_lim": 2 * settings.k_lim_stages}, where
+            {**pinned, "stage_m": values["stage_m"] / 2, "k_lim": 2 * settings.k_lim_stages}, where, config.truck
         ),
     }
 

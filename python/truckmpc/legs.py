@@ -104,7 +104,7 @@ def _leg_config(config: RunConfig, number: int) -> RunConfig:
     values = config.settings.values()
     if number == 1 or values["start_speed_kmh"] is None:
         return config
-    return config_from_values({**values, "start_speed_kmh": None}, f"leg {number}")
+    return config_from_values({**values, "start_speed_kmh": None}, f"leg {number}", config.truck)
 
 
 def merge_legs(road: RoadProfile, results: Sequence[RunResult], bounds: Sequence[tuple[float, float]]) -> RunResult:

@@ -23,6 +23,7 @@ from truckmpc.errors import ConfigError, RoadError, read_user_text
 from truckmpc.roads import RoadProfile, default_test_track, load_road
 from truckmpc.sim import CONTROLLERS
 from truckmpc.units import PCT_PER_FRACTION
+from truckmpc.vecto.replay import replay_truck, truck_record
 
 MAP_SLACK = 0.02
 """Share of the road's length by which the controllers' map may differ at either end: the core's
@@ -80,6 +81,7 @@ def run_record(request: RunRequest, profile: RoadProfile, config: RunConfig) -> 
             "overrides": list(request.overrides),
         },
         "settings": settings,
+        "vehicle": None if config.truck is None else truck_record(config.truck),
     }
 
 
@@ -132,7 +134,7 @@ def load_replay(path: Path) -> tuple[RunRequest, RoadProfile, RunConfig]:
     values = {
         key: value for section in settings.values() if isinstance(section, dict) for key, value in section.items()
     }
-    config = config_from_values(values, f"{where}: run.settings")
+    config = config_from_values(values, f"{where}: run.settings", replay_truck(run.get("vehicle"), where))
     road_path = _field(road, "path", (str, type(None)), f"{where}: run.road")
     reverse = _field(road, "reverse", bool, f"{where}: run.road")
     profile = default_test_track() if road_path is None else load_road(road_path)

@@ -19,6 +19,7 @@ from __future__ import annotations
 import os
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import yaml
@@ -33,8 +34,10 @@ from truckmpc.config.keys import (
     overlay_path,
     unknown_key,
 )
+from truckmpc.config.vecto_truck import is_vecto_job, truck_layer, vecto_truck
 from truckmpc.config.yamlfile import load_value, read_mapping, show_value
 from truckmpc.errors import ConfigError
+from truckmpc.vecto.truck import VectoTruck
 
 PathLike = str | os.PathLike[str]
 
@@ -91,6 +94,8 @@ class RunConfig:
 
     settings: _core.Settings
     origins: Mapping[str, Origin] = field(repr=False)
+    truck: VectoTruck | None = field(default=None, repr=False)
+    """The VECTO truck the run drives, when the vehicle is a VECTO job (None: the thesis's model)."""
 
     def section(self, name: str) -> Section:
         """The values of one section (`vehicle`, `cruise`, `pi`, `mpc`, `sim`)."""
@@ -193,12 +198,12 @@ class _Layers:
         self.next_layer()
         self.put(key, raw, origin)
 
-    def build(self) -> RunConfig:
+    def build(self, truck: VectoTruck | None = None) -> RunConfig:
         try:
-            settings = _core.Settings(self.values)
+            settings = _core.Settings(self.values, None if truck is None else truck.core)
         except _core.ParamError as err:
             raise self._blame(err) from None
-        return RunConfig(settings=settings, origins=dict(self.origins))
+        return RunConfig(settings=settings, origins=dict(self.origins), truck=truck)
 
     def _blame(self, err: _core.ParamError) -> ConfigError:
         """The error against the origin of the key the user set last among those the check involved
@@ -222,26 +227,30 @@ def load_run_config(
     defaults of the other sections, overlay files in order, then `key=value` overrides."""
     layers = _Layers()
     vehicle_file = default_config_path("truck-40t.yaml") if vehicle_path is None else vehicle_path
-    if str(vehicle_file).lower().endswith(".vecto"):
-        raise ConfigError(
-            f"{vehicle_file}: expected a vehicle YAML file here, got a VECTO job: `truckmpc vehicle info` and "
-            "`truckmpc model stationary` read VECTO trucks; the closed-loop simulation does not drive them yet"
-        )
+    truck = None
+    if is_vecto_job(vehicle_file):
+        # The VECTO job replaces the thesis's truck; its file of defaults still gives the brakes.
+        truck, overrides = vecto_truck(Path(vehicle_file), overrides)
+        vehicle_file = default_config_path("truck-40t.yaml")
     layers.read_file(vehicle_file, VEHICLE_KEYS, complete=True, refuse_vehicle=False)
     others = [key for key in KEYS if key not in VEHICLE_KEYS]
     for section, name in SECTION_FILES.items():
         allowed = [k for k in others if SPEC_BY_KEY[k].section == section]
         layers.read_file(default_config_path(name), allowed, complete=True, refuse_vehicle=False)
+    if truck is not None:
+        layers.next_layer()
+        for key, value in truck_layer(truck).items():
+            layers.put(key, value, str(truck.job.path))
     for path in config_paths:
         layers.read_file(overlay_path(path), others, complete=False, refuse_vehicle=True)
     for text in overrides:
         layers.override(text)
-    return layers.build()
+    return layers.build(truck)
 
 
-def config_from_values(values: Mapping[str, Any], where: str) -> RunConfig:
-    """A configuration from a complete flat mapping of keys to values (a recorded run's settings);
-    errors name `where` and the key."""
+def config_from_values(values: Mapping[str, Any], where: str, truck: VectoTruck | None = None) -> RunConfig:
+    """A configuration from a complete flat mapping of keys to values (a recorded run's settings),
+    driving `truck` when given (a configuration's own, to keep it); errors name `where` and the key."""
     layers = _Layers()
     layers.next_layer()
     for key, raw in values.items():
@@ -251,4 +260,4 @@ def config_from_values(values: Mapping[str, Any], where: str) -> RunConfig:
     missing = [key for key in KEYS if key not in values]
     if missing:
         raise ConfigError(f"{where}: missing key {missing[0]!r} (a recorded run gives every parameter)")
-    return layers.build()
+    return layers.build(truck)

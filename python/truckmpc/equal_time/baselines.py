@@ -30,7 +30,7 @@ def baseline_runner(road: RoadProfile, config: RunConfig, controller: str = "pi"
 
         def run_offset(x_kmh: float) -> RunResult:
             changed = {**values, "target_offset_kmh": x_kmh - values["v_ref_kmh"]}
-            return simulate(road, config_from_values(changed, "equal-time baseline"), controller)
+            return simulate(road, config_from_values(changed, "equal-time baseline", config.truck), controller)
 
         return run_offset
     start_kmh = values["start_speed_kmh"] if values["start_speed_kmh"] is not None else values["v_ref_kmh"]
@@ -38,7 +38,7 @@ def baseline_runner(road: RoadProfile, config: RunConfig, controller: str = "pi"
     def run_at(v_ref_kmh: float) -> RunResult:
         band = (v_ref_kmh - values["v_dec_kmh"], v_ref_kmh + values["v_inc_kmh"])
         changed = {**values, "v_ref_kmh": v_ref_kmh, "start_speed_kmh": min(max(start_kmh, band[0]), band[1])}
-        return simulate(road, config_from_values(changed, "equal-time baseline"), controller)
+        return simulate(road, config_from_values(changed, "equal-time baseline", config.truck), controller)
 
     return run_at
 

@@ -105,4 +105,9 @@ def _setup(config: RunConfig) -> str:
     """`; truck 40000 kg; v_ref 85 km/h, band 80-90 km/h`."""
     cruise = config.cruise
     v_min, v_max = cruise.v_ref_kmh - cruise.v_dec_kmh, cruise.v_ref_kmh + cruise.v_inc_kmh
-    return f"; truck {config.vehicle.mass_kg:.0f} kg; v_ref {cruise.v_ref_kmh:g} km/h, band {v_min:g}-{v_max:g} km/h"
+    truck = (
+        f"{config.vehicle.mass_kg:.0f} kg"
+        if config.truck is None
+        else f"{config.truck.mass_kg:.0f} kg (VECTO job {config.truck.job.path.name})"
+    )
+    return f"; truck {truck}; v_ref {cruise.v_ref_kmh:g} km/h, band {v_min:g}-{v_max:g} km/h"

@@ -92,6 +92,7 @@ class Combinations:
     def __init__(self, base: Base, base_config: RunConfig, axes: Sequence[Axis]) -> None:
         self._base, self._axes = base, axes
         self._values = base_config.settings.values()
+        self._truck = base_config.truck
         self._origins = dict(base_config.origins)
         self._rank = max((origin.rank for origin in self._origins.values()), default=0) + 1
         self._parsed: dict[str, Any] = {}
@@ -104,10 +105,11 @@ class Combinations:
                 key, _, raw = text.partition("=")
                 merged[key] = self._parse(raw)
                 origins[key] = Origin(f"--set {key}", self._rank + i)
-            settings = _core.Settings(merged)
+            truck = self._truck
+            settings = _core.Settings(merged, None if truck is None else truck.core)
         except (yaml.YAMLError, _core.ParamError):
             return _combination_config(self._base, self._axes, values, texts)
-        return RunConfig(settings=settings, origins=origins)
+        return RunConfig(settings=settings, origins=origins, truck=truck)
 
     def _parse(self, raw: str) -> Any:
         if raw not in self._parsed:

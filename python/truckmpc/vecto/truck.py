@@ -5,6 +5,7 @@ key a user can see and override.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
@@ -15,7 +16,7 @@ from truckmpc.errors import VehicleError
 from truckmpc.vecto import declaration as decl
 from truckmpc.vecto.components import VectoJob, read_job
 
-__all__ = ["DRIVELINE_LOSS_NOTE", "TruckKeys", "VectoTruck", "load_vecto_truck"]
+__all__ = ["DRIVELINE_LOSS_NOTE", "TruckKeys", "VectoTruck", "load_vecto_truck", "pi_shift_speeds_rpm"]
 
 DRIVELINE_LOSS_NOTE = (
     "gearbox and axle losses: VECTO's loss maps are not read yet; the defaults (gear_efficiency 0.9546, "
@@ -31,6 +32,7 @@ _RANGES = {  # key: (lowest, highest, lowest allowed itself, what)
     "gear_efficiency": (0.0, 1.0, False, "an efficiency in (0, 1]"),
     "axle_efficiency": (0.0, 1.0, False, "an efficiency in (0, 1]"),
     "loss_torque_nm": (0.0, math.inf, True, "a torque >= 0 [Nm]"),
+    "traction_interruption_s": (0.0, 10.0, True, "a time in [0, 10] s"),
 }
 
 
@@ -53,6 +55,8 @@ class TruckKeys:
     axle_efficiency: float = 1.0
     loss_torque_nm: float = 102.33 / (1.0 - 0.04541)
     """Driveline drag torque at the gearbox input [Nm] (see :data:`DRIVELINE_LOSS_NOTE`)."""
+    traction_interruption_s: float | None = None
+    """How long a gear shift interrupts traction [s]; default: the gearbox file's ``TracInt``."""
 
     def with_values(self, values: dict[str, Any], where: str) -> TruckKeys:
         """These keys with ``values`` set; an unknown key or a bad value is a one-line error."""
@@ -130,6 +134,9 @@ def load_vecto_truck(path: Path, values: dict[str, Any] | None = None) -> VectoT
         "axle_efficiency": keys.axle_efficiency,
         "loss_torque_nm": keys.loss_torque_nm,
         "wheel_radius_m": radius,
+        "traction_interruption_s": job.gearbox.traction_interruption_s
+        if keys.traction_interruption_s is None
+        else keys.traction_interruption_s,
     }
     core = _core_truck(job, driveline, body)
     return VectoTruck(job, segment, mass, payload, trailer, radius, rrc, tuple(curve), aux, keys, core)
@@ -191,3 +198,28 @@ def _core_truck(job: VectoJob, driveline: dict[str, Any], body: dict[str, Any]) 
         )
     except _core.ParamError as e:
         raise VehicleError(f"{files.get(e.key, job.path)}: {e}") from None
+
+
+# The PI's shift speeds for a VECTO truck, as shares of the engine's rated speed: the thesis's truck
+# shifts down below 1300 rpm and up above 1700-1800 rpm of its 2500 rpm range; VECTO's generic
+# 325 kW engine (rated at 1736 rpm) climbs at 1430 rpm and cruises at 85 km/h at 1209 rpm in its
+# top gear, so these keep it in top gear down to about 77 km/h and up-shift at 1490 rpm.
+DOWNSHIFT_SHARE = 0.63
+UPSHIFT_SHARE = 0.86
+_LANDING_MARGIN = 0.95  # a downshift speed at most this share of where the upshift below lands
+
+
+def pi_shift_speeds_rpm(truck: VectoTruck) -> tuple[list[float | None], list[float | None]]:
+    """Default PI shift speeds [rpm] per gear for a VECTO truck (``gear_down_rpm``, ``gear_up_rpm``):
+    :data:`UPSHIFT_SHARE` of the rated speed up, :data:`DOWNSHIFT_SHARE` down, lowered where a
+    gearbox's wide steps would land an up-shift below it (the gearbox would hunt); none below gear 1
+    or above the top gear."""
+    rated = truck.core.rated_speed_rpm
+    ratios = truck.job.gearbox.gear_ratios
+    up_rpm = round(UPSHIFT_SHARE * rated)
+    down: list[float | None] = [None]
+    for lower, higher in itertools.pairwise(ratios):
+        landing = up_rpm * higher / lower
+        down.append(float(round(min(DOWNSHIFT_SHARE * rated, _LANDING_MARGIN * landing))))
+    up: list[float | None] = [float(up_rpm)] * (len(ratios) - 1) + [None]
+    return down, up

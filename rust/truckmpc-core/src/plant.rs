@@ -2,11 +2,16 @@
 //! fine step, the slope looked up at each evaluation's position and steps split at the road's
 //! profile points. Integrating in time (not distance)
 //! keeps dv/dt finite at any speed; a truck that drops below the stall speed stops the run.
+//!
+//! A truck whose gearbox interrupts traction when it shifts (a map-based truck with an automated
+//! manual gearbox) rolls in neutral, with the engine at fuel cut, for that time after each change
+//! from one forward gear to another; engaging a gear from neutral (after coasting) is taken as
+//! instant. The thesis's truck shifts instantly.
 
 use std::sync::Arc;
 
 use crate::road::Road;
-use crate::vehicle::Vehicle;
+use crate::vehicle::{Vehicle, NEUTRAL};
 
 /// Constant inputs over one integration step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -47,6 +52,10 @@ pub struct Plant {
     state: PlantState,
     segment_hint: usize,
     stall_speed_mps: f64,
+    /// The gear last applied (None before the first step).
+    engaged_gear: Option<usize>,
+    /// Time left of the traction interruption of the last shift [s].
+    interruption_left_s: f64,
 }
 
 impl Plant {
@@ -55,7 +64,7 @@ impl Plant {
         let stall_speed_mps = vehicle.stall_speed_mps();
         let state =
             PlantState { s_m, v_mps, t_s: 0.0, fuel_g: 0.0, brake_energy_j: 0.0, stalled: v_mps < stall_speed_mps };
-        Plant { vehicle, road, state, segment_hint: 0, stall_speed_mps }
+        Plant { vehicle, road, state, segment_hint: 0, stall_speed_mps, engaged_gear: None, interruption_left_s: 0.0 }
     }
 
     /// Current state.
@@ -72,7 +81,8 @@ impl Plant {
     #[inline]
     fn rates(&self, slope_torque_nm: f64, v_mps: f64, u: Control) -> Rates {
         let accel = self.vehicle.accel_on(v_mps, u.pedal, u.brake, u.gear, slope_torque_nm);
-        let fuel = self.vehicle.fuel_rate_gps(v_mps, u.pedal, u.gear);
+        let fuel =
+            if self.interruption_left_s > 0.0 { 0.0 } else { self.vehicle.fuel_rate_gps(v_mps, u.pedal, u.gear) };
         let brake_power = self.vehicle.brake_force_n(u.brake) * v_mps;
         [v_mps, accel, fuel, brake_power]
     }
@@ -82,6 +92,29 @@ impl Plant {
     /// the step does not drive on (which would cost accuracy at every slope jump); the time
     /// advanced is `dt_s` all the same.
     pub fn step(&mut self, u: Control, dt_s: f64) {
+        let interruption_s = self.vehicle.traction_interruption_s();
+        if interruption_s <= 0.0 {
+            return self.step_engaged(u, dt_s);
+        }
+        if let Some(previous) = self.engaged_gear {
+            if previous != u.gear && previous != NEUTRAL && u.gear != NEUTRAL {
+                self.interruption_left_s = interruption_s;
+            }
+        }
+        self.engaged_gear = Some(u.gear);
+        let mut remaining = dt_s;
+        if self.interruption_left_s > 0.0 {
+            let dt = self.interruption_left_s.min(remaining);
+            self.step_engaged(Control { pedal: 0.0, brake: u.brake, gear: NEUTRAL }, dt);
+            remaining -= dt;
+            // Exactly zero once used up, so the rest of the step is fuelled.
+            self.interruption_left_s = if dt < self.interruption_left_s { self.interruption_left_s - dt } else { 0.0 };
+        }
+        self.step_engaged(u, remaining);
+    }
+
+    /// [`Plant::step`] with the inputs applied as given (no shift to start).
+    fn step_engaged(&mut self, u: Control, dt_s: f64) {
         // A split lands within a second-order error of the point; a few more are never needed.
         const MAX_SPLITS: usize = 4;
         // A point closer than this ahead counts as passed (the split's landing error).

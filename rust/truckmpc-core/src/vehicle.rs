@@ -6,9 +6,12 @@
 //! Units: speeds in m/s, engine speed in rpm, torque in Nm, fuel in g, fueling in mg/stroke,
 //! slope as a grade (Δh/ΔL, dimensionless) used directly as the angle α.
 
+use std::sync::Arc;
+
 use crate::error::CoreResult;
 use crate::params::ParamSet;
 pub use crate::params::VehicleParams;
+use crate::powertrain::{MapModel, G_MPS2};
 
 /// Gear number of neutral. Forward gears are numbered 1..=n.
 pub const NEUTRAL: usize = 0;
@@ -25,10 +28,14 @@ pub struct GearConstants {
     pub c4: f64,
 }
 
-/// A validated vehicle with the constants of (B.1) precomputed.
+/// A validated vehicle with the constants of (B.1) precomputed: the thesis's model, or a truck
+/// built from component data ([`Vehicle::from_map`]), which answers the same questions from its
+/// maps (see [`crate::powertrain::dynamics`] for what its pedal means).
 #[derive(Debug, Clone)]
 pub struct Vehicle {
     params: VehicleParams,
+    /// The map-based model, for a truck built from component data.
+    map: Option<Arc<MapModel>>,
     gears: Vec<GearConstants>,
     /// ½ c_w A_a ρ_a r_w [N m s²/m²].
     c2: f64,
@@ -61,7 +68,51 @@ impl Vehicle {
         let c5 = p.cylinders / (6.0e4 * p.revolutions_per_stroke);
         let c6 = p.mass_kg * p.gravity_mps2 * p.wheel_radius_m * (1.0 + p.rolling_resistance.powi(2)).sqrt();
         let c7 = p.rolling_resistance.atan();
-        Ok(Vehicle { params, gears, c2, c5, c6, c7 })
+        Ok(Vehicle { params, map: None, gears, c2, c5, c6, c7 })
+    }
+
+    /// A truck from component data. `base` gives what the components do not: the service brakes'
+    /// torque (`brake_torque_max_nm`); the other keys of [`Vehicle::params`] are set from the
+    /// truck (mass, inertias, idle speed, ratios, the driveline's efficiency in every gear, tyre
+    /// radius, rolling resistance, air density, g), so code that reads them sees this truck.
+    pub fn from_map(model: MapModel, base: &VehicleParams) -> CoreResult<Self> {
+        let truck = model.truck();
+        let (engine, driveline, body) = (truck.engine(), truck.driveline(), truck.body());
+        let gears = driveline.gears();
+        let params = VehicleParams {
+            mass_kg: body.mass_kg,
+            engine_inertia_kgm2: engine.inertia_kgm2(),
+            idle_speed_rpm: engine.idle_rpm(),
+            final_drive_ratio: driveline.axle_ratio(),
+            final_drive_efficiency: 1.0,
+            wheel_inertia_kgm2: body.wheels_inertia_kgm2,
+            rolling_resistance: body.rolling_resistance,
+            gravity_mps2: G_MPS2,
+            air_density_kgpm3: body.air_density_kg_m3,
+            wheel_radius_m: driveline.wheel_radius_m(),
+            brake_torque_max_nm: base.brake_torque_max_nm,
+            gear_ratios: driveline.gear_ratios().to_vec(),
+            gear_efficiencies: vec![driveline.efficiency(); gears],
+            ..base.clone()
+        };
+        let thesis = Vehicle::new(params)?;
+        let mut gear_constants = vec![GearConstants { c1: model.c1(0), c3: 0.0, c4: 0.0 }];
+        for g in 1..=gears {
+            let c3 = driveline.efficiency() * driveline.ratio(g);
+            gear_constants.push(GearConstants { c1: model.c1(g), c3, c4: model.rpm_per_mps(g) });
+        }
+        Ok(Vehicle { map: Some(Arc::new(model)), gears: gear_constants, ..thesis })
+    }
+
+    /// The map-based model, for a truck built from component data (None: the thesis's model).
+    #[inline]
+    pub fn map_model(&self) -> Option<&MapModel> {
+        self.map.as_deref()
+    }
+
+    /// How long a gear shift interrupts traction [s]: 0 for the thesis's truck (instant shifts).
+    pub fn traction_interruption_s(&self) -> f64 {
+        self.map.as_ref().map_or(0.0, |m| m.traction_interruption_s())
     }
 
     /// The parameters this vehicle was built from.
@@ -95,6 +146,9 @@ impl Vehicle {
     /// Gravity and rolling-resistance torque at the wheel on a slope, c6 sin(α + c7) [Nm].
     #[inline]
     pub fn slope_torque_nm(&self, slope: f64) -> f64 {
+        if let Some(m) = &self.map {
+            return m.slope_torque_nm(slope);
+        }
         self.c6 * (slope + self.c7).sin()
     }
 
@@ -130,6 +184,9 @@ impl Vehicle {
     /// Drag torque T_drag(N) (2.4) [Nm], the engine torque at fuel cut (negative).
     #[inline]
     pub fn drag_torque_nm(&self, n_rpm: f64) -> f64 {
+        if let Some(m) = &self.map {
+            return m.truck().engine().drag_torque_nm(n_rpm);
+        }
         self.params.drag_torque_a_nm_per_rpm * n_rpm + self.params.drag_torque_b_nm
     }
 
@@ -139,6 +196,9 @@ impl Vehicle {
     #[inline]
     pub fn engine_torque_nm(&self, n_rpm: f64, pedal: f64, gear: usize) -> f64 {
         let p = &self.params;
+        if let (Some(m), true) = (&self.map, gear != NEUTRAL) {
+            return m.engine_torque_nm(n_rpm / self.gears[gear].c4, pedal, gear);
+        }
         if gear == NEUTRAL {
             0.0
         } else if pedal > 0.0 {
@@ -160,6 +220,9 @@ impl Vehicle {
     /// callers that evaluate one slope many times.
     #[inline]
     pub fn accel_on(&self, v_mps: f64, pedal: f64, brake: f64, gear: usize, slope_torque_nm: f64) -> f64 {
+        if let Some(m) = &self.map {
+            return m.accel_on(v_mps, pedal, brake, gear, slope_torque_nm);
+        }
         let g = self.gears[gear];
         let torque = if gear == NEUTRAL { 0.0 } else { self.engine_torque_nm(g.c4 * v_mps, pedal, gear) };
         g.c1 * (g.c3 * torque - self.params.brake_torque_max_nm * brake - self.c2 * v_mps * v_mps - slope_torque_nm)
@@ -168,6 +231,9 @@ impl Vehicle {
     /// Fuel mass flow (B.2) [g/s]: c5·N·P·δ_max(N) in gear (zero at fuel cut), idle fueling in neutral.
     #[inline]
     pub fn fuel_rate_gps(&self, v_mps: f64, pedal: f64, gear: usize) -> f64 {
+        if let Some(m) = &self.map {
+            return m.fuel_rate_gps(v_mps, pedal, gear);
+        }
         if gear == NEUTRAL {
             self.c5 * self.params.idle_speed_rpm * self.params.idle_fueling_mg_per_stroke
         } else if pedal > 0.0 {
@@ -187,6 +253,9 @@ impl Vehicle {
     /// Highest engine speed [rpm] at which fuel can still be injected: the upper root of the fueling
     /// bound (2.6) (about 2500 rpm for the thesis's engine); infinite if the bound never closes.
     pub fn max_engine_speed_rpm(&self) -> f64 {
+        if let Some(m) = &self.map {
+            return m.truck().engine().speed_range_rpm().1;
+        }
         let p = &self.params;
         let (a, b, c) = (p.fueling_max_a_mg_per_rpm2, p.fueling_max_b_mg_per_rpm, p.fueling_max_c_mg);
         let discriminant = b * b - 4.0 * a * c;
@@ -204,6 +273,11 @@ impl Vehicle {
 
     /// ∂(dv/dt)/∂v [1/s] at (v, P, B, gear): the derivative of (B.1) in the speed.
     pub fn accel_derivative_per_s(&self, v_mps: f64, pedal: f64, gear: usize) -> f64 {
+        if let Some(m) = &self.map {
+            const DV_MPS: f64 = 1e-4;
+            let at = |v: f64| m.accel_on(v, pedal, 0.0, gear, 0.0);
+            return (at(v_mps + DV_MPS) - at(v_mps - DV_MPS)) / (2.0 * DV_MPS);
+        }
         let g = self.gears[gear];
         let p = &self.params;
         let dtorque_dn = if gear == NEUTRAL {

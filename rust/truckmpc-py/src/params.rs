@@ -8,9 +8,11 @@ use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use truckmpc_core::control::pi::GearLogic;
 use truckmpc_core::dp::{fuel_time, DpSettings};
 use truckmpc_core::params::{Kind, ParamSpec, Value, REPLACED_KEYS};
+use truckmpc_core::powertrain::MapModel;
 use truckmpc_core::{RunSettings, Vehicle};
 
 use crate::errors::to_py;
+use crate::powertrain::PyMapTruck;
 use crate::vehicle::PyVehicle;
 
 /// A Python object as a user value. Other types become their repr, which no parameter accepts.
@@ -125,16 +127,28 @@ pub struct PySettings {
 #[pymethods]
 impl PySettings {
     #[new]
-    fn new(values: &Bound<'_, PyDict>) -> PyResult<Self> {
+    #[pyo3(signature = (values, truck=None))]
+    fn new(values: &Bound<'_, PyDict>, truck: Option<PyRef<'_, PyMapTruck>>) -> PyResult<Self> {
         let mut pairs = Vec::with_capacity(values.len());
         for (key, value) in values.iter() {
             pairs.push((key.extract::<String>()?, to_value(&value)?));
         }
         let settings = RunSettings::from_values(pairs.iter().map(|(k, v)| (k.as_str(), v))).map_err(to_py)?;
-        let vehicle = Arc::new(Vehicle::new(settings.vehicle.clone()).map_err(to_py)?);
+        let build = |mass_kg: Option<f64>| match &truck {
+            None => Vehicle::new(match mass_kg {
+                Some(_) => settings.controller_vehicle_params(),
+                None => settings.vehicle.clone(),
+            }),
+            Some(t) => {
+                let map = mass_kg.map_or_else(|| Ok(t.inner.clone()), |m| t.inner.with_mass_kg(m));
+                let model = MapModel::new(map?, settings.vehicle.brake_torque_max_nm, t.traction_interruption_s);
+                Vehicle::from_map(model, &settings.vehicle)
+            }
+        };
+        let vehicle = Arc::new(build(None).map_err(to_py)?);
         settings.check_drivable(&vehicle).map_err(to_py)?;
         let controller_vehicle = match settings.sim.controller_mass_kg {
-            Some(_) => Arc::new(Vehicle::new(settings.controller_vehicle_params()).map_err(to_py)?),
+            Some(mass_kg) => Arc::new(build(Some(mass_kg)).map_err(to_py)?),
             None => vehicle.clone(),
         };
         DpSettings::new(&settings.mpc, &settings.cruise)
@@ -212,7 +226,8 @@ impl PySettings {
     #[getter]
     fn kinetic_fuel_g_per_half_v2(&self) -> PyResult<f64> {
         let logic = GearLogic::new(&self.vehicle, &self.inner.pi).map_err(to_py)?;
-        let gear = logic.steady_gear(self.inner.cruise.v_ref_kmh / 3.6);
-        Ok(fuel_time::kinetic_fuel_g(&self.vehicle, gear))
+        let v_ref_mps = self.inner.cruise.v_ref_kmh / 3.6;
+        let gear = logic.steady_gear(v_ref_mps);
+        Ok(fuel_time::kinetic_fuel_g(&self.vehicle, v_ref_mps, gear))
     }
 }

@@ -13,13 +13,16 @@ use crate::errors::{bad_argument, to_py};
 ///     engine: `idle_speed_rpm`, `inertia_kgm2`, `full_load` (rows of speed [rpm], full-load
 ///         torque [Nm], drag torque [Nm]) and `fuel_map` (rows of speed [rpm], torque [Nm], fuel [g/h]).
 ///     driveline: `gear_ratios` (first gear first), `axle_ratio`, `gear_efficiency`,
-///         `axle_efficiency`, `loss_torque_nm` (drag at the gearbox input), `wheel_radius_m`.
+///         `axle_efficiency`, `loss_torque_nm` (drag at the gearbox input), `wheel_radius_m`, and
+///         optionally `traction_interruption_s` (how long a gear shift interrupts traction; 0).
 ///     body: `mass_kg`, `wheels_inertia_kgm2`, `cda_m2`, `air_density_kg_m3`, `rolling_resistance`,
 ///         `aux_power_w`, and optionally `cda_curve` (rows of speed [m/s], Cd·A [m²]) replacing
 ///         `cda_m2` by a drag area that depends on speed.
 #[pyclass(name = "MapTruck", module = "truckmpc._core", frozen)]
 pub struct PyMapTruck {
-    inner: MapTruck,
+    pub inner: MapTruck,
+    /// How long a gear shift interrupts traction [s].
+    pub traction_interruption_s: f64,
 }
 
 fn item<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<T> {
@@ -38,6 +41,17 @@ impl PyMapTruck {
         let fuel_map: Vec<(f64, f64, f64)> = item(engine, "fuel_map")?;
         let engine = Engine::new(item(engine, "idle_speed_rpm")?, item(engine, "inertia_kgm2")?, &full_load, &fuel_map)
             .map_err(to_py)?;
+        let traction_interruption_s: f64 = if driveline.contains("traction_interruption_s")? {
+            item(driveline, "traction_interruption_s")?
+        } else {
+            0.0
+        };
+        if !(traction_interruption_s.is_finite() && (0.0..=10.0).contains(&traction_interruption_s)) {
+            return Err(to_py(
+                truckmpc_core::CoreError::invalid("traction_interruption_s", "a time in [0, 10] s")
+                    .got(traction_interruption_s),
+            ));
+        }
         let ratios: Vec<f64> = item(driveline, "gear_ratios")?;
         let driveline = Driveline::new(
             (&ratios, item(driveline, "axle_ratio")?),
@@ -62,7 +76,7 @@ impl PyMapTruck {
             let curve: Vec<(f64, f64)> = item(body_dict, "cda_curve")?;
             inner = inner.with_cda_curve(&curve).map_err(to_py)?;
         }
-        Ok(PyMapTruck { inner })
+        Ok(PyMapTruck { inner, traction_interruption_s })
     }
 
     /// Number of forward gears.

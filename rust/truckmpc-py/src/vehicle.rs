@@ -56,6 +56,17 @@ impl PyVehicle {
         Ok(self.inner.engine_speed_rpm(v_mps, gear))
     }
 
+    /// Engine torque [Nm] at road speed `v_mps` with `pedal` ∈ [0, 1] in `gear` (1..n): the
+    /// model's torque map (thesis) or the torque giving the pedal's share of the wheel torque
+    /// between fuel cut and full load (a truck from component data).
+    fn engine_torque_nm(&self, v_mps: f64, pedal: f64, gear: usize) -> PyResult<f64> {
+        self.check_gear(gear)?;
+        if gear == 0 {
+            return Err(bad_argument("gear", "a forward gear (1..n)", gear));
+        }
+        Ok(self.inner.engine_torque_nm(self.inner.engine_speed_rpm(v_mps, gear), pedal, gear))
+    }
+
     /// Levels holding `v_mps` on grade `slope` in `gear`: dict with `pedal`, `brake`, `feasible`,
     /// `eigenvalue_per_m` (∂(dv/ds)/∂v [1/m], tables B.1/B.2), and the engine's operating point
     /// there: `engine_speed_rpm`, `engine_torque_nm`, `fuel_rate_g_per_h`.

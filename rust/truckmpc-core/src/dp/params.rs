@@ -163,7 +163,7 @@ impl DpSettings {
         }
         let gear = fuel_time::cruise_gear(vehicle, self.v_ref_mps(), self.n_min_rpm, self.n_max_rpm);
         let beta = self.beta_for(vehicle).unwrap_or(0.0);
-        let kinetic = self.q_fuel * fuel_time::kinetic_fuel_g(vehicle, gear);
+        let kinetic = self.q_fuel * fuel_time::kinetic_fuel_g(vehicle, self.v_ref_mps(), gear);
         DpSettings {
             q_time_per_s: self.q_fuel * beta,
             q_terminal_per_half_v2: kinetic,

@@ -107,6 +107,20 @@ struct RowMaps<'a> {
     brake: AffineAccel,
     full_fuel_g: f64,
     trapezoid: Option<EndMaps<'a>>,
+    /// For a map-based truck, whose fuel is not proportional to the pedal: the vehicle and gear to
+    /// evaluate the fuel of each pedal level with (None: fuel = full-pedal fuel × pedal).
+    map_fuel: Option<(&'a Vehicle, usize)>,
+}
+
+impl RowMaps<'_> {
+    /// Fuel [g] of an Euler stage from `v_i` with `pedal` ∈ [0, 1] (length `h_m`).
+    #[inline]
+    fn euler_fuel_g(&self, v_i: f64, pedal: f64, h_m: f64) -> f64 {
+        match self.map_fuel {
+            None => self.full_fuel_g * pedal,
+            Some((vehicle, gear)) => stage_fuel_g(vehicle, v_i, pedal, gear, h_m),
+        }
+    }
 }
 
 /// What a trapezoid stage evaluates at its end speed (the vehicle, the gear and the slope), and the
@@ -134,6 +148,7 @@ fn maps<'a>(vehicle: &'a Vehicle, p: &DpSettings, v_i: f64, gear: usize, slope_t
             let pedal_band = if pedal.gain > 0.0 { trapezoid_pedal_band(p, v_i, pedal.gain) } else { (0.0, 0.0) };
             EndMaps { vehicle, gear, slope_torque, pedal_band }
         }),
+        map_fuel: vehicle.map_model().map(|_| (vehicle, gear)),
     }
 }
 

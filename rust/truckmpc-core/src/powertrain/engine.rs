@@ -83,6 +83,11 @@ impl Engine {
         &self.fuel
     }
 
+    /// The full-load and drag curves, and the speeds [rpm] they cover.
+    pub fn curves(&self) -> ((&Curve, &Curve), (f64, f64)) {
+        ((&self.full_load, &self.drag), self.full_load.x_range())
+    }
+
     /// Engine speeds [rpm] the full-load curve covers: the speeds the engine may run at.
     pub fn speed_range_rpm(&self) -> (f64, f64) {
         self.full_load.x_range()

@@ -10,21 +10,29 @@
 //! - [`fuel_map`]: the fuel rate over engine speed and torque, linear on that triangulation;
 //! - [`engine`]: the engine built from those;
 //! - [`driveline`]: gear and axle ratios, their efficiencies, the tyre radius;
-//! - [`truck`]: the whole truck: road loads, engine operating points, the fuel to hold a speed.
+//! - [`truck`]: the whole truck: road loads, engine operating points, the fuel to hold a speed;
+//! - [`fuel_grid`]: the fuel map resampled on a regular grid, for fast evaluation;
+//! - [`dynamics`]: the truck as the plant and the controllers drive it (pedal, brake, gear).
 
 pub mod curve;
 pub mod delaunay;
 pub mod driveline;
+pub mod dynamics;
 pub mod engine;
+pub mod fuel_grid;
 pub mod fuel_map;
 pub mod truck;
 
+#[cfg(test)]
+mod dynamics_tests;
 #[cfg(test)]
 mod tests;
 
 pub use curve::Curve;
 pub use driveline::Driveline;
+pub use dynamics::MapModel;
 pub use engine::Engine;
+pub use fuel_grid::FuelGrid;
 pub use fuel_map::FuelMap;
 pub use truck::{Body, MapTruck, OperatingPoint, RoadLoads, G_MPS2};
 

@@ -5,12 +5,12 @@ use super::*;
 use crate::CoreError;
 
 /// z = 5000 + 2·n + 30·T [g/h], positive over the map: linear interpolation on any triangulation reproduces a plane.
-fn plane(n: f64, t: f64) -> f64 {
+pub(super) fn plane(n: f64, t: f64) -> f64 {
     5000.0 + 2.0 * n + 30.0 * t
 }
 
 /// Scattered points of the plane: a grid of speeds with torques that differ from speed to speed.
-fn plane_points() -> Vec<(f64, f64, f64)> {
+pub(super) fn plane_points() -> Vec<(f64, f64, f64)> {
     let mut pts = Vec::new();
     for (k, n) in [600.0, 900.0, 1200.0, 1500.0, 1800.0].into_iter().enumerate() {
         for j in 0..6 {
@@ -97,7 +97,7 @@ fn the_engine_cuts_fuel_at_or_below_its_drag_torque_and_reads_its_map_above() {
     assert!((power_w - 1600.0 * 1800.0 * 2.0 * std::f64::consts::PI / 60.0).abs() < 1e-6);
 }
 
-fn truck() -> MapTruck {
+pub(super) fn truck() -> MapTruck {
     let driveline = Driveline::new((&[3.0, 2.0, 1.0], 3.0), (0.98, 0.97, 20.0), 0.5).unwrap();
     let body = Body {
         mass_kg: 40_000.0,

@@ -105,6 +105,13 @@ impl MapTruck {
         Ok(self)
     }
 
+    /// The same truck at another total mass [kg] (a different load), checked as in [`MapTruck::new`].
+    pub fn with_mass_kg(&self, mass_kg: f64) -> CoreResult<Self> {
+        let body = Body { mass_kg, ..self.body };
+        let truck = MapTruck::new(self.engine.clone(), self.driveline.clone(), body)?;
+        Ok(MapTruck { cda_curve: self.cda_curve.clone(), ..truck })
+    }
+
     /// The drag area Cd·A [m²] at `v_mps`.
     pub fn cda_m2(&self, v_mps: f64) -> f64 {
         self.cda_curve.as_ref().map_or(self.body.cda_m2, |c| c.at(v_mps))

@@ -18,7 +18,11 @@ pub(super) fn pair_euler(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64, v_max:
         let (pedal_lo, pedal_hi) = p.pedal_band(v_i, m.pedal.gain);
         if pedal >= pedal_lo && pedal <= pedal_hi {
             let clipped = pedal.clamp(0.0, 1.0);
-            return Some((Inputs { pedal: clipped, brake: 0.0 }, p.q_fuel * m.full_fuel_g * clipped + change));
+            let fuel = match m.map_fuel {
+                None => p.q_fuel * m.full_fuel_g * clipped,
+                Some(_) => p.q_fuel * m.euler_fuel_g(v_i, clipped, h),
+            };
+            return Some((Inputs { pedal: clipped, brake: 0.0 }, fuel + change));
         }
         if pedal > pedal_hi {
             return None;
@@ -81,6 +85,9 @@ pub(super) fn forward_row_euler(
         if pedal_on {
             let pedal = (demand - a_pedal) / g_pedal;
             if pedal >= pedal_lo && pedal <= pedal_hi {
+                if m.map_fuel.is_some() {
+                    return p.q_fuel * m.euler_fuel_g(v_i, pedal.clamp(0.0, 1.0), h) + change;
+                }
                 return fuel_per_pedal * pedal.clamp(0.0, 1.0) + change;
             }
             if pedal > pedal_hi {
@@ -96,7 +103,7 @@ pub(super) fn forward_row_euler(
         f64::INFINITY
     };
     #[cfg(target_arch = "x86_64")]
-    if pedal_on && std::arch::is_x86_feature_detected!("avx2") {
+    if pedal_on && m.map_fuel.is_none() && std::arch::is_x86_feature_detected!("avx2") {
         let row =
             PedalRow { v_i, h, grid, q_change, q_change_sq, fuel_per_pedal, pedal_lo, pedal_hi, a_pedal, g_pedal };
         // SAFETY: the CPU has AVX2 (checked just above).

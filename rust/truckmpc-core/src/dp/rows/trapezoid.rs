@@ -28,9 +28,15 @@ pub(super) fn pair_trapezoid(
         let pedal = stage::input_for(model, &m.pedal, &at_j, (v_i, v_j), h);
         let (pedal_lo, pedal_hi) = end.pedal_band;
         if pedal >= pedal_lo && pedal <= pedal_hi {
-            let fuel_per_pedal = m.full_fuel_g + stage::half_stage_fuel_g(end.vehicle, v_j, 1.0, end.gear, h);
             let clipped = pedal.clamp(0.0, 1.0);
-            return Some((Inputs { pedal: clipped, brake: 0.0 }, p.q_fuel * fuel_per_pedal * clipped + change));
+            let fuel = if m.map_fuel.is_some() {
+                let half = |v: f64| stage::half_stage_fuel_g(end.vehicle, v, clipped, end.gear, h);
+                p.q_fuel * (half(v_i) + half(v_j))
+            } else {
+                let fuel_per_pedal = m.full_fuel_g + stage::half_stage_fuel_g(end.vehicle, v_j, 1.0, end.gear, h);
+                p.q_fuel * fuel_per_pedal * clipped
+            };
+            return Some((Inputs { pedal: clipped, brake: 0.0 }, fuel + change));
         }
         if pedal > pedal_hi {
             return None;

@@ -1,0 +1,53 @@
+"""A VECTO truck in a run's record (``summary.json``): every component file with its SHA-256 and
+the truck's keys as set, so that ``--replay`` rebuilds the same truck or refuses a file that changed.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from dataclasses import asdict
+from pathlib import Path
+from typing import Any
+
+from truckmpc.errors import ConfigError
+from truckmpc.vecto.truck import VectoTruck, load_vecto_truck
+
+__all__ = ["replay_truck", "truck_record"]
+
+
+def truck_record(truck: VectoTruck) -> dict[str, Any]:
+    """The ``run.vehicle`` record of a run driving ``truck``: the job, each file it read with its
+    SHA-256, the keys as set (None: VECTO's value) and the masses they resolved to [kg]."""
+    job = truck.job
+    return {
+        "vecto_job": str(Path(job.path).resolve()),
+        "files": {str(Path(p).resolve()): _sha256(Path(p)) for p in job.files},
+        "keys": {k: v for k, v in asdict(truck.keys).items() if v is not None},
+        "mass_kg": truck.mass_kg,
+        "payload_kg": truck.payload_kg,
+        "trailer_mass_kg": truck.trailer_mass_kg,
+    }
+
+
+def replay_truck(record: Any, where: str) -> VectoTruck | None:
+    """The truck a ``run.vehicle`` record names (None for a run of the thesis's truck); every file
+    must still hash as recorded."""
+    if record is None:
+        return None
+    key = f"{where}: run.vehicle"
+    if not isinstance(record, dict) or not isinstance(record.get("files"), dict):
+        raise ConfigError(f"{key}: expected a record with 'vecto_job', 'files' and 'keys', got {record!r:.60}")
+    for name, recorded in record["files"].items():
+        path = Path(name)
+        got = _sha256(path) if path.is_file() else "a missing file"
+        if got != recorded:
+            shown = got if got == "a missing file" else got[:12] + "..."
+            raise ConfigError(f"{key}.files: expected {name} as it was run ({str(recorded)[:12]}...), got {shown}")
+    job, keys = record.get("vecto_job"), record.get("keys", {})
+    if not isinstance(job, str) or not isinstance(keys, dict):
+        raise ConfigError(f"{key}: expected 'vecto_job' a path and 'keys' a mapping, got {job!r}, {keys!r}")
+    return load_vecto_truck(Path(job), keys)
+
+
+def _sha256(path: Path) -> str:
+    return hashlib.sha256(path.read_bytes()).hexdigest()

@@ -1,0 +1,221 @@
+//! A map-based truck in the form the plant and the controllers drive it: acceleration and fuel rate
+//! over speed, pedal, brake, gear and slope, with the same units and conventions as the thesis's
+//! model ([`crate::vehicle`]).
+//!
+//! **The pedal.** At a given engine speed the pedal P ∈ [0, 1] sets the torque at the wheels
+//! between what the engine gives at fuel cut (its drag torque, less the auxiliaries, through the
+//! driveline) and at full load: W(P) = W_cut + P·(W_full − W_cut). The acceleration is then affine
+//! in the pedal at a fixed speed, as with the thesis's engine, so the controllers' pedal levels
+//! from end speeds carry over unchanged; the fuel rate is the map's at the engine torque that
+//! gives W(P), which is not affine in the pedal. Above the full-load curve's highest speed the
+//! engine gives no more than its drag (the governor cuts fuel).
+//!
+//! **Inertia.** The engine's inertia is counted in the truck's effective mass in each gear (as the
+//! thesis's model counts it), seen through the ratio without the driveline's losses.
+//!
+//! **Slope.** The road's grade Δh/ΔL is turned into the angle α = arctan(grade), as VECTO does.
+
+use super::{Curve, FuelGrid, MapTruck, G_MPS2, RPM_PER_RAD_S};
+
+/// Engine speed step of the resampled torque curves [rpm].
+const CURVE_STEP_RPM: f64 = 0.5;
+
+/// A curve over engine speed resampled every [`CURVE_STEP_RPM`]: one multiply and one lerp per
+/// look-up instead of a search. Outside its range it holds the end values, as [`Curve`] does.
+#[derive(Debug, Clone)]
+struct Sampled {
+    lo_rpm: f64,
+    values: Vec<f64>,
+}
+
+impl Sampled {
+    fn new(curve: &Curve, (lo_rpm, hi_rpm): (f64, f64)) -> Self {
+        let nodes = ((hi_rpm - lo_rpm) / CURVE_STEP_RPM).ceil() as usize + 2;
+        Sampled { lo_rpm, values: (0..nodes).map(|i| curve.at(lo_rpm + i as f64 * CURVE_STEP_RPM)).collect() }
+    }
+
+    #[inline]
+    fn at(&self, n_rpm: f64) -> f64 {
+        let last = (self.values.len() - 2) as f64;
+        let t = ((n_rpm - self.lo_rpm) / CURVE_STEP_RPM).clamp(0.0, last);
+        let i = t as usize;
+        let f = t - i as f64;
+        self.values[i] + f * (self.values[i + 1] - self.values[i])
+    }
+}
+
+/// The truck's equations of motion and fuel rate, from its component data.
+#[derive(Debug, Clone)]
+pub struct MapModel {
+    truck: MapTruck,
+    brake_torque_max_nm: f64,
+    traction_interruption_s: f64,
+    grid: FuelGrid,
+    /// Full-load and drag torque [Nm] over engine speed, resampled.
+    full_load: Sampled,
+    drag: Sampled,
+    /// Highest engine speed of the full-load curve [rpm].
+    top_rpm: f64,
+    /// r / (I_wheels + m r² + I_engine·ratio²) per gear [1/(kg m)], index 0 neutral (no engine).
+    c1: Vec<f64>,
+    /// Engine speed per road speed [rpm/(m/s)] per gear, index 0 unused (0).
+    rpm_per_mps: Vec<f64>,
+    /// m g r [Nm]: gravity's torque at the wheel per unit sin α.
+    weight_torque_nm: f64,
+    /// Fuel rate [g/s] with the engine idling in neutral and driving the auxiliaries.
+    idle_fuel_gps: f64,
+}
+
+impl MapModel {
+    /// The model of `truck`, whose service brakes give at most `brake_torque_max_nm` at the wheels
+    /// and whose gearbox interrupts traction for `traction_interruption_s` at each shift.
+    pub fn new(truck: MapTruck, brake_torque_max_nm: f64, traction_interruption_s: f64) -> Self {
+        let (engine, driveline, body) = (truck.engine(), truck.driveline(), truck.body());
+        let r = driveline.wheel_radius_m();
+        let base = body.wheels_inertia_kgm2 + body.mass_kg * r * r;
+        let mut c1 = vec![r / base];
+        let mut rpm_per_mps = vec![0.0];
+        for gear in 1..=driveline.gears() {
+            c1.push(r / (base + engine.inertia_kgm2() * driveline.ratio(gear).powi(2)));
+            rpm_per_mps.push(driveline.engine_speed_rpm(1.0, gear));
+        }
+        let (lo, hi) = engine.speed_range_rpm();
+        let (n_lo, n_hi) = (lo.min(engine.idle_rpm()), hi);
+        let t_lo = engine.drag_torque_nm(n_lo).min(engine.drag_torque_nm(n_hi)).min(0.0);
+        let t_hi = (0..=100).map(|k| engine.max_torque_nm(n_lo + (n_hi - n_lo) * k as f64 / 100.0)).fold(0.0, f64::max);
+        let grid = FuelGrid::new(engine.fuel_map(), (n_lo, n_hi), (t_lo, t_hi));
+        let idle = engine.idle_rpm();
+        let idle_torque = body.aux_power_w / (idle / RPM_PER_RAD_S);
+        let idle_fuel_gps = engine.fuel_rate_g_per_h(idle, idle_torque) / 3600.0;
+        let weight_torque_nm = body.mass_kg * G_MPS2 * r;
+        let (curves, speeds) = engine.curves();
+        MapModel {
+            full_load: Sampled::new(curves.0, speeds),
+            drag: Sampled::new(curves.1, speeds),
+            top_rpm: hi,
+            truck,
+            brake_torque_max_nm,
+            traction_interruption_s,
+            grid,
+            c1,
+            rpm_per_mps,
+            weight_torque_nm,
+            idle_fuel_gps,
+        }
+    }
+
+    /// The truck this model drives.
+    pub fn truck(&self) -> &MapTruck {
+        &self.truck
+    }
+
+    /// Brake torque at the wheels at full brake [Nm].
+    pub fn brake_torque_max_nm(&self) -> f64 {
+        self.brake_torque_max_nm
+    }
+
+    /// How long a gear shift interrupts traction [s].
+    pub fn traction_interruption_s(&self) -> f64 {
+        self.traction_interruption_s
+    }
+
+    /// r / effective inertia in `gear` (0 = neutral) [1/(kg m)]: acceleration per wheel torque.
+    #[inline]
+    pub fn c1(&self, gear: usize) -> f64 {
+        self.c1[gear]
+    }
+
+    /// Engine speed per road speed in forward `gear` [rpm/(m/s)].
+    #[inline]
+    pub fn rpm_per_mps(&self, gear: usize) -> f64 {
+        self.rpm_per_mps[gear]
+    }
+
+    /// Air drag torque at the wheel at `v_mps` [Nm]: ½ρ·CdA(v)·v²·r.
+    #[inline]
+    pub fn air_torque_nm(&self, v_mps: f64) -> f64 {
+        let body = self.truck.body();
+        0.5 * body.air_density_kg_m3
+            * self.truck.cda_m2(v_mps)
+            * v_mps
+            * v_mps
+            * self.truck.driveline().wheel_radius_m()
+    }
+
+    /// Gravity and rolling resistance at the wheel on grade `grade` (Δh/ΔL) [Nm]:
+    /// m·g·r·(sin α + c_r cos α), α = arctan(grade).
+    #[inline]
+    pub fn slope_torque_nm(&self, grade: f64) -> f64 {
+        let alpha = grade.atan();
+        self.weight_torque_nm * (alpha.sin() + self.truck.body().rolling_resistance * alpha.cos())
+    }
+
+    /// Torque of the auxiliaries at the engine [Nm] at `n_rpm`.
+    #[inline]
+    fn aux_torque_nm(&self, n_rpm: f64) -> f64 {
+        self.truck.body().aux_power_w / (n_rpm / RPM_PER_RAD_S)
+    }
+
+    /// Wheel torques [Nm] at fuel cut and at full load in forward `gear` at engine speed `n_rpm`:
+    /// the engine's drag and full-load torque less the auxiliaries', through the driveline.
+    #[inline]
+    pub fn wheel_torque_range_nm(&self, n_rpm: f64, gear: usize) -> (f64, f64) {
+        let driveline = self.truck.driveline();
+        let aux = self.aux_torque_nm(n_rpm);
+        let cut = driveline.wheel_torque_nm(self.drag.at(n_rpm) - aux, gear);
+        if n_rpm > self.top_rpm {
+            return (cut, cut);
+        }
+        (cut, driveline.wheel_torque_nm(self.full_load.at(n_rpm) - aux, gear).max(cut))
+    }
+
+    /// Acceleration [m/s²] at `v_mps` with pedal, brake and gear (0 = neutral), on a slope given
+    /// by its wheel torque [Nm].
+    #[inline]
+    pub fn accel_on(&self, v_mps: f64, pedal: f64, brake: f64, gear: usize, slope_torque_nm: f64) -> f64 {
+        let resist = self.brake_torque_max_nm * brake + self.air_torque_nm(v_mps) + slope_torque_nm;
+        if gear == 0 {
+            return -self.c1[0] * resist;
+        }
+        let (cut, full) = self.wheel_torque_range_nm(self.rpm_per_mps[gear] * v_mps, gear);
+        self.c1[gear] * (cut + pedal.max(0.0) * (full - cut) - resist)
+    }
+
+    /// Engine torque [Nm] at `v_mps` with `pedal` in forward `gear`: the one that gives the wheels
+    /// W(P), with the auxiliaries' share.
+    #[inline]
+    pub fn engine_torque_nm(&self, v_mps: f64, pedal: f64, gear: usize) -> f64 {
+        self.engine_torque_at(self.rpm_per_mps[gear] * v_mps, pedal, gear)
+    }
+
+    /// [`MapModel::engine_torque_nm`] at engine speed `n_rpm`.
+    #[inline]
+    fn engine_torque_at(&self, n_rpm: f64, pedal: f64, gear: usize) -> f64 {
+        let (cut, full) = self.wheel_torque_range_nm(n_rpm, gear);
+        let wheel = cut + pedal.max(0.0) * (full - cut);
+        self.truck.driveline().engine_torque_nm(wheel, gear) + self.aux_torque_nm(n_rpm)
+    }
+
+    /// Fuel rate [g/s]: idling in neutral; zero at fuel cut (pedal ≤ 0); else the map's at the
+    /// engine speed and torque.
+    #[inline]
+    pub fn fuel_rate_gps(&self, v_mps: f64, pedal: f64, gear: usize) -> f64 {
+        if gear == 0 {
+            return self.idle_fuel_gps;
+        }
+        if pedal <= 0.0 {
+            return 0.0;
+        }
+        let n = self.rpm_per_mps[gear] * v_mps;
+        let torque = self.engine_torque_at(n, pedal, gear);
+        if torque <= self.drag.at(n) {
+            return 0.0;
+        }
+        self.grid.at(n, torque) / 3600.0
+    }
+
+    /// Fuel rate [g/h] from the resampled map at `n_rpm` and `torque_nm` (no cut at the drag curve).
+    pub fn grid_fuel_g_per_h(&self, n_rpm: f64, torque_nm: f64) -> f64 {
+        self.grid.at(n_rpm, torque_nm)
+    }
+}

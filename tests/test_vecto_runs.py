@@ -1,0 +1,127 @@
+"""A VECTO truck driven in the closed loop: the fuel it burns against its own operating points (a
+truth computed on the exact triangulated map, not the resampled one the plant uses), a shift's
+traction interruption, the look-ahead controllers on its map, its keys, and a run's record of its
+component files."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from truckmpc.cli import app
+from truckmpc.config import load_run_config
+from truckmpc.roads import RoadProfile
+from truckmpc.sim import simulate
+from vecto_files import TRACTOR_JOB, needs_tractor, write_job
+
+runner = CliRunner()
+KMH_PER_MPS = 3.6
+
+
+def _road(grades: list[float], segment_m: float = 1000.0) -> RoadProfile:
+    distance = np.arange(len(grades) + 1) * segment_m
+    altitude = np.concatenate([[0.0], np.cumsum(np.asarray(grades) * segment_m)])
+    return RoadProfile(name="test", distance_m=distance, altitude_m=altitude)
+
+
+@pytest.fixture
+def job(tmp_path: Path) -> Path:
+    return write_job(tmp_path / "truck")
+
+
+def test_holding_v_ref_on_a_grade_burns_the_operating_points_fuel(job: Path) -> None:
+    config = load_run_config(job)
+    grade = 0.005
+    result = simulate(_road([grade] * 6), config, "pi")
+    summary = result.summary
+    v_mps = config.cruise.v_ref_kmh / KMH_PER_MPS
+    gear = int(result.trace["gear"][-1])
+    point = config.truck.core.operating_point(v_mps, 0.0, float(np.arctan(grade)), gear)
+    # The PI settles within a few hundred metres; compare the last 4 km, where it holds v_ref.
+    trace = result.trace
+    last = trace["distance_m"] >= trace["distance_m"][-1] - 4000.0
+    fuel_g = trace["fuel_g"][last][-1] - trace["fuel_g"][last][0]
+    time_s = trace["time_s"][last][-1] - trace["time_s"][last][0]
+    assert np.ptp(trace["speed_kmh"][last]) < 0.2
+    assert fuel_g / time_s * 3600.0 == pytest.approx(point["fuel_rate_g_per_h"], rel=2e-3)
+    assert not summary["stalled"]
+
+
+def test_a_shift_costs_the_gearboxs_traction_interruption(job: Path) -> None:
+    # Climbing from 85 km/h on 4 %: the truck slows until the PI shifts down; for the gearbox's
+    # interruption (1 s, the file's TracInt) it then rolls with no traction, losing speed on the
+    # grade that the same truck with instant shifts keeps: it needs longer for the climb.
+    road = _road([0.0, 0.04, 0.04, 0.04])
+    interrupted = simulate(road, load_run_config(job), "pi")
+    instant = simulate(road, load_run_config(job, overrides=["traction_interruption_s=0"]), "pi")
+    assert interrupted.summary["gear_shifts"] >= 1 and instant.summary["gear_shifts"] >= 1
+    assert interrupted.summary["time_s"] > instant.summary["time_s"]
+    # The second without traction on 4 % costs at least g·0.04·1 s ≈ 1.4 km/h of speed.
+    assert instant.trace["speed_kmh"].min() - interrupted.trace["speed_kmh"].min() > 1.0
+
+
+def test_the_look_ahead_controllers_drive_the_map_truck_and_save_fuel_on_hills(job: Path) -> None:
+    road = _road([0.0, 0.03, 0.02, -0.03, -0.02, 0.0, 0.025, -0.025, 0.0, 0.0], 800.0)
+    config = load_run_config(job)
+    runs = {name: simulate(road, config, name).summary for name in ("pi", "pcc", "mpc")}
+    for name, s in runs.items():
+        assert not s["stalled"] and s["message"] is None, name
+    assert runs["mpc"]["fuel_kg"] < runs["pi"]["fuel_kg"]
+    assert runs["pcc"]["fuel_kg"] < runs["pi"]["fuel_kg"]
+
+
+def test_truck_keys_change_the_truck_and_thesis_keys_are_refused(job: Path) -> None:
+    light = load_run_config(job, overrides=["payload_kg=2000"])
+    heavy = load_run_config(job)
+    assert heavy.truck is not None and light.truck is not None
+    assert heavy.truck.mass_kg - light.truck.mass_kg == pytest.approx(heavy.truck.payload_kg - 2000.0)
+    assert light.settings.get("mass_kg") == pytest.approx(light.truck.mass_kg)
+    result = runner.invoke(app, ["simulate", "--vehicle", str(job), "--set", "mass_kg=30000", "--out", "x"])
+    assert result.exit_code == 2
+    assert "mass_kg" in result.output and "payload_kg" in result.output and len(result.output.splitlines()) == 1
+
+
+@needs_tractor
+def test_beta_of_vectos_tractor_is_the_exact_maps_marginal_price_of_time() -> None:
+    # β = v²·F'(v) at v_ref, F the fuel per metre holding v on a flat road, F' over ±2 km/h (the
+    # map is linear on triangles, so a local F' jumps at their edges). Here F comes from the exact
+    # triangulated map through the truck's operating points, not from the resampled map the core's
+    # derivation uses; and with that β, holding v_ref costs within 0.1 % of the cheapest steady
+    # speed in the band (the cost is that flat: 0.2 % from end to end).
+    config = load_run_config(TRACTOR_JOB)
+    settings, truck = config.settings, config.truck.core
+    beta = settings.beta_g_per_s_resolved
+    assert beta is not None and settings.kinetic_fuel_g_per_half_v2 > 0.0
+    v_ref = config.cruise.v_ref_kmh
+
+    def fuel_per_m(v_kmh: float) -> float:
+        v_mps = v_kmh / KMH_PER_MPS
+        return truck.operating_point(v_mps, 0.0, 0.0, truck.gears)["fuel_rate_g_per_h"] / 3600.0 / v_mps
+
+    exact = (v_ref / KMH_PER_MPS) ** 2 * (fuel_per_m(v_ref + 2.0) - fuel_per_m(v_ref - 2.0)) / (4.0 / KMH_PER_MPS)
+    assert beta == pytest.approx(exact, rel=0.01)
+    costs = {v: fuel_per_m(v) + beta * KMH_PER_MPS / v for v in np.arange(80.0, 90.01, 0.1)}
+    assert costs[min(costs, key=lambda v: abs(v - v_ref))] <= min(costs.values()) * 1.001
+
+
+def test_the_record_names_every_component_file_and_replay_refuses_a_changed_one(job: Path, tmp_path: Path) -> None:
+    out = tmp_path / "run"
+    result = runner.invoke(app, ["simulate", "--vehicle", str(job), "--controller", "pi", "--out", str(out)])
+    assert result.exit_code == 0, result.output
+    doc = json.loads((out / "summary.json").read_text())
+    files = doc["run"]["vehicle"]["files"]
+    assert {Path(p).name for p in files} == {"t.vecto", "v.vveh", "e.veng", "e.vfld", "e.vmap", "g.vgbx"}
+    again = runner.invoke(app, ["simulate", "--replay", str(out / "summary.json"), "--out", str(tmp_path / "b")])
+    assert again.exit_code == 0, again.output
+    replayed = json.loads((tmp_path / "b" / "summary.json").read_text())
+    assert replayed["pi"]["fuel_kg"] == doc["pi"]["fuel_kg"]
+    vmap = job.parent / "e.vmap"
+    vmap.write_text(vmap.read_text().replace("600,0,", "600,0.0,", 1))
+    refused = runner.invoke(app, ["simulate", "--replay", str(out / "summary.json"), "--out", str(tmp_path / "c")])
+    assert refused.exit_code == 2
+    assert "e.vmap" in refused.output and "run.vehicle.files" in refused.output
+    assert len(refused.output.strip().splitlines()) == 1
