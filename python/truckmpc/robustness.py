@@ -28,6 +28,7 @@ import numpy as np
 from truckmpc.compare import compare, delta_pct
 from truckmpc.config import RunConfig, config_from_values
 from truckmpc.equal_time import equal_time_baselines
+from truckmpc.errors import ConfigError
 from truckmpc.gauss_markov import gauss_markov
 from truckmpc.roads import RoadProfile
 from truckmpc.roads.profile import altitude_from_grade
@@ -138,6 +139,11 @@ def study(
     road: RoadProfile, config: RunConfig, controller: str = "mpc", seeds: Sequence[int] = (1, 2)
 ) -> list[dict[str, Any]]:
     """Every case of :func:`cases` for `road`, with the shares of the saving kept."""
+    if config.truck is not None:
+        raise ConfigError(
+            f"{config.truck.job.path}: expected the thesis's truck (--vehicle a YAML file): the robustness study "
+            "varies the truck's mass_kg, which a VECTO job sets from its load (payload_kg)"
+        )
     rows = [run_case(road, config, case, controller) for case in cases(config.settings.values()["mass_kg"], seeds)]
     return kept_shares(rows)
 

@@ -13,7 +13,7 @@ from typing import Any
 import yaml
 
 from truckmpc import _core
-from truckmpc.config import Origin, RunConfig, load_run_config
+from truckmpc.config import VEHICLE_KEYS, Origin, RunConfig, load_run_config
 from truckmpc.config.yamlfile import load_value
 from truckmpc.errors import ConfigError
 from truckmpc.roads import RoadProfile, load_road
@@ -90,6 +90,7 @@ class Combinations:
     that its error names where each value came from exactly as ``load_run_config`` does."""
 
     def __init__(self, base: Base, base_config: RunConfig, axes: Sequence[Axis]) -> None:
+        _check_truck_axes(base_config, axes)
         self._base, self._axes = base, axes
         self._values = base_config.settings.values()
         self._truck = base_config.truck
@@ -130,3 +131,15 @@ def _combination_config(base: Base, axes: Sequence[Axis], values: tuple[Any, ...
             combo = " ".join(f"{axis.key}={cell(v)}" for axis, v in zip(axes, values, strict=True))
             message = f"--grid combination {combo}: {message}"
         raise SweepError(message) from None
+
+
+def _check_truck_axes(config: RunConfig, axes: Sequence[Axis]) -> None:
+    """A VECTO truck replaces the thesis's vehicle keys: an axis over one of them would change nothing."""
+    if config.truck is None:
+        return
+    replaced = [a.key for a in axes if a.key in VEHICLE_KEYS and a.key != "brake_torque_max_nm"]
+    if replaced:
+        raise SweepError(
+            f"--grid {replaced[0]}: expected a key a VECTO truck uses, got a key of the thesis's truck, which "
+            f"{config.truck.job.path.name} replaces (vary its load with one job per load instead)"
+        )
