@@ -140,3 +140,27 @@ def test_studies_that_vary_the_thesis_trucks_keys_refuse_a_vecto_truck(job: Path
     result = runner.invoke(app, [*args, "--vehicle", str(job), "--road", str(road), "--out", str(tmp_path / "o")])
     assert result.exit_code == 2, result.output
     assert "VECTO" in result.output and len(result.output.strip().splitlines()) == 1
+
+
+def test_the_plotted_operating_points_are_the_trucks_own(job: Path, tmp_path: Path) -> None:
+    from truckmpc.plot.vehicle import operating_points
+
+    config = load_run_config(job)
+    grade = 0.01
+    result = simulate(_road([grade] * 5), config, "pi")
+    speed_rpm, torque_nm = operating_points(config.core_vehicle, result.trace)
+    gear = int(result.trace["gear"][-1])
+    steady = config.truck.core.operating_point(
+        config.cruise.v_ref_kmh / KMH_PER_MPS, 0.0, float(np.arctan(grade)), gear
+    )
+    assert speed_rpm[-1] == pytest.approx(steady["engine_speed_rpm"], rel=2e-3)
+    assert torque_nm[-1] == pytest.approx(steady["engine_torque_nm"], rel=5e-3)
+    out = tmp_path / "run"
+    assert (
+        runner.invoke(app, ["simulate", "--vehicle", str(job), "--controller", "pi,mpc", "--out", str(out)]).exit_code
+        == 0
+    )
+    png = tmp_path / "map.png"
+    drawn = runner.invoke(app, ["vehicle", "plot", str(job), "--run", str(out), "-o", str(png)])
+    assert drawn.exit_code == 0, drawn.output
+    assert png.stat().st_size > 10_000

@@ -10,6 +10,7 @@ from typing import Annotated, Any
 import typer
 
 from truckmpc.cli.options import SetOpt, key_values
+from truckmpc.config import load_run_config
 from truckmpc.vecto import load_vecto_truck
 from truckmpc.vecto.info import truck_info
 
@@ -44,12 +45,24 @@ def plot_cmd(
         Path | None, typer.Option("-o", "--out", help="A .png or .svg file (default: <job name>-fuel-map.png here).")
     ] = None,
     svg: Annotated[bool, typer.Option("--svg", help="Also write an SVG beside the PNG.")] = False,
+    run: Annotated[
+        Path | None,
+        typer.Option(
+            "--run", metavar="DIR", help="A simulate output directory of this truck: draw where each controller ran it."
+        ),
+    ] = None,
+    set_: SetOpt = None,
 ) -> None:
     """Draw the engine's fuel map (specific consumption [g/kWh] over speed and torque) with its
-    full-load and drag curves. Needs matplotlib."""
-    from truckmpc.plot.vehicle import plot_fuel_map  # lazy: matplotlib, which other commands do not need
+    full-load and drag curves, and with --run the operating points of each controller's run. Needs
+    matplotlib."""
+    from truckmpc.plot.vehicle import plot_fuel_map, run_operating_points  # lazy: matplotlib
 
-    written = plot_fuel_map(load_vecto_truck(job), out or Path(f"{job.stem}-fuel-map.png"), svg=svg)
+    config = load_run_config(job, overrides=tuple(set_ or ()))
+    truck = config.truck
+    assert truck is not None
+    points = None if run is None else run_operating_points(run, config.core_vehicle)
+    written = plot_fuel_map(truck, out or Path(f"{job.stem}-fuel-map.png"), svg=svg, runs=points)
     typer.echo("wrote " + ", ".join(str(p) for p in written))
 
 

@@ -42,7 +42,7 @@ def _read_json(path: Path) -> dict[str, Any]:
     return doc
 
 
-def _read_trace(path: Path) -> dict[str, np.ndarray]:
+def read_trace(path: Path) -> dict[str, np.ndarray]:
     """A ``trace-<controller>.csv`` as column -> float array."""
     try:
         with path.open(newline="", encoding="utf-8") as handle:
@@ -140,7 +140,7 @@ def _run_traces(directory: Path) -> dict[str, dict[str, np.ndarray]]:
     known = [n for n in CONTROLLER_STYLE if (directory / f"trace-{n}.csv").is_file()]
     others = sorted(p.name[len("trace-") : -len(".csv")] for p in directory.glob("trace-*.csv"))
     for name in known + [n for n in others if n not in known]:
-        traces[name] = _read_trace(directory / f"trace-{name}.csv")
+        traces[name] = read_trace(directory / f"trace-{name}.csv")
     if not traces:
         raise PlotError(f"{directory}: summary.json but no trace-<controller>.csv to plot")
     return traces
