@@ -22,8 +22,8 @@ Commands::
                          [--smooth-m L] [--step-m D] [--grade-limit-pct G]
     truckmpc road info FILE
     truckmpc road plot FILE [-o OUT.png] [--svg]
-    truckmpc vehicle info JOB.vecto [--set key=value ...] [--json]
-    truckmpc vehicle plot JOB.vecto [-o OUT.png] [--svg]
+    truckmpc vehicle info JOB.vecto|DECL.xml [--set key=value ...] [--json]
+    truckmpc vehicle plot JOB.vecto|DECL.xml [-o OUT.png] [--svg] [--run DIR]
     truckmpc config keys [--section SECTION] [--write FILE]
     truckmpc config defaults [--dir DIR]
     truckmpc bench [--json] [--road FILE] [--quick] [--set key=value ...]

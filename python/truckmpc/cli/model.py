@@ -49,12 +49,12 @@ def stationary_cmd(
 ) -> None:
     """The engine's speed, torque and fuel rate holding a speed on a grade; for the thesis's truck also
     the pedal or brake level, its feasibility and the eigenvalue λ = ∂(dv/ds)/∂v [1/m]. --vehicle may
-    be a VECTO job (.vecto)."""
+    be a VECTO job (.vecto) or declaration XML (.xml)."""
     if not (speed_kmh > 0 and math.isfinite(speed_kmh)):
         raise typer.BadParameter(f"expected a speed > 0 km/h, got {speed_kmh:g}", param_hint="'--speed-kmh'")
     if not math.isfinite(slope_pct):
         raise typer.BadParameter(f"expected a finite grade, got {slope_pct:g}", param_hint="'--slope-pct'")
-    if vehicle is not None and vehicle.suffix.lower() == ".vecto":
+    if vehicle is not None and vehicle.suffix.lower() in (".vecto", ".xml"):
         _map_truck_point(vehicle, speed_kmh, slope_pct, gear, config, set_, as_json)
         return
     run_config = run_config_from(vehicle, config, set_)

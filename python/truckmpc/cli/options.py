@@ -35,7 +35,12 @@ __all__ = [
 ]
 
 VehicleOpt = Annotated[
-    Path | None, typer.Option("--vehicle", metavar="FILE", help="Vehicle YAML file (default: packaged truck-40t.yaml).")
+    Path | None,
+    typer.Option(
+        "--vehicle",
+        metavar="FILE",
+        help="Vehicle: a YAML file (default: packaged truck-40t.yaml), a VECTO job (.vecto) or declaration .xml.",
+    ),
 ]
 ConfigOpt = Annotated[
     list[Path] | None, typer.Option("--config", metavar="FILE", help="Controller/simulation YAML overlay; repeatable.")

@@ -17,14 +17,19 @@ from truckmpc.vecto.info import truck_info
 __all__ = ["vehicle_app"]
 
 vehicle_app = typer.Typer(
-    help="Read a truck's component files (VECTO .vecto jobs).", no_args_is_help=True, rich_markup_mode=None
+    help="Read a truck's component files (VECTO .vecto jobs or declaration .xml files).",
+    no_args_is_help=True,
+    rich_markup_mode=None,
 )
 
 
 @vehicle_app.command("info")
 def info_cmd(
     job: Annotated[
-        Path, typer.Argument(metavar="FILE", help="A VECTO job (.vecto) naming its vehicle, engine and gearbox files.")
+        Path,
+        typer.Argument(
+            metavar="FILE", help="A VECTO job (.vecto) naming its component files, or a VECTO declaration XML (.xml)."
+        ),
     ],
     set_: SetOpt = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of text.")] = False,
@@ -40,7 +45,7 @@ def info_cmd(
 
 @vehicle_app.command("plot")
 def plot_cmd(
-    job: Annotated[Path, typer.Argument(metavar="FILE", help="A VECTO job (.vecto).")],
+    job: Annotated[Path, typer.Argument(metavar="FILE", help="A VECTO job (.vecto) or declaration XML (.xml).")],
     out: Annotated[
         Path | None, typer.Option("-o", "--out", help="A .png or .svg file (default: <job name>-fuel-map.png here).")
     ] = None,

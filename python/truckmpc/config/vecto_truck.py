@@ -30,8 +30,8 @@ _STILL_APPLIES = ("brake_torque_max_nm",)
 
 
 def is_vecto_job(path: object) -> bool:
-    """Whether a vehicle path names a VECTO job (``.vecto``)."""
-    return str(path).lower().endswith(".vecto")
+    """Whether a vehicle path names a VECTO truck: a job (``.vecto``) or a declaration XML."""
+    return str(path).lower().endswith((".vecto", ".xml"))
 
 
 def vecto_truck(path: Path, overrides: Sequence[str]) -> tuple[VectoTruck, tuple[str, ...]]:

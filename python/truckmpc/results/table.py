@@ -108,6 +108,6 @@ def _setup(config: RunConfig) -> str:
     truck = (
         f"{config.vehicle.mass_kg:.0f} kg"
         if config.truck is None
-        else f"{config.truck.mass_kg:.0f} kg (VECTO job {config.truck.job.path.name})"
+        else f"{config.truck.mass_kg:.0f} kg (VECTO {config.truck.job.path.name})"
     )
     return f"; truck {truck}; v_ref {cruise.v_ref_kmh:g} km/h, band {v_min:g}-{v_max:g} km/h"

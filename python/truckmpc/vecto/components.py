@@ -13,7 +13,7 @@ from typing import Any
 from truckmpc.errors import VehicleError
 from truckmpc.vecto.files import json_body, number, numbers_table, text
 
-__all__ = ["Axle", "EngineData", "GearboxData", "VectoJob", "VehicleData", "read_job"]
+__all__ = ["Axle", "EngineData", "GearboxData", "LossPoints", "VectoJob", "VehicleData", "read_job"]
 
 
 @dataclass(frozen=True)
@@ -32,9 +32,14 @@ class EngineData:
     files: tuple[Path, ...]
 
 
+LossPoints = tuple[tuple[float, float, float], ...]
+"""A transmission loss map: (input speed [rpm], input torque [Nm], torque loss [Nm]) points."""
+
+
 @dataclass(frozen=True)
 class GearboxData:
-    """A gearbox (``.vgbx``): its ratios, the axle ratio (VECTO's first entry) and its type."""
+    """A gearbox (``.vgbx``): its ratios, the axle ratio (VECTO's first entry), its type, and the
+    loss maps of its gears and of the axle where the files give them."""
 
     path: Path
     model: str
@@ -42,6 +47,13 @@ class GearboxData:
     axle_ratio: float
     gear_ratios: tuple[float, ...]
     traction_interruption_s: float
+    gear_loss_maps: tuple[LossPoints | None, ...] = ()
+    """One per gear, first gear first; None where no loss map was given (or its file is missing)."""
+    axle_loss_map: LossPoints | None = None
+    missing_loss_maps: tuple[str, ...] = ()
+    """Loss map files the gearbox names that are not beside it."""
+    files: tuple[Path, ...] = ()
+    """The loss map files read."""
 
 
 @dataclass(frozen=True)
@@ -84,7 +96,15 @@ class VectoJob:
     @property
     def files(self) -> tuple[Path, ...]:
         """Every file the job was read from, the job first."""
-        return (self.path, self.vehicle.path, self.engine.path, *self.engine.files, self.gearbox.path)
+        paths = (
+            self.path,
+            self.vehicle.path,
+            self.engine.path,
+            *self.engine.files,
+            self.gearbox.path,
+            *self.gearbox.files,
+        )
+        return tuple(dict.fromkeys(paths))
 
 
 def read_job(path: Path) -> VectoJob:
@@ -183,6 +203,19 @@ def read_gearbox(path: Path) -> GearboxData:
             raise VehicleError(
                 f"{path}: Gears[{i}].Ratio: expected a ratio below gear {i - 1}'s {ratios[i - 1]:g}, got {r:g}"
             )
+    maps: list[LossPoints | None] = []
+    files: list[Path] = []
+    missing: list[str] = []
+    for gear in gears:
+        name = str(gear.get("LossMap") or "").strip()
+        file = path.parent / name
+        if name and file.is_file():
+            maps.append(loss_map(file))
+            files.append(file)
+        else:
+            maps.append(None)
+            if name:
+                missing.append(name)
     return GearboxData(
         path=path,
         model=str(body.get("ModelName", "")),
@@ -190,7 +223,30 @@ def read_gearbox(path: Path) -> GearboxData:
         axle_ratio=ratios[0],
         gear_ratios=tuple(ratios[1:]),
         traction_interruption_s=number(body, "TracInt", path, minimum=0.0) if "TracInt" in body else 0.0,
+        gear_loss_maps=tuple(maps[1:]),
+        axle_loss_map=maps[0],
+        missing_loss_maps=tuple(dict.fromkeys(missing)),
+        files=tuple(dict.fromkeys(files)),
     )
+
+
+def loss_map(path: Path) -> LossPoints:
+    """Read a ``.vtlm`` transmission loss map: (input speed [rpm], input torque [Nm], torque loss
+    [Nm]) rows, each (speed, torque) once, losses >= 0."""
+    rows = numbers_table(path, 3, "a loss map (input speed, input torque, torque loss)")
+    seen: dict[tuple[float, float], int] = {}
+    for line, (n, torque, loss) in rows:
+        if loss < 0:
+            raise VehicleError(f"{path}:{line}: expected a torque loss >= 0 [Nm], got {loss:g}")
+        if n < 0:
+            raise VehicleError(f"{path}:{line}: expected an input speed >= 0 [rpm], got {n:g}")
+        if (n, torque) in seen:
+            raise VehicleError(
+                f"{path}:{line}: expected each (speed, torque) once, "
+                f"got {n:g} rpm, {torque:g} Nm again (line {seen[(n, torque)]})"
+            )
+        seen[(n, torque)] = line
+    return tuple((r[0], r[1], r[2]) for _, r in rows)
 
 
 def read_vehicle(path: Path) -> VehicleData:

@@ -7,7 +7,7 @@ import hashlib
 from typing import Any
 
 from truckmpc.units import KMH_PER_MPS
-from truckmpc.vecto.truck import DRIVELINE_LOSS_NOTE, VectoTruck
+from truckmpc.vecto.truck import VectoTruck, driveline_losses
 
 __all__ = ["truck_info"]
 
@@ -44,5 +44,5 @@ def truck_info(truck: VectoTruck) -> dict[str, Any]:
         "fuel_map_torque_range_nm": list(core.fuel_map_torque_range_nm),
         "fuel_map_covers_full_load_curve": map_speeds[0] <= curve_speeds[0] and map_speeds[1] >= curve_speeds[1],
         "traction_interruption_s": job.gearbox.traction_interruption_s,
-        "driveline_losses": DRIVELINE_LOSS_NOTE,
+        "driveline_losses": driveline_losses(truck),
     }

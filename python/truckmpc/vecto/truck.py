@@ -15,13 +15,21 @@ from truckmpc import _core
 from truckmpc.errors import VehicleError
 from truckmpc.vecto import declaration as decl
 from truckmpc.vecto.components import VectoJob, read_job
+from truckmpc.vecto.xml_job import read_xml_job
 
-__all__ = ["DRIVELINE_LOSS_NOTE", "TruckKeys", "VectoTruck", "load_vecto_truck", "pi_shift_speeds_rpm"]
+__all__ = [
+    "DRIVELINE_LOSS_NOTE",
+    "TruckKeys",
+    "VectoTruck",
+    "driveline_losses",
+    "load_vecto_truck",
+    "pi_shift_speeds_rpm",
+]
 
 DRIVELINE_LOSS_NOTE = (
-    "gearbox and axle losses: VECTO's loss maps are not read yet; the defaults (gear_efficiency 0.9546, "
-    "loss_torque_nm 107) are a loss affine in torque fitted on VECTO's generic tractor's full-load climb "
-    "in gear 11, used in every gear"
+    "without loss maps, the gearbox and axle lose a torque affine in the torque: the defaults "
+    "(gear_efficiency 0.9546, loss_torque_nm 107, axle_efficiency 1) are fitted on VECTO's generic "
+    "tractor's full-load climb in gear 11 and used in every gear"
 )
 _MIN_GROSS_MASS_T = 16.0  # group 5 is a 4x2 tractor above 16 t
 _RANGES = {  # key: (lowest, highest, lowest allowed itself, what)
@@ -55,6 +63,8 @@ class TruckKeys:
     axle_efficiency: float = 1.0
     loss_torque_nm: float = 102.33 / (1.0 - 0.04541)
     """Driveline drag torque at the gearbox input [Nm] (see :data:`DRIVELINE_LOSS_NOTE`)."""
+    use_loss_maps: bool = True
+    """Use the job's loss maps where it gives them (false: the affine losses above everywhere)."""
     traction_interruption_s: float | None = None
     """How long a gear shift interrupts traction [s]; default: the gearbox file's ``TracInt``."""
 
@@ -67,6 +77,12 @@ class TruckKeys:
                 raise VehicleError(f"{where}: {key}: expected one of {', '.join(known)}, got an unknown key")
             if key in ("mission", "cross_wind"):
                 out[key] = str(value)
+                continue
+            if key == "use_loss_maps":
+                flag = {"true": True, "false": False}.get(str(value).strip().lower())
+                if flag is None:
+                    raise VehicleError(f"{where}: {key}: expected true or false, got {value!r}")
+                out[key] = flag
                 continue
             lo, hi, closed, what = _RANGES[key]
             try:
@@ -104,7 +120,7 @@ class VectoTruck:
 def load_vecto_truck(path: Path, values: dict[str, Any] | None = None) -> VectoTruck:
     """Read a ``.vecto`` job and build its truck with declaration mode's additions (``values``
     override :class:`TruckKeys`)."""
-    job = read_job(path)
+    job = read_xml_job(path) if path.suffix.lower() == ".xml" else read_job(path)
     keys = TruckKeys().with_values(values or {}, str(path))
     segment = _segment(job, keys)
     vehicle = job.vehicle
@@ -137,9 +153,37 @@ def load_vecto_truck(path: Path, values: dict[str, Any] | None = None) -> VectoT
         "traction_interruption_s": job.gearbox.traction_interruption_s
         if keys.traction_interruption_s is None
         else keys.traction_interruption_s,
+        **_loss_maps(job, keys),
     }
     core = _core_truck(job, driveline, body)
     return VectoTruck(job, segment, mass, payload, trailer, radius, rrc, tuple(curve), aux, keys, core)
+
+
+def _loss_maps(job: VectoJob, keys: TruckKeys) -> dict[str, Any]:
+    """VECTO's loss maps where the job gives one for every gear (gears) and for the axle, unless
+    ``use_loss_maps`` is off; the affine losses of :class:`TruckKeys` stand in for the others."""
+    gearbox = job.gearbox
+    if not keys.use_loss_maps:
+        return {}
+    gears = gearbox.gear_loss_maps
+    out: dict[str, Any] = {}
+    if gears and all(m is not None for m in gears):
+        out["gear_loss_maps"] = [list(m) for m in gears if m is not None]
+    if gearbox.axle_loss_map is not None:
+        out["axle_loss_map"] = list(gearbox.axle_loss_map)
+    return out
+
+
+def driveline_losses(truck: VectoTruck) -> str:
+    """How the truck's driveline losses are modelled, in a sentence."""
+    gears, axle = truck.core.has_loss_maps
+    missing = truck.job.gearbox.missing_loss_maps
+    named = f"; loss maps named but not found: {', '.join(missing)}" if missing else ""
+    if gears and axle:
+        return "VECTO's loss maps of every gear and of the axle" + named
+    parts = ["the gears' loss maps" if gears else "", "the axle's loss map" if axle else ""]
+    used = " and ".join(p for p in parts if p)
+    return (f"{used}; otherwise: " if used else "") + DRIVELINE_LOSS_NOTE + named
 
 
 def _segment(job: VectoJob, keys: TruckKeys) -> decl.Segment:
@@ -183,7 +227,8 @@ def _wheels(job: VectoJob, segment: decl.Segment, mass_kg: float) -> tuple[float
 def _core_truck(job: VectoJob, driveline: dict[str, Any], body: dict[str, Any]) -> _core.MapTruck:
     """The core's truck; its checks' errors name the file the offending data came from."""
     engine = job.engine
-    files = {"fuel_map": engine.files[1], "full_load_curve": engine.files[0], "idle_speed_rpm": engine.path}
+    fld, fmap = engine.files if len(engine.files) == 2 else (engine.path, engine.path)
+    files = {"fuel_map": fmap, "full_load_curve": fld, "idle_speed_rpm": engine.path, "axle_loss_map": job.gearbox.path}
     files |= {"engine_inertia_kgm2": engine.path, "gear_ratios": job.gearbox.path, "axle_ratio": job.gearbox.path}
     try:
         return _core.MapTruck(
@@ -197,7 +242,8 @@ def _core_truck(job: VectoJob, driveline: dict[str, Any], body: dict[str, Any]) 
             body,
         )
     except _core.ParamError as e:
-        raise VehicleError(f"{files.get(e.key, job.path)}: {e}") from None
+        where = job.gearbox.path if e.key.startswith("gear_loss_maps") else files.get(e.key, job.path)
+        raise VehicleError(f"{where}: {e}") from None
 
 
 # The PI's shift speeds for a VECTO truck, as shares of the engine's rated speed: the thesis's truck

@@ -14,7 +14,10 @@ use crate::errors::{bad_argument, to_py};
 ///         torque [Nm], drag torque [Nm]) and `fuel_map` (rows of speed [rpm], torque [Nm], fuel [g/h]).
 ///     driveline: `gear_ratios` (first gear first), `axle_ratio`, `gear_efficiency`,
 ///         `axle_efficiency`, `loss_torque_nm` (drag at the gearbox input), `wheel_radius_m`, and
-///         optionally `traction_interruption_s` (how long a gear shift interrupts traction; 0).
+///         optionally `traction_interruption_s` (how long a gear shift interrupts traction; 0),
+///         `gear_loss_maps` (one list of (input speed [rpm], input torque [Nm], torque loss [Nm])
+///         rows per gear, replacing `gear_efficiency` and `loss_torque_nm`) and `axle_loss_map`
+///         (likewise for the axle, replacing `axle_efficiency`).
 ///     body: `mass_kg`, `wheels_inertia_kgm2`, `cda_m2`, `air_density_kg_m3`, `rolling_resistance`,
 ///         `aux_power_w`, and optionally `cda_curve` (rows of speed [m/s], Cd·A [m²]) replacing
 ///         `cda_m2` by a drag area that depends on speed.
@@ -30,6 +33,14 @@ fn item<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> Py
     value.extract::<T>().map_err(|_| {
         bad_argument(key, "a number (or rows of numbers)", value.repr().map_or_else(|_| "?".into(), |r| r.to_string()))
     })
+}
+
+/// The value of an optional key: None when absent or None.
+fn optional<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<Option<T>> {
+    match d.get_item(key)? {
+        Some(value) if !value.is_none() => item(d, key).map(Some),
+        _ => Ok(None),
+    }
 }
 
 #[pymethods]
@@ -53,6 +64,8 @@ impl PyMapTruck {
             ));
         }
         let ratios: Vec<f64> = item(driveline, "gear_ratios")?;
+        let gear_maps: Option<Vec<Vec<(f64, f64, f64)>>> = optional(driveline, "gear_loss_maps")?;
+        let axle_map: Option<Vec<(f64, f64, f64)>> = optional(driveline, "axle_loss_map")?;
         let driveline = Driveline::new(
             (&ratios, item(driveline, "axle_ratio")?),
             (
@@ -62,6 +75,8 @@ impl PyMapTruck {
             ),
             item(driveline, "wheel_radius_m")?,
         )
+        .map_err(to_py)?
+        .with_loss_maps(gear_maps.as_deref(), axle_map.as_deref())
         .map_err(to_py)?;
         let body = Body {
             mass_kg: item(body, "mass_kg")?,
@@ -120,7 +135,13 @@ impl PyMapTruck {
         self.inner.cda_m2(v_mps)
     }
 
-    /// Driveline efficiency, gearbox times axle.
+    /// Whether VECTO's loss maps give the losses of the gears and of the axle: (gears, axle).
+    #[getter]
+    fn has_loss_maps(&self) -> (bool, bool) {
+        self.inner.driveline().has_loss_maps()
+    }
+
+    /// Driveline efficiency without loss maps, gearbox times axle.
     #[getter]
     fn efficiency(&self) -> f64 {
         self.inner.driveline().efficiency()

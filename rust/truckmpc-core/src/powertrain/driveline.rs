@@ -1,13 +1,18 @@
-//! From the engine to the road: gear and axle ratios with their efficiencies, and the tyre's
-//! dynamic radius.
+//! From the engine to the road: gear and axle ratios with their losses, and the tyre's dynamic
+//! radius.
+//!
+//! Each stage (the gearbox in a gear, then the axle) loses torque at its input. Where VECTO's loss
+//! map of the stage is given it says how much ([`LossMap`]); otherwise the loss is affine in the
+//! torque passed on: a drag torque (churning, bearings; the gearbox's only) plus a share of the
+//! torque (tooth friction), taken from the engine's side when it drives and from the wheels' side
+//! when they drive.
 
-use super::RPM_PER_RAD_S;
+use super::loss_map::LossPoints;
+use super::{LossMap, RPM_PER_RAD_S};
 use crate::{CoreError, CoreResult};
 
-/// Gearbox, axle and wheels. Gears are numbered 1..=n. The losses, as torque at the gearbox's input,
-/// are affine in the torque passed on: a drag torque (churning, bearings) plus a share of the
-/// torque (tooth friction), the form VECTO's loss maps take at a given speed.
-#[derive(Debug, Clone, PartialEq)]
+/// Gearbox, axle and wheels. Gears are numbered 1..=n.
+#[derive(Debug, Clone)]
 pub struct Driveline {
     gear_ratios: Vec<f64>,
     axle_ratio: f64,
@@ -15,6 +20,10 @@ pub struct Driveline {
     axle_efficiency: f64,
     loss_torque_nm: f64,
     wheel_radius_m: f64,
+    /// VECTO's loss map of each gear (all or none), replacing the gear efficiency and drag torque.
+    gear_maps: Option<Vec<LossMap>>,
+    /// VECTO's loss map of the axle, replacing the axle efficiency.
+    axle_map: Option<LossMap>,
 }
 
 impl Driveline {
@@ -52,7 +61,44 @@ impl Driveline {
             return Err(CoreError::invalid("loss_torque_nm", "a number >= 0").got(loss_torque_nm));
         }
         let gear_ratios = gear_ratios.to_vec();
-        Ok(Driveline { gear_ratios, axle_ratio, gear_efficiency, axle_efficiency, loss_torque_nm, wheel_radius_m })
+        Ok(Driveline {
+            gear_ratios,
+            axle_ratio,
+            gear_efficiency,
+            axle_efficiency,
+            loss_torque_nm,
+            wheel_radius_m,
+            gear_maps: None,
+            axle_map: None,
+        })
+    }
+
+    /// The same driveline with VECTO's loss maps: one per gear (first gear first; or none), and
+    /// the axle's (or none). Each map's points are (input speed [rpm], input torque [Nm], torque
+    /// loss [Nm]).
+    pub fn with_loss_maps(
+        mut self,
+        gears: Option<&[LossPoints]>,
+        axle: Option<&[(f64, f64, f64)]>,
+    ) -> CoreResult<Self> {
+        if let Some(maps) = gears {
+            if maps.len() != self.gears() {
+                let expected = format!("one loss map per gear ({})", self.gears());
+                return Err(CoreError::invalid("gear_loss_maps", expected).got(maps.len()));
+            }
+            let built: CoreResult<Vec<LossMap>> =
+                maps.iter().enumerate().map(|(i, m)| LossMap::new(&format!("gear_loss_maps[{}]", i + 1), m)).collect();
+            self.gear_maps = Some(built?);
+        }
+        if let Some(points) = axle {
+            self.axle_map = Some(LossMap::new("axle_loss_map", points)?);
+        }
+        Ok(self)
+    }
+
+    /// Whether VECTO's loss maps give the gearbox's and the axle's losses: (gears, axle).
+    pub fn has_loss_maps(&self) -> (bool, bool) {
+        (self.gear_maps.is_some(), self.axle_map.is_some())
     }
 
     /// Number of forward gears.
@@ -75,7 +121,7 @@ impl Driveline {
         self.wheel_radius_m
     }
 
-    /// The driveline's efficiency, gearbox times axle.
+    /// The driveline's efficiency without loss maps, gearbox times axle.
     pub fn efficiency(&self) -> f64 {
         self.gear_efficiency * self.axle_efficiency
     }
@@ -93,25 +139,58 @@ impl Driveline {
         v_mps / self.wheel_radius_m * self.ratio(gear) * RPM_PER_RAD_S
     }
 
-    /// Drag torque of the driveline [Nm] at the gearbox input, lost whatever the load.
+    /// Drag torque of the gearbox [Nm] at its input without loss maps, lost whatever the load.
     pub fn loss_torque_nm(&self) -> f64 {
         self.loss_torque_nm
     }
 
-    /// Wheel torque [Nm] that `engine_torque_nm` gives in `gear`: the inverse of
-    /// [`Driveline::engine_torque_nm`].
-    pub fn wheel_torque_nm(&self, engine_torque_nm: f64, gear: usize) -> f64 {
-        let passed = engine_torque_nm - self.loss_torque_nm;
-        let ideal = if passed >= 0.0 { passed * self.efficiency() } else { passed / self.efficiency() };
-        ideal * self.ratio(gear)
+    /// Wheel torque [Nm] that `engine_torque_nm` at the gearbox input gives in `gear` at engine
+    /// speed `n_rpm`: the inverse of [`Driveline::engine_torque_nm`].
+    pub fn wheel_torque_nm(&self, engine_torque_nm: f64, gear: usize, n_rpm: f64) -> f64 {
+        let gearbox_out = match &self.gear_maps {
+            Some(maps) => maps[gear - 1].passed_nm(n_rpm, engine_torque_nm),
+            None => passed(engine_torque_nm - self.loss_torque_nm, self.gear_efficiency),
+        } * self.gear_ratios[gear - 1];
+        let axle_out = match &self.axle_map {
+            Some(map) => map.passed_nm(n_rpm / self.gear_ratios[gear - 1], gearbox_out),
+            None => passed(gearbox_out, self.axle_efficiency),
+        };
+        axle_out * self.axle_ratio
     }
 
-    /// Engine torque [Nm] that gives `wheel_torque_nm` at the wheels in `gear`: the share lost is
-    /// taken from the engine's side when it drives, from the wheels' side when they drive, and the
-    /// drag torque always.
-    pub fn engine_torque_nm(&self, wheel_torque_nm: f64, gear: usize) -> f64 {
-        let ideal = wheel_torque_nm / self.ratio(gear);
-        let passed = if ideal >= 0.0 { ideal / self.efficiency() } else { ideal * self.efficiency() };
-        passed + self.loss_torque_nm
+    /// Engine torque [Nm] at the gearbox input that gives `wheel_torque_nm` at the wheels in
+    /// `gear` at engine speed `n_rpm`.
+    pub fn engine_torque_nm(&self, wheel_torque_nm: f64, gear: usize, n_rpm: f64) -> f64 {
+        let axle_passed = wheel_torque_nm / self.axle_ratio;
+        let axle_in = match &self.axle_map {
+            Some(map) => map.input_nm(n_rpm / self.gear_ratios[gear - 1], axle_passed),
+            None => input(axle_passed, self.axle_efficiency),
+        };
+        let gear_passed = axle_in / self.gear_ratios[gear - 1];
+        match &self.gear_maps {
+            Some(maps) => maps[gear - 1].input_nm(n_rpm, gear_passed),
+            None => input(gear_passed, self.gear_efficiency) + self.loss_torque_nm,
+        }
+    }
+}
+
+/// Torque passed on by a stage of efficiency `eta` from `torque_nm` at its input: the share lost
+/// is taken from the input when it drives (positive), from the output when it is driven.
+#[inline]
+fn passed(torque_nm: f64, eta: f64) -> f64 {
+    if torque_nm >= 0.0 {
+        torque_nm * eta
+    } else {
+        torque_nm / eta
+    }
+}
+
+/// Input torque of a stage of efficiency `eta` that passes `torque_nm` on: the inverse of [`passed`].
+#[inline]
+fn input(torque_nm: f64, eta: f64) -> f64 {
+    if torque_nm >= 0.0 {
+        torque_nm / eta
+    } else {
+        torque_nm * eta
     }
 }

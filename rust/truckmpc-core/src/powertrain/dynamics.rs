@@ -29,9 +29,13 @@ struct Sampled {
 }
 
 impl Sampled {
-    fn new(curve: &Curve, (lo_rpm, hi_rpm): (f64, f64)) -> Self {
+    fn new(curve: &Curve, range_rpm: (f64, f64)) -> Self {
+        Self::from_fn(range_rpm, |n| curve.at(n))
+    }
+
+    fn from_fn((lo_rpm, hi_rpm): (f64, f64), f: impl Fn(f64) -> f64) -> Self {
         let nodes = ((hi_rpm - lo_rpm) / CURVE_STEP_RPM).ceil() as usize + 2;
-        Sampled { lo_rpm, values: (0..nodes).map(|i| curve.at(lo_rpm + i as f64 * CURVE_STEP_RPM)).collect() }
+        Sampled { lo_rpm, values: (0..nodes).map(|i| f(lo_rpm + i as f64 * CURVE_STEP_RPM)).collect() }
     }
 
     #[inline]
@@ -51,11 +55,12 @@ pub struct MapModel {
     brake_torque_max_nm: f64,
     traction_interruption_s: f64,
     grid: FuelGrid,
-    /// Full-load and drag torque [Nm] over engine speed, resampled.
-    full_load: Sampled,
+    /// Drag torque [Nm] over engine speed, resampled.
     drag: Sampled,
     /// Highest engine speed of the full-load curve [rpm].
     top_rpm: f64,
+    /// Wheel torque [Nm] at fuel cut and at full load over engine speed, per gear (index 0 unused).
+    wheel_range: Vec<(Sampled, Sampled)>,
     /// r / (I_wheels + m r² + I_engine·ratio²) per gear [1/(kg m)], index 0 neutral (no engine).
     c1: Vec<f64>,
     /// Engine speed per road speed [rpm/(m/s)] per gear, index 0 unused (0).
@@ -89,10 +94,12 @@ impl MapModel {
         let idle_fuel_gps = engine.fuel_rate_g_per_h(idle, idle_torque) / 3600.0;
         let weight_torque_nm = body.mass_kg * G_MPS2 * r;
         let (curves, speeds) = engine.curves();
+        debug_assert!(curves.0.x_range() == speeds);
+        let wheel_range = wheel_ranges(&truck, (n_lo, n_hi));
         MapModel {
-            full_load: Sampled::new(curves.0, speeds),
             drag: Sampled::new(curves.1, speeds),
             top_rpm: hi,
+            wheel_range,
             truck,
             brake_torque_max_nm,
             traction_interruption_s,
@@ -160,13 +167,12 @@ impl MapModel {
     /// the engine's drag and full-load torque less the auxiliaries', through the driveline.
     #[inline]
     pub fn wheel_torque_range_nm(&self, n_rpm: f64, gear: usize) -> (f64, f64) {
-        let driveline = self.truck.driveline();
-        let aux = self.aux_torque_nm(n_rpm);
-        let cut = driveline.wheel_torque_nm(self.drag.at(n_rpm) - aux, gear);
+        let (cut, full) = &self.wheel_range[gear];
+        let cut = cut.at(n_rpm);
         if n_rpm > self.top_rpm {
             return (cut, cut);
         }
-        (cut, driveline.wheel_torque_nm(self.full_load.at(n_rpm) - aux, gear).max(cut))
+        (cut, full.at(n_rpm).max(cut))
     }
 
     /// Acceleration [m/s²] at `v_mps` with pedal, brake and gear (0 = neutral), on a slope given
@@ -193,7 +199,7 @@ impl MapModel {
     fn engine_torque_at(&self, n_rpm: f64, pedal: f64, gear: usize) -> f64 {
         let (cut, full) = self.wheel_torque_range_nm(n_rpm, gear);
         let wheel = cut + pedal.max(0.0) * (full - cut);
-        self.truck.driveline().engine_torque_nm(wheel, gear) + self.aux_torque_nm(n_rpm)
+        self.truck.driveline().engine_torque_nm(wheel, gear, n_rpm) + self.aux_torque_nm(n_rpm)
     }
 
     /// Fuel rate [g/s]: idling in neutral; zero at fuel cut (pedal ≤ 0); else the map's at the
@@ -207,6 +213,9 @@ impl MapModel {
             return 0.0;
         }
         let n = self.rpm_per_mps[gear] * v_mps;
+        if n > self.top_rpm {
+            return 0.0; // above its full-load curve the engine only drags (the governor cuts fuel)
+        }
         let torque = self.engine_torque_at(n, pedal, gear);
         if torque <= self.drag.at(n) {
             return 0.0;
@@ -218,4 +227,20 @@ impl MapModel {
     pub fn grid_fuel_g_per_h(&self, n_rpm: f64, torque_nm: f64) -> f64 {
         self.grid.at(n_rpm, torque_nm)
     }
+}
+
+/// Per gear (index 0 unused), the wheel torque [Nm] over engine speed in `range_rpm` at fuel cut
+/// and at full load: the engine's drag and full-load torque less the auxiliaries', through the
+/// driveline (whose loss maps would otherwise be inverted at every look-up).
+fn wheel_ranges(truck: &MapTruck, range_rpm: (f64, f64)) -> Vec<(Sampled, Sampled)> {
+    let (engine, driveline, aux_w) = (truck.engine(), truck.driveline(), truck.body().aux_power_w);
+    let wheel = |torque: &dyn Fn(f64) -> f64, gear: usize| {
+        Sampled::from_fn(range_rpm, |n| driveline.wheel_torque_nm(torque(n) - aux_w / (n / RPM_PER_RAD_S), gear, n))
+    };
+    let mut out =
+        vec![(Sampled { lo_rpm: 0.0, values: vec![0.0, 0.0] }, Sampled { lo_rpm: 0.0, values: vec![0.0, 0.0] })];
+    for gear in 1..=driveline.gears() {
+        out.push((wheel(&|n| engine.drag_torque_nm(n), gear), wheel(&|n| engine.max_torque_nm(n), gear)));
+    }
+    out
 }

@@ -42,14 +42,14 @@ fn acceleration_is_the_wheel_force_left_over_by_the_road_loads_on_the_effective_
     let (r, ratio) = (t.driveline().wheel_radius_m(), t.driveline().ratio(gear));
     let n = t.driveline().engine_speed_rpm(speed, gear);
     let aux_nm = t.body().aux_power_w / (n / RPM_PER_RAD_S);
-    let wheel_nm = t.driveline().wheel_torque_nm(t.engine().max_torque_nm(n) - aux_nm, gear);
+    let wheel_nm = t.driveline().wheel_torque_nm(t.engine().max_torque_nm(n) - aux_nm, gear, n);
     let loads = t.road_loads(speed, 0.0, 0.0);
     let mass = 40_000.0 + 60.0 / (r * r) + 4.0 * ratio * ratio / (r * r);
     let expected = (wheel_nm / r * speed - loads.wheel_w()) / (mass * speed);
     let got = v.accel_mps2(speed, 1.0, 0.0, gear, 0.0);
     assert!((got - expected).abs() < 1e-9, "{got} vs {expected}");
     // Fuel cut: the engine's drag (and the auxiliaries) brake the truck, and no fuel flows.
-    let cut_nm = t.driveline().wheel_torque_nm(t.engine().drag_torque_nm(n) - aux_nm, gear);
+    let cut_nm = t.driveline().wheel_torque_nm(t.engine().drag_torque_nm(n) - aux_nm, gear, n);
     let expected_cut = (cut_nm / r * speed - loads.wheel_w()) / (mass * speed);
     assert!((v.accel_mps2(speed, 0.0, 0.0, gear, 0.0) - expected_cut).abs() < 1e-9);
     assert_eq!(v.fuel_rate_gps(speed, 0.0, gear), 0.0);
@@ -101,12 +101,14 @@ fn the_resampled_fuel_map_stays_within_a_small_share_of_the_triangulated_one() {
 #[test]
 fn a_shift_rolls_in_neutral_at_fuel_cut_for_the_gearboxs_interruption_time() {
     let road = Arc::new(Road::new(vec![0.0, 10_000.0], vec![0.0]).unwrap());
-    let (start, dt) = (20.0, 0.05);
+    // 12 m/s: 688 rpm in gear 3, 1375 rpm in gear 2, both on the full-load curve.
+    let (start, dt) = (12.0, 0.05);
     let drive = |interruption_s: f64, second_gear: usize| {
         let mut plant = Plant::new(Arc::new(vehicle(interruption_s)), road.clone(), 0.0, start);
         plant.step(Control { pedal: 0.5, brake: 0.0, gear: 3 }, dt);
         let before = plant.state();
-        for _ in 0..20 {
+        // 0.95 s, inside the 1 s interruption (whose end 20 steps of 0.05 s reach only to rounding).
+        for _ in 0..19 {
             plant.step(Control { pedal: 0.5, brake: 0.0, gear: second_gear }, dt);
         }
         (before, plant.state())
@@ -120,4 +122,49 @@ fn a_shift_rolls_in_neutral_at_fuel_cut_for_the_gearboxs_interruption_time() {
     let (before, after) = drive(0.0, 2);
     assert!(after.fuel_g > before.fuel_g);
     assert_eq!(Vehicle::new(VehicleParams::default()).unwrap().traction_interruption_s(), 0.0);
+}
+
+/// Points of a loss map that follow the affine law of a stage of efficiency `eta` and drag
+/// `drag_nm` (at its input): loss = T − passed, passed = (T − drag)·η driving, (T − drag)/η driven.
+fn affine_points(eta: f64, drag_nm: f64) -> Vec<(f64, f64, f64)> {
+    let mut points = Vec::new();
+    for n in [0.0, 500.0, 1000.0, 1500.0, 2000.0, 2500.0, 3000.0] {
+        let mut torques = vec![-20000.0, -3000.0, -1000.0, -300.0, 0.0, drag_nm, 300.0, 1000.0, 3000.0, 20000.0];
+        torques.dedup();
+        for t in torques {
+            let passed = if t >= drag_nm { (t - drag_nm) * eta } else { (t - drag_nm) / eta };
+            points.push((n, t, t - passed));
+        }
+    }
+    points
+}
+
+#[test]
+fn loss_maps_that_follow_the_affine_law_give_the_affine_drivelines_torques() {
+    let ratios = [3.0, 2.0, 1.0];
+    let affine = Driveline::new((&ratios, 3.0), (0.97, 0.98, 25.0), 0.5).unwrap();
+    let gear_maps: Vec<Vec<(f64, f64, f64)>> = (0..3).map(|_| affine_points(0.97, 25.0)).collect();
+    let mapped = affine.clone().with_loss_maps(Some(&gear_maps), Some(&affine_points(0.98, 0.0))).unwrap();
+    assert_eq!(mapped.has_loss_maps(), (true, true));
+    for gear in 1..=3 {
+        for n in [700.0, 1234.0, 1900.0] {
+            for engine_nm in [-250.0, -40.0, 10.0, 400.0, 1500.0, 2400.0] {
+                let want = affine.wheel_torque_nm(engine_nm, gear, n);
+                let got = mapped.wheel_torque_nm(engine_nm, gear, n);
+                // Within half a newton-metre at the gearbox input: the resampled map rounds the
+                // kink where the torque passed on changes sign over one cell of its grid.
+                let at_input = (got - want).abs() / (ratios[gear - 1] * 3.0);
+                assert!(at_input < 0.5, "gear {gear} {n} rpm {engine_nm} Nm: {got} vs {want}");
+                let back = mapped.engine_torque_nm(got, gear, n);
+                assert!((back - engine_nm).abs() < 1e-6 * engine_nm.abs().max(1.0), "round trip {back} vs {engine_nm}");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_loss_map_for_every_gear_or_none() {
+    let d = Driveline::new((&[3.0, 2.0], 3.0), (0.97, 0.98, 25.0), 0.5).unwrap();
+    let err = d.with_loss_maps(Some(&[affine_points(0.97, 25.0)]), None).unwrap_err();
+    assert_eq!(err.key(), "gear_loss_maps");
 }

@@ -9,7 +9,8 @@
 //! - [`delaunay`]: a Delaunay triangulation built the way VECTO builds its maps;
 //! - [`fuel_map`]: the fuel rate over engine speed and torque, linear on that triangulation;
 //! - [`engine`]: the engine built from those;
-//! - [`driveline`]: gear and axle ratios, their efficiencies, the tyre radius;
+//! - [`loss_map`]: a gear's or the axle's torque loss over speed and torque (VECTO's loss maps);
+//! - [`driveline`]: gear and axle ratios, their losses, the tyre radius;
 //! - [`truck`]: the whole truck: road loads, engine operating points, the fuel to hold a speed;
 //! - [`fuel_grid`]: the fuel map resampled on a regular grid, for fast evaluation;
 //! - [`dynamics`]: the truck as the plant and the controllers drive it (pedal, brake, gear).
@@ -21,6 +22,7 @@ pub mod dynamics;
 pub mod engine;
 pub mod fuel_grid;
 pub mod fuel_map;
+pub mod loss_map;
 pub mod truck;
 
 #[cfg(test)]
@@ -34,6 +36,7 @@ pub use dynamics::MapModel;
 pub use engine::Engine;
 pub use fuel_grid::FuelGrid;
 pub use fuel_map::FuelMap;
+pub use loss_map::LossMap;
 pub use truck::{Body, MapTruck, OperatingPoint, RoadLoads, G_MPS2};
 
 /// Engine speed [rpm] per angular speed [rad/s].

@@ -159,13 +159,13 @@ impl MapTruck {
         let wheel_torque = self.road_loads(v_mps, acc_mps2, slope_rad).wheel_w() / v_mps * r;
         let engine_accel = acc_mps2 / r * self.driveline.ratio(gear);
         let extra = self.body.aux_power_w / omega + self.engine.inertia_kgm2() * engine_accel;
-        let torque = self.driveline.engine_torque_nm(wheel_torque, gear) + extra;
+        let torque = self.driveline.engine_torque_nm(wheel_torque, gear, speed_rpm) + extra;
         let (lo, hi) = self.engine.speed_range_rpm();
         let in_range = speed_rpm >= lo && speed_rpm <= hi;
         let drag = self.engine.drag_torque_nm(speed_rpm);
         // Braking: the wheel torque the engine's drag holds, less what the road asks for.
         let brake_power_w = if torque < drag {
-            (self.driveline.wheel_torque_nm(drag - extra, gear) - wheel_torque) / r * v_mps
+            (self.driveline.wheel_torque_nm(drag - extra, gear, speed_rpm) - wheel_torque) / r * v_mps
         } else {
             0.0
         };
