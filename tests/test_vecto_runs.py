@@ -200,3 +200,14 @@ def test_vehicle_info_says_which_losses_the_truck_uses(tmp_path: Path) -> None:
         app, ["vehicle", "info", str(write_xml_job(tmp_path / "x")), "--set", "use_loss_maps=false", "--json"]
     )
     assert json.loads(affine.output)["driveline_losses"].startswith("without loss maps")
+
+
+def test_a_bad_loss_map_file_is_one_line_naming_its_file_and_line(tmp_path: Path) -> None:
+    job = write_job(tmp_path, loss_maps=True)
+    lines = (tmp_path / "gear2.vtlm").read_text().splitlines()
+    lines[2] = "1000,0,-5"
+    (tmp_path / "gear2.vtlm").write_text("\n".join(lines) + "\n")
+    result = runner.invoke(app, ["vehicle", "info", str(job)])
+    assert result.exit_code == 2
+    assert "gear2.vtlm:3" in result.output and "torque loss >= 0" in result.output
+    assert len(result.output.strip().splitlines()) == 1
