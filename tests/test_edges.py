@@ -174,3 +174,21 @@ def test_a_config_file_that_is_not_a_mapping_is_an_empty_overlay_or_one_error_li
     if code == 2:
         assert_one_error_line(result, "odd.yaml")
         assert not (in_tmp / "res").exists()
+
+
+def test_a_pedal_gain_that_would_reach_absurd_speeds_does_not_exhaust_memory(tmp_path) -> None:
+    # fueling_max_a_mg_per_rpm2 = 2 makes the fueling limit 2·N² mg/stroke (4.5e6 at 1500 rpm): full
+    # pedal would end a stage at astronomic speeds, and the DP's rows once spanned every grid point
+    # up to there (a request for 9e12 bytes aborted the process). Rows now stop one grid step
+    # beyond the band.
+    from typer.testing import CliRunner
+
+    from truckmpc.cli import app
+
+    road = tmp_path / "road.csv"
+    road.write_text("distance_m,altitude_m\n-50.0,0.0\n-12.228856309009458,-2.8775886299627715\n")
+    out = tmp_path / "out"
+    args = ["simulate", "--road", str(road), "--controller", "mpc", "--set", "fueling_max_a_mg_per_rpm2=2"]
+    result = CliRunner().invoke(app, [*args, "--out", str(out)])
+    assert result.exit_code == 0, result.output
+    assert (out / "trace-mpc.csv").is_file()

@@ -152,6 +152,14 @@ fn maps<'a>(vehicle: &'a Vehicle, p: &DpSettings, v_i: f64, gear: usize, slope_t
     }
 }
 
+/// A row's span `(first, last)` of grid indices limited to speeds above standstill and at most one
+/// grid step beyond `v_max` [m/s], the top of the next stage's band (`delta_mps` the grid step):
+/// no target outside reaches the next stage's grid.
+#[inline]
+fn clamp_span((first, last): (i64, i64), grid: GridIndex, v_max: f64, delta_mps: f64) -> (i64, i64) {
+    (first.max(grid.ceil(0.0) + 1), last.min(grid.ceil(v_max + delta_mps) + 1))
+}
+
 /// Trim a row's unreachable ends (appended to `out` from `start`, its first index `first`) so the
 /// min-plus loop never scans them.
 fn trim(out: &mut Vec<f64>, start: usize, first: i64) -> (RowSpan, usize) {

@@ -3,7 +3,7 @@
 //! brake points next to v_max; costs in the units of (5.9). On x86-64 with AVX2 the pedal costs
 //! are computed four at a time, with the same operations.
 
-use super::{change_cost, maps, trim, GridIndex, Inputs, RowMaps, RowSpan, BRAKE_WINDOW};
+use super::{change_cost, clamp_span, maps, trim, GridIndex, Inputs, RowMaps, RowSpan, BRAKE_WINDOW};
 use crate::dp::params::DpSettings;
 use crate::vehicle::Vehicle;
 
@@ -69,6 +69,9 @@ pub(super) fn forward_row_euler(
         first = first.min(grid.floor(v_max - p.delta_mps()));
         last = last.max(grid.ceil(v_max + p.delta_mps()));
     }
+    // No target beyond the next stage's band (a vehicle with a huge pedal gain would otherwise ask
+    // for a row of billions of grid points) nor at or below standstill.
+    (first, last) = clamp_span((first, last), grid, v_max, p.delta_mps());
     if last < first {
         return (RowSpan { first: 0, len: 0 }, start);
     }

@@ -3,7 +3,7 @@
 //! full-pedal end is an exact arc of the solver's), and from zero where fuel cut is one too. Costs
 //! in the units of (5.9).
 
-use super::{change_cost, maps, trim, EndMaps, GridIndex, Inputs, RowMaps, RowSpan, BRAKE_WINDOW};
+use super::{change_cost, clamp_span, maps, trim, EndMaps, GridIndex, Inputs, RowMaps, RowSpan, BRAKE_WINDOW};
 use crate::dp::params::{DpSettings, GridAnchor, StageModel};
 use crate::dp::stage::{self, Branch};
 use crate::levels::{brake_accel_on, pedal_accel_on};
@@ -98,7 +98,7 @@ pub(super) fn forward_row_trapezoid(
         first = first.min(grid.floor(v_max - p.delta_mps()));
         last = last.max(grid.ceil(v_max + p.delta_mps()));
     }
-    first = first.max(grid.ceil(0.0) + 1);
+    (first, last) = clamp_span((first, last), grid, v_max, p.delta_mps());
     if last < first {
         return (RowSpan { first: 0, len: 0 }, start);
     }
