@@ -348,8 +348,11 @@ def test_ci_runs_exactly_the_readme_test_command():
     test_command = next(c for c in commands if "pytest" in c)
     ci_lines = (REPO / ".ci" / "run").read_text().splitlines()
     assert test_command in ci_lines
-    # set -e: the command's failure is CI's; what runs after it (the benchmark) can only add a failure
     assert "set -euo pipefail" in ci_lines[: ci_lines.index(test_command)]
+    # set -e ignores a failure inside an && list except at its last command (a failing `cargo test`
+    # once let CI go on, green): the line after the command must check its status.
+    following = ci_lines[ci_lines.index(test_command) + 1 : ci_lines.index(test_command) + 4]
+    assert "test_status=$?" in following and any('exit "$test_status"' in line for line in following)
     # every test: the default run leaves the slow tier out, so the command must run it too
     addopts = tomllib.loads((REPO / "pyproject.toml").read_text())["tool"]["pytest"]["ini_options"]["addopts"]
     assert addopts[-2:] == ["-m", "not slow"]

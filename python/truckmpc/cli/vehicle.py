@@ -11,6 +11,7 @@ import typer
 
 from truckmpc.cli.options import SetOpt, key_values
 from truckmpc.config import load_run_config
+from truckmpc.errors import VehicleError
 from truckmpc.vecto import load_vecto_truck
 from truckmpc.vecto.info import truck_info
 
@@ -63,12 +64,32 @@ def plot_cmd(
     matplotlib."""
     from truckmpc.plot.vehicle import plot_fuel_map, run_operating_points  # lazy: matplotlib
 
-    config = load_run_config(job, overrides=tuple(set_ or ()))
+    overrides = tuple(set_ or ()) if run is None else _run_keys(run, job, set_)
+    config = load_run_config(job, overrides=overrides)
     truck = config.truck
     assert truck is not None
     points = None if run is None else run_operating_points(run, config.core_vehicle)
     written = plot_fuel_map(truck, out or Path(f"{job.stem}-fuel-map.png"), svg=svg, runs=points)
     typer.echo("wrote " + ", ".join(str(p) for p in written))
+
+
+def _run_keys(run: Path, job: Path, set_: list[str] | None) -> tuple[str, ...]:
+    """The truck keys a run of ``job`` in ``run`` was made with, as ``--set`` items; a run of another
+    truck, or ``--set`` beside ``--run``, is refused."""
+    where = run / "summary.json"
+    try:
+        record = json.loads(where.read_text(encoding="utf-8"))["run"].get("vehicle")
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        raise VehicleError(f"{where}: expected a summary.json written by truckmpc simulate") from None
+    if set_:
+        raise VehicleError(f"--set {set_[0]}: expected no --set with --run (the run's own truck keys are used)")
+    recorded = record.get("vecto_job") if isinstance(record, dict) else None
+    if recorded != str(job.resolve()):
+        raise VehicleError(
+            f"{where}: run.vehicle: expected a run of {job.resolve()}, got a run of {recorded or 'the thesis truck'}"
+        )
+    keys = record.get("keys", {})
+    return tuple(f"{k}={json.dumps(v)}" for k, v in keys.items() if isinstance(keys, dict))
 
 
 def _text(d: dict[str, Any]) -> list[str]:

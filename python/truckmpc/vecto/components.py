@@ -54,6 +54,8 @@ class GearboxData:
     """Loss map files the gearbox names that are not beside it."""
     files: tuple[Path, ...] = ()
     """The loss map files read."""
+    loss_map_files: tuple[Path | None, ...] = ()
+    """The file of each loss map read: the axle's first, then each gear's (None: not from a file)."""
 
 
 @dataclass(frozen=True)
@@ -204,6 +206,7 @@ def read_gearbox(path: Path) -> GearboxData:
                 f"{path}: Gears[{i}].Ratio: expected a ratio below gear {i - 1}'s {ratios[i - 1]:g}, got {r:g}"
             )
     maps: list[LossPoints | None] = []
+    map_files: list[Path | None] = []
     files: list[Path] = []
     missing: list[str] = []
     for gear in gears:
@@ -212,8 +215,10 @@ def read_gearbox(path: Path) -> GearboxData:
         if name and file.is_file():
             maps.append(loss_map(file))
             files.append(file)
+            map_files.append(file)
         else:
             maps.append(None)
+            map_files.append(None)
             if name:
                 missing.append(name)
     return GearboxData(
@@ -227,6 +232,7 @@ def read_gearbox(path: Path) -> GearboxData:
         axle_loss_map=maps[0],
         missing_loss_maps=tuple(dict.fromkeys(missing)),
         files=tuple(dict.fromkeys(files)),
+        loss_map_files=tuple(map_files),
     )
 
 

@@ -10,19 +10,21 @@ from pathlib import Path
 from typing import Any
 
 from truckmpc.errors import ConfigError
-from truckmpc.vecto.truck import VectoTruck, load_vecto_truck
+from truckmpc.vecto.truck import TruckKeys, VectoTruck, load_vecto_truck
 
 __all__ = ["replay_truck", "truck_record"]
+
+_DEFAULTS = TruckKeys()
 
 
 def truck_record(truck: VectoTruck) -> dict[str, Any]:
     """The ``run.vehicle`` record of a run driving ``truck``: the job, each file it read with its
-    SHA-256, the keys as set (None: VECTO's value) and the masses they resolved to [kg]."""
+    SHA-256, the keys set to other than their defaults, and the masses they resolved to [kg]."""
     job = truck.job
     return {
         "vecto_job": str(Path(job.path).resolve()),
         "files": {str(Path(p).resolve()): _sha256(Path(p)) for p in job.files},
-        "keys": {k: v for k, v in asdict(truck.keys).items() if v is not None},
+        "keys": {k: v for k, v in asdict(truck.keys).items() if v != getattr(_DEFAULTS, k)},
         "mass_kg": truck.mass_kg,
         "payload_kg": truck.payload_kg,
         "trailer_mass_kg": truck.trailer_mass_kg,
@@ -46,7 +48,12 @@ def replay_truck(record: Any, where: str) -> VectoTruck | None:
     job, keys = record.get("vecto_job"), record.get("keys", {})
     if not isinstance(job, str) or not isinstance(keys, dict):
         raise ConfigError(f"{key}: expected 'vecto_job' a path and 'keys' a mapping, got {job!r}, {keys!r}")
-    return load_vecto_truck(Path(job), keys)
+    truck = load_vecto_truck(Path(job), keys)
+    # A file the job names that was missing then (a loss map) and is there now changes the truck.
+    added = sorted({str(Path(p).resolve()) for p in truck.job.files} - set(record["files"]))
+    if added:
+        raise ConfigError(f"{key}.files: expected the files the run read, got {added[0]} too (not there when it ran)")
+    return truck
 
 
 def _sha256(path: Path) -> str:

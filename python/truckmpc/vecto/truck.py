@@ -155,6 +155,7 @@ def load_vecto_truck(path: Path, values: dict[str, Any] | None = None) -> VectoT
         else keys.traction_interruption_s,
         **_loss_maps(job, keys),
     }
+    _refuse_replaced_loss_keys(path, driveline, values or {})
     core = _core_truck(job, driveline, body)
     return VectoTruck(job, segment, mass, payload, trailer, radius, rrc, tuple(curve), aux, keys, core)
 
@@ -172,6 +173,18 @@ def _loss_maps(job: VectoJob, keys: TruckKeys) -> dict[str, Any]:
     if gearbox.axle_loss_map is not None:
         out["axle_loss_map"] = list(gearbox.axle_loss_map)
     return out
+
+
+def _refuse_replaced_loss_keys(path: Path, driveline: dict[str, Any], values: dict[str, Any]) -> None:
+    """The affine losses' keys do nothing where loss maps replace them: refused, not ignored."""
+    replaced = {"gear_loss_maps": ("gear_efficiency", "loss_torque_nm"), "axle_loss_map": ("axle_efficiency",)}
+    for maps, keys in replaced.items():
+        given = [k for k in keys if k in values]
+        if maps in driveline and given:
+            raise VehicleError(
+                f"{path}: {given[0]}: expected no value where the job's loss maps give the losses "
+                f"(set use_loss_maps=false to use it), got {values[given[0]]!r}"
+            )
 
 
 def driveline_losses(truck: VectoTruck) -> str:
@@ -242,8 +255,20 @@ def _core_truck(job: VectoJob, driveline: dict[str, Any], body: dict[str, Any]) 
             body,
         )
     except _core.ParamError as e:
-        where = job.gearbox.path if e.key.startswith("gear_loss_maps") else files.get(e.key, job.path)
-        raise VehicleError(f"{where}: {e}") from None
+        raise VehicleError(f"{_blamed_file(job, e.key, files)}: {e}") from None
+
+
+def _blamed_file(job: VectoJob, key: str, files: dict[str, Path]) -> Path:
+    """The file the data behind a core error's ``key`` came from: a loss map's own file where it has
+    one (``gear_loss_maps[i]`` is gear i's, ``axle_loss_map`` the axle's), else ``files``' entry."""
+    map_files = job.gearbox.loss_map_files
+    index = 0 if key == "axle_loss_map" else None
+    if key.startswith("gear_loss_maps[") and key.endswith("]"):
+        index = int(key[len("gear_loss_maps[") : -1])
+    found = map_files[index] if index is not None and index < len(map_files) else None
+    if found is not None:
+        return found
+    return job.gearbox.path if index is not None else files.get(key, job.path)
 
 
 # The PI's shift speeds for a VECTO truck, as shares of the engine's rated speed: the thesis's truck

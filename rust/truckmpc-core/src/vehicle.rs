@@ -75,7 +75,7 @@ impl Vehicle {
     /// torque (`brake_torque_max_nm`); the other keys of [`Vehicle::params`] are set from the
     /// truck (mass, inertias, idle speed, ratios, the driveline's efficiency in every gear, tyre
     /// radius, rolling resistance, air density, g), so code that reads them sees this truck.
-    pub fn from_map(model: MapModel, base: &VehicleParams) -> CoreResult<Self> {
+    pub fn from_map(model: Arc<MapModel>, base: &VehicleParams) -> CoreResult<Self> {
         let truck = model.truck();
         let (engine, driveline, body) = (truck.engine(), truck.driveline(), truck.body());
         let gears = driveline.gears();
@@ -101,7 +101,7 @@ impl Vehicle {
             let c3 = driveline.efficiency() * driveline.ratio(g);
             gear_constants.push(GearConstants { c1: model.c1(g), c3, c4: model.rpm_per_mps(g) });
         }
-        Ok(Vehicle { map: Some(Arc::new(model)), gears: gear_constants, ..thesis })
+        Ok(Vehicle { map: Some(model), gears: gear_constants, ..thesis })
     }
 
     /// The map-based model, for a truck built from component data (None: the thesis's model).

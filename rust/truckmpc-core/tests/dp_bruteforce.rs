@@ -319,7 +319,7 @@ fn map_vehicle() -> Vehicle {
         aux_power_w: 4000.0,
     };
     let truck = MapTruck::new(engine, driveline, body).unwrap();
-    Vehicle::from_map(MapModel::new(truck, p.brake_torque_max_nm, 1.0), &p).unwrap()
+    Vehicle::from_map(std::sync::Arc::new(MapModel::new(truck, p.brake_torque_max_nm, 1.0)), &p).unwrap()
 }
 
 #[test]

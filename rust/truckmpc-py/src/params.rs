@@ -107,6 +107,21 @@ pub fn replaced_keys() -> Vec<(&'static str, &'static str)> {
     REPLACED_KEYS.to_vec()
 }
 
+/// The end-speed correction prices kinetic energy where the PI settles at v_ref on a flat road;
+/// a map-based truck that cannot hold v_ref there has no price: refused, naming v_ref_kmh.
+fn check_kinetic_price(settings: &RunSettings, vehicle: &Vehicle) -> truckmpc_core::CoreResult<()> {
+    let v_ref_mps = settings.cruise.v_ref_kmh / 3.6;
+    let gear = GearLogic::new(vehicle, &settings.pi)?.steady_gear(v_ref_mps);
+    let price = fuel_time::kinetic_fuel_g(vehicle, v_ref_mps, gear);
+    if price.is_finite() {
+        return Ok(());
+    }
+    let expected = format!(
+        "a set speed the truck holds on a flat road in gear {gear}, where the PI settles (kinetic energy is priced there)"
+    );
+    Err(truckmpc_core::CoreError::invalid("v_ref_kmh", expected).got(settings.cruise.v_ref_kmh))
+}
+
 /// A validated set of every parameter of a run.
 ///
 /// Args:
@@ -140,8 +155,11 @@ impl PySettings {
                 None => settings.vehicle.clone(),
             }),
             Some(t) => {
-                let map = mass_kg.map_or_else(|| Ok(t.inner.clone()), |m| t.inner.with_mass_kg(m));
-                let model = MapModel::new(map?, settings.vehicle.brake_torque_max_nm, t.traction_interruption_s);
+                let brake_nm = settings.vehicle.brake_torque_max_nm;
+                let model = match mass_kg {
+                    None => t.model(brake_nm),
+                    Some(m) => Arc::new(MapModel::new(t.inner.with_mass_kg(m)?, brake_nm, t.traction_interruption_s)),
+                };
                 Vehicle::from_map(model, &settings.vehicle)
             }
         };
@@ -154,6 +172,7 @@ impl PySettings {
         DpSettings::new(&settings.mpc, &settings.cruise)
             .and_then(|dp| dp.check_vehicle(&controller_vehicle))
             .map_err(to_py)?;
+        check_kinetic_price(&settings, &vehicle).map_err(to_py)?;
         Ok(PySettings { inner: Arc::new(settings), vehicle, controller_vehicle })
     }
 

@@ -3,7 +3,9 @@
 use pyo3::exceptions::PyKeyError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use truckmpc_core::powertrain::{Body, Driveline, Engine, MapTruck, RPM_PER_RAD_S};
+use std::sync::{Arc, Mutex};
+
+use truckmpc_core::powertrain::{Body, Driveline, Engine, MapModel, MapTruck, RPM_PER_RAD_S};
 
 use crate::errors::{bad_argument, to_py};
 
@@ -26,6 +28,23 @@ pub struct PyMapTruck {
     pub inner: MapTruck,
     /// How long a gear shift interrupts traction [s].
     pub traction_interruption_s: f64,
+    /// The models built for this truck, by brake torque [Nm] (bits): building one resamples the
+    /// maps (about 0.1 s), which every run's settings would otherwise repeat.
+    models: Mutex<Vec<(u64, Arc<MapModel>)>>,
+}
+
+impl PyMapTruck {
+    /// The model of this truck with `brake_torque_max_nm` at full brake, built once.
+    pub fn model(&self, brake_torque_max_nm: f64) -> Arc<MapModel> {
+        let mut models = self.models.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        let key = brake_torque_max_nm.to_bits();
+        if let Some((_, model)) = models.iter().find(|(k, _)| *k == key) {
+            return model.clone();
+        }
+        let model = Arc::new(MapModel::new(self.inner.clone(), brake_torque_max_nm, self.traction_interruption_s));
+        models.push((key, model.clone()));
+        model
+    }
 }
 
 fn item<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<T> {
@@ -91,7 +110,7 @@ impl PyMapTruck {
             let curve: Vec<(f64, f64)> = item(body_dict, "cda_curve")?;
             inner = inner.with_cda_curve(&curve).map_err(to_py)?;
         }
-        Ok(PyMapTruck { inner, traction_interruption_s })
+        Ok(PyMapTruck { inner, traction_interruption_s, models: Mutex::new(Vec::new()) })
     }
 
     /// Number of forward gears.

@@ -115,6 +115,8 @@ pub struct PiController {
     /// The band along the road of the current run, and the stretch of the last query.
     band: SpeedBand,
     band_hint: usize,
+    /// Road segment of the last slope look-up (for the up-shift check of a map-based truck).
+    slope_hint: usize,
     v_ref_kmh: f64,
     v_max_kmh: f64,
     /// A brake limit [km/h] set by a controller built on this one, instead of the band's.
@@ -147,6 +149,7 @@ impl PiController {
             cruise: cruise.clone(),
             band: SpeedBand::uniform(cruise),
             band_hint: 0,
+            slope_hint: 0,
             v_ref_kmh: cruise.v_ref_kmh,
             v_max_kmh: cruise.v_ref_kmh + cruise.v_inc_kmh,
             brake_limit_kmh: None,
@@ -213,6 +216,24 @@ impl PiController {
 
 impl PiController {
     /// Take the set speed and the brake limit at `s_m` from the band.
+    /// The gear logic's next gear; for a truck whose shifts interrupt traction (a VECTO truck), an
+    /// up-shift only where the higher gear can still accelerate the truck by
+    /// [`UPSHIFT_RESERVE_MPS2`] at full load on the slope here: otherwise it would lose the
+    /// interruption's speed and shift back, hunting up a long climb. The thesis's truck shifts by
+    /// its thresholds alone (table A.3).
+    fn next_gear(&mut self, road: &Road, state: &PlantState) -> usize {
+        let next = self.gears.next_gear(self.gear, state.v_mps);
+        if next <= self.gear || self.gear == NEUTRAL || self.vehicle.traction_interruption_s() <= 0.0 {
+            return next;
+        }
+        let slope = road.slope_at(state.s_m, &mut self.slope_hint);
+        if self.vehicle.accel_mps2(state.v_mps, 1.0, 0.0, next, slope) >= UPSHIFT_RESERVE_MPS2 {
+            next
+        } else {
+            self.gear
+        }
+    }
+
     fn follow_band(&mut self, s_m: f64) {
         let at = self.band.at(s_m, &mut self.band_hint);
         self.v_ref_kmh = at.v_ref_kmh;
@@ -271,6 +292,10 @@ pub fn lac_decision_factor(target_kmh: f64, drop_kmh: f64) -> f64 {
     2.5 - 1.5 * vel * drop
 }
 
+/// Acceleration [m/s²] a higher gear must still give at full load for a truck whose shifts
+/// interrupt traction to shift up: about what a 1 s interruption loses on a 1 % grade.
+pub const UPSHIFT_RESERVE_MPS2: f64 = 0.1;
+
 /// `x` limited to [lo, hi] (NaN passes through).
 fn clamp(x: f64, lo: f64, hi: f64) -> f64 {
     if x < lo {
@@ -313,7 +338,7 @@ impl Controller for PiController {
         self.brake_integrator = clamp(self.brake_integrator + brake_error * dt_s, -self.brake_limit, self.brake_limit);
         let pedal = if coasting { 0.0 } else { self.pedal_kp * pedal_error + self.pedal_ki * self.pedal_integrator };
         let brake = self.brake_kp * brake_error + self.brake_ki * self.brake_integrator;
-        self.gear = self.gears.next_gear(self.gear, state.v_mps);
+        self.gear = self.next_gear(road, state);
         let control = Control { pedal: clamp(pedal, 0.0, 1.0), brake: clamp(brake, 0.0, 1.0), gear: self.gear };
         Decision { control, until_m: None }
     }

@@ -152,13 +152,35 @@ fn maps<'a>(vehicle: &'a Vehicle, p: &DpSettings, v_i: f64, gear: usize, slope_t
     }
 }
 
-/// A row's span `(first, last)` of grid indices limited to speeds above standstill and at most one
-/// grid step beyond `v_max` [m/s], the top of the next stage's band (`delta_mps` the grid step):
-/// no target outside reaches the next stage's grid.
+/// A row's span `(first, last)` of grid indices limited to the targets [`pair`] admits: speeds
+/// above standstill and at most [`REACH_BEYOND_V_MAX`] grid steps beyond `v_max` [m/s], the top of
+/// the next stage's band (`delta_mps` the grid step). No target outside reaches the next stage's
+/// grid; the ends are found on the grid's own speeds, so a row and `pair` agree at every index.
 #[inline]
 fn clamp_span((first, last): (i64, i64), grid: GridIndex, v_max: f64, delta_mps: f64) -> (i64, i64) {
-    (first.max(grid.ceil(0.0) + 1), last.min(grid.ceil(v_max + delta_mps) + 1))
+    let top = v_max + REACH_BEYOND_V_MAX * delta_mps;
+    if !(top.is_finite() && grid.delta_mps > 0.0 && grid.origin_mps.is_finite()) {
+        return (first, last);
+    }
+    let mut lowest = grid.floor(0.0);
+    while grid.speed(lowest) > 0.0 {
+        lowest -= 1;
+    }
+    while !(grid.speed(lowest) > 0.0) {
+        lowest += 1;
+    }
+    let mut highest = grid.floor(top);
+    while grid.speed(highest) > top {
+        highest -= 1;
+    }
+    while grid.speed(highest + 1) <= top {
+        highest += 1;
+    }
+    (first.max(lowest), last.min(highest))
 }
+
+/// Grid steps beyond v_max that a row covers and [`pair`] admits (the brake points lie within one).
+const REACH_BEYOND_V_MAX: f64 = 2.0;
 
 /// Trim a row's unreachable ends (appended to `out` from `start`, its first index `first`) so the
 /// min-plus loop never scans them.
@@ -185,6 +207,9 @@ pub fn change_cost(q_change: f64, q_change_sq: f64, dv: f64) -> f64 {
 /// None if inadmissible; `v_max` [m/s] is the top of the next stage's band.
 #[inline]
 fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64, v_max: f64) -> Option<(Inputs, f64)> {
+    if !(v_j > 0.0 && v_j <= v_max + REACH_BEYOND_V_MAX * p.delta_mps()) {
+        return None;
+    }
     if let Some(end) = &m.trapezoid {
         return pair_trapezoid(p, m, end, v_i, v_j, v_max);
     }

@@ -57,6 +57,8 @@ pub struct MapModel {
     grid: FuelGrid,
     /// Drag torque [Nm] over engine speed, resampled.
     drag: Sampled,
+    /// Lowest engine speed the tables cover [rpm] (idle, or the curve's first point if lower).
+    low_rpm: f64,
     /// Highest engine speed of the full-load curve [rpm].
     top_rpm: f64,
     /// Wheel torque [Nm] at fuel cut and at full load over engine speed, per gear (index 0 unused).
@@ -98,6 +100,7 @@ impl MapModel {
         let wheel_range = wheel_ranges(&truck, (n_lo, n_hi));
         MapModel {
             drag: Sampled::new(curves.1, speeds),
+            low_rpm: n_lo,
             top_rpm: hi,
             wheel_range,
             truck,
@@ -157,10 +160,11 @@ impl MapModel {
         self.weight_torque_nm * (alpha.sin() + self.truck.body().rolling_resistance * alpha.cos())
     }
 
-    /// Torque of the auxiliaries at the engine [Nm] at `n_rpm`.
+    /// Torque of the auxiliaries at the engine [Nm] at `n_rpm`, held below the tables' lowest
+    /// speed as the wheel-torque tables are (so fuel cut stays at the drag torque there).
     #[inline]
     fn aux_torque_nm(&self, n_rpm: f64) -> f64 {
-        self.truck.body().aux_power_w / (n_rpm / RPM_PER_RAD_S)
+        self.truck.body().aux_power_w / (n_rpm.max(self.low_rpm) / RPM_PER_RAD_S)
     }
 
     /// Wheel torques [Nm] at fuel cut and at full load in forward `gear` at engine speed `n_rpm`:

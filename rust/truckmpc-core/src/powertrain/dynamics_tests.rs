@@ -13,7 +13,7 @@ use crate::road::Road;
 use crate::vehicle::{Vehicle, VehicleParams, NEUTRAL};
 
 fn vehicle(interruption_s: f64) -> Vehicle {
-    Vehicle::from_map(MapModel::new(truck(), 1.0e5, interruption_s), &VehicleParams::default()).unwrap()
+    Vehicle::from_map(Arc::new(MapModel::new(truck(), 1.0e5, interruption_s)), &VehicleParams::default()).unwrap()
 }
 
 #[test]
