@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from truckmpc.errors import VehicleError
+from truckmpc.vecto.checks import Located, check_full_load, check_once
 from truckmpc.vecto.files import json_body, number, numbers_table, text
 
 __all__ = ["Axle", "EngineData", "GearboxData", "LossPoints", "VectoJob", "VehicleData", "read_job"]
@@ -158,35 +159,24 @@ def read_engine(path: Path) -> EngineData:
     )
 
 
+def _located(path: Path, columns: int, what: str) -> list[Located]:
+    """The rows of a numeric CSV table, each with ``path:line``."""
+    return [(f"{path}:{line}", line, (r[0], r[1], r[2])) for line, r in numbers_table(path, columns, what)]
+
+
 def _full_load(path: Path) -> tuple[tuple[float, float, float], ...]:
-    rows = numbers_table(path, 3, "a full-load curve (engine speed, full-load torque, drag torque)")
-    for (line, (n, _, _)), (_, (n_prev, _, _)) in zip(rows[1:], rows[:-1], strict=True):
-        if n <= n_prev:
-            raise VehicleError(f"{path}:{line}: expected engine speeds that increase, got {n:g} after {n_prev:g}")
-    for line, (_, _, drag) in rows:
-        if drag > 0:
-            raise VehicleError(f"{path}:{line}: expected a drag (motoring) torque <= 0, got {drag:g}")
-    for line, (_, full, drag) in rows:
-        if drag > full:
-            raise VehicleError(
-                f"{path}:{line}: expected a drag torque <= the full-load torque, got {drag:g} > {full:g}"
-            )
-    return tuple((r[0], r[1], r[2]) for _, r in rows)
+    rows = _located(path, 3, "a full-load curve (engine speed, full-load torque, drag torque)")
+    check_full_load(rows)
+    return tuple(values for _, _, values in rows)
 
 
 def _fuel_map(path: Path) -> tuple[tuple[float, float, float], ...]:
-    rows = numbers_table(path, 3, "a fuel map (engine speed, torque, fuel rate)")
-    seen: dict[tuple[float, float], int] = {}
-    for line, (n, torque, fuel) in rows:
+    rows = _located(path, 3, "a fuel map (engine speed, torque, fuel rate)")
+    for where, _, (_, _, fuel) in rows:
         if fuel < 0:
-            raise VehicleError(f"{path}:{line}: expected a fuel rate >= 0 [g/h], got {fuel:g}")
-        if (n, torque) in seen:
-            raise VehicleError(
-                f"{path}:{line}: expected each (speed, torque) once, "
-                f"got {n:g} rpm, {torque:g} Nm again (line {seen[(n, torque)]})"
-            )
-        seen[(n, torque)] = line
-    return tuple((r[0], r[1], r[2]) for _, r in rows)
+            raise VehicleError(f"{where}: expected a fuel rate >= 0 [g/h], got {fuel:g}")
+    check_once(rows, "(engine speed, torque)")
+    return tuple(values for _, _, values in rows)
 
 
 def read_gearbox(path: Path) -> GearboxData:
@@ -239,20 +229,14 @@ def read_gearbox(path: Path) -> GearboxData:
 def loss_map(path: Path) -> LossPoints:
     """Read a ``.vtlm`` transmission loss map: (input speed [rpm], input torque [Nm], torque loss
     [Nm]) rows, each (speed, torque) once, losses >= 0."""
-    rows = numbers_table(path, 3, "a loss map (input speed, input torque, torque loss)")
-    seen: dict[tuple[float, float], int] = {}
-    for line, (n, torque, loss) in rows:
+    rows = _located(path, 3, "a loss map (input speed, input torque, torque loss)")
+    for where, _, (n, _, loss) in rows:
         if loss < 0:
-            raise VehicleError(f"{path}:{line}: expected a torque loss >= 0 [Nm], got {loss:g}")
+            raise VehicleError(f"{where}: expected a torque loss >= 0 [Nm], got {loss:g}")
         if n < 0:
-            raise VehicleError(f"{path}:{line}: expected an input speed >= 0 [rpm], got {n:g}")
-        if (n, torque) in seen:
-            raise VehicleError(
-                f"{path}:{line}: expected each (speed, torque) once, "
-                f"got {n:g} rpm, {torque:g} Nm again (line {seen[(n, torque)]})"
-            )
-        seen[(n, torque)] = line
-    return tuple((r[0], r[1], r[2]) for _, r in rows)
+            raise VehicleError(f"{where}: expected an input speed >= 0 [rpm], got {n:g}")
+    check_once(rows, "(input speed, input torque)")
+    return tuple(values for _, _, values in rows)
 
 
 def read_vehicle(path: Path) -> VehicleData:

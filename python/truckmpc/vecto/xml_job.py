@@ -19,6 +19,7 @@ from xml.parsers import expat
 
 from truckmpc.errors import VehicleError, read_user_text
 from truckmpc.vecto import declaration as decl
+from truckmpc.vecto.checks import Located, check_full_load, check_once
 from truckmpc.vecto.components import Axle, EngineData, GearboxData, LossPoints, VectoJob, VehicleData
 
 __all__ = ["read_xml_job"]
@@ -204,13 +205,9 @@ def _table(el: _Element, columns: tuple[tuple[str, float | None], ...], fewest: 
     return rows
 
 
-def _once(rows: list[_Row], what: str) -> None:
-    """Refuse a (first, second column) pair given twice."""
-    seen: dict[tuple[float, float], int] = {}
-    for e, (a, b, _) in rows:
-        if (a, b) in seen:
-            raise VehicleError(f"{e.where}: expected each {what} once, got {a:g}, {b:g} again (line {seen[(a, b)]})")
-        seen[(a, b)] = e.line
+def _located(rows: list[_Row]) -> list[Located]:
+    """The rows with where each element was read, for the checks the file formats share."""
+    return [(e.where, e.line, values) for e, values in rows]
 
 
 def _engine(data: _Element, vehicle_idle_rpm: float) -> EngineData:
@@ -233,28 +230,21 @@ def _engine(data: _Element, vehicle_idle_rpm: float) -> EngineData:
 def _full_load(el: _Element) -> tuple[tuple[float, float, float], ...]:
     """(engine speed [rpm], full-load torque [Nm], drag torque [Nm]) rows."""
     rows = _table(el, (("engineSpeed", None), ("maxTorque", None), ("dragTorque", None)), 2)
-    for (e, (n, _, _)), (_, (n_prev, _, _)) in zip(rows[1:], rows[:-1], strict=True):
-        if n <= n_prev:
-            raise VehicleError(f"{e.where}: expected engine speeds that increase, got {n:g} after {n_prev:g}")
-    for e, (_, full, drag) in rows:
-        if drag > 0:
-            raise VehicleError(f"{e.where}: expected a drag (motoring) torque <= 0, got {drag:g}")
-        if drag > full:
-            raise VehicleError(f"{e.where}: expected a drag torque <= the full-load torque, got {drag:g} > {full:g}")
+    check_full_load(_located(rows))
     return tuple(v for _, v in rows)
 
 
 def _fuel_map(el: _Element) -> tuple[tuple[float, float, float], ...]:
     """(engine speed [rpm], torque [Nm], fuel rate [g/h]) points."""
     rows = _table(el, (("engineSpeed", None), ("torque", None), ("fuelConsumption", 0.0)), 4)
-    _once(rows, "(engine speed, torque)")
+    check_once(_located(rows), "(engine speed, torque)")
     return tuple(v for _, v in rows)
 
 
 def _loss_map(el: _Element) -> LossPoints:
     """(input speed [rpm], input torque [Nm], torque loss [Nm]) points."""
     rows = _table(el, (("inputSpeed", 0.0), ("inputTorque", None), ("torqueLoss", 0.0)), 4)
-    _once(rows, "(input speed, input torque)")
+    check_once(_located(rows), "(input speed, input torque)")
     return tuple(v for _, v in rows)
 
 
