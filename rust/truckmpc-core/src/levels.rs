@@ -43,9 +43,8 @@ pub fn pedal_accel(vehicle: &Vehicle, v0_mps: f64, gear: usize, slope: f64) -> A
 pub fn pedal_accel_on(vehicle: &Vehicle, v0_mps: f64, gear: usize, slope_torque_nm: f64) -> AffineAccel {
     debug_assert!(gear != NEUTRAL);
     if let Some(m) = vehicle.map_model() {
-        let (cut, full) = m.wheel_torque_range_nm(m.rpm_per_mps(gear) * v0_mps, gear);
-        let load = m.air_torque_nm(v0_mps) + slope_torque_nm;
-        return AffineAccel { accel_at_zero: m.c1(gear) * (cut - load), gain: m.c1(gear) * (full - cut) };
+        let (accel_at_zero, gain) = m.pedal_affine(v0_mps, gear, slope_torque_nm);
+        return AffineAccel { accel_at_zero, gain };
     }
     let g = vehicle.gear(gear);
     let p = vehicle.params();
@@ -68,10 +67,8 @@ pub fn brake_accel(vehicle: &Vehicle, v0_mps: f64, gear: usize, slope: f64) -> A
 #[inline]
 pub fn brake_accel_on(vehicle: &Vehicle, v0_mps: f64, gear: usize, slope_torque_nm: f64) -> AffineAccel {
     if let Some(m) = vehicle.map_model() {
-        let cut = if gear == NEUTRAL { 0.0 } else { m.wheel_torque_range_nm(m.rpm_per_mps(gear) * v0_mps, gear).0 };
-        let load = m.air_torque_nm(v0_mps) + slope_torque_nm;
-        let c1 = m.c1(gear);
-        return AffineAccel { accel_at_zero: c1 * (cut - load), gain: -c1 * m.brake_torque_max_nm() };
+        let (accel_at_zero, gain) = m.brake_affine(v0_mps, gear, slope_torque_nm);
+        return AffineAccel { accel_at_zero, gain };
     }
     let g = vehicle.gear(gear);
     let drag = if gear == NEUTRAL { 0.0 } else { vehicle.drag_torque_nm(g.c4 * v0_mps) };

@@ -180,25 +180,19 @@ fn grids_of(vehicle: &Vehicle, p: &DpSettings, start: InitialState, slopes: &[f6
     grids
 }
 
+/// The thesis's 40 t truck.
+fn thesis_truck() -> Vehicle {
+    Vehicle::new(VehicleParams::default()).unwrap()
+}
+
 /// Runs `cases` random problems; returns (feasible cases, cases where the DP's cost is the optimum).
 fn check(k_lim: u32, anchor: GridAnchor, cases: usize, seed: u64) -> (usize, usize) {
-    check_with(k_lim, anchor, (Some(0.1), false), cases, seed)
+    check_with(&thesis_truck(), k_lim, anchor, (Some(0.1), false), cases, seed)
 }
 
-/// [`check`] with the pedal tolerance ε (None: half a grid step of speed) and whether fuel cut in a
-/// gear is also an exact arc.
+/// [`check`] for `vehicle`, with the pedal tolerance ε (None: half a grid step of speed) and whether
+/// fuel cut in a gear is also an exact arc.
 fn check_with(
-    k_lim: u32,
-    anchor: GridAnchor,
-    tolerance_and_arcs: (Option<f64>, bool),
-    cases: usize,
-    seed: u64,
-) -> (usize, usize) {
-    check_vehicle(&Vehicle::new(VehicleParams::default()).unwrap(), k_lim, anchor, tolerance_and_arcs, cases, seed)
-}
-
-/// [`check_with`] for any vehicle.
-fn check_vehicle(
     vehicle: &Vehicle,
     k_lim: u32,
     anchor: GridAnchor,
@@ -206,17 +200,15 @@ fn check_vehicle(
     cases: usize,
     seed: u64,
 ) -> (usize, usize) {
-    let vehicle = vehicle.clone();
     let mut rng = Rng(seed);
     let (mut feasible, mut equal) = (0, 0);
     for case in 0..cases {
-        let (p, start, slopes) = random_case(&mut rng, &vehicle, k_lim, anchor, tolerance_and_arcs);
-        let grids = grids_of(&vehicle, &p, start, &slopes);
-        let problem =
-            Problem { vehicle: &vehicle, p: &p, slopes: slopes.clone(), grids, start, memo: RefCell::default() };
+        let (p, start, slopes) = random_case(&mut rng, vehicle, k_lim, anchor, tolerance_and_arcs);
+        let grids = grids_of(vehicle, &p, start, &slopes);
+        let problem = Problem { vehicle, p: &p, slopes: slopes.clone(), grids, start, memo: RefCell::default() };
         let brute = problem.best(0, start.v_mps, start.gear, start.stages_since_shift);
         let mut solver = Solver::new(p.clone());
-        let dp = solver.solve(&vehicle, start, &slopes);
+        let dp = solver.solve(vehicle, start, &slopes);
         assert_eq!(dp.feasible, brute.is_finite(), "case {case}: feasibility differs (dp {}, brute {brute})", dp.cost);
         if !dp.feasible {
             continue;
@@ -263,7 +255,7 @@ fn dp_equals_enumeration_on_fixed_grid() {
 #[test]
 fn dp_equals_enumeration_with_the_pedal_tolerance_of_half_a_grid_step() {
     for (anchor, seed) in [(GridAnchor::Fixed, 0x0BAD_5EED_1234_5678), (GridAnchor::Moving, 0x5EED_0BAD_8765_4321)] {
-        let (feasible, equal) = check_with(1, anchor, (None, false), 150, seed);
+        let (feasible, equal) = check_with(&thesis_truck(), 1, anchor, (None, false), 150, seed);
         assert!(feasible > 100, "too few feasible cases: {feasible}");
         assert_eq!(equal, feasible);
     }
@@ -278,7 +270,7 @@ fn dp_equals_enumeration_with_fuel_cut_arcs() {
         (GridAnchor::Moving, Some(0.1), 0x7777_4321_DCBA_0002),
         (GridAnchor::Fixed, Some(0.0), 0x7777_5555_AAAA_0003),
     ] {
-        let (feasible, equal) = check_with(1, anchor, (tolerance, true), 150, seed);
+        let (feasible, equal) = check_with(&thesis_truck(), 1, anchor, (tolerance, true), 150, seed);
         assert!(feasible > 100, "too few feasible cases: {feasible}");
         assert_eq!(equal, feasible);
     }
@@ -330,7 +322,7 @@ fn dp_equals_enumeration_for_a_truck_with_a_curved_fuel_map() {
         (GridAnchor::Moving, false, 0x4D41_5002),
         (GridAnchor::Fixed, true, 0x4D41_5003),
     ] {
-        let (feasible, equal) = check_vehicle(&vehicle, 1, anchor, (None, arcs), 150, seed);
+        let (feasible, equal) = check_with(&vehicle, 1, anchor, (None, arcs), 150, seed);
         assert!(feasible > 100, "too few feasible cases: {feasible}");
         assert_eq!(equal, feasible);
     }

@@ -191,6 +191,25 @@ impl MapModel {
         self.c1[gear] * (cut + pedal.max(0.0) * (full - cut) - resist)
     }
 
+    /// The acceleration [m/s²] as an affine function of the pedal at `v_mps` in forward `gear`
+    /// (brake off), on a slope given by its wheel torque [Nm]: (acceleration at fuel cut, gain per
+    /// unit of pedal), the form [`MapModel::accel_on`] evaluates.
+    #[inline]
+    pub fn pedal_affine(&self, v_mps: f64, gear: usize, slope_torque_nm: f64) -> (f64, f64) {
+        let (cut, full) = self.wheel_torque_range_nm(self.rpm_per_mps[gear] * v_mps, gear);
+        let load = self.air_torque_nm(v_mps) + slope_torque_nm;
+        (self.c1[gear] * (cut - load), self.c1[gear] * (full - cut))
+    }
+
+    /// The acceleration [m/s²] as an affine function of the brake at fuel cut (or in neutral,
+    /// `gear` 0): (acceleration without brake, gain per unit of brake).
+    #[inline]
+    pub fn brake_affine(&self, v_mps: f64, gear: usize, slope_torque_nm: f64) -> (f64, f64) {
+        let cut = if gear == 0 { 0.0 } else { self.wheel_torque_range_nm(self.rpm_per_mps[gear] * v_mps, gear).0 };
+        let load = self.air_torque_nm(v_mps) + slope_torque_nm;
+        (self.c1[gear] * (cut - load), -self.c1[gear] * self.brake_torque_max_nm)
+    }
+
     /// Engine torque [Nm] at `v_mps` with `pedal` in forward `gear`: the one that gives the wheels
     /// W(P), with the auxiliaries' share.
     #[inline]
