@@ -35,9 +35,11 @@ SUMMARY_KEYS = (
 
 @pytest.fixture(scope="module")
 def descent(tmp_path_factory) -> Path:
-    """A short road: 100 m flat, 300 m at -3 %, 100 m flat (the PCC coasts where the PI brakes)."""
+    """A short road: 600 m flat, 300 m at -3 %, 100 m flat (the PCC coasts where the PI brakes). The
+    flat lead lets the PCC's trip time follow its set speed: with 100 m the PCC coasts from the start
+    at any set speed and no PCC run matches a faster trip time."""
     path = tmp_path_factory.mktemp("roads") / "descent.csv"
-    write_road(make_section("hill", 300, -3.0, lead_m=100, tail_m=100), path)
+    write_road(make_section("hill", 300, -3.0, lead_m=600, tail_m=100), path)
     return path
 
 

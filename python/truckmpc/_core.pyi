@@ -167,8 +167,8 @@ def run(
     controller: str,
     controller_road: Road | None = None,
 ) -> RunOutput:
-    """Drive `road` with the built-in controller "pi", "pcc", "mpc" or "optimal" (the GIL released),
-    the controller planning on `controller_road` if given."""
+    """Drive `road` with the built-in controller "pi", "vecto_cc", "pcc", "mpc" or "optimal" (the GIL
+    released), the controller planning on `controller_road` if given."""
 
 def run_python(
     settings: Settings,

@@ -20,7 +20,7 @@ from typing import Any
 
 from truckmpc.config import RunConfig
 from truckmpc.convergence import convergence_document, run_halves
-from truckmpc.equal_time import LOOK_AHEAD, OPTIMISERS, EqualTime, equal_time_baselines
+from truckmpc.equal_time import BASELINES, EqualTime, compared_with, equal_time_baselines
 from truckmpc.roads import RoadProfile
 from truckmpc.sim import RunResult, simulate
 from truckmpc.workload import EQUAL_TIME_RUNS, check_runs, duration
@@ -34,8 +34,9 @@ Status = Callable[[str], AbstractContextManager[object]]
 @dataclass(frozen=True)
 class ControllerRuns:
     """What :func:`run_controllers` drove: one result per controller, the equal-time baselines
-    (keyed by look-ahead controller; ``<name>_vs_pcc`` against the PCC) and the extra objects of
-    ``summary.json`` (``convergence``, with halved configurations)."""
+    (keyed by look-ahead controller against the PI; ``<name>_vs_<baseline>`` against VECTO's cruise
+    driver and the PCC) and the extra objects of ``summary.json`` (``convergence``, with halved
+    configurations)."""
 
     results: dict[str, RunResult]
     equal_times: dict[str, EqualTime]
@@ -43,13 +44,17 @@ class ControllerRuns:
 
 
 def planned_runs(controllers: Sequence[str]) -> list[str]:
-    """The runs :func:`run_controllers` makes, for the work estimate: the controllers and, when the
-    PI is among them, a typical equal-time search's PI runs per look-ahead controller (and PCC runs
-    per optimiser when the PCC is among them too)."""
-    retuned = ["pi"] * EQUAL_TIME_RUNS * sum(name in LOOK_AHEAD for name in controllers)
-    if "pcc" in controllers:
-        retuned += ["pcc"] * EQUAL_TIME_RUNS * sum(name in OPTIMISERS for name in controllers)
-    return [*controllers, *retuned] if "pi" in controllers else list(controllers)
+    """The runs :func:`run_controllers` makes, for the work estimate: the controllers and, for each
+    baseline among them, a typical equal-time search's runs of it per controller compared with it."""
+    retuned = [
+        baseline
+        for baseline in BASELINES
+        if baseline in controllers
+        for name in controllers
+        if name in compared_with(baseline)
+        for _ in range(EQUAL_TIME_RUNS)
+    ]
+    return [*controllers, *retuned]
 
 
 def check_work(
@@ -90,10 +95,12 @@ def run_controllers(
     for name in controllers:
         with status(f"{name}: driving {road.name}{told}"):
             results[name] = simulate(road, config, name)
-    with status(f"pi re-tuned to each look-ahead run's trip time: driving {road.name}"):
-        equal_times = equal_time_baselines(road, config, results)
-        against_pcc = equal_time_baselines(road, config, results, baseline="pcc")
-        equal_times.update({f"{name}_vs_pcc": found for name, found in against_pcc.items()})
+    equal_times: dict[str, EqualTime] = {}
+    for baseline in (name for name in BASELINES if name in results):
+        with status(f"{baseline} re-tuned to each look-ahead run's trip time: driving {road.name}"):
+            found = equal_time_baselines(road, config, results, baseline=baseline)
+        suffix = "" if baseline == "pi" else f"_vs_{baseline}"
+        equal_times.update({f"{name}{suffix}": value for name, value in found.items()})
     extra = {}
     if halves:
         with status(f"mpc at half delta_kmh and half stage_m: driving {road.name}"):

@@ -54,9 +54,10 @@ TRACE_COLUMNS = (
 )
 """Trace columns, in CSV order. `fuel_g` and `brake_energy_kj` are cumulative."""
 
-CONTROLLERS: tuple[str, ...] = ("pi", "pcc", "mpc", "optimal")
+CONTROLLERS: tuple[str, ...] = ("pi", "vecto_cc", "pcc", "mpc", "optimal")
 """Built-in controllers selectable by name (`truckmpc simulate --controller`): the PI of section 2.5,
-VECTO's rule-based predictive cruise control with eco-roll on that PI (`pcc`), the DP-MPC of
+VECTO's cruise driver for a truck without predictive cruise control (`vecto_cc`), VECTO's
+rule-based predictive cruise control with eco-roll acting through that driver (`pcc`), the DP-MPC of
 chapter 5, and the whole-road optimum (the same DP solved once over the entire road, then driven
 from the measured state stage by stage against its stored cost-to-go)."""
 

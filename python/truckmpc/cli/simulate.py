@@ -58,8 +58,11 @@ ControllerOpt = Annotated[
     str | None,
     typer.Option(
         "--controller",
-        help="Controllers to run: a comma list of pi, mpc, optimal (pi,mpc,optimal), or both = pi,mpc "
-        "(default), all = pi,mpc,optimal. Each look-ahead controller is compared with the pi.",
+        help="Controllers to run: a comma list of pi, vecto_cc, pcc, mpc, optimal (pi,vecto_cc,pcc,mpc), or "
+        "both = pi,mpc (default), all = pi,mpc,optimal. pi is the thesis's PI cruise control, vecto_cc VECTO's "
+        "cruise driver, pcc VECTO's predictive cruise control, mpc the look-ahead controller, optimal its "
+        "whole-road optimum. Each look-ahead controller (pcc, mpc, optimal) is compared with every baseline "
+        "that ran (pi, vecto_cc) and the mpc and optimal with the pcc.",
     ),
 ]
 OutOpt = Annotated[Path | None, typer.Option("--out", help="Output directory (default: out/<road name>).")]

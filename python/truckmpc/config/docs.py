@@ -19,9 +19,10 @@ SECTION_TITLES = {
     "mpc": "The look-ahead DP-MPC (chapter 5; tables 5.2, 6.1, 6.2). The cost weighs fuel in grams and\n"
     "# speeds in m/s: with these units table 6.2's weights give chapter 6's behaviour. These defaults\n"
     "# converge as delta_kmh and stage_m shrink; --config thesis is the controller as printed.",
-    "pcc": "VECTO's rule-based predictive cruise control (use cases 1-3) and eco-roll, on the PI: its\n"
-    "# declaration defaults; its allowed underspeed and overspeed are the cruise band's v_dec_kmh and\n"
-    "# v_inc_kmh. Drive it with --controller pcc.",
+    "pcc": "VECTO's driver with its declaration defaults: its cruise driver (--controller vecto_cc), and\n"
+    "# its rule-based predictive cruise control (use cases 1-3) with eco-roll on that driver\n"
+    "# (--controller pcc). The PCC's allowed underspeed, and its overspeed with use case 3, are the\n"
+    "# cruise band's v_dec_kmh and v_inc_kmh.",
     "sim": "How the closed loop is simulated and recorded.",
 }
 

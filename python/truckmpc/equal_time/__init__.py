@@ -5,7 +5,14 @@ baseline); :mod:`~truckmpc.equal_time.baselines` drives it by simulation for eve
 Comparisons that do not depend on end speed, the end-speed correction, are :mod:`truckmpc.fuel`'s.
 """
 
-from truckmpc.equal_time.baselines import LOOK_AHEAD, OPTIMISERS, baseline_runner, equal_time_baselines
+from truckmpc.equal_time.baselines import (
+    BASELINES,
+    LOOK_AHEAD,
+    OPTIMISERS,
+    baseline_runner,
+    compared_with,
+    equal_time_baselines,
+)
 from truckmpc.equal_time.search import (
     MAX_RUNS,
     SEARCH_KMH,
@@ -17,6 +24,7 @@ from truckmpc.equal_time.search import (
 )
 
 __all__ = [
+    "BASELINES",
     "LOOK_AHEAD",
     "MAX_RUNS",
     "OPTIMISERS",
@@ -26,6 +34,7 @@ __all__ = [
     "EqualTime",
     "RunAt",
     "baseline_runner",
+    "compared_with",
     "equal_time",
     "equal_time_baselines",
 ]

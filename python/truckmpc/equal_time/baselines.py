@@ -11,13 +11,23 @@ from truckmpc.equal_time.search import TARGET_OFFSET_LIMIT_KMH, EqualTime, RunAt
 from truckmpc.roads.profile import RoadProfile
 from truckmpc.sim import RunResult, simulate
 
-__all__ = ["LOOK_AHEAD", "OPTIMISERS", "baseline_runner", "equal_time_baselines"]
+__all__ = ["BASELINES", "LOOK_AHEAD", "OPTIMISERS", "baseline_runner", "compared_with", "equal_time_baselines"]
 
 LOOK_AHEAD = ("pcc", "mpc", "optimal")
-"""The controllers compared with the PI at equal trip time."""
+"""The controllers compared with the baselines without look-ahead at equal trip time."""
 
 OPTIMISERS = ("mpc", "optimal")
 """The controllers also compared with the rule-based PCC (when it ran) at equal trip time."""
+
+BASELINES = ("pi", "vecto_cc", "pcc")
+"""The controllers others are compared with, when they ran: the thesis's PI, VECTO's cruise driver
+(what VECTO simulates for a truck without predictive cruise control) and VECTO's PCC."""
+
+
+def compared_with(baseline: str) -> tuple[str, ...]:
+    """The controllers compared with `baseline` at equal trip time: the look-ahead ones with the
+    baselines without look-ahead, the optimising ones with the PCC."""
+    return OPTIMISERS if baseline == "pcc" else LOOK_AHEAD
 
 
 def baseline_runner(road: RoadProfile, config: RunConfig, controller: str = "pi") -> RunAt:
@@ -46,9 +56,9 @@ def baseline_runner(road: RoadProfile, config: RunConfig, controller: str = "pi"
 def equal_time_baselines(
     road: RoadProfile, config: RunConfig, results: Mapping[str, RunResult], baseline: str = "pi"
 ) -> dict[str, EqualTime]:
-    """For every look-ahead run in `results` that did not stall, the baseline driven to its trip time
-    (the baseline's run at the configured v_ref is `results[baseline]`): against the PI every
-    look-ahead controller, against the PCC the optimising ones."""
+    """For every run in `results` compared with `baseline` (:func:`compared_with`) that did not
+    stall, the baseline driven to its trip time (the baseline's run at the configured v_ref is
+    `results[baseline]`)."""
     base = results.get(baseline)
     if base is None:
         return {}
@@ -64,7 +74,7 @@ def equal_time_baselines(
         start_kmh = cruise.v_ref_kmh + cruise.target_offset_kmh
         floor_kmh, ceiling_kmh = cruise.v_ref_kmh - TARGET_OFFSET_LIMIT_KMH, math.inf
     out = {}
-    for name in LOOK_AHEAD if baseline == "pi" else OPTIMISERS:
+    for name in compared_with(baseline):
         result = results.get(name)
         if result is None or result.stalled:
             continue

@@ -221,8 +221,9 @@ class _Search:
             kept_last = kept
         found = self.found
         assert found.time_s is not None
+        miss_s = abs(found.time_s - found.target_time_s)
         found.reason = (
-            f"not comparable: the pi's trip time came no closer than {abs(found.time_s - found.target_time_s):.2f} s "
+            f"not comparable: the baseline's trip time came no closer than {miss_s:.2f} s "
             f"to {found.target_time_s:.1f} s in {MAX_RUNS} runs"
         )
         return found
@@ -230,7 +231,7 @@ class _Search:
     def no_bracket(self) -> EqualTime:
         found = self.found
         found.reason = found.reason or (
-            f"not comparable: {MAX_RUNS} pi runs found no set speed on each side of the trip time "
+            f"not comparable: {MAX_RUNS} baseline runs found no set speed on each side of the trip time "
             f"{found.target_time_s:.1f} s"
         )
         return found

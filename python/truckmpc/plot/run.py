@@ -25,6 +25,7 @@ MAX_POINTS = 20_000
 
 CONTROLLER_STYLE = {
     "pi": ("PI", "tab:blue"),
+    "vecto_cc": ("cruise control (VECTO)", "tab:olive"),
     "pcc": ("PCC (VECTO)", "tab:green"),
     "mpc": ("MPC", "tab:red"),
     "optimal": ("whole-road optimum", "tab:purple"),

@@ -13,7 +13,9 @@
      "not_comparable": "not comparable: mpc stalled at km 0.98"}   # only when a delta is null
 
 With several look-ahead controllers (``--controller all``) each delta and ``equal_time`` key ends in
-``_<controller>``. ``"comparisons"`` lists the same per look-ahead controller:
+``_<controller>``. ``"comparisons"`` lists the same per controller against the PI, then each
+look-ahead controller against VECTO's cruise driver (``vecto_cc``) and each optimising one against
+the PCC, when they ran (their ``equal_time_<controller>_vs_<baseline>`` objects beside):
 ``[{"controller", "baseline", "delta_fuel_pct", "delta_time_pct", "delta_fuel_corrected_pct",
 "delta_fuel_equal_time_pct", "delta_fuel_equal_time_corrected_pct", "not_comparable"?}, ...]``.
 The end-speed correction is :mod:`truckmpc.fuel`'s, the equal-time search :mod:`truckmpc.equal_time`'s.
@@ -28,7 +30,7 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 from truckmpc.compare import compare, delta_pct
-from truckmpc.equal_time import EqualTime
+from truckmpc.equal_time import BASELINES, EqualTime, compared_with
 from truckmpc.sim import RunResult
 
 if TYPE_CHECKING:
@@ -61,12 +63,12 @@ def summary_document(
         suffix = "" if len(results) == 2 else f"_{name}"
         doc.update({f"{key}{suffix}": value for key, value in entry.items() if key not in ("controller", "baseline")})
         comparisons.append({key: value for key, value in entry.items() if key != "equal_time"})
-    pcc = results.get("pcc")
-    for name in ("mpc", "optimal"):
-        if pcc is not None and name in results:
-            entry = _comparison(pcc, results[name], (equal_times or {}).get(f"{name}_vs_pcc"))
+    for baseline in (name for name in BASELINES if name != BASELINE and name in results):
+        for name in (name for name in compared_with(baseline) if name in results):
+            key = f"{name}_vs_{baseline}"
+            entry = _comparison(results[baseline], results[name], (equal_times or {}).get(key))
             comparisons.append({key: value for key, value in entry.items() if key != "equal_time"})
-            doc[f"equal_time_{name}_vs_pcc"] = entry.get("equal_time")
+            doc[f"equal_time_{key}"] = entry.get("equal_time")
     if comparisons:
         doc["comparisons"] = comparisons
     if "mpc" in results and "optimal" in results:

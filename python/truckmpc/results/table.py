@@ -91,10 +91,11 @@ def format_table(
 def _equal_time_line(key: str, equal: Mapping[str, Any], width: int) -> str:
     """`equal time pi v_ref [km/h]   84.41  (4789.3 s, 6 runs)` (on a road with target speeds
     `equal time pi target offset [km/h]   +1.20 ...`), or why the time was not reached."""
-    baseline = "pcc" if key.endswith("_vs_pcc") else "pi"
+    name, _, against = key.partition("_vs_")
+    baseline = against or "pi"
     moved = "target_offset_kmh" if f"{baseline}_target_offset_kmh" in equal else "v_ref_kmh"
     what, spec = ("target offset", "+14.2f") if moved == "target_offset_kmh" else ("v_ref", "14.2f")
-    label = f"{key.replace('_vs_pcc', '').replace('_', ' ')} {baseline} {what} [km/h]"
+    label = f"{name.replace('_', ' ')} {baseline} {what} [km/h]"
     if "not_comparable" in equal:
         return f"{label}: {equal['not_comparable']}"
     value, time_s, runs = (equal[f"{baseline}_{k}"] for k in (moved, "time_s", "runs"))

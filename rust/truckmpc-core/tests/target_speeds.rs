@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use truckmpc_core::control::{Controller, GearLogic, PccController, PiController, RecedingController};
+use truckmpc_core::control::{Controller, GearLogic, PccController, PiController, RecedingController, VectoDriver};
 use truckmpc_core::dp::DpSettings;
 use truckmpc_core::sim::{run, RunOutput};
 use truckmpc_core::{CruiseParams, MpcParams, PiParams, SimParams};
@@ -36,7 +36,14 @@ fn controllers(vehicle: &Arc<Vehicle>) -> Vec<Box<dyn Controller>> {
     let dp = DpSettings::new(&mpc, &cruise).unwrap();
     vec![
         Box::new(PiController::new(vehicle.clone(), &PiParams::default(), &cruise).unwrap()),
-        Box::new(PccController::new(vehicle.clone(), &PiParams::default(), &cruise, &Default::default()).unwrap()),
+        Box::new(
+            PccController::new(vehicle.clone(), &PiParams::default(), &cruise, &Default::default(), SIM.plant_dt_s)
+                .unwrap(),
+        ),
+        Box::new(
+            VectoDriver::new(vehicle.clone(), &PiParams::default(), &cruise, &Default::default(), SIM.plant_dt_s)
+                .unwrap(),
+        ),
         Box::new(RecedingController::new(vehicle.clone(), dp, gears)),
     ]
 }

@@ -8,10 +8,11 @@ use pyo3::types::PyDict;
 use std::time::Instant;
 
 use truckmpc_core::control::{
-    Controller, Decision, GearLogic, PccController, PiController, RecedingController, SolverStats,
+    Controller, Decision, GearLogic, PccController, PiController, RecedingController, RuleStats, SolverStats,
+    VectoDriver,
 };
 use truckmpc_core::dp::DpSettings;
-use truckmpc_core::sim::{self, RunSummary, Trace};
+use truckmpc_core::sim::{self, shifts::per_100km, RunSummary, Trace};
 use truckmpc_core::{Control, PlantState, Road};
 
 use crate::errors::{bad_argument, to_py};
@@ -52,6 +53,11 @@ fn summary_dict<'py>(py: Python<'py>, s: &RunSummary) -> PyResult<Bound<'py, PyD
     out.set_item("stall_distance_m", s.stall_distance_m)?;
     out.set_item("message", s.message.as_deref())?;
     out.set_item("plant_dt_s", s.plant_dt_s)?;
+    if let Some(rules) = &s.rules {
+        out.set_item("pcc_events", rules.pcc_events)?;
+        out.set_item("eco_roll_entries", rules.eco_roll_entries)?;
+        out.set_item("eco_roll_entries_per_100km", per_100km(rules.eco_roll_entries, s.distance_m))?;
+    }
     if let Some(solver) = &s.solver {
         out.set_item("solves", solver.solves)?;
         out.set_item("infeasible_solves", solver.infeasible_solves)?;
@@ -96,7 +102,7 @@ fn trace_dict(py: Python<'_>, t: Trace) -> PyResult<Bound<'_, PyDict>> {
 /// Args:
 ///     settings: the run's settings (vehicle, cruise band, PI, MPC, simulation).
 ///     road: the road; `altitude_m` gives the trace's altitude at each of its profile points [m].
-///     controller: "pi", "pcc", "mpc" or "optimal" (the whole-road optimum).
+///     controller: "pi", "vecto_cc" (VECTO's cruise driver), "pcc", "mpc" or "optimal" (the whole-road optimum).
 ///     controller_road: the road the controller plans on, if not `road` (the plant drives `road`).
 ///
 /// Returns:
@@ -125,8 +131,16 @@ fn run(
                 Box::new(RecedingController::new(vehicle.clone(), dp, gears))
             }
         }
-        "pcc" => Box::new(PccController::new(vehicle.clone(), &s.pi, &s.cruise, &s.pcc).map_err(to_py)?),
-        other => return Err(bad_argument("controller", "'pi', 'pcc', 'mpc' or 'optimal'", format!("'{other}'"))),
+        "pcc" => {
+            Box::new(PccController::new(vehicle.clone(), &s.pi, &s.cruise, &s.pcc, s.sim.plant_dt_s).map_err(to_py)?)
+        }
+        "vecto_cc" => {
+            Box::new(VectoDriver::new(vehicle.clone(), &s.pi, &s.cruise, &s.pcc, s.sim.plant_dt_s).map_err(to_py)?)
+        }
+        other => {
+            let expected = "'pi', 'vecto_cc', 'pcc', 'mpc' or 'optimal'";
+            return Err(bad_argument("controller", expected, format!("'{other}'")));
+        }
     };
     let altitude_m = altitude_m.as_array().to_vec();
     let (road, start_kmh) = (&road.inner, s.start_speed_kmh(&road.inner));
@@ -208,6 +222,10 @@ impl Controller for Interruptible<'_> {
 
     fn solver_stats(&self) -> Option<SolverStats> {
         self.inner.solver_stats()
+    }
+
+    fn rule_stats(&self) -> Option<RuleStats> {
+        self.inner.rule_stats()
     }
 }
 

@@ -9,11 +9,13 @@ pub mod pcc;
 pub mod pi;
 pub mod receding;
 pub mod rescue;
+pub mod vecto_driver;
 
-pub use pcc::{Descent, PccController};
+pub use pcc::{PccController, PccSegment, PccState};
 pub use pi::{GearLogic, PiController};
 pub use receding::{PlanStats, RecedingController, ShiftCounter, SolverStats};
 pub use rescue::Rescue;
+pub use vecto_driver::VectoDriver;
 
 use crate::plant::{Control, PlantState};
 use crate::road::Road;
@@ -24,6 +26,14 @@ use crate::vehicle::Vehicle;
 /// cancels; h is relative to the road's first point).
 pub fn specific_energy_j_per_kg(vehicle: &Vehicle, road: &Road, s_m: f64, v_mps: f64) -> f64 {
     vehicle.params().gravity_mps2 * road.altitude_at(s_m) + 0.5 * v_mps * v_mps
+}
+
+/// What the PCC did in a run: its use case 1 and 2 starts and its eco-roll engagements (each a
+/// stretch in neutral with eco-roll fitted, counted apart from gear shifts).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct RuleStats {
+    pub pcc_events: u64,
+    pub eco_roll_entries: u64,
 }
 
 /// What [`Controller::decide`] returns: the inputs and until when to hold them.
@@ -54,6 +64,11 @@ pub trait Controller {
 
     /// Figures of an optimising controller's solves, for the run summary.
     fn solver_stats(&self) -> Option<SolverStats> {
+        None
+    }
+
+    /// What a rule-based controller with look-ahead did, for the run summary.
+    fn rule_stats(&self) -> Option<RuleStats> {
         None
     }
 }

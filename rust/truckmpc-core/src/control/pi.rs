@@ -90,6 +90,23 @@ impl GearLogic {
         }
     }
 
+    /// The gear after one evaluation in `gear` at `v_mps` [m/s] on `slope` [-] for `vehicle`:
+    /// [`GearLogic::next_gear`], except that a truck whose shifts interrupt traction (a VECTO truck)
+    /// shifts up only where the higher gear can still accelerate it by [`UPSHIFT_RESERVE_MPS2`] at
+    /// full load on this slope: otherwise it would lose the interruption's speed and shift back,
+    /// hunting up a long climb. The thesis's truck shifts by its thresholds alone (table A.3).
+    pub fn shift(&self, vehicle: &Vehicle, gear: usize, v_mps: f64, slope: f64) -> usize {
+        let next = self.next_gear(gear, v_mps);
+        if next <= gear || gear == NEUTRAL || vehicle.traction_interruption_s() <= 0.0 {
+            return next;
+        }
+        if vehicle.accel_mps2(v_mps, 1.0, 0.0, next, slope) >= UPSHIFT_RESERVE_MPS2 {
+            next
+        } else {
+            gear
+        }
+    }
+
     /// The gear the logic settles in at constant speed `v_mps` [m/s] when reached by accelerating
     /// from gear 1.
     pub fn steady_gear(&self, v_mps: f64) -> usize {
@@ -215,25 +232,13 @@ impl PiController {
 }
 
 impl PiController {
-    /// Take the set speed and the brake limit at `s_m` from the band.
-    /// The gear logic's next gear; for a truck whose shifts interrupt traction (a VECTO truck), an
-    /// up-shift only where the higher gear can still accelerate the truck by
-    /// [`UPSHIFT_RESERVE_MPS2`] at full load on the slope here: otherwise it would lose the
-    /// interruption's speed and shift back, hunting up a long climb. The thesis's truck shifts by
-    /// its thresholds alone (table A.3).
+    /// The gear after this step's evaluation of the gear logic ([`GearLogic::shift`]).
     fn next_gear(&mut self, road: &Road, state: &PlantState) -> usize {
-        let next = self.gears.next_gear(self.gear, state.v_mps);
-        if next <= self.gear || self.gear == NEUTRAL || self.vehicle.traction_interruption_s() <= 0.0 {
-            return next;
-        }
         let slope = road.slope_at(state.s_m, &mut self.slope_hint);
-        if self.vehicle.accel_mps2(state.v_mps, 1.0, 0.0, next, slope) >= UPSHIFT_RESERVE_MPS2 {
-            next
-        } else {
-            self.gear
-        }
+        self.gears.shift(&self.vehicle, self.gear, state.v_mps, slope)
     }
 
+    /// Take the set speed and the brake limit at `s_m` from the band.
     fn follow_band(&mut self, s_m: f64) {
         let at = self.band.at(s_m, &mut self.band_hint);
         self.v_ref_kmh = at.v_ref_kmh;

@@ -1,13 +1,21 @@
-//! The rule-based predictive cruise control of VECTO (the EU's certification tool for heavy
-//! trucks), with eco-roll: its declaration defaults. The controller is [`crate::control::PccController`].
+//! VECTO's driver (the EU's certification tool for heavy trucks): its plain cruise driver, its
+//! rule-based predictive cruise control and eco-roll, with their declaration defaults. The
+//! controllers are [`crate::control::VectoDriver`] (`vecto_cc`) and [`crate::control::PccController`].
 
 use super::Range;
 use crate::declare_params;
 
 declare_params! {
-    /// VECTO's predictive cruise control (use cases 1–3) and eco-roll on top of the PI cruise control.
-    /// Its allowed underspeed and overspeed are the cruise band's v_dec_kmh and v_inc_kmh.
+    /// VECTO's driver: its cruise driver (`vecto_cc`), and the predictive cruise control (use cases
+    /// 1–3) and eco-roll on top of it (`pcc`). The PCC's allowed underspeed and its overspeed with
+    /// use case 3 are the cruise band's v_dec_kmh and v_inc_kmh.
     pub struct PccParams in "pcc" {
+        /// VECTO's driver without use case 3: how far above the set speed it lets a descent take the truck before it brakes.
+        vecto_overspeed_kmh: f64 = 2.5, unit "km/h", range Range::between(0.0, 100.0);
+        /// VECTO's driver allows overspeed only where the set speed is above this.
+        vecto_overspeed_min_speed_kmh: f64 = 50.0, unit "km/h", range Range::between(0.0, 250.0);
+        /// VECTO's driver coasts ahead of a lower set speed only above this speed (below it, it brakes).
+        vecto_coasting_min_speed_kmh: f64 = 50.0, unit "km/h", range Range::between(0.0, 250.0);
         /// PCC acts only where v_ref is at least this.
         pcc_enabling_speed_kmh: f64 = 80.0, unit "km/h", range Range::between(0.0, 250.0);
         /// Lowest speed at which use case 2 (regaining speed on a descent by gravity alone) starts.
@@ -24,5 +32,9 @@ declare_params! {
         eco_roll_min_speed_kmh: f64 = 60.0, unit "km/h", range Range::between(0.0, 250.0);
         /// How long the conditions for eco-roll must hold before it engages.
         eco_roll_delay_s: f64 = 2.0, unit "s", range Range::between(0.0, 600.0);
+        /// Eco-roll engages only where the truck rolling in neutral would accelerate by at least this (a descent).
+        eco_roll_accel_min_mps2: f64 = 0.0, unit "m/s^2", range Range::between(-5.0, 5.0);
+        /// Eco-roll engages only where the truck rolling in neutral would accelerate by at most this (a gentle descent).
+        eco_roll_accel_max_mps2: f64 = 0.1, unit "m/s^2", range Range::between(-5.0, 5.0);
     }
 }

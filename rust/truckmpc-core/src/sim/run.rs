@@ -57,7 +57,13 @@ pub fn run_on_map(
     let last_u = closed.drive(map, controller);
     closed.recorder.finish(&closed.state, last_u);
     let compute_time_s = wall.elapsed().as_secs_f64();
-    let summary = RunSummary::new(&closed.state, &closed.outcome, compute_time_s, controller.solver_stats());
+    let summary = RunSummary::new(
+        &closed.state,
+        &closed.outcome,
+        compute_time_s,
+        controller.solver_stats(),
+        controller.rule_stats(),
+    );
     let trace = closed.recorder.into_trace(road, altitude_m, vehicle);
     Ok(RunOutput { controller: controller.name(), summary, trace })
 }

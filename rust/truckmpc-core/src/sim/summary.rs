@@ -2,7 +2,7 @@
 
 use super::shifts::{per_100km, GearCounts};
 use super::KMH_PER_MPS;
-use crate::control::SolverStats;
+use crate::control::{RuleStats, SolverStats};
 use crate::plant::PlantState;
 
 /// Outcome of a run in figures. Fuel in kg, distances in m, times in s, speeds in km/h, energies
@@ -40,6 +40,8 @@ pub struct RunSummary {
     pub plant_dt_s: f64,
     /// The solves of an optimising controller.
     pub solver: Option<SolverStats>,
+    /// What a rule-based controller with look-ahead (the PCC) did.
+    pub rules: Option<RuleStats>,
 }
 
 /// How the loop ended, besides the final plant state.
@@ -59,7 +61,13 @@ pub struct LoopOutcome {
 
 impl RunSummary {
     /// The figures of a run ending in `last` after `compute_time_s` of wall time.
-    pub fn new(last: &PlantState, outcome: &LoopOutcome, compute_time_s: f64, solver: Option<SolverStats>) -> Self {
+    pub fn new(
+        last: &PlantState,
+        outcome: &LoopOutcome,
+        compute_time_s: f64,
+        solver: Option<SolverStats>,
+        rules: Option<RuleStats>,
+    ) -> Self {
         let distance_m = last.s_m - outcome.start_m;
         let moved = last.t_s > 0.0;
         RunSummary {
@@ -83,6 +91,7 @@ impl RunSummary {
             message: message(last, outcome),
             plant_dt_s: outcome.plant_dt_s,
             solver,
+            rules,
         }
     }
 }
