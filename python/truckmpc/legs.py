@@ -39,6 +39,8 @@ SUMMED = (
     "neutral_distance_m",
     "gear_shifts",
     "neutral_engagements",
+    "pcc_events",
+    "eco_roll_entries",
     "compute_time_s",
     "solves",
     "infeasible_solves",
@@ -154,7 +156,8 @@ def _merged_summary(legs: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     merged["stalled"] = stalled
     merged["fuel_corrected_kg"] = None if stalled else merged.get("fuel_corrected_kg")
     distance_m, time_s = merged["distance_m"], merged["time_s"]
-    for figure in ("fuel_kg", *(f for f in ("gear_shifts", "neutral_engagements") if f in merged)):
+    counts = ("gear_shifts", "neutral_engagements", "eco_roll_entries")
+    for figure in ("fuel_kg", *(f for f in counts if f in merged)):
         merged[f"{figure}_per_100km"] = merged[figure] / (distance_m / (100.0 * M_PER_KM)) if distance_m > 0 else None
     merged["mean_speed_kmh"] = distance_m / time_s * KMH_PER_MPS if time_s > 0 else merged["start_speed_kmh"]
     merged["realtime_ratio"] = merged["compute_time_s"] / time_s if time_s > 0 else None
