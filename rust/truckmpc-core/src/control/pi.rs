@@ -266,11 +266,8 @@ impl PiController {
         if v <= v_c {
             return;
         }
-        let surplus = specific_energy_j_per_kg(&self.vehicle, road, s, v)
-            - specific_energy_j_per_kg(&self.vehicle, road, start_m, v_c);
-        let needed_per_m = surplus / (start_m - s).max(1e-3);
-        let resistance = -self.vehicle.accel_mps2(0.5 * (v + v_c), 0.0, 0.0, self.gear.max(1), 0.0);
-        if needed_per_m >= lac_decision_factor(set_kmh, here_kmh - set_kmh) * resistance {
+        let factor = lac_decision_factor(set_kmh, here_kmh - set_kmh);
+        if time_to_coast(&self.vehicle, road, (s, v), (start_m, v_c), self.gear, factor) {
             self.coasting_to = Some((start_m, v_c));
         }
     }
@@ -285,8 +282,27 @@ impl PiController {
     }
 }
 
-/// Look-ahead coasting's preview: metres per km/h of speed.
-const LAC_PREVIEW_M_PER_KMH: f64 = 10.0;
+/// Whether to start look-ahead coasting at `(s [m], v [m/s])` in `gear` towards a lower stretch
+/// starting at `start_m` with speed `v_c_mps`: once the specific energy to lose per metre left
+/// reaches the coasting resistance (per kg, at fuel cut, at the mean of the two speeds) times the
+/// decision `factor`.
+pub fn time_to_coast(
+    vehicle: &Vehicle,
+    road: &Road,
+    (s_m, v_mps): (f64, f64),
+    (start_m, v_c_mps): (f64, f64),
+    gear: usize,
+    factor: f64,
+) -> bool {
+    let surplus =
+        specific_energy_j_per_kg(vehicle, road, s_m, v_mps) - specific_energy_j_per_kg(vehicle, road, start_m, v_c_mps);
+    let needed_per_m = surplus / (start_m - s_m).max(1e-3);
+    let resistance = -vehicle.accel_mps2(0.5 * (v_mps + v_c_mps), 0.0, 0.0, gear.max(1), 0.0);
+    needed_per_m >= factor * resistance
+}
+
+/// Look-ahead coasting's preview: metres per km/h of speed (VECTO's declaration value).
+pub const LAC_PREVIEW_M_PER_KMH: f64 = 10.0;
 
 /// VECTO's decision factor for look-ahead coasting to a set speed `target_kmh` after a drop of
 /// `drop_kmh` [km/h]: 2.5 − 1.5·DF_vel·DF_drop, DF_vel 0 below 48 km/h and 1 above 52, DF_drop 1

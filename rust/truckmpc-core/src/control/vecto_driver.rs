@@ -22,8 +22,8 @@
 
 use std::sync::Arc;
 
-use super::pi::{lac_decision_factor, GearLogic};
-use super::{specific_energy_j_per_kg, Controller, Decision};
+use super::pi::{lac_decision_factor, time_to_coast, GearLogic, LAC_PREVIEW_M_PER_KMH};
+use super::{Controller, Decision};
 use crate::band::SpeedBand;
 use crate::error::CoreResult;
 use crate::levels::{brake_accel, pedal_accel};
@@ -240,21 +240,14 @@ impl VectoDriver {
         if v <= v_c {
             return false;
         }
-        let surplus = specific_energy_j_per_kg(&self.vehicle, road, s, v)
-            - specific_energy_j_per_kg(&self.vehicle, road, start_m, v_c);
-        let needed_per_m = surplus / (start_m - s).max(1e-3);
-        let resistance = -self.vehicle.accel_mps2(0.5 * (v + v_c), 0.0, 0.0, self.gear.max(1), 0.0);
         let factor = lac_decision_factor(v_c * KMH_PER_MPS, (v - v_c) * KMH_PER_MPS);
-        if needed_per_m >= factor * resistance {
+        if time_to_coast(&self.vehicle, road, (s, v), (start_m, v_c), self.gear, factor) {
             self.coasting_to = Some((start_m, v_c));
             return true;
         }
         false
     }
 }
-
-/// Look-ahead coasting's preview: metres per km/h of speed (VECTO's declaration value).
-const LAC_PREVIEW_M_PER_KMH: f64 = 10.0;
 
 impl Controller for VectoDriver {
     fn name(&self) -> &'static str {

@@ -25,11 +25,17 @@
 //!
 //! **Eco-roll** ([`eco_roll`]) is checked only outside the use cases.
 //!
-//! The coasting losses per metre are the truck's deceleration on a flat road at the mean of the
-//! speed and the set speed, coasting as it would (in neutral with eco-roll, else in gear at fuel
-//! cut): VECTO sums air drag, rolling resistance and the driveline's present losses divided by the
-//! total mass; here the rotating masses and, in neutral, the driveline's losses are left out as
-//! the plant leaves them out.
+//! **Where the plant is not VECTO's powertrain**, what is done instead:
+//! - the coasting losses per metre are the truck's deceleration on a flat road at the mean of the
+//!   speed and the set speed, coasting as it would (in neutral with eco-roll, else in gear at fuel
+//!   cut): VECTO sums air drag, rolling resistance and the driveline's present losses divided by
+//!   the total mass; here the rotating masses and, in neutral, the driveline's losses are left out
+//!   as the plant leaves them out;
+//! - α* is found on the model at each set speed (in gear at fuel cut without eco-roll), where VECTO
+//!   tabulates it per speed on a simplified powertrain and adds a mean engine drag;
+//! - "pedal idle" (VECTO: the engine at its drag torque) is no pedal in a forward gear in the
+//!   previous step, "brake active" any brake in the previous step;
+//! - every road counts as highway (VECTO's cycles flag each stretch).
 
 pub mod eco_roll;
 pub mod segments;
