@@ -63,6 +63,8 @@ pub struct VectoDriver {
     slope_hint: usize,
     /// Allowed overspeed [km/h] (VECTO's 2.5 km/h; the band's v_inc with the PCC's use case 3).
     overspeed_kmh: f64,
+    /// VECTO's overspeed without use case 3 [km/h].
+    plain_overspeed_kmh: f64,
     overspeed_min_kmh: f64,
     coasting_min_kmh: f64,
     /// The plant's step [s]: the driver aims at the speed at its end.
@@ -90,6 +92,7 @@ impl VectoDriver {
             band_hint: 0,
             slope_hint: 0,
             overspeed_kmh: pcc.vecto_overspeed_kmh,
+            plain_overspeed_kmh: pcc.vecto_overspeed_kmh,
             overspeed_min_kmh: pcc.vecto_overspeed_min_speed_kmh,
             coasting_min_kmh: pcc.vecto_coasting_min_speed_kmh,
             dt_s: plant_dt_s,
@@ -145,6 +148,15 @@ impl VectoDriver {
     /// Whether overspeed is allowed at set speed `target_mps`.
     fn overspeed_allowed(&self, target_mps: f64) -> bool {
         target_mps * KMH_PER_MPS > self.overspeed_min_kmh
+    }
+
+    /// The plain overspeed [m/s] at set speed `target_mps` (zero where overspeed is not allowed).
+    fn plain_overspeed_mps(&self, target_mps: f64) -> f64 {
+        if self.overspeed_allowed(target_mps) {
+            self.plain_overspeed_kmh / KMH_PER_MPS
+        } else {
+            0.0
+        }
     }
 
     /// The speed above which the driver brakes at set speed `target_mps` [m/s].
@@ -240,8 +252,11 @@ impl VectoDriver {
         if v <= v_c {
             return false;
         }
-        let factor = lac_decision_factor(v_c * KMH_PER_MPS, (v - v_c) * KMH_PER_MPS);
-        if time_to_coast(&self.vehicle, road, (s, v), (start_m, v_c), self.gear, factor) {
+        // VECTO's coasting distance counts the lower target with the plain overspeed, even where
+        // the PCC's use case 3 raised the driver's.
+        let plain = set_kmh / KMH_PER_MPS + self.plain_overspeed_mps(set_kmh / KMH_PER_MPS);
+        let factor = lac_decision_factor(plain * KMH_PER_MPS, (v - plain) * KMH_PER_MPS);
+        if time_to_coast(&self.vehicle, road, (s, v), (start_m, plain), self.gear, factor) {
             self.coasting_to = Some((start_m, v_c));
             return true;
         }

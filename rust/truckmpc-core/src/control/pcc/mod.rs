@@ -189,8 +189,11 @@ impl PccController {
     /// VECTO's `UpdatePCCState`: which segment, and whether a use case starts.
     fn update_state(&mut self, road: &Road, state: &PlantState) {
         let (s, v) = (state.s_m, state.v_mps);
+        // VECTO's CommitSimulationStep: past a segment's end the next one is checked afresh, even
+        // where it overlaps the last (a use case running at the end does not carry over).
         while self.segments.get(self.current).is_some_and(|g| s > g.end_m) {
             self.current += 1;
+            self.state = PccState::OutsideSegment;
         }
         let Some(segment) = self.segments.get(self.current).copied() else {
             self.state = PccState::OutsideSegment;
@@ -349,6 +352,30 @@ mod tests {
         assert_eq!(after(PccState::UseCase2, t + 0.99 * ONE_KMH_MPS), PccState::UseCase2);
         assert_eq!(after(PccState::UseCase2, t + 1.01 * ONE_KMH_MPS), PccState::WithinSegment);
         assert_eq!(after(PccState::UseCase2, 49.9 / KMH_PER_MPS), PccState::WithinSegment);
+    }
+
+    /// VECTO's `CommitSimulationStep`: past a segment's end the next segment starts outside, so a
+    /// use case still running there does not carry into an overlapping segment whose own entry
+    /// conditions fail.
+    #[test]
+    fn a_use_case_does_not_carry_into_the_next_segment() {
+        let mut c = controller();
+        let road = Road::new(vec![0.0, 5000.0], vec![0.0]).unwrap();
+        let t = 85.0 / KMH_PER_MPS;
+        let at = |s_m: f64| PlantState { s_m, v_mps: t, t_s: 0.0, fuel_g: 0.0, brake_energy_j: 0.0, stalled: false };
+        c.start(&road, &at(0.0));
+        let segment = |start_m, x_low_m, end_m| PccSegment {
+            start_m,
+            x_low_m,
+            end_m,
+            target_mps: t,
+            energy_low: 1e9,
+            energy_end: 1e9,
+        };
+        c.segments = vec![segment(0.0, 1000.0, 1500.0), segment(1200.0, 3000.0, 3500.0)];
+        c.state = PccState::UseCase1;
+        c.update_state(&road, &at(1600.0));
+        assert_eq!((c.current, c.state), (1, PccState::WithinSegment));
     }
 
     /// α* in neutral at 85 km/h is the grade of table B.1 on which the 40 t truck holds 85 km/h in
