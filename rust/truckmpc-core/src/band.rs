@@ -154,6 +154,21 @@ impl SpeedBand {
             .map(|j| (self.starts_m[j], self.set_kmh[j]))
     }
 
+    /// Every stretch starting after `s_m` within `within_m` [m] whose set speed is lower than the
+    /// one at `s_m`, in order: their starts [m] and set speeds [km/h].
+    pub fn drops(&self, s_m: f64, within_m: f64, hint: &mut usize) -> impl Iterator<Item = (f64, f64)> + '_ {
+        let (i, here_kmh) = if self.varies() {
+            let i = self.stretch(s_m, hint);
+            (i, self.set_kmh[i])
+        } else {
+            (self.starts_m.len(), 0.0)
+        };
+        (i + 1..self.starts_m.len())
+            .take_while(move |&j| self.starts_m[j] - s_m <= within_m)
+            .filter(move |&j| self.set_kmh[j] < here_kmh)
+            .map(move |j| (self.starts_m[j], self.set_kmh[j]))
+    }
+
     /// Index of the stretch containing `s_m` (the first before its start, the last beyond).
     fn stretch(&self, s_m: f64, hint: &mut usize) -> usize {
         let last = self.starts_m.len() - 1;
@@ -235,5 +250,7 @@ mod tests {
         assert_eq!(band.set_speed_kmh(1500.0, &mut 0), 62.0);
         assert_eq!(band.next_drop(10.0, 2000.0, &mut 0), Some((1000.0, 62.0)));
         assert_eq!(band.next_drop(10.0, 500.0, &mut 0), None);
+        assert_eq!(band.drops(10.0, 2000.0, &mut 0).next(), Some((1000.0, 62.0)));
+        assert_eq!(band.drops(10.0, 500.0, &mut 0).count(), 0);
     }
 }

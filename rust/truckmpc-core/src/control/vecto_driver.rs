@@ -245,19 +245,22 @@ impl VectoDriver {
         if v * KMH_PER_MPS <= self.coasting_min_kmh {
             return false;
         }
+        // Every lower stretch within the preview counts (VECTO's GetNextDrivingAction): the driver
+        // coasts once the earliest of their coasting starts is reached.
         let preview_m = LAC_PREVIEW_M_PER_KMH * v * KMH_PER_MPS;
         let mut hint = self.band_hint;
-        let Some((start_m, set_kmh)) = self.band.next_drop(s, preview_m, &mut hint) else { return false };
-        let v_c = self.limit_mps(set_kmh / KMH_PER_MPS);
-        if v <= v_c {
-            return false;
-        }
-        // VECTO's coasting distance counts the lower target with the plain overspeed, even where
-        // the PCC's use case 3 raised the driver's.
-        let plain = set_kmh / KMH_PER_MPS + self.plain_overspeed_mps(set_kmh / KMH_PER_MPS);
-        let factor = lac_decision_factor(plain * KMH_PER_MPS, (v - plain) * KMH_PER_MPS);
-        if time_to_coast(&self.vehicle, road, (s, v), (start_m, plain), self.gear, factor) {
-            self.coasting_to = Some((start_m, v_c));
+        let found = self.band.drops(s, preview_m, &mut hint).find_map(|(start_m, set_kmh)| {
+            let set_mps = set_kmh / KMH_PER_MPS;
+            let v_c = self.limit_mps(set_mps);
+            // VECTO's coasting distance counts the lower target with the plain overspeed, even
+            // where the PCC's use case 3 raised the driver's.
+            let plain = set_mps + self.plain_overspeed_mps(set_mps);
+            let factor = lac_decision_factor(plain * KMH_PER_MPS, (v - plain) * KMH_PER_MPS);
+            let coast = v > v_c && time_to_coast(&self.vehicle, road, (s, v), (start_m, plain), self.gear, factor);
+            coast.then_some((start_m, v_c))
+        });
+        if found.is_some() {
+            self.coasting_to = found;
             return true;
         }
         false
