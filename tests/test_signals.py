@@ -14,6 +14,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from waiting import data_rows, wait_for
@@ -115,3 +116,30 @@ def test_a_signal_ends_simulate_with_one_line_and_no_output(tmp_path, signum):
     verb = "terminated" if signum == signal.SIGTERM else "interrupted"
     assert stderr == f"{verb}: nothing written\n"
     assert stdout == "" and not out.exists()
+
+
+@pytest.mark.slow
+def test_a_signal_ends_a_whole_road_plan_within_a_stage(tmp_path):
+    """The whole-road optimum's single DP solve over a 400 km road takes several seconds; a SIGTERM
+    sent while it runs ends the command within a few DP stages (the solver asks between stages),
+    not when the solve is done."""
+    road = tmp_path / "rolling-400km.csv"
+    distance = np.arange(0.0, 400_001.0, 100.0)
+    altitude = 30.0 * np.sin(distance / 3000.0)
+    road.write_text(
+        "distance_m,altitude_m\n" + "".join(f"{d:.0f},{a:.3f}\n" for d, a in zip(distance, altitude, strict=True))
+    )
+    args = ["simulate", "--road", str(road), "--controller", "optimal", "--force", "--out", str(tmp_path / "run")]
+    proc = subprocess.Popen(
+        [*COMMAND, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True
+    )
+    try:
+        time.sleep(3.0)  # imports, the road and the work estimate take about a second; then the plan
+        assert proc.poll() is None, "the plan ended before it could be interrupted"
+        proc.send_signal(signal.SIGTERM)
+        stdout, stderr = proc.communicate(timeout=3)  # the plan alone takes well over that
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+    assert proc.returncode == 128 + signal.SIGTERM
+    assert stderr == "terminated: nothing written\n" and stdout == ""

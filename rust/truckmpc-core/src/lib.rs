@@ -23,6 +23,7 @@ pub mod plant;
 pub mod powertrain;
 pub mod road;
 pub mod sim;
+pub mod stop;
 pub mod vehicle;
 
 pub use error::{CoreError, CoreResult};

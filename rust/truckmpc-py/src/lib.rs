@@ -7,6 +7,7 @@ mod params;
 mod powertrain;
 mod road;
 mod run;
+mod signals;
 mod vehicle;
 
 use pyo3::prelude::*;

@@ -5,11 +5,9 @@
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use std::time::Instant;
 
 use truckmpc_core::control::{
-    Controller, Decision, GearLogic, PccController, PiController, RecedingController, RuleStats, SolverStats,
-    VectoDriver,
+    Controller, Decision, GearLogic, PccController, PiController, RecedingController, VectoDriver,
 };
 use truckmpc_core::dp::DpSettings;
 use truckmpc_core::sim::{self, shifts::per_100km, RunSummary, Trace};
@@ -18,6 +16,7 @@ use truckmpc_core::{Control, PlantState, Road};
 use crate::errors::{bad_argument, to_py};
 use crate::params::PySettings;
 use crate::road::PyRoad;
+use crate::signals::{self, Interruptible};
 
 /// The outcome of `run`: the controller's name, the summary figures (dict, keys as
 /// `truckmpc.sim.simulate` documents, plus the solver's for the MPC) and the trace (dict of 1-D
@@ -145,13 +144,10 @@ fn run(
     let altitude_m = altitude_m.as_array().to_vec();
     let (road, start_kmh) = (&road.inner, s.start_speed_kmh(&road.inner));
     let map = controller_road.map_or(road, |r| &r.inner);
-    let mut watched = Interruptible { inner: ctrl.as_mut(), checked: Instant::now(), steps: 0, error: None };
+    let mut watched = Interruptible::new(ctrl.as_mut());
     let plant = &settings.vehicle;
-    let output =
-        py.detach(|| sim::run_on_map(plant, road, map, &altitude_m, &mut watched, &s.sim, start_kmh)).map_err(to_py)?;
-    if let Some(err) = watched.error {
-        return Err(err);
-    }
+    let run = || sim::run_on_map(plant, road, map, &altitude_m, &mut watched, &s.sim, start_kmh);
+    let output = signals::watching(|| py.detach(run))?.map_err(to_py)?;
     Ok(PyRunOutput {
         controller: output.controller.to_string(),
         summary: summary_dict(py, &output.summary)?.unbind(),
@@ -173,60 +169,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run_python, m)?)?;
     m.add_function(wrap_pyfunction!(steady_gear, m)?)?;
     Ok(())
-}
-
-/// How often a run with the GIL released looks for a signal (Ctrl-C, SIGTERM) to handle.
-const SIGNAL_CHECK_S: f64 = 0.05;
-
-/// One-step decisions (a plant step each, well under a microsecond) between two readings of the
-/// clock: reading it at every step cost about a tenth of a PI run.
-const STEPS_PER_CLOCK_READING: u32 = 64;
-
-/// A built-in controller whose run stops when Python has a signal to handle: the GIL is taken back
-/// every [`SIGNAL_CHECK_S`] to run the signal handlers, and their exception ends the loop. The clock
-/// is read after every held decision (a DP solve may have run) and every
-/// [`STEPS_PER_CLOCK_READING`] one-step decisions.
-struct Interruptible<'a> {
-    inner: &'a mut (dyn Controller + Send),
-    checked: Instant,
-    steps: u32,
-    error: Option<PyErr>,
-}
-
-impl Controller for Interruptible<'_> {
-    fn name(&self) -> &'static str {
-        self.inner.name()
-    }
-
-    fn start(&mut self, road: &Road, state: &PlantState) {
-        self.inner.start(road, state);
-    }
-
-    fn decide(&mut self, road: &Road, state: &PlantState) -> Decision {
-        let decision = self.inner.decide(road, state);
-        self.steps += 1;
-        let read_clock = decision.until_m.is_some() || self.steps >= STEPS_PER_CLOCK_READING;
-        if read_clock {
-            self.steps = 0;
-            if self.checked.elapsed().as_secs_f64() > SIGNAL_CHECK_S {
-                self.checked = Instant::now();
-                self.error = Python::attach(|py| py.check_signals()).err();
-            }
-        }
-        decision
-    }
-
-    fn aborted(&self) -> bool {
-        self.error.is_some() || self.inner.aborted()
-    }
-
-    fn solver_stats(&self) -> Option<SolverStats> {
-        self.inner.solver_stats()
-    }
-
-    fn rule_stats(&self) -> Option<RuleStats> {
-        self.inner.rule_stats()
-    }
 }
 
 /// A controller written in Python (the `truckmpc.controller.Controller` protocol) driven by the

@@ -315,6 +315,10 @@ impl Solver {
 
         let mut transitions = 0usize;
         for k in (0..n_stages).rev() {
+            if crate::stop::requested() {
+                // Asked to stop (a signal): no plan; the caller's loop ends at its next decision.
+                return Solution { feasible: false, cost: f64::INFINITY, states, transitions, ..Solution::default() };
+            }
             transitions += self.backward_stage(vehicle, k, cached_from.map(|s| s + k as u64), start.gear);
             if let (Ends::Recording(table), true) = (&mut ends, k > 0) {
                 table.stages[k] = self.stage_values(k, gears, false);
