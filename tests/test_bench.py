@@ -9,13 +9,20 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from truckmpc.bench import SETTINGS, BenchResult, _first, format_bench
+from truckmpc.bench import CASES, SETTINGS, BenchResult, _first, format_bench
 from truckmpc.cli import app
+from truckmpc.config import load_run_config
 from truckmpc.roads import default_test_track, make_section, write_road
 
 runner = CliRunner()
 
 RUN_KEYS = (
+    "case",
+    "label",
+    "road",
+    "path",
+    "fallback",
+    "length_m",
     "stage_m",
     "delta_kmh",
     "horizon_m",
@@ -40,8 +47,12 @@ RUN_KEYS = (
 
 
 def _check_runs(runs: list[dict], length_m: float) -> None:
-    assert len(runs) == len(SETTINGS)
-    assert [{key: run[key] for key in setting} for run, setting in zip(runs, SETTINGS, strict=True)] == list(SETTINGS)
+    """Each case's run, at its settings: the default's configured ones, the worst case's fixed ones."""
+    assert [run["case"] for run in runs] == [case["case"] for case in CASES]
+    own = load_run_config().mpc
+    for run, case in zip(runs, CASES, strict=True):
+        expected = case["settings"] or {key: getattr(own, key) for key in SETTINGS}
+        assert {key: run[key] for key in SETTINGS} == expected
     for run in runs:
         assert set(RUN_KEYS) <= set(run)
         assert not run["stalled"]
@@ -69,31 +80,38 @@ def _check_runs(runs: list[dict], length_m: float) -> None:
 
 
 @pytest.mark.slow
-def test_quick_json_gives_the_documented_figures_per_setting():
+def test_quick_json_gives_the_documented_figures_per_case():
     result = runner.invoke(app, ["bench", "--quick", "--json"])
     assert result.exit_code == 0, result.output
     doc = json.loads(result.stdout)
-    assert set(doc) == {"road", "runs"}
-    # the VECTO road's first 10 km when ../shared is there, else the bundled test track
-    assert doc["road"] in ("eu_vecto_longhaul_2015_108km-first10km", "test-track")
-    length_m = 10_000.0 if doc["road"].endswith("first10km") else default_test_track().length_m
-    _check_runs(doc["runs"], length_m)
-    # the worst case searches a bigger space than the other setting, on either grid
-    worst_fixed, worst_moving, other_fixed, other_moving = doc["runs"]
-    for worst, other in ((worst_fixed, other_fixed), (worst_moving, other_moving)):
-        assert worst["states_per_solve"] > other["states_per_solve"]
-        assert worst["transitions_per_solve"] > other["transitions_per_solve"]
+    assert set(doc) == {"runs"}
+    runs = doc["runs"]
+    # each case's shared road's first 10 km when ../shared is there, else the bundled test track
+    shared = not runs[0]["fallback"]
+    names = [run["road"] for run in runs]
+    if shared:
+        assert names == [case["road"].removesuffix(".csv") + "-first10km" for case in CASES]
+    else:
+        assert set(names) == {"test-track"}
+    _check_runs(runs, 10_000.0 if shared else default_test_track().length_m)
+    # the default's finer grid searches a bigger space than the worst case's on the same road
+    default, _, worst = runs
+    assert default["states_per_solve"] > worst["states_per_solve"]
+    assert default["transitions_per_solve"] > worst["transitions_per_solve"]
 
 
-def test_table_on_a_given_road_names_it_and_each_setting(tmp_path):
+def test_table_on_a_given_road_names_it_and_each_case(tmp_path):
     road = tmp_path / "hill.csv"
     write_road(make_section("hill", 300, 2.0, lead_m=200, tail_m=200), road)
     result = runner.invoke(app, ["bench", "--road", str(road), "--set", "neutral_rule=interpolate"])
     assert result.exit_code == 0, result.output
     lines = result.stdout.splitlines()
     assert lines[0].startswith("road hill") and "0.70 km" in lines[0] and str(road) in lines[0]
-    assert "S 25 m, δ 0.1 km/h, 3000 m" in lines[1] and "S 50 m, δ 0.2 km/h, 2000 m" in lines[1]
-    assert lines[2].count("neutral allowed, fixed grid") == 2 and lines[2].count("neutral allowed, moving grid") == 2
+    assert lines[1].count("default, hill") == 2 and lines[1].count("thesis worst case, hill") == 1
+    own = load_run_config().mpc
+    assert f"S {own.stage_m:g} m, δ {own.delta_kmh:g} km/h, {own.horizon_m:g} m" in lines[2]
+    assert "S 25 m, δ 0.1 km/h, 3000 m" in lines[2]
+    assert "neutral allowed, fixed grid" in lines[3]
     for label in (
         "realtime ratio",
         "solve time mean [ms]",
@@ -107,12 +125,14 @@ def test_table_on_a_given_road_names_it_and_each_setting(tmp_path):
 def test_format_bench_marks_the_fallback_road_and_missing_figures():
     run = (
         dict.fromkeys(RUN_KEYS, 1.0)
-        | dict(SETTINGS[0])
-        | {"grid": "moving", "solves": 3, "infeasible_solves": 0, "ns_per_transition": None}
+        | dict(SETTINGS)
+        | {"case": "default", "label": "test-track", "road": "test-track", "path": None, "fallback": True}
+        | {"length_m": 8500.0, "solves": 3, "infeasible_solves": 0, "ns_per_transition": None}
     )
-    text = format_bench(BenchResult("test-track", None, 8500.0, True, [run]))
+    text = format_bench(BenchResult([run]))
     lines = text.splitlines()
-    assert lines[0] == "road test-track: 8.50 km, bundled; ../shared/roads/eu_vecto_longhaul_2015_108km.csv not found"
+    assert lines[0] == "road test-track: 8.50 km, bundled; ../shared/roads not found"
+    assert "default, test-track" in lines[1]
     assert next(line for line in lines if line.startswith("time per transition")).endswith(" -")
 
 

@@ -1,16 +1,18 @@
-"""The real-time benchmark: closed-loop MPC runs on a fixed, named road at fixed settings.
+"""The real-time benchmark: closed-loop MPC runs on fixed, named roads at fixed settings.
 
-Each setting drives the whole road with the MPC (:func:`truckmpc.sim.simulate`) in a fresh Python
-process, so its peak resident memory is its own. The settings (:data:`SETTINGS`) are the thesis's
-worst case, S 25 m, δ 0.1 km/h, 3000 m horizon, neutral allowed, and S 50 m, δ 0.2 km/h, 2000 m,
-each on the fixed and on the moving velocity grid; every other key keeps its configured value
-(``neutral_rule`` is reported per run).
+Each case (:data:`CASES`) drives a whole road with the MPC (:func:`truckmpc.sim.simulate`) in a fresh
+Python process, so its peak resident memory is its own:
 
-The default road is the EU VECTO long-haul cycle (108 km), ``../shared/roads/`` beside the
-repository checkout (or the working directory), else the bundled test track; ``--quick`` keeps the
-first 10 km of it. Figures per run (from the run's summary, but for the last two):
+- the default controller at its own settings on the EU VECTO long-haul road (108 km) and on the
+  Swedish E6/E20 motorway (294 km): what users run;
+- the thesis's worst case, S 25 m, δ 0.1 km/h, 3000 m horizon, neutral allowed, fixed grid, on the
+  VECTO road.
 
-- ``realtime_ratio``: wall time of the run / simulated trip time (the target is <= 0.001);
+The roads are ``../shared/roads/`` beside the repository checkout (or the working directory), else
+the bundled test track; ``--road`` drives every case on one road instead, and ``--quick`` keeps the
+first 10 km of each. Figures per run (from the run's summary, but for the last two):
+
+- ``realtime_ratio``: wall time of the run / simulated trip time;
 - ``solve_ms_mean``, ``solve_ms_max``, ``solves``, ``states_per_solve``, ``transitions_per_solve``;
 - ``ns_per_transition``: mean solve time / transitions per solve;
 - ``peak_rss_mb``: the run's process peak resident set [MB], Python and numpy included.
@@ -40,28 +42,39 @@ from truckmpc.table import figure_lines, label_width
 from truckmpc.units import M_PER_KM
 
 __all__ = [
+    "CASES",
     "SETTINGS",
     "BenchError",
     "BenchResult",
-    "default_road_path",
     "format_bench",
     "run_bench",
+    "shared_road_path",
 ]
 
-SETTINGS: tuple[dict[str, Any], ...] = tuple(
-    {**setting, "grid": grid}
-    for setting in (
-        {"stage_m": 25.0, "delta_kmh": 0.1, "horizon_m": 3000.0, "allow_neutral": True},
-        {"stage_m": 50.0, "delta_kmh": 0.2, "horizon_m": 2000.0, "allow_neutral": True},
-    )
-    for grid in ("fixed", "moving")
-)
-"""The benchmark's settings, in run order: the thesis's worst case first. Each runs on the fixed grid
-(whose row cache the real-time target relies on) and on the thesis's moving grid; every other key
-keeps its configured value (``--set`` changes it, e.g. the thesis's ``epsilon=0.1``)."""
+SETTINGS: dict[str, Any] = {
+    "stage_m": 25.0,
+    "delta_kmh": 0.1,
+    "horizon_m": 3000.0,
+    "allow_neutral": True,
+    "grid": "fixed",
+}
+"""The thesis's worst case: the settings its row fixes (every other key keeps its configured value)."""
 
-DEFAULT_ROAD = Path("..") / "shared" / "roads" / "eu_vecto_longhaul_2015_108km.csv"
-"""The default road, relative to the repository root (or the working directory)."""
+SHARED_ROADS = Path("..") / "shared" / "roads"
+"""Where the benchmark's roads are, relative to the repository root (or the working directory)."""
+
+CASES: tuple[dict[str, Any], ...] = (
+    {"case": "default", "road": "eu_vecto_longhaul_2015_108km.csv", "label": "VECTO 108 km", "settings": {}},
+    {"case": "default", "road": "se_E6_E20_goteborg_malmo_volvo_chalmers.csv", "label": "SE E6/E20", "settings": {}},
+    {
+        "case": "thesis worst case",
+        "road": "eu_vecto_longhaul_2015_108km.csv",
+        "label": "VECTO 108 km",
+        "settings": SETTINGS,
+    },
+)
+"""The benchmark's runs, in order: the default controller at its own settings on two roads, then the
+thesis's worst case."""
 
 QUICK_M = 10_000.0
 """``--quick`` drives the first this many metres of the road [m]."""
@@ -71,14 +84,14 @@ class BenchError(TruckmpcError):
     """A benchmark run failed (its process ended with an error)."""
 
 
-def default_road_path() -> Path | None:
-    """The VECTO long-haul road beside the repository checkout of this package, or beside the
-    working directory; None when neither exists."""
+def shared_road_path(name: str) -> Path | None:
+    """The road `name` of ``../shared/roads/`` beside the repository checkout of this package, or
+    beside the working directory; None when neither exists."""
     checkout = Path(__file__).resolve().parents[2]
     roots = [checkout] if (checkout / "pyproject.toml").is_file() else []
     roots.append(Path.cwd())
     for root in roots:
-        path = (root / DEFAULT_ROAD).resolve()
+        path = (root / SHARED_ROADS / name).resolve()
         if path.is_file():
             return path
     return None
@@ -115,14 +128,21 @@ def _peak_rss_mb() -> float:
 
 
 def run_one(road_path: str | None, quick: bool, setting: dict[str, Any], extra: tuple[str, ...] = ()) -> dict[str, Any]:
-    """One closed-loop MPC run in this process; the figures of :func:`run_bench`'s runs."""
+    """One closed-loop MPC run in this process; the figures of :func:`run_bench`'s runs, with the
+    settings the run resolved to (a default row's are the configured ones)."""
     config = load_run_config(overrides=_overrides(setting, extra))
     profile = _road(road_path, quick)
     summary = simulate(profile, config, "mpc").summary
     transitions = summary["transitions_per_solve"]
+    mpc = config.mpc
     return {
-        **setting,
-        "grid": config.mpc.grid,
+        "road": profile.name,
+        "length_m": profile.length_m,
+        "stage_m": mpc.stage_m,
+        "delta_kmh": mpc.delta_kmh,
+        "horizon_m": mpc.horizon_m,
+        "allow_neutral": mpc.allow_neutral,
+        "grid": mpc.grid,
         "neutral_rule": config.mpc.neutral_rule,
         "realtime_ratio": summary["realtime_ratio"],
         "solve_ms_mean": summary["solve_ms_mean"],
@@ -157,46 +177,48 @@ def _spawn(road_path: str | None, quick: bool, setting: dict[str, Any], extra: t
 
 @dataclass(frozen=True)
 class BenchResult:
-    """What :func:`run_bench` measured: the road and one figures dict per setting."""
+    """What :func:`run_bench` measured: one figures dict per case, each with its ``case``
+    (``default`` or ``thesis worst case``), its ``road`` (name, with ``-first10km`` under
+    ``--quick``) and ``label`` (short, for tables), ``path`` (None for the bundled test track) and
+    ``fallback`` (True when the case's road was not found and the test track was driven)."""
 
-    road: str
-    """The road's name (with ``-first10km`` under ``--quick``)."""
-    path: str | None
-    """The road file, None for the bundled test track."""
-    length_m: float
-    fallback: bool
-    """True when the default road was not found and the bundled test track was driven instead."""
     runs: list[dict[str, Any]]
 
     def document(self) -> dict[str, Any]:
-        """The ``--json`` document: ``{"road": name, "runs": [...]}``."""
-        return {"road": self.road, "runs": self.runs}
+        """The ``--json`` document: ``{"runs": [...]}``."""
+        return {"runs": self.runs}
 
 
 def run_bench(road: str | Path | None = None, quick: bool = False, overrides: tuple[str, ...] = ()) -> BenchResult:
-    """Run every setting of :data:`SETTINGS`, each in its own process.
+    """Run every case of :data:`CASES`, each in its own process.
 
     Parameters
     ----------
     road
-        Road CSV; None: the VECTO long-haul road if found (:func:`default_road_path`), else the
-        bundled test track.
+        Road CSV for every case; None: each case's road of ``../shared/roads/`` if found
+        (:func:`shared_road_path`), else the bundled test track.
     quick
-        Drive only the first 10 km of the road.
+        Drive only the first 10 km of each road.
     overrides
-        Further ``key=value`` settings (e.g. ``neutral_rule=interpolate``); the keys of :data:`SETTINGS` are fixed.
+        Further ``key=value`` settings (e.g. ``neutral_rule=interpolate``), for every case; the
+        keys the worst case fixes (:data:`SETTINGS`) are refused.
     """
-    fixed = {key for setting in SETTINGS for key in setting}
     for text in overrides:
         key = text.partition("=")[0].strip()
-        if key in fixed:
-            raise BenchError(f"--set {key}: the benchmark fixes {', '.join(sorted(fixed))}; set other keys only")
+        if key in SETTINGS:
+            raise BenchError(f"--set {key}: the benchmark fixes {', '.join(sorted(SETTINGS))}; set other keys only")
     load_run_config(overrides=overrides)  # report a bad --set once, here, rather than from a child
-    found = default_road_path() if road is None else Path(road)
-    path = None if found is None else str(found)
-    profile = _road(path, quick)
-    runs = [_spawn(path, quick, setting, tuple(overrides)) for setting in SETTINGS]
-    return BenchResult(profile.name, path, profile.length_m, road is None and found is None, runs)
+    runs = []
+    for case in CASES:
+        found = shared_road_path(case["road"]) if road is None else Path(road)
+        path = None if found is None else str(found)
+        figures = _spawn(path, quick, case["settings"], tuple(overrides))
+        label = case["label"] if road is None and found is not None else figures["road"]
+        label += " (first 10 km)" if quick and label == case["label"] else ""
+        runs.append(
+            {"case": case["case"], "label": label, "path": path, "fallback": road is None and found is None, **figures}
+        )
+    return BenchResult(runs)
 
 
 _FIGURES = (
@@ -216,23 +238,25 @@ _FIGURES = (
 
 
 def format_bench(result: BenchResult) -> str:
-    """A plain-text table of :func:`run_bench`'s result, one column per setting."""
-    where = result.path or "bundled"
-    if result.fallback:
-        where += f"; {DEFAULT_ROAD} not found"
-    lines = [f"road {result.road}: {result.length_m / M_PER_KM:.2f} km, {where}"]
+    """A plain-text table of :func:`run_bench`'s result, one column per case, its road's file (or
+    the bundled test track) named first."""
     runs = result.runs
-    heads = [f"S {r['stage_m']:g} m, δ {r['delta_kmh']:g} km/h, {r['horizon_m']:g} m" for r in runs]
+    lines = []
+    roads = {(r["road"], r["path"]): r for r in runs}
+    for (name, path), r in roads.items():
+        where = f"{path or 'bundled'}" + ("; ../shared/roads not found" if r["fallback"] else "")
+        lines.append(f"road {name}: {r['length_m'] / M_PER_KM:.2f} km, {where}")
+    heads = [f"{r['case']}, {r['label']}" for r in runs]
+    settings = [f"S {r['stage_m']:g} m, δ {r['delta_kmh']:g} km/h, {r['horizon_m']:g} m" for r in runs]
     extra = [f"neutral {'allowed' if r['allow_neutral'] else 'off'}, {r['grid']} grid" for r in runs]
-    cell = max(len(h) for h in [*heads, *extra]) + 3
+    cell = max(len(h) for h in [*heads, *settings, *extra]) + 3
     width = label_width(_FIGURES)
-    for row in (heads, extra):
+    for row in (heads, settings, extra):
         lines.append(" " * width + "".join(f"{h:>{cell}}" for h in row))
     lines += figure_lines(_FIGURES, runs, cell)
     for r in runs:
         if r.get("stalled"):
-            setting = f"S {r['stage_m']:g} m, δ {r['delta_kmh']:g} km/h"
-            lines.append(f"{setting}: the truck stalled; figures cover the road up to there")
+            lines.append(f"{r['case']} on {r['road']}: the truck stalled; figures cover the road up to there")
     return "\n".join(lines)
 
 

@@ -13,8 +13,9 @@ from truckmpc.bench import format_bench, run_bench
 __all__ = ["BENCH_HELP", "bench_cmd"]
 
 BENCH_HELP = (
-    "Time closed-loop MPC runs at (S 25 m, δ 0.1 km/h, 3000 m) and (S 50 m, δ 0.2 km/h, 2000 m), "
-    "on the fixed and the moving grid, each in its own process.\n\n"
+    "Time closed-loop MPC runs, each in its own process: the default controller at its own settings on the "
+    "VECTO long-haul road (108 km) and the Swedish E6/E20 (294 km), then the thesis's worst case (S 25 m, "
+    "δ 0.1 km/h, 3000 m, neutral allowed, fixed grid) on the VECTO road.\n\n"
     "Reports the realtime ratio (compute time / simulated time), the time per DP solve, the states and "
     "transitions per solve, the time per transition and the peak memory of each run."
 )
@@ -26,17 +27,17 @@ def bench_cmd(
         Path | None,
         typer.Option(
             "--road",
-            help="Road profile CSV (default: the 108 km VECTO long-haul road of ../shared/roads, "
+            help="Road profile CSV for every run (default: each run's road of ../shared/roads, "
             "else the bundled test track).",
         ),
     ] = None,
-    quick: Annotated[bool, typer.Option("--quick", help="Only the first 10 km of the road (for CI).")] = False,
+    quick: Annotated[bool, typer.Option("--quick", help="Only the first 10 km of each road (for CI).")] = False,
     set_: Annotated[
         list[str] | None,
         typer.Option(
             "--set",
             help="Any other key=value (e.g. neutral_rule=interpolate); "
-            "stage_m, delta_kmh, horizon_m, allow_neutral and grid are fixed.",
+            "for every run; stage_m, delta_kmh, horizon_m, allow_neutral and grid are fixed.",
         ),
     ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")] = False,
