@@ -4,7 +4,7 @@ road, each configuration validated before anything runs.
 Curves:
 
 - ``pi``: the baseline over the set speeds;
-- ``pcc``: VECTO's rule-based predictive cruise control (on the PI) over the set speeds;
+- ``pcc``: VECTO's rule-based predictive cruise control (on VECTO's cruise driver) over the set speeds;
 - ``mpc``: the configured look-ahead controller (the thesis's cost by default) over the set speeds;
 - ``fuel_time``: the look-ahead controller with the ``fuel_time`` preset, over the set speeds with β
   derived from each, or over ``betas`` at the configured v_ref.

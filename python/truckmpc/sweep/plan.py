@@ -212,7 +212,7 @@ def _look_ahead_work(profile: RoadProfile, config: RunConfig, layout: Layout) ->
 
 SHARED_SECTIONS = {"pi": ("vehicle", "cruise", "pi", "sim"), "pcc": ("vehicle", "cruise", "pi", "pcc", "sim")}
 """The controllers whose runs rows share, and the config sections such a run depends on (the PCC is
-VECTO's rules on the PI: the PI's sections and its own)."""
+VECTO's rules on VECTO's driver, which shifts by the PI's gear logic: the PI's sections and its own)."""
 
 _SHARED = tuple(dict.fromkeys(section for sections in SHARED_SECTIONS.values() for section in sections))
 
