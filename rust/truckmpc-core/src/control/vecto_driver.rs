@@ -198,8 +198,7 @@ impl VectoDriver {
     /// the gear the logic picks; braking only to stay at the limit.
     pub fn coast(&mut self, road: &Road, state: &PlantState, neutral: bool) -> Control {
         let slope = road.slope_at(state.s_m, &mut self.slope_hint);
-        let forward = self.gears.shift(&self.vehicle, self.gear, state.v_mps, slope);
-        self.gear = if neutral { NEUTRAL } else { forward };
+        self.gear = if neutral { NEUTRAL } else { self.gears.shift(&self.vehicle, self.gear, state.v_mps, slope) };
         let target = self.target_mps(state.s_m);
         let limit = self.limit_mps(target);
         self.coast_below(state.v_mps, limit, self.gear, slope)

@@ -187,7 +187,7 @@ impl PccController {
     }
 
     /// VECTO's `UpdatePCCState`: which segment, and whether a use case starts.
-    fn update_state(&mut self, road: &Road, state: &PlantState) {
+    fn update_state(&mut self, road: &Road, state: &PlantState, target: f64) {
         let (s, v) = (state.s_m, state.v_mps);
         // VECTO's CommitSimulationStep: past a segment's end the next one is checked afresh, even
         // where it overlaps the last (a use case running at the end does not carry over).
@@ -209,7 +209,6 @@ impl PccController {
         if self.state != PccState::WithinSegment {
             return;
         }
-        let target = self.driver.stretch_target_mps(s);
         let loss = self.coasting_loss(v, target);
         let energy = specific_energy_j_per_kg(&self.vehicle, road, s, v);
         let (end1, energy_end1) = self.end_of(road, s, self.p.pcc_preview_m, &segment);
@@ -248,16 +247,17 @@ impl PccController {
     fn handle_eco_roll(&mut self, road: &Road, state: &PlantState, target_mps: f64) {
         let v = state.v_mps;
         let slope = road.slope_at(state.s_m, &mut self.slope_hint);
-        let rolling = self.vehicle.accel_mps2(v, 0.0, 0.0, NEUTRAL, slope);
         let top = target_mps + (self.driver.overspeed_kmh() - BELOW_OVERSPEED_KMH) / KMH_PER_MPS;
         let pedal_idle = self.last.gear != NEUTRAL && self.last.pedal <= 0.0;
         let braked = self.last.brake > 0.0;
         let conditions_met = v * KMH_PER_MPS >= self.p.eco_roll_min_speed_kmh
             && v <= top
             && slope < 0.0
-            && (self.p.eco_roll_accel_min_mps2..=self.p.eco_roll_accel_max_mps2).contains(&rolling)
             && pedal_idle
-            && !braked;
+            && !braked
+            // Rolling in neutral (the model's acceleration [m/s²]) last: it is the costly check.
+            && (self.p.eco_roll_accel_min_mps2..=self.p.eco_roll_accel_max_mps2)
+                .contains(&self.vehicle.accel_mps2(v, 0.0, 0.0, NEUTRAL, slope));
         let inputs = EcoRollInputs { conditions_met, below_target: v < target_mps, braked, t_s: state.t_s };
         let next = self.eco.next(&inputs, self.p.eco_roll_delay_s);
         if next == EcoRoll::On && self.eco != EcoRoll::On {
@@ -298,7 +298,7 @@ impl Controller for PccController {
         let target = self.driver.stretch_target_mps(state.s_m);
         let coasting = |s: PccState| matches!(s, PccState::UseCase1 | PccState::UseCase2 | PccState::Interrupted);
         let was_coasting = coasting(self.state);
-        self.update_state(road, state);
+        self.update_state(road, state, target);
         self.handle_state(state.v_mps, target);
         if !was_coasting && coasting(self.state) {
             self.events += 1;
@@ -374,7 +374,7 @@ mod tests {
         };
         c.segments = vec![segment(0.0, 1000.0, 1500.0), segment(1200.0, 3000.0, 3500.0)];
         c.state = PccState::UseCase1;
-        c.update_state(&road, &at(1600.0));
+        c.update_state(&road, &at(1600.0), t);
         assert_eq!((c.current, c.state), (1, PccState::WithinSegment));
     }
 
