@@ -14,9 +14,11 @@
 //! transposed ([`Block`]), because the DP's first pass walks one target gear at a time over all
 //! source velocities, a block per SIMD step.
 
-use std::collections::VecDeque;
-
 use super::rows::RowSpan;
+
+mod stages;
+
+pub use self::stages::RowCache;
 
 /// Values for a contiguous range of source keys (grid indices), grown at either end on demand.
 /// The buffer keeps slack in front of the first value, so growing downwards (the usual way a
@@ -211,8 +213,8 @@ pub struct CoastArc {
     pub cost: f64,
 }
 
-/// What a stage's rows depend on besides the vehicle and the parameters: the slope and the speeds
-/// of the two grids' index 0 (compared bit for bit).
+/// What a stage's rows depend on besides the vehicle and the parameters: the slope, the speeds
+/// of the two grids' index 0 and the top of the next stage's band (compared bit for bit).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct StageKey {
     /// Slope as wheel torque [Nm].
@@ -221,13 +223,17 @@ pub struct StageKey {
     pub origin_mps: f64,
     /// Speed of grid index 0 at the next stage [m/s].
     pub next_origin_mps: f64,
+    /// Top of the next stage's band [m/s] (rows end there, save the brake points next to it).
+    pub next_v_max_mps: f64,
 }
 
 impl StageKey {
+    fn bits(&self) -> [u64; 4] {
+        [self.slope_torque_nm, self.origin_mps, self.next_origin_mps, self.next_v_max_mps].map(f64::to_bits)
+    }
+
     fn same(&self, other: &StageKey) -> bool {
-        self.slope_torque_nm.to_bits() == other.slope_torque_nm.to_bits()
-            && self.origin_mps.to_bits() == other.origin_mps.to_bits()
-            && self.next_origin_mps.to_bits() == other.next_origin_mps.to_bits()
+        self.bits() == other.bits()
     }
 }
 
@@ -270,46 +276,5 @@ impl StageRows {
             self.gears.resize_with(gear + 1, GearBlocks::default);
         }
         &mut self.gears[gear]
-    }
-}
-
-/// Cached stages for a window of absolute stages.
-#[derive(Debug, Clone, Default)]
-pub struct RowCache {
-    first_stage: u64,
-    stages: VecDeque<StageRows>,
-    spare: Vec<StageRows>,
-    /// Rows computed (cache misses) since creation, for diagnostics.
-    pub computed: u64,
-}
-
-impl RowCache {
-    /// Drop the stages before `stage` and make sure `stage..stage + count` exist with these keys.
-    /// A stage whose key changed (another road, or a moving grid that moved) is emptied.
-    pub fn prepare(&mut self, stage: u64, keys: impl Iterator<Item = StageKey>) {
-        while self.first_stage < stage && !self.stages.is_empty() {
-            self.spare.push(self.stages.pop_front().unwrap());
-            self.first_stage += 1;
-        }
-        if self.stages.is_empty() || self.first_stage > stage {
-            self.spare.extend(self.stages.drain(..));
-            self.first_stage = stage;
-        }
-        for (k, key) in keys.enumerate() {
-            let at = (stage - self.first_stage) as usize + k;
-            if at == self.stages.len() {
-                let mut rows = self.spare.pop().unwrap_or_default();
-                rows.reset(key);
-                self.stages.push_back(rows);
-            } else if !self.stages[at].key.same(&key) {
-                self.stages[at].reset(key);
-            }
-        }
-    }
-
-    /// The rows of absolute `stage` (`prepare` must have covered it) and the miss counter.
-    #[inline]
-    pub fn stage(&mut self, stage: u64) -> (&mut StageRows, &mut u64) {
-        (&mut self.stages[(stage - self.first_stage) as usize], &mut self.computed)
     }
 }

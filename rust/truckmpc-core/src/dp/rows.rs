@@ -18,7 +18,8 @@ mod tests;
 mod trapezoid;
 
 use self::euler::{forward_row_euler, pair_euler};
-use self::trapezoid::{forward_row_trapezoid, pair_trapezoid, trapezoid_pedal_band};
+pub use self::trapezoid::EndMemo;
+use self::trapezoid::{forward_row_trapezoid, pair_trapezoid, trapezoid_pedal_band, AtEnd};
 use super::params::{DpSettings, StageModel};
 use super::stage;
 use crate::levels::{brake_accel_on, pedal_accel_on, stage_fuel_g, AffineAccel};
@@ -211,7 +212,7 @@ fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64, v_max: f64) -> Option<(
         return None;
     }
     if let Some(end) = &m.trapezoid {
-        return pair_trapezoid(p, m, end, v_i, v_j, v_max);
+        return pair_trapezoid(p, (m, end), (v_i, v_j, v_max), || AtEnd::at(end, v_j, p.stage_m));
     }
     pair_euler(p, m, v_i, v_j, v_max)
 }
@@ -219,7 +220,9 @@ fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64, v_max: f64) -> Option<(
 /// Append to `out` the costs of joining `v_i` in forward `gear` to the grid indices of the next
 /// stage; return their span and where its first cost is in `out`. Indices no input reaches inside
 /// the span hold +∞; a row with no admissible target appends nothing (len 0). Each cost is
-/// [`pair`]'s, bit for bit. `v_max_mps` is the top of the next stage's band.
+/// [`pair`]'s, bit for bit. `v_max_mps` is the top of the next stage's band. `memo` keeps what
+/// trapezoid rows evaluate at each end speed: clear it whenever the stage, the gear or the next
+/// grid changes.
 #[allow(clippy::too_many_arguments)]
 pub fn forward_row(
     vehicle: &Vehicle,
@@ -229,11 +232,11 @@ pub fn forward_row(
     slope_torque: f64,
     grid: GridIndex,
     v_max_mps: f64,
-    out: &mut Vec<f64>,
+    (out, memo): (&mut Vec<f64>, &mut EndMemo),
 ) -> (RowSpan, usize) {
     let (from, target) = ((v_i, gear, slope_torque), (grid, v_max_mps));
     match p.stage_model {
-        StageModel::Trapezoid => forward_row_trapezoid((vehicle, p), from, target, out),
+        StageModel::Trapezoid => forward_row_trapezoid((vehicle, p), from, target, (out, memo)),
         StageModel::Euler => forward_row_euler((vehicle, p), from, target, out),
     }
 }

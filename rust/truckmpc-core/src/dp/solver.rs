@@ -43,6 +43,7 @@ use self::ends::Ends;
 use self::grids::StageGrid;
 use super::cache::{RowCache, RowScratch, StageKey, StageRows, PAD};
 use super::params::DpSettings;
+use super::rows::EndMemo;
 use super::space::{self, Intervals};
 use super::values::{StageValues, ValueTable};
 use crate::band::BandAt;
@@ -140,6 +141,8 @@ pub struct Solver {
     offsets: Vec<usize>,
     choices: Choices,
     scratch: RowScratch,
+    /// What the rows of one stage and gear evaluate at each end speed.
+    end_memo: EndMemo,
     /// Rows of the stage being solved when they do not come from the cache.
     scratch_rows: StageRows,
     cache: RowCache,
@@ -175,6 +178,7 @@ impl Solver {
             offsets: Vec::new(),
             choices: Choices::default(),
             scratch: RowScratch::default(),
+            end_memo: EndMemo::default(),
             scratch_rows: StageRows::default(),
             cache: RowCache::default(),
             interval_memo: space::IntervalMemo::default(),
@@ -302,6 +306,7 @@ impl Solver {
                 slope_torque_nm: self.slope_torques[k],
                 origin_mps: self.grids[k].index.origin_mps,
                 next_origin_mps: self.grids[k + 1].index.origin_mps,
+                next_v_max_mps: self.bands[k + 1].v_max_mps(),
             });
             self.cache.prepare(stage + 1, keys);
         }

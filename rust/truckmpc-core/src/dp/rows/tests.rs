@@ -17,14 +17,18 @@ fn rows_hold_the_costs_of_pair_in(p: &DpSettings) {
     let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
     let p = p.clone();
     let mut out = vec![1.0; 3];
+    let mut memo = EndMemo::default();
     for (s, slope) in [-0.06, -0.03, -0.01, 0.0, 0.01, 0.03, 0.06].into_iter().enumerate() {
         let torque = vehicle.slope_torque_nm(slope);
         for gear in 1..=vehicle.forward_gears() {
+            // One memo for the gear's rows on this slope and grid, as the solver keeps it.
+            memo.clear();
             for step in 0..60 {
                 let v_i = p.v_max_mps() - 0.37 * step as f64 / 3.6;
                 let grid = GridIndex { origin_mps: 15.0 + 0.013 * s as f64, delta_mps: p.delta_mps() };
                 let before = out.len();
-                let (span, at) = forward_row(&vehicle, &p, v_i, gear, torque, grid, p.v_max_mps(), &mut out);
+                let (span, at) =
+                    forward_row(&vehicle, &p, v_i, gear, torque, grid, p.v_max_mps(), (&mut out, &mut memo));
                 assert_eq!(out.len(), at + span.len);
                 assert!(at >= before);
                 let m = maps(&vehicle, &p, v_i, gear, torque);

@@ -6,25 +6,75 @@
 use super::{change_cost, clamp_span, maps, trim, EndMaps, GridIndex, Inputs, RowMaps, RowSpan, BRAKE_WINDOW};
 use crate::dp::params::{DpSettings, GridAnchor, StageModel};
 use crate::dp::stage::{self, Branch};
-use crate::levels::{brake_accel_on, pedal_accel_on};
+use crate::levels::{brake_accel_on, pedal_accel_on, AffineAccel};
 use crate::vehicle::Vehicle;
 
+/// What a trapezoid pair evaluates at its end speed in the row's gear on the stage's slope: the
+/// pedal's affine map and the half-stage fuel at full pedal [g] (the fuel per unit of pedal).
+#[derive(Debug, Clone, Copy)]
+pub struct AtEnd {
+    accel: AffineAccel,
+    full_half_fuel_g: f64,
+}
+
+impl AtEnd {
+    /// The values at end speed `v_j` [m/s] for the rows of `end` (stages of `h_m`).
+    #[inline]
+    pub(super) fn at(end: &EndMaps, v_j: f64, h_m: f64) -> Self {
+        AtEnd {
+            accel: pedal_accel_on(end.vehicle, v_j, end.gear, end.slope_torque),
+            full_half_fuel_g: stage::half_stage_fuel_g(end.vehicle, v_j, 1.0, end.gear, h_m),
+        }
+    }
+}
+
+/// The [`AtEnd`] values of one stage and gear by grid index of the next stage, each computed once
+/// for all the rows that reach it (a row's pairs share their end speeds with its neighbours').
+/// Values are those [`AtEnd::at`] gives, bit for bit.
+#[derive(Debug, Clone, Default)]
+pub struct EndMemo {
+    first: i64,
+    values: Vec<Option<AtEnd>>,
+}
+
+impl EndMemo {
+    /// Forget every value (a new stage or gear).
+    pub fn clear(&mut self) {
+        self.values.clear();
+    }
+
+    /// The values at grid index `index` of speed `v_j` [m/s].
+    #[inline]
+    fn get(&mut self, index: i64, compute: impl FnOnce() -> AtEnd) -> AtEnd {
+        if self.values.is_empty() {
+            self.first = index;
+        } else if index < self.first {
+            let missing = (self.first - index) as usize;
+            self.values.splice(0..0, std::iter::repeat_n(None, missing));
+            self.first = index;
+        }
+        let at = (index - self.first) as usize;
+        if at >= self.values.len() {
+            self.values.resize(at + 1, None);
+        }
+        *self.values[at].get_or_insert_with(compute)
+    }
+}
+
 /// [`pair`](super::pair) on a trapezoid stage: the inputs from the maps at both ends, the fuel from
-/// the fuel per metre at both ends.
+/// the fuel per metre at both ends; `at_j` gives the values at the end speed when they are needed.
 #[inline]
 pub(super) fn pair_trapezoid(
     p: &DpSettings,
-    m: &RowMaps,
-    end: &EndMaps,
-    v_i: f64,
-    v_j: f64,
-    v_max: f64,
+    (m, end): (&RowMaps, &EndMaps),
+    (v_i, v_j, v_max): (f64, f64, f64),
+    at_j: impl FnOnce() -> AtEnd,
 ) -> Option<(Inputs, f64)> {
     let h = p.stage_m;
     let change = change_cost(p.q_speed_change, p.q_speed_change_sq, v_i - v_j);
     let model = StageModel::Trapezoid;
     if m.pedal.gain > 0.0 {
-        let at_j = pedal_accel_on(end.vehicle, v_j, end.gear, end.slope_torque);
+        let AtEnd { accel: at_j, full_half_fuel_g } = at_j();
         let pedal = stage::input_for(model, &m.pedal, &at_j, (v_i, v_j), h);
         let (pedal_lo, pedal_hi) = end.pedal_band;
         if pedal >= pedal_lo && pedal <= pedal_hi {
@@ -33,7 +83,7 @@ pub(super) fn pair_trapezoid(
                 let half = |v: f64| stage::half_stage_fuel_g(end.vehicle, v, clipped, end.gear, h);
                 p.q_fuel * (half(v_i) + half(v_j))
             } else {
-                let fuel_per_pedal = m.full_fuel_g + stage::half_stage_fuel_g(end.vehicle, v_j, 1.0, end.gear, h);
+                let fuel_per_pedal = m.full_fuel_g + full_half_fuel_g;
                 p.q_fuel * fuel_per_pedal * clipped
             };
             return Some((Inputs { pedal: clipped, brake: 0.0 }, fuel + change));
@@ -77,7 +127,7 @@ pub(super) fn forward_row_trapezoid(
     (vehicle, p): (&Vehicle, &DpSettings),
     (v_i, gear, slope_torque): (f64, usize, f64),
     (grid, v_max): (GridIndex, f64),
-    out: &mut Vec<f64>,
+    (out, memo): (&mut Vec<f64>, &mut EndMemo),
 ) -> (RowSpan, usize) {
     let start = out.len();
     let m = maps(vehicle, p, v_i, gear, slope_torque);
@@ -103,7 +153,9 @@ pub(super) fn forward_row_trapezoid(
         return (RowSpan { first: 0, len: 0 }, start);
     }
     out.extend((first..=last).map(|index| {
-        pair_trapezoid(p, &m, &end, v_i, grid.speed(index), v_max).map_or(f64::INFINITY, |(_, cost)| cost)
+        let v_j = grid.speed(index);
+        let at_j = || memo.get(index, || AtEnd::at(&end, v_j, h));
+        pair_trapezoid(p, (&m, &end), (v_i, v_j, v_max), at_j).map_or(f64::INFINITY, |(_, cost)| cost)
     }));
     trim(out, start, first)
 }

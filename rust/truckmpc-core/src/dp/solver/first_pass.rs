@@ -53,8 +53,11 @@ impl Solver {
                 continue;
             }
             let rows = stage.gear(g);
+            let memo = &mut self.end_memo;
+            memo.clear();
             *computed += rows.fill(key_lo, key_hi, &mut self.scratch, |key, buf| {
-                forward_row(vehicle, p, here.index.speed(key), g, slope_torque, next.index, v_max_next, buf)
+                let v_i = here.index.speed(key);
+                forward_row(vehicle, p, v_i, g, slope_torque, next.index, v_max_next, (buf, &mut *memo))
             });
             let values = g * stride(next.count)..(g + 1) * stride(next.count);
             let (blocks, first_key) = rows.get(key_lo, key_hi);
