@@ -96,6 +96,8 @@ def test_a_signal_ends_simulate_with_one_line_and_no_output(tmp_path, signum):
             "delta_kmh=0.01",
             "--set",
             "horizon_m=3000",
+            "--set",
+            "replan_m=0",
             "--out",
             str(out),
         ],
@@ -105,7 +107,7 @@ def test_a_signal_ends_simulate_with_one_line_and_no_output(tmp_path, signum):
         start_new_session=True,
     )
     try:
-        time.sleep(1.5)  # well into the runs (the MPC at δ 0.01 km/h and 3000 m takes about five seconds)
+        time.sleep(1.5)  # well into the runs (the MPC at δ 0.01 km/h and 3000 m, solving every stage, takes seconds)
         assert proc.poll() is None
         proc.send_signal(signum)
         stdout, stderr = proc.communicate(timeout=30)

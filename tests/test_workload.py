@@ -55,14 +55,15 @@ def test_a_tiny_plant_step_is_refused_with_its_estimate(in_tmp):
 
 
 def test_a_fine_speed_grid_is_refused_naming_where_it_was_set(in_tmp):
-    assert_refused(run("simulate", "--set", "delta_kmh=0.001", "--out", "res"), "--set delta_kmh")
-    (in_tmp / "fine.yaml").write_text("# overlay\ndelta_kmh: 0.001\n")
+    assert_refused(run("simulate", "--set", "delta_kmh=0.0005", "--out", "res"), "--set delta_kmh")
+    (in_tmp / "fine.yaml").write_text("# overlay\ndelta_kmh: 0.0005\n")
     assert_refused(run("simulate", "--config", "fine.yaml", "--out", "res"), "fine.yaml:2: key 'delta_kmh'")
     assert not (in_tmp / "res").exists()
 
 
 def test_a_grid_too_large_for_memory_is_refused_naming_its_size(in_tmp, monkeypatch):
-    # delta 0.01 km/h over a 10 km/h band (v_dec 5) and 60 stages (1500 m): 1001² × 60 units of 2.5 bytes, 150 MB.
+    # delta 0.01 km/h over a 10 km/h band (v_dec 5) and 79 stages (a 1500 m horizon and the 19 stages
+    # decided from each solve of it): 1001² × 79 units of 2.5 bytes, 198 MB.
     monkeypatch.setattr(workload, "memory_limit_bytes", lambda: 100e6)
     result = run(
         "simulate",
@@ -78,7 +79,7 @@ def test_a_grid_too_large_for_memory_is_refused_naming_its_size(in_tmp, monkeypa
         "res",
     )
     assert result.exit_code == 2 and result.stderr.count("\n") == 1, result.output
-    assert result.stderr.startswith("error: --set delta_kmh: about 0.15 GB of memory for the dynamic program")
+    assert result.stderr.startswith("error: --set delta_kmh: about 0.198 GB of memory for the dynamic program")
     assert "(limit 0.1 GB, half this machine's); pass --force" in result.stderr
     assert not (in_tmp / "res").exists()
     assert run("simulate", "--road", "short.csv", "--set", "delta_kmh=0.2", "--out", "res").exit_code == 0
@@ -109,7 +110,7 @@ def test_a_sweep_counts_the_memory_of_the_runs_it_holds_at_once(in_tmp, monkeypa
     # Over a 10 km/h band (v_dec 5), DPs of 150.3 MB (δ 0.01 km/h) and 124.2 MB (δ 0.011): either fits
     # in 200 MB, both at once do not; the PI holds none, and a δ 0.2 DP (0.4 MB) beside the 150 MB one fits.
     monkeypatch.setattr(sweep_run, "memory_limit_bytes", lambda: 200e6)
-    band = ("--set", "v_dec_kmh=5", "--set", "horizon_m=1500")  # 60 stages
+    band = ("--set", "v_dec_kmh=5", "--set", "horizon_m=1500", "--set", "replan_m=0")  # 60 stages a solve
     fits = run("sweep", "--road", "short.csv", *band, "--grid", "delta_kmh=0.01,0.2", "--jobs", "2", "--out", "ok")
     assert fits.exit_code == 0, fits.output
     args = ["sweep", "--road", "short.csv", *band, "--grid", "delta_kmh=0.01,0.011", "--out", "sw"]

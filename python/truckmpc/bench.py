@@ -13,7 +13,9 @@ the bundled test track; ``--road`` drives every case on one road instead, and ``
 first 10 km of each. Figures per run (from the run's summary, but for the last two):
 
 - ``realtime_ratio``: wall time of the run / simulated trip time;
-- ``solve_ms_mean``, ``solve_ms_max``, ``solves``, ``states_per_solve``, ``transitions_per_solve``;
+- ``solve_ms_mean``, ``solve_ms_max``, ``solves`` (one per stage), ``horizon_solves`` (those over the
+  whole horizon; the others decide a stage from the last one's stored cost-to-go),
+  ``states_per_solve``, ``transitions_per_solve``;
 - ``ns_per_transition``: mean solve time / transitions per solve;
 - ``peak_rss_mb``: the run's process peak resident set [MB], Python and numpy included.
 
@@ -55,6 +57,7 @@ SETTINGS: dict[str, Any] = {
     "stage_m": 25.0,
     "delta_kmh": 0.1,
     "horizon_m": 3000.0,
+    "replan_m": 0.0,
     "allow_neutral": True,
     "grid": "fixed",
 }
@@ -141,6 +144,7 @@ def run_one(road_path: str | None, quick: bool, setting: dict[str, Any], extra: 
         "stage_m": mpc.stage_m,
         "delta_kmh": mpc.delta_kmh,
         "horizon_m": mpc.horizon_m,
+        "replan_m": mpc.replan_m,
         "allow_neutral": mpc.allow_neutral,
         "grid": mpc.grid,
         "neutral_rule": config.mpc.neutral_rule,
@@ -148,6 +152,7 @@ def run_one(road_path: str | None, quick: bool, setting: dict[str, Any], extra: 
         "solve_ms_mean": summary["solve_ms_mean"],
         "solve_ms_max": summary["solve_ms_max"],
         "solves": summary["solves"],
+        "horizon_solves": summary["horizon_solves"],
         "infeasible_solves": summary["infeasible_solves"],
         "states_per_solve": summary["states_per_solve"],
         "transitions_per_solve": transitions,
@@ -226,6 +231,7 @@ _FIGURES = (
     ("solve time mean", "solve_ms_mean", "ms", ".3f"),
     ("solve time max", "solve_ms_max", "ms", ".3f"),
     ("solves", "solves", "", "d"),
+    ("horizon solves", "horizon_solves", "", "d"),
     ("infeasible solves", "infeasible_solves", "", "d"),
     ("states per solve", "states_per_solve", "", ".0f"),
     ("transitions per solve", "transitions_per_solve", "", ".0f"),
@@ -235,6 +241,12 @@ _FIGURES = (
     ("fuel", "fuel_kg", "kg", ".3f"),
     ("peak memory", "peak_rss_mb", "MB", ".1f"),
 )
+
+
+def _replan(run: dict[str, Any]) -> str:
+    """How often the run solved its horizon: every stage, or every ``replan_m`` metres."""
+    replan_m = run.get("replan_m", 0.0)
+    return "solve every stage" if replan_m <= run["stage_m"] else f"solve every {replan_m:g} m"
 
 
 def format_bench(result: BenchResult) -> str:
@@ -248,6 +260,7 @@ def format_bench(result: BenchResult) -> str:
         lines.append(f"road {name}: {r['length_m'] / M_PER_KM:.2f} km, {where}")
     heads = [f"{r['case']}, {r['label']}" for r in runs]
     settings = [f"S {r['stage_m']:g} m, δ {r['delta_kmh']:g} km/h, {r['horizon_m']:g} m" for r in runs]
+    settings = [f"{s}, {_replan(r)}" for s, r in zip(settings, runs, strict=True)]
     extra = [f"neutral {'allowed' if r['allow_neutral'] else 'off'}, {r['grid']} grid" for r in runs]
     cell = max(len(h) for h in [*heads, *settings, *extra]) + 3
     width = label_width(_FIGURES)

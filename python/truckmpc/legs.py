@@ -43,6 +43,7 @@ SUMMED = (
     "eco_roll_entries",
     "compute_time_s",
     "solves",
+    "horizon_solves",
     "infeasible_solves",
     "fallback_relaxed",
     "fallback_rescues",

@@ -121,13 +121,14 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
         `stalled`, `stall_distance_m` (None unless stalled), `message` (None unless stalled),
         `plant_dt_s`, `fuel_corrected_kg` (the fuel with the end speed brought back to the start
         speed, :func:`truckmpc.fuel.corrected_fuel_kg`; None if stalled). The MPC adds
-        `solves`, `infeasible_solves`, `solve_ms_mean`, `solve_ms_max`, `states_per_solve`,
-        `transitions_per_solve` and `settings` (its parameters with k_lim, Q2 and Q5 resolved, and
-        the fuel_time cost's β); the whole-road optimum adds the plan's `plan_fuel_kg`,
-        `plan_time_s` (by the DP's own model), `plan_cost`, `plan_solve_s`, `plan_stages` and
-        `plan_table_mb`; a Python controller with a `summary()` method adds its entries. A road
-        with stops adds `legs` and `stops_not_simulated` (:func:`truckmpc.legs.merge_legs` says
-        how the legs' figures are joined).
+        `solves` (one per decision), `horizon_solves` (those over the whole horizon; between them
+        a stage is decided from the stored cost-to-go), `infeasible_solves`, `solve_ms_mean`,
+        `solve_ms_max`, `states_per_solve`, `transitions_per_solve` and `settings` (its parameters
+        with k_lim, Q2 and Q5 resolved, and the fuel_time cost's β); the whole-road optimum adds
+        the plan's `plan_fuel_kg`, `plan_time_s` (by the DP's own model), `plan_cost`,
+        `plan_solve_s`, `plan_stages` and `plan_table_mb`; a Python controller with a `summary()`
+        method adds its entries. A road with stops adds `legs` and `stops_not_simulated`
+        (:func:`truckmpc.legs.merge_legs` says how the legs' figures are joined).
     """
     if road.stops:
         return drive_legs(road, config, lambda leg, leg_config: _drive(leg, leg_config, controller))

@@ -5,9 +5,10 @@ The estimates are rough (within a factor of a few) and only decide whether to re
 
 - plant steps ≈ road length / (v_ref · plant_dt_s), each a few microseconds of RK4 in the core;
 - the MPC's dynamic program ≈ solves × stages × (speed band / δ)² "units" per run (solves = length /
-  S, stages = horizon / S); each unit is a fraction of the DP's transitions (the gear choices, the
-  admissible band) at a few nanoseconds each, folded into one constant, which grows once a solve's
-  rows no longer fit in the processor's caches;
+  replan, stages = (horizon + replan) / S − 1; the one-stage decisions in between are negligible);
+  each unit is a fraction of the DP's transitions (the gear choices, the admissible band) at a few
+  nanoseconds each, folded into one constant, which grows once a solve's rows no longer fit in the
+  processor's caches;
 - the DP's memory ≈ stages × (speed band / δ)² units at a few bytes each (its cached rows);
 - trace rows ≈ road length / trace_step_m, each kept in memory and written to the trace CSV.
 """
@@ -68,7 +69,7 @@ peaked at 1.21 GB at δ 0.025 km/h (401 points, 94 bytes a unit) and at 0.66 GB 
 0.1 km/h)."""
 
 _PLANT_KEYS = ("plant_dt_s", "v_ref_kmh")
-_DP_KEYS = ("delta_kmh", "stage_m", "horizon_m", "v_inc_kmh", "v_dec_kmh")
+_DP_KEYS = ("delta_kmh", "stage_m", "horizon_m", "replan_m", "v_inc_kmh", "v_dec_kmh")
 
 
 class WorkError(TruckmpcError):
@@ -106,8 +107,10 @@ def grid_points(config: RunConfig) -> float:
 
 
 def solve_units(config: RunConfig) -> float:
-    """DP units of one MPC solve: stages per solve × speed-grid points² per stage."""
-    return config.settings.horizon_stages * grid_points(config) ** 2
+    """DP units of one horizon solve: its stages (the horizon, and the stages decided from it until
+    the next) × speed-grid points² per stage."""
+    settings = config.settings
+    return (settings.horizon_stages + settings.replan_stages - 1) * grid_points(config) ** 2
 
 
 def road_stages(profile: RoadProfile, config: RunConfig) -> float:
@@ -116,8 +119,8 @@ def road_stages(profile: RoadProfile, config: RunConfig) -> float:
 
 
 def dp_units(profile: RoadProfile, config: RunConfig) -> float:
-    """DP units of an MPC run: solves × :func:`solve_units`."""
-    return road_stages(profile, config) * solve_units(config)
+    """DP units of an MPC run: horizon solves (one per `replan_m`) × :func:`solve_units`."""
+    return road_stages(profile, config) / config.settings.replan_stages * solve_units(config)
 
 
 def run_work(profile: RoadProfile, config: RunConfig, controller: str) -> Work:

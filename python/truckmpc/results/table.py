@@ -33,6 +33,7 @@ _FIGURES = (
     ("neutral distance", "neutral_distance_m", "m", ".0f"),
     ("compute time", "compute_time_s", "s", ".2f"),
     ("realtime ratio", "realtime_ratio", "", ".2e"),
+    ("horizon solves", "horizon_solves", "", "d"),
     ("infeasible solves", "infeasible_solves", "", "d"),
     ("relaxed solves driven", "fallback_relaxed", "", "d"),
     ("rescues", "fallback_rescues", "", "d"),

@@ -219,6 +219,12 @@ impl PySettings {
         self.inner.mpc.stages()
     }
 
+    /// Stages decided from one horizon solve (round(replan / S), at least 1: a solve every stage).
+    #[getter]
+    fn replan_stages(&self) -> usize {
+        self.inner.mpc.replan_stages()
+    }
+
     /// Q2 per stage, resolved (q_speed_below, else q_speed_below_per_km × S, else table 6.2).
     #[getter]
     fn q_speed_below_weight(&self) -> f64 {

@@ -59,6 +59,7 @@ fn summary_dict<'py>(py: Python<'py>, s: &RunSummary) -> PyResult<Bound<'py, PyD
     }
     if let Some(solver) = &s.solver {
         out.set_item("solves", solver.solves)?;
+        out.set_item("horizon_solves", solver.horizon_solves)?;
         out.set_item("infeasible_solves", solver.infeasible_solves)?;
         out.set_item("solve_ms_mean", solver.solve_ms_mean())?;
         out.set_item("solve_ms_max", solver.solve_ms_max())?;

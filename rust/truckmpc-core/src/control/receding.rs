@@ -16,14 +16,20 @@ use std::time::Instant;
 use super::pi::GearLogic;
 use super::rescue::Rescue;
 use super::{Controller, Decision};
-use crate::band::{BandAt, SpeedBand};
+use crate::band::SpeedBand;
 use crate::dp::stage;
-use crate::dp::{horizon, DpSettings, InitialState, Solver, ValueTable};
+use crate::dp::{horizon, DpSettings, InitialState, Solver};
 use crate::levels::stationary;
 use crate::params::OnInfeasible;
 use crate::plant::{Control, PlantState};
 use crate::road::Road;
 use crate::vehicle::{Vehicle, NEUTRAL};
+
+mod stats;
+mod stored;
+
+pub use self::stats::{PlanStats, SolverStats};
+use self::stored::Stored;
 
 /// Stages driven since the last gear shift, saturating at k_lim: the DP's shift constraint
 /// (at least k_lim stages between shifts) carried from one solve to the next.
@@ -50,75 +56,6 @@ impl ShiftCounter {
     }
 }
 
-/// Figures of a run's DP solves.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct SolverStats {
-    /// Solves done.
-    pub solves: u64,
-    /// Solves that found no admissible path.
-    pub infeasible_solves: u64,
-    /// Wall time of all solves [s].
-    pub solve_time_s: f64,
-    /// Wall time of the longest solve [s].
-    pub solve_time_max_s: f64,
-    /// States over all solves.
-    pub states: u64,
-    /// Transitions over all solves.
-    pub transitions: u64,
-    /// Relaxed solves (lower speed bound and shift limit relaxed) whose answer was driven.
-    pub fallback_relaxed: u64,
-    /// Times the controller fell back to the rescue policy (the PI's gear logic, full pedal).
-    pub fallback_rescues: u64,
-    /// Distance driven on the rescue policy [m].
-    pub fallback_rescue_m: f64,
-    /// The whole-road plan, for the whole-road optimum.
-    pub plan: Option<PlanStats>,
-}
-
-/// What the whole-road optimum planned before driving: its prediction over the road by the DP's
-/// own model and what the plan cost to compute.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct PlanStats {
-    /// Fuel of the planned trajectory [kg] (one Euler stage per S, as the DP predicts it).
-    pub fuel_kg: f64,
-    /// Trip time of the planned trajectory [s] (S / v per stage).
-    pub time_s: f64,
-    /// The plan's optimal cost J_0.
-    pub cost: f64,
-    /// Wall time of the whole-road solve [s].
-    pub solve_s: f64,
-    /// Stages of the plan.
-    pub stages: u64,
-    /// Memory of its stored cost-to-go [bytes].
-    pub table_bytes: u64,
-}
-
-impl SolverStats {
-    fn count(&self) -> f64 {
-        self.solves.max(1) as f64
-    }
-
-    /// Mean wall time per solve [ms] (0 without solves).
-    pub fn solve_ms_mean(&self) -> f64 {
-        1e3 * self.solve_time_s / self.count()
-    }
-
-    /// Longest solve [ms].
-    pub fn solve_ms_max(&self) -> f64 {
-        1e3 * self.solve_time_max_s
-    }
-
-    /// Mean states per solve.
-    pub fn states_per_solve(&self) -> f64 {
-        self.states as f64 / self.count()
-    }
-
-    /// Mean transitions per solve.
-    pub fn transitions_per_solve(&self) -> f64 {
-        self.transitions as f64 / self.count()
-    }
-}
-
 /// The DP-MPC as a [`Controller`]: decides once per stage, holding its inputs until the next stage
 /// boundary; when a solve finds no admissible path it holds its inputs (`hold`, section 5.6) or
 /// (`rescue`) solves again with the lower speed bound and the shift limit relaxed and, failing
@@ -127,7 +64,7 @@ impl SolverStats {
 pub struct RecedingController {
     vehicle: Arc<Vehicle>,
     solver: Solver,
-    /// The relaxed solver ([`DpSettings::relaxed`], without the row cache), built on the first
+    /// The relaxed solver ([`DpSettings::relaxed`], with a row cache of its own), built on the first
     /// need (rescue only).
     relaxed: Option<Solver>,
     rescue: Rescue,
@@ -149,17 +86,11 @@ pub struct RecedingController {
     /// Position of the latest rescue decision [m].
     rescue_last_m: f64,
     stats: SolverStats,
-    /// The whole-road optimum's stored cost-to-go and stage grades; None for the receding horizon.
-    whole_road: Option<WholeRoad>,
-}
-
-/// The whole-road optimum's plan: every stage's cost-to-go and the road's stage grades.
-#[derive(Debug, Default)]
-struct WholeRoad {
-    table: ValueTable,
-    slopes: Vec<f64>,
-    /// The band at every stage boundary (empty on a road without target speeds).
-    bands: Vec<BandAt>,
+    /// Whether this is the whole-road optimum (one solve over the whole road).
+    whole_road: bool,
+    /// The cost-to-go the coming stages are decided from: the whole-road plan, or the latest
+    /// horizon solve when stages are decided from it (`replan_m` above S).
+    stored: Option<Stored>,
 }
 
 /// Lowest speed [km/h] the relaxed solve may plan with.
@@ -192,7 +123,8 @@ impl RecedingController {
             rescue_from_m: 0.0,
             rescue_last_m: 0.0,
             stats: SolverStats::default(),
-            whole_road: None,
+            whole_road: false,
+            stored: None,
         }
     }
 
@@ -202,22 +134,24 @@ impl RecedingController {
     /// at the stage's start by a one-stage solve against the next stage's stored values. What it
     /// does when a one-stage solve finds no admissible path follows `on_infeasible`, as the MPC.
     pub fn whole_road(vehicle: Arc<Vehicle>, params: DpSettings, start_gears: GearLogic) -> Self {
-        RecedingController { whole_road: Some(WholeRoad::default()), ..Self::new(vehicle, params, start_gears) }
+        RecedingController { whole_road: true, ..Self::new(vehicle, params, start_gears) }
     }
 
     /// Plan the whole road from `start` at `s0_m`: the DP over every stage to the road's end.
     fn plan_road(&mut self, road: &Road, s0_m: f64, start: InitialState) {
-        let Some(plan) = self.whole_road.as_mut() else { return };
+        if !self.whole_road {
+            return;
+        }
         let h = self.solver.params().stage_m;
         let stages = (((road.end_m() - s0_m) / h) - 1e-9).ceil().max(1.0) as usize;
-        horizon::stage_slopes(road, s0_m, h, stages, &mut plan.slopes);
-        plan.bands.clear();
+        let mut plan = Stored::starting(0, usize::MAX);
+        horizon::stage_slopes(road, s0_m, h, stages, &mut plan.ahead.slopes);
         if self.band.varies() {
-            horizon::stage_bands(&self.band, s0_m, h, stages, &mut plan.bands);
+            horizon::stage_bands(&self.band, s0_m, h, stages, &mut plan.ahead.bands);
         }
-        let bands = (!plan.bands.is_empty()).then_some(&plan.bands[..]);
+        let bands = (!plan.ahead.bands.is_empty()).then_some(&plan.ahead.bands[..]);
         let began = Instant::now();
-        let solution = self.solver.solve_recording(&self.vehicle, start, &plan.slopes, bands, &mut plan.table);
+        let solution = self.solver.solve_recording(&self.vehicle, start, &plan.ahead.slopes, bands, &mut plan.table);
         let solve_s = began.elapsed().as_secs_f64();
         // The trajectory's point k holds the inputs of stage k and the speed at its start; each
         // stage priced by the DP's own stage model.
@@ -236,16 +170,35 @@ impl RecedingController {
             stages: stages as u64,
             table_bytes: plan.table.bytes() as u64,
         });
+        self.stored = Some(plan);
     }
 
-    /// The one-stage solve of the whole-road optimum at the stage starting at `s_m` (None when
-    /// `s_m` is no stage boundary of the plan: the receding horizon solves there instead).
-    fn solve_against_plan(&mut self, s_m: f64, start: InitialState) -> Option<crate::dp::Solution> {
-        let plan = self.whole_road.as_ref()?;
+    /// The one-stage solve at the stage starting at `s_m` against the stored cost-to-go (None
+    /// when `s_m` is no stage boundary among the stages decided from it: a horizon solve then).
+    fn solve_against_stored(&mut self, s_m: f64, start: InitialState) -> Option<crate::dp::Solution> {
         let k = horizon::boundary_stage(self.origin_m, s_m, self.solver.params().stage_m)?;
-        let next = plan.table.stages.get(k + 1)?;
-        let bands = plan.bands.get(k..k + 2).map(|b| [b[0], b[1]]);
-        Some(self.solver.solve_to_values(&self.vehicle, start, plan.slopes[k], bands.as_ref(), next))
+        self.stored.as_ref()?.decide(&mut self.solver, &self.vehicle, k, start)
+    }
+
+    /// The horizon solve at `s_m`: with `replan_m` above S, on a stage boundary, over the horizon
+    /// and the stages to be decided from it, its cost-to-go kept for them.
+    fn solve_horizon(&mut self, road: &Road, s_m: f64, start: InitialState) -> crate::dp::Solution {
+        let params = self.solver.params();
+        let (span, stages) = (params.replan_stages(), params.stages());
+        let boundary = horizon::boundary_stage(self.origin_m, s_m, params.stage_m);
+        let (Some(k), false, true) = (boundary, self.whole_road, span > 1) else {
+            let context = (road, &self.band);
+            return horizon::solve_at(&mut self.solver, &self.vehicle, context, s_m, start, &mut self.scratch);
+        };
+        // The allocation of the values before is reused.
+        let mut kept = self.stored.take().unwrap_or_default();
+        (kept.first, kept.span) = (k, span);
+        let (context, ahead) = ((road, &self.band), (s_m, stages + span - 1));
+        let (table, scratch) = (&mut kept.table, &mut kept.ahead);
+        let solution =
+            horizon::solve_recording_at(&mut self.solver, &self.vehicle, context, ahead, start, scratch, table);
+        self.stored = Some(kept);
+        solution
     }
 
     fn rescues(&self) -> bool {
@@ -270,27 +223,27 @@ impl RecedingController {
 
     fn timed_solve(&mut self, road: &Road, s_m: f64, start: InitialState, relaxed: bool) -> Option<Control> {
         let began = Instant::now();
-        // A state the plan's stored states do not reach (the plant a little slower than the plan
-        // on a climb at full pedal) is solved over the horizon instead, as the MPC would.
-        let planned = if relaxed { None } else { self.solve_against_plan(s_m, start) }.filter(|s| s.feasible);
+        // A state the stored values do not reach (the plant a little slower than the plan on a
+        // climb at full pedal) is solved over the horizon instead, as the MPC would.
+        let planned = if relaxed { None } else { self.solve_against_stored(s_m, start) }.filter(|s| s.feasible);
+        let from_stored = planned.is_some();
         let solution = match planned {
             Some(solution) => solution,
-            None => {
-                let (solver, band) = if relaxed {
-                    let params = self.solver.params().relaxed(RELAXED_V_MIN_KMH);
-                    // No row cache: the relaxed band reaches down to 5 km/h, and caching a
-                    // horizon of its rows (a rare solve) would take gigabytes on a fine grid.
-                    let solver = self.relaxed.get_or_insert_with(|| {
-                        let mut solver = Solver::new(params);
-                        solver.set_caching(false);
-                        solver
-                    });
-                    (solver, &self.relaxed_band)
-                } else {
-                    (&mut self.solver, &self.band)
-                };
-                horizon::solve_at(solver, &self.vehicle, (road, band), s_m, start, &mut self.scratch)
+            None if relaxed => {
+                // Its own row cache: relaxed solves come in runs (at a step of the target speed),
+                // and on a grid no finer than 0.2 km/h over at most 1.5 km their rows down to
+                // 5 km/h take tens of MB (the VECTO cycle's 116 relaxed solves ran 2.4 times as
+                // fast with it).
+                let (params, caching) = (self.solver.params().relaxed(RELAXED_V_MIN_KMH), self.solver.caching());
+                let solver = self.relaxed.get_or_insert_with(|| {
+                    let mut solver = Solver::new(params);
+                    solver.set_caching(caching);
+                    solver
+                });
+                let context = (road, &self.relaxed_band);
+                horizon::solve_at(solver, &self.vehicle, context, s_m, start, &mut self.scratch)
             }
+            None => self.solve_horizon(road, s_m, start),
         };
         let elapsed_s = began.elapsed().as_secs_f64();
         let stats = &mut self.stats;
@@ -298,6 +251,7 @@ impl RecedingController {
         stats.solve_time_max_s = stats.solve_time_max_s.max(elapsed_s);
         if !relaxed {
             stats.solves += 1;
+            stats.horizon_solves += u64::from(!from_stored);
             stats.states += solution.states as u64;
             stats.transitions += solution.transitions as u64;
             stats.infeasible_solves += u64::from(!solution.feasible);
@@ -369,7 +323,7 @@ impl RecedingController {
 
 impl Controller for RecedingController {
     fn name(&self) -> &'static str {
-        if self.whole_road.is_some() {
+        if self.whole_road {
             "optimal"
         } else {
             "mpc"
@@ -392,6 +346,7 @@ impl Controller for RecedingController {
         self.gear = self.start_gears.steady_gear(state.v_mps);
         self.stats = SolverStats::default();
         self.rescuing = None;
+        self.stored = None;
         let start = InitialState { v_mps: state.v_mps, gear: self.gear, stages_since_shift: self.shifts.stages() };
         self.plan_road(road, state.s_m, start);
         let first = self.solve(road, state.s_m, state.v_mps, self.gear);

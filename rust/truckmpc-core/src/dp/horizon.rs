@@ -3,6 +3,7 @@
 
 use super::solver::{InitialState, Solution, Solver};
 use super::stage::{self, StageModel};
+use super::values::ValueTable;
 use crate::band::{BandAt, SpeedBand};
 use crate::levels::euler_step;
 use crate::plant::Control;
@@ -82,11 +83,46 @@ pub fn solve_at(
     start: InitialState,
     scratch: &mut HorizonScratch,
 ) -> Solution {
-    let (stage_m, stages) = (solver.params().stage_m, solver.params().stages());
-    stage_slopes(road, s_m, stage_m, stages, &mut scratch.slopes);
-    let first_stage = boundary_stage(road.start_m(), s_m, stage_m).map(|k| k as u64);
+    let stages = solver.params().stages();
+    let first_stage = ahead(solver, (road, band), s_m, stages, scratch);
     if !band.varies() {
         return solver.solve_from_stage(vehicle, start, &scratch.slopes, first_stage);
+    }
+    solver.solve_in_bands(vehicle, start, &scratch.slopes, &scratch.bands, first_stage)
+}
+
+/// As [`solve_at`] over `stages` stages (the horizon and the stages to be decided from it), every
+/// stage's cost-to-go kept in `table`; the slopes and bands stay in `scratch` (bands empty on a
+/// road without target speeds).
+pub fn solve_recording_at(
+    solver: &mut Solver,
+    vehicle: &Vehicle,
+    (road, band): (&Road, &SpeedBand),
+    (s_m, stages): (f64, usize),
+    start: InitialState,
+    scratch: &mut HorizonScratch,
+    table: &mut ValueTable,
+) -> Solution {
+    let first_stage = ahead(solver, (road, band), s_m, stages, scratch);
+    let bands = band.varies().then_some(&scratch.bands[..]);
+    solver.solve_horizon_recording(vehicle, start, (&scratch.slopes, bands), first_stage, table)
+}
+
+/// The slopes (and, where the band varies, the bands) of `stages` stages from `s_m` into
+/// `scratch`; the absolute index of the first stage when `s_m` is a stage boundary of the road.
+fn ahead(
+    solver: &Solver,
+    (road, band): (&Road, &SpeedBand),
+    s_m: f64,
+    stages: usize,
+    scratch: &mut HorizonScratch,
+) -> Option<u64> {
+    let stage_m = solver.params().stage_m;
+    stage_slopes(road, s_m, stage_m, stages, &mut scratch.slopes);
+    let first_stage = boundary_stage(road.start_m(), s_m, stage_m).map(|k| k as u64);
+    scratch.bands.clear();
+    if !band.varies() {
+        return first_stage;
     }
     // On a boundary, positions come from the absolute index (as the cache's key does), so a
     // stage's band cannot differ between solves by a rounding at a stretch's start.
@@ -97,7 +133,7 @@ pub fn solve_at(
         }
         None => stage_bands(band, s_m, stage_m, stages, &mut scratch.bands),
     }
-    solver.solve_in_bands(vehicle, start, &scratch.slopes, &scratch.bands, first_stage)
+    first_stage
 }
 
 /// The index of the stage boundary at `s_m` [m], stages of `stage_m` [m] counted from `origin_m`;

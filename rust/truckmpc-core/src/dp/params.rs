@@ -28,6 +28,8 @@ pub struct DpSettings {
     pub stage_m: f64,
     /// Horizon [m].
     pub horizon_m: f64,
+    /// Distance between two horizon solves [m] (0: every stage).
+    pub replan_m: f64,
     /// δ [km/h].
     pub delta_kmh: f64,
     /// ε [-]; None: half a grid step δ of speed change, per row ([`DpSettings::pedal_band`]).
@@ -122,6 +124,7 @@ impl DpSettings {
         DpSettings {
             stage_m: mpc.stage_m,
             horizon_m: mpc.horizon_m,
+            replan_m: mpc.replan_m,
             delta_kmh: mpc.delta_kmh,
             epsilon: mpc.epsilon,
             v_ref_kmh: cruise.v_ref_kmh,
@@ -215,6 +218,11 @@ impl DpSettings {
     /// Number of stages N in the horizon.
     pub fn stages(&self) -> usize {
         (self.horizon_m / self.stage_m).round().max(1.0) as usize
+    }
+
+    /// Stages decided from one horizon solve: round(replan / S), at least 1 (a solve every stage).
+    pub fn replan_stages(&self) -> usize {
+        (self.replan_m / self.stage_m).round().max(1.0) as usize
     }
 
     /// δ [m/s].

@@ -247,9 +247,36 @@ impl Solver {
         bands: Option<&[BandAt]>,
         table: &mut ValueTable,
     ) -> Solution {
+        self.record(vehicle, start, (slopes, bands), None, table, true)
+    }
+
+    /// As [`Solver::solve_from_stage`] (the horizon's end priced, not raised to v_ref), keeping
+    /// every stage's cost-to-go in `table` as [`Solver::solve_recording`] does: a horizon whose
+    /// later stages are then decided by one-stage solves against it. `bands` as for
+    /// [`Solver::solve_recording`].
+    pub fn solve_horizon_recording(
+        &mut self,
+        vehicle: &Vehicle,
+        start: InitialState,
+        (slopes, bands): (&[f64], Option<&[BandAt]>),
+        first_stage: Option<u64>,
+        table: &mut ValueTable,
+    ) -> Solution {
+        self.record(vehicle, start, (slopes, bands), first_stage, table, false)
+    }
+
+    fn record(
+        &mut self,
+        vehicle: &Vehicle,
+        start: InitialState,
+        (slopes, bands): (&[f64], Option<&[BandAt]>),
+        first_stage: Option<u64>,
+        table: &mut ValueTable,
+        to_v_ref: bool,
+    ) -> Solution {
         table.stages.clear();
         table.stages.resize_with(slopes.len() + 1, StageValues::default);
-        self.solve_inner(vehicle, start, slopes, bands, None, Ends::Recording(table))
+        self.solve_inner(vehicle, start, slopes, bands, first_stage, Ends::Recording { table, to_v_ref })
     }
 
     /// One stage on grade `slope` from `start`, ending on the states of `next` with their
@@ -294,7 +321,7 @@ impl Solver {
         // A horizon of the fuel_time cost ends on its reachable speeds, priced by the terminal cost
         // (its kinetic energy in fuel): requiring v_ref there kept the truck from planning a coast
         // into a descent beyond the horizon. The whole road ends at v_ref, as every cost does.
-        let raise_end = matches!(ends, Ends::Recording(_));
+        let raise_end = matches!(ends, Ends::Recording { to_v_ref: true, .. });
         // Intervals, grids, gear ranges and active gears of every stage; the last stage's are those
         // of `terminal` when the solve ends on stored values.
         self.stage_grids(vehicle, start, slopes, first_stage, terminal, raise_end);
@@ -314,7 +341,7 @@ impl Solver {
         self.load_horizon_end(n_stages, gears, terminal);
         self.shift_same_cur.clear();
         self.shift_same_cur.resize(gears, true);
-        if let Ends::Recording(table) = &mut ends {
+        if let Ends::Recording { table, .. } = &mut ends {
             table.stages[n_stages] = self.stage_values(n_stages, gears, true);
         }
 
@@ -325,7 +352,7 @@ impl Solver {
                 return Solution { feasible: false, cost: f64::INFINITY, states, transitions, ..Solution::default() };
             }
             transitions += self.backward_stage(vehicle, k, cached_from.map(|s| s + k as u64), start.gear);
-            if let (Ends::Recording(table), true) = (&mut ends, k > 0) {
+            if let (Ends::Recording { table, .. }, true) = (&mut ends, k > 0) {
                 table.stages[k] = self.stage_values(k, gears, false);
             }
             std::mem::swap(&mut self.cost_cur, &mut self.cost_next);

@@ -83,10 +83,12 @@ pub const SHIFT_SPACING_M: f64 = 200.0;
 declare_params! {
     /// The look-ahead DP-MPC.
     pub struct MpcParams in "mpc" {
-        /// S, stage length: one solve per stage, its control held over the stage.
+        /// S, stage length: one decision per stage, its control held over the stage.
         stage_m: f64 = 25.0, unit "m", range Range::positive_up_to(1e4);
         /// Prediction horizon; N = round(horizon / S) stages.
         horizon_m: f64 = 3000.0, unit "m", range Range::positive_up_to(1e6);
+        /// Distance between two solves of the horizon: each looks horizon_m + replan_m − S ahead and keeps its cost-to-go, which decides the stages until the next one at the truck's measured state (the look-ahead never falls below horizon_m); 0 or S: a solve every stage (section 5.6).
+        replan_m: f64 = 500.0, unit "m", range Range::between(0.0, 1e5);
         /// δ, step of the DP's speed grid.
         delta_kmh: f64 = 0.05, unit "km/h", range Range::positive_up_to(100.0);
         /// ε, pedal tolerance: levels in [-ε, 1 + ε] are accepted and clipped to [0, 1]; null = half a grid step δ of speed change.
@@ -156,6 +158,7 @@ impl MpcParams {
             stage_model: StageModel::Euler,
             cost: CostKind::SpeedPenalty,
             horizon_m: 1500.0,
+            replan_m: 0.0,
             q_speed_change: 15.0,
             q_gear_shift: 15.0,
             q_neutral: 0.0,
@@ -194,6 +197,11 @@ impl MpcParams {
     /// Number of stages N in the horizon.
     pub fn stages(&self) -> usize {
         (self.horizon_m / self.stage_m).round().max(1.0) as usize
+    }
+
+    /// Stages decided from one horizon solve: round(replan / S), at least 1 (a solve every stage).
+    pub fn replan_stages(&self) -> usize {
+        (self.replan_m / self.stage_m).round().max(1.0) as usize
     }
 
     /// Checks between keys, and against the speed band of `cruise`; the error names the key and
