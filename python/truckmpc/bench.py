@@ -27,6 +27,7 @@ Usage: ``truckmpc bench [--json] [--road FILE] [--quick] [--set key=value ...]``
 from __future__ import annotations
 
 import json
+import math
 import resource
 import subprocess
 import sys
@@ -246,7 +247,8 @@ _FIGURES = (
 def _replan(run: dict[str, Any]) -> str:
     """How often the run solved its horizon: every stage, or every ``replan_m`` metres."""
     replan_m = run.get("replan_m", 0.0)
-    return "solve every stage" if replan_m <= run["stage_m"] else f"solve every {replan_m:g} m"
+    every_stage = math.floor(replan_m / run["stage_m"] + 0.5) <= 1  # the core rounds replan / S
+    return "solve every stage" if every_stage else f"solve every {replan_m:g} m"
 
 
 def format_bench(result: BenchResult) -> str:

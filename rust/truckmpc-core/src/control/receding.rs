@@ -1,10 +1,11 @@
 //! The look-ahead cruise controller (thesis chapter 5) in the closed loop: the receding horizon of
 //! section 5.6.
 //!
-//! Every S metres the controller predicts, with its own model (one Euler stage of (5.4)), the speed
-//! at the start of the next stage under the inputs being applied now, solves the dynamic program
-//! over the horizon from there, and keeps the first control of the optimum for that next stage.
-//! Stage boundaries are counted from the road's start. When a solve finds no admissible path, the
+//! Every S metres the controller predicts, with its own stage model, the speed at the start of the
+//! next stage under the inputs being applied now and chooses the control for that next stage from
+//! the dynamic program over the horizon from there: a solve of the horizon every `replan_m` (every
+//! stage when it is below 1.5 S), and in between a solve against the last one's stored cost-to-go
+//! ([`stored`]). Stage boundaries are counted from the road's start. When a solve finds no admissible path, the
 //! controller counts the event and, by `on_infeasible`, either keeps the inputs it is applying (the
 //! thesis's rule) or rescues: a solve with the lower speed bound and the shift limit relaxed (on a
 //! grid no finer than [`crate::dp::params::RELAXED_DELTA_MIN_KMH`]), and failing that the [`Rescue`]
@@ -335,7 +336,7 @@ impl Controller for RecedingController {
         let params = self.solver.params().clone();
         self.band = SpeedBand::new(road, &params.cruise());
         self.relaxed_band = SpeedBand::new(road, &params.relaxed(RELAXED_V_MIN_KMH).cruise());
-        // The row cache and interval memo are keyed by absolute stage within one road: a new run
+        // The row cache and interval memo hold stages of one road (of its slopes and bands): a new run
         // starts them afresh (a stage of another road, or of other target speeds, may differ).
         let caching = self.solver.caching();
         self.solver = Solver::new(params);

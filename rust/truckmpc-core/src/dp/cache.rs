@@ -1,14 +1,15 @@
 //! Transition costs of one stage, kept across solves on a fixed (absolute) velocity grid.
 //!
-//! Successive receding-horizon solves share all but one of their stages: a stage at absolute road
-//! position k is solved N times, from N different start positions. A row of costs depends only on
-//! (absolute stage, velocity index, target gear) and the two grids it joins ([`StageKey`]), so it
-//! is computed once and reused while those stay the same; stages behind the vehicle are dropped.
-//! On a fixed grid the grids never change. On a moving grid each stage's grid starts at its lower
-//! bound, which changes with the start speed, but is most often the same from one solve to the next
-//! (clamped at v_min, or carried by the same chain of bounds): a stage whose key changed is emptied
-//! and filled again. A solve without the cache (the first stage, whose grid is the start speed, or
-//! a horizon off the stage boundaries) fills a scratch [`StageRows`] the same way.
+//! Successive receding-horizon solves share most of their stages: a stage at absolute road position
+//! k is solved by every horizon that covers it. A row of costs depends only on the stage's
+//! [`StageKey`] (its slope, the two grids it joins and the next stage's v_max), the velocity index
+//! and the target gear, so it is computed once and reused by every stage with that key, in this
+//! solve or a later one (`cache/stages.rs`); stages behind the vehicle are dropped. On a fixed grid
+//! the grids never change. On a moving grid each stage's grid starts at its lower bound, which
+//! changes with the start speed, but is most often the same from one solve to the next (clamped at
+//! v_min, or carried by the same chain of bounds): a stage whose key changed takes its new key's
+//! rows. A solve without the cache (the first stage, whose grid is the start speed, or a horizon
+//! off the stage boundaries) fills a scratch [`StageRows`] the same way.
 //!
 //! Layout: per target gear, blocks of `LANES` consecutive source velocities whose rows are stored
 //! transposed ([`Block`]), because the DP's first pass walks one target gear at a time over all

@@ -64,7 +64,8 @@ pub fn predict_speed(
     }
 }
 
-/// Scratch buffers of [`solve_at`]: the horizon's slopes and bands.
+/// The slopes and bands of a horizon: scratch for [`solve_at`], and what a recorded solve's stages
+/// saw ([`solve_recording_at`]).
 #[derive(Debug, Clone, Default)]
 pub struct HorizonScratch {
     pub slopes: Vec<f64>,

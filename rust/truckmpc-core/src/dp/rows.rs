@@ -221,8 +221,7 @@ fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64, v_max: f64) -> Option<(
 /// stage; return their span and where its first cost is in `out`. Indices no input reaches inside
 /// the span hold +∞; a row with no admissible target appends nothing (len 0). Each cost is
 /// [`pair`]'s, bit for bit. `v_max_mps` is the top of the next stage's band. `memo` keeps what
-/// trapezoid rows evaluate at each end speed: clear it whenever the stage, the gear or the next
-/// grid changes.
+/// trapezoid rows of one gear, slope and next grid evaluate at each end speed.
 #[allow(clippy::too_many_arguments)]
 pub fn forward_row(
     vehicle: &Vehicle,

@@ -154,8 +154,8 @@ pub struct Solver {
 
 impl Solver {
     /// A solver for these parameters (built by [`DpSettings::new`], which validates). It caches
-    /// transition costs across solves given their absolute stage (while the stage's grids stay the
-    /// same).
+    /// transition costs across solves given their absolute stage, shared by the stages whose rows
+    /// are the same (their slope, grids and band top).
     pub fn new(params: DpSettings) -> Self {
         Solver {
             params,
@@ -290,7 +290,20 @@ impl Solver {
         bands: Option<&[BandAt; 2]>,
         next: &StageValues,
     ) -> Solution {
-        self.solve_inner(vehicle, start, &[slope], bands.map(|b| &b[..]), None, Ends::Values(next))
+        self.solve_stages_to_values(vehicle, start, &[slope], bands.map(|b| &b[..]), next)
+    }
+
+    /// As [`Solver::solve_to_values`] over the stages whose grades are given, ending on the states
+    /// of `next`; `bands` one per stage boundary 0..=N (None: the cruise band).
+    pub fn solve_stages_to_values(
+        &mut self,
+        vehicle: &Vehicle,
+        start: InitialState,
+        slopes: &[f64],
+        bands: Option<&[BandAt]>,
+        next: &StageValues,
+    ) -> Solution {
+        self.solve_inner(vehicle, start, slopes, bands, None, Ends::Values(next))
     }
 
     fn solve_inner(

@@ -303,7 +303,7 @@ fn grid_forward(vehicle: &Vehicle, params: &DpSettings, band: &BandAt, [lo, hi, 
     // final bound raised to v_ref on a climb would then lie beyond every grid path. Below it
     // compounds too, which keeps every state's fuel-cut arc bracketed; the band's v_min cuts it.
     let v_minus = lowest_speed(vehicle, params, lo, slope) - band_slack_mps(params);
-    let hi = if std::env::var("TCEIL").is_ok() { grid.ceil(v_plus) } else { grid.floor(v_plus) }.min(top);
+    let hi = grid.floor(v_plus).min(top);
     let lo = if v_plus >= v_min_mps { grid.ceil(v_minus.max(v_min_mps)) } else { grid.floor(v_plus_low) };
     [grid.speed(lo.min(hi)), grid.speed(hi)]
 }

@@ -30,14 +30,20 @@ impl Stored {
         Stored { first, span, ..Stored::default() }
     }
 
-    /// The one-stage solve from `start` at the start of stage `k` (counted from the run's origin)
-    /// against the next stage's stored values; None where `k` is not among the stages decided
-    /// from these values.
+    /// The solve from `start` at the start of stage `k` (counted from the run's origin) against
+    /// the stored values of a later stage; None where `k` is not among the stages decided from
+    /// these values. It spans one stage, or while the shift limit keeps the truck in its gear
+    /// beyond the next stage, every stage until the limit ends: the stored values are the best
+    /// continuations of states regardless of the truck's last shift, and may shift sooner.
     pub fn decide(&self, solver: &mut Solver, vehicle: &Vehicle, k: usize, start: InitialState) -> Option<Solution> {
         let i = k.checked_sub(self.first).filter(|&i| i < self.span)?;
-        let next = self.table.stages.get(i + 1)?;
-        let slope = *self.ahead.slopes.get(i)?;
-        let bands = self.ahead.bands.get(i..i + 2).map(|b| [b[0], b[1]]);
-        Some(solver.solve_to_values(vehicle, start, slope, bands.as_ref(), next))
+        let stages = solver.params().k_lim.saturating_sub(start.stages_since_shift).max(1) as usize;
+        let next = self.table.stages.get(i + stages).filter(|next| next.count > 0)?;
+        let slopes = self.ahead.slopes.get(i..i + stages)?;
+        let bands = match self.ahead.bands.is_empty() {
+            true => None,
+            false => Some(self.ahead.bands.get(i..=i + stages)?),
+        };
+        Some(solver.solve_stages_to_values(vehicle, start, slopes, bands, next))
     }
 }

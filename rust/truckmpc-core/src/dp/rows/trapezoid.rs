@@ -30,17 +30,24 @@ impl AtEnd {
 
 /// The [`AtEnd`] values of one stage and gear by grid index of the next stage, each computed once
 /// for all the rows that reach it (a row's pairs share their end speeds with its neighbours').
-/// Values are those [`AtEnd::at`] gives, bit for bit.
+/// Values are those [`AtEnd::at`] gives, bit for bit: a row of another gear, slope, next grid or
+/// stage length starts the memo afresh. Like the row cache, one memo serves one vehicle.
 #[derive(Debug, Clone, Default)]
 pub struct EndMemo {
+    /// Gear, slope torque, next grid's origin and step, and stage length (bits).
+    key: [u64; 5],
     first: i64,
     values: Vec<Option<AtEnd>>,
 }
 
 impl EndMemo {
-    /// Forget every value (a new stage or gear).
-    pub fn clear(&mut self) {
-        self.values.clear();
+    /// Keep the values while `key` is the one they were computed for, else forget them.
+    #[inline]
+    fn keyed(&mut self, key: [u64; 5]) {
+        if key != self.key {
+            self.values.clear();
+            self.key = key;
+        }
     }
 
     /// The values at grid index `index` of speed `v_j` [m/s].
@@ -133,6 +140,7 @@ pub(super) fn forward_row_trapezoid(
     let m = maps(vehicle, p, v_i, gear, slope_torque);
     let end = m.trapezoid.expect("a trapezoid row");
     let h = p.stage_m;
+    memo.keyed([gear as u64, slope_torque.to_bits(), grid.origin_mps.to_bits(), grid.delta_mps.to_bits(), h.to_bits()]);
     let (mut first, mut last) = (i64::MAX, i64::MIN);
     let pedal_on = m.pedal.gain > 0.0;
     let mut band_lo = f64::INFINITY;
