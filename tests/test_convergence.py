@@ -72,8 +72,11 @@ def test_each_move_is_the_halved_delta_minus_the_runs_delta_in_points(checked):
         time_move = pct(conv[half]["time_s"], time_pi) - pct(doc["mpc"]["time_s"], time_pi)
         assert conv[f"delta_fuel_pct_{half}"] == pytest.approx(fuel_move, abs=1e-9)
         assert conv[f"delta_time_pct_{half}"] == pytest.approx(time_move, abs=1e-9)
+        # at equal trip time: each against the PI re-tuned to its own trip time
+        equal_move = conv[half]["delta_fuel_equal_time_pct"] - doc["delta_fuel_equal_time_pct"]
+        assert conv[f"delta_fuel_equal_time_pct_{half}"] == pytest.approx(equal_move, abs=1e-9)
     moves = {k: v for k, v in conv.items() if k.startswith("delta_")}
-    assert len(moves) == 4
+    assert len(moves) == 6
     assert conv["flagged"] == [k for k, v in moves.items() if abs(v) > 0.3]
 
 

@@ -12,12 +12,16 @@ rounding.
 
     "convergence": {"delta_fuel_pct_half_delta": <points>, "delta_fuel_pct_half_stage": ...,
                     "delta_time_pct_half_delta": ..., "delta_time_pct_half_stage": ...,
-                    "half_delta": {"delta_kmh", "delta_fuel_pct", "delta_time_pct", "fuel_kg", "time_s"},
+                    "delta_fuel_equal_time_pct_half_delta": ..., "..._half_stage": ...,
+                    "half_delta": {"delta_kmh", "delta_fuel_pct", "delta_time_pct",
+                                   "delta_fuel_equal_time_pct", "fuel_kg", "time_s"},
                     "half_stage": {"stage_m", "k_lim", ...},
                     "flag_points": 0.3, "flagged": [<fields beyond it>]}
 
 Each ``*_half_*`` field is Δ at the halved setting minus Δ of the run, in percentage points; null
-(with ``not_comparable`` in the half's object) when a halved run is not comparable.
+(with ``not_comparable`` in the half's object) when a halved run is not comparable. The equal-time
+move compares each at the PI re-tuned to its own trip time: a finer resolution that trades fuel for
+time along the cost's β moves the raw Δfuel but not this one (null where a search missed its time).
 """
 
 from __future__ import annotations
@@ -61,12 +65,18 @@ def run_halves(road: RoadProfile, configs: Mapping[str, RunConfig]) -> dict[str,
 
 
 def convergence_document(
-    results: Mapping[str, RunResult], halves: Mapping[str, RunResult], configs: Mapping[str, RunConfig]
+    results: Mapping[str, RunResult],
+    halves: Mapping[str, RunResult],
+    configs: Mapping[str, RunConfig],
+    equal_time_pct: Mapping[str, float | None] | None = None,
 ) -> dict[str, Any]:
     """The ``convergence`` object of ``summary.json`` from the run's PI and MPC results and the
-    halved MPC runs."""
+    halved MPC runs; `equal_time_pct`: Δfuel [%] against the PI re-tuned to the trip time of the
+    run (``"mpc"``) and of each half (by :data:`HALVES`), None where a search missed it."""
     base, mpc = results["pi"].summary, results["mpc"].summary
     run = compare(base, mpc)
+    equal_time_pct = equal_time_pct or {}
+    run_equal = equal_time_pct.get("mpc")
     doc: dict[str, Any] = {}
     objects: dict[str, dict[str, Any]] = {}
     for half in HALVES:
@@ -79,6 +89,7 @@ def convergence_document(
             "k_lim": configs[half].settings.k_lim_stages,
             "delta_fuel_pct": moved.delta_fuel_pct,
             "delta_time_pct": moved.delta_time_pct,
+            "delta_fuel_equal_time_pct": equal_time_pct.get(half),
             "fuel_kg": summary["fuel_kg"],
             "time_s": summary["time_s"],
         }
@@ -88,6 +99,7 @@ def convergence_document(
         for name, at_run, at_half in (
             ("fuel", run.delta_fuel_pct, moved.delta_fuel_pct),
             ("time", run.delta_time_pct, moved.delta_time_pct),
+            ("fuel_equal_time", run_equal, detail["delta_fuel_equal_time_pct"]),
         ):
             doc[f"delta_{name}_pct_{half}"] = None if at_run is None or at_half is None else at_half - at_run
         objects[half] = detail
@@ -104,10 +116,10 @@ def convergence_lines(doc: Mapping[str, Any], width: int) -> list[str]:
     comparable."""
     lines = []
     for half, label in (("half_delta", "δ/2"), ("half_stage", "S/2")):
-        for name in ("fuel", "time"):
+        for name in ("fuel", "time", "fuel_equal_time"):
             key = f"delta_{name}_pct_{half}"
-            value = doc[key]
-            text = f"delta {name} {label} [pts]"
+            value = doc.get(key)
+            text = f"delta {name.replace('_', ' ')} {label} [pts]"
             if value is None:
                 lines.append(f"{text:<{width}}{'n/a':>14}  {doc[half].get('not_comparable', '')}")
                 continue

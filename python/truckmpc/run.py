@@ -104,5 +104,23 @@ def run_controllers(
     extra = {}
     if halves:
         with status(f"mpc at half delta_kmh and half stage_m: driving {road.name}"):
-            extra["convergence"] = convergence_document(results, run_halves(road, halves), halves)
+            halved = run_halves(road, halves)
+        with status(f"pi re-tuned to each halved run's trip time: driving {road.name}"):
+            runs = {"mpc": results["mpc"], **halved}
+            searched = {half: _equal_time_of(road, config, results["pi"], run) for half, run in halved.items()}
+            equal = {"mpc": equal_times.get("mpc"), **searched}
+            pct = {name: _equal_time_pct(runs[name].summary, equal[name]) for name in runs}
+        extra["convergence"] = convergence_document(results, halved, halves, pct)
     return ControllerRuns(results, equal_times, extra)
+
+
+def _equal_time_of(road: RoadProfile, config: RunConfig, pi: RunResult, mpc: RunResult) -> EqualTime | None:
+    """The PI over `road` re-tuned to the trip time of the MPC run `mpc` (None if it stalled)."""
+    return equal_time_baselines(road, config, {"pi": pi, "mpc": mpc}).get("mpc")
+
+
+def _equal_time_pct(summary: Mapping[str, Any], found: EqualTime | None) -> float | None:
+    """Δfuel [%] of a run against the PI driven to its trip time; None where the search missed it."""
+    if found is None or not found.reached or found.fuel_kg is None:
+        return None
+    return 100.0 * (float(summary["fuel_kg"]) / found.fuel_kg - 1.0)
