@@ -96,7 +96,7 @@ def test_quick_json_gives_the_documented_figures_per_case():
     else:
         assert set(names) == {"test-track"}
     _check_runs(runs, 10_000.0 if shared else default_test_track().length_m)
-    # the default solves its horizon every 500 m and decides the stages between from that solve's
+    # the default solves its horizon every replan_m and decides the stages between from that solve's
     # cost-to-go; the thesis's worst case solves its horizon every stage
     default, _, worst = runs
     assert worst["horizon_solves"] == worst["solves"]

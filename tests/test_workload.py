@@ -55,15 +55,17 @@ def test_a_tiny_plant_step_is_refused_with_its_estimate(in_tmp):
 
 
 def test_a_fine_speed_grid_is_refused_naming_where_it_was_set(in_tmp):
-    assert_refused(run("simulate", "--set", "delta_kmh=0.0005", "--out", "res"), "--set delta_kmh")
-    (in_tmp / "fine.yaml").write_text("# overlay\ndelta_kmh: 0.0005\n")
-    assert_refused(run("simulate", "--config", "fine.yaml", "--out", "res"), "fine.yaml:2: key 'delta_kmh'")
+    # Solving the horizon every stage (replan_m 0), δ 0.001 km/h is hours of work.
+    fine = ("--set", "replan_m=0", "--set", "delta_kmh=0.001")
+    assert_refused(run("simulate", *fine, "--out", "res"), "--set delta_kmh")
+    (in_tmp / "fine.yaml").write_text("# overlay\nreplan_m: 0\ndelta_kmh: 0.001\n")
+    assert_refused(run("simulate", "--config", "fine.yaml", "--out", "res"), "fine.yaml:3: key 'delta_kmh'")
     assert not (in_tmp / "res").exists()
 
 
 def test_a_grid_too_large_for_memory_is_refused_naming_its_size(in_tmp, monkeypatch):
-    # delta 0.01 km/h over a 10 km/h band (v_dec 5) and 79 stages (a 1500 m horizon and the 19 stages
-    # decided from each solve of it): 1001² × 79 units of 2.5 bytes, 198 MB.
+    # delta 0.01 km/h over a 10 km/h band (v_dec 5) and 79 stages a solve (a 1500 m horizon and the
+    # 19 stages decided from each solve of it, replan_m 500): 1001² × 79 units of 2.5 bytes, 198 MB.
     monkeypatch.setattr(workload, "memory_limit_bytes", lambda: 100e6)
     result = run(
         "simulate",
@@ -73,6 +75,8 @@ def test_a_grid_too_large_for_memory_is_refused_naming_its_size(in_tmp, monkeypa
         "v_dec_kmh=5",
         "--set",
         "horizon_m=1500",
+        "--set",
+        "replan_m=500",
         "--set",
         "delta_kmh=0.01",
         "--out",

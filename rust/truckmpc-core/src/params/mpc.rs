@@ -88,7 +88,7 @@ declare_params! {
         /// Prediction horizon; N = round(horizon / S) stages.
         horizon_m: f64 = 3000.0, unit "m", range Range::positive_up_to(1e6);
         /// Distance between two solves of the horizon: each looks horizon_m + replan_m − S ahead and keeps its cost-to-go, which decides the stages until the next one at the truck's measured state (the look-ahead never falls below horizon_m); below 1.5 S: a solve every stage (section 5.6).
-        replan_m: f64 = 500.0, unit "m", range Range::between(0.0, 1e5);
+        replan_m: f64 = 750.0, unit "m", range Range::between(0.0, 1e5);
         /// δ, step of the DP's speed grid.
         delta_kmh: f64 = 0.05, unit "km/h", range Range::positive_up_to(100.0);
         /// ε, pedal tolerance: levels in [-ε, 1 + ε] are accepted and clipped to [0, 1]; null = half a grid step δ of speed change.
