@@ -247,7 +247,9 @@ impl Solver {
         bands: Option<&[BandAt]>,
         table: &mut ValueTable,
     ) -> Solution {
-        self.record(vehicle, start, (slopes, bands), None, table, true)
+        table.stages.clear();
+        table.stages.resize_with(slopes.len() + 1, StageValues::default);
+        self.solve_inner(vehicle, start, slopes, bands, None, Ends::Recording { table, to_v_ref: true })
     }
 
     /// As [`Solver::solve_from_stage`] (the horizon's end priced, not raised to v_ref), keeping
@@ -262,21 +264,9 @@ impl Solver {
         first_stage: Option<u64>,
         table: &mut ValueTable,
     ) -> Solution {
-        self.record(vehicle, start, (slopes, bands), first_stage, table, false)
-    }
-
-    fn record(
-        &mut self,
-        vehicle: &Vehicle,
-        start: InitialState,
-        (slopes, bands): (&[f64], Option<&[BandAt]>),
-        first_stage: Option<u64>,
-        table: &mut ValueTable,
-        to_v_ref: bool,
-    ) -> Solution {
         table.stages.clear();
         table.stages.resize_with(slopes.len() + 1, StageValues::default);
-        self.solve_inner(vehicle, start, slopes, bands, first_stage, Ends::Recording { table, to_v_ref })
+        self.solve_inner(vehicle, start, slopes, bands, first_stage, Ends::Recording { table, to_v_ref: false })
     }
 
     /// One stage on grade `slope` from `start`, ending on the states of `next` with their
