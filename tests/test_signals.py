@@ -50,9 +50,10 @@ def group_members(pgid: int) -> list[int]:
 )
 def test_a_signal_ends_the_sweep_and_its_workers_and_keeps_its_rows(tmp_path, signum, to_group):
     out = tmp_path / "sweep"
-    # δ 0.05 km/h makes each MPC run take a second or two, so the sweep is still running when the
-    # first row is in.
-    args = ["sweep", "--road", str(HILL), "--grid", "horizon_m=1000:3000:500", "--set", "delta_kmh=0.05"]
+    # δ 0.005 km/h, solving every stage, makes each MPC run take seconds, so the sweep is still
+    # running when the first row is in.
+    grid = ["--grid", "horizon_m=1000:3000:250", "--set", "delta_kmh=0.005", "--set", "replan_m=0"]
+    args = ["sweep", "--road", str(HILL), *grid]
     proc = subprocess.Popen(
         [*COMMAND, *args, "--jobs", "2", "--quiet", "--out", str(out)],
         stdout=subprocess.PIPE,
@@ -79,8 +80,8 @@ def test_a_signal_ends_the_sweep_and_its_workers_and_keeps_its_rows(tmp_path, si
     assert "rows kept in" in stderr and "Traceback" not in stderr
     assert wait_for(lambda: not group_members(proc.pid), 5), "a process the sweep started survived it"
     kept = data_rows(out / "sweep.partial.csv")
-    assert 1 <= kept < 5 and not (out / "sweep.csv").exists()
-    assert f" {kept} of 5 rows kept" in stderr
+    assert 1 <= kept < 9 and not (out / "sweep.csv").exists()
+    assert f" {kept} of 9 rows kept" in stderr
 
 
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])

@@ -118,18 +118,23 @@ def run_plan(
     known = _resumed_runs(plan, done)
     tasks = _tasks(plan, pending, known)
     base = run_base(plan.vehicle_paths, plan.config_paths)
-    with Runner(plan.roads, base, jobs, scheduler, notice) as runner:
-        _check_work(plan, tasks, runner.jobs, force)
-        out.mkdir(parents=True, exist_ok=True)
-        write_settings(out, plan.settings, runner.jobs)
-        header = csv_line(plan.columns)
-        partial = PartialFile(out / PARTIAL_NAME, header, [csv_line(cells) for _, cells in sorted(done.items())])
-        try:
-            _run_rows(plan, pending, runner, tasks, known, done, partial, progress)
-        except KeyboardInterrupt:
-            raise SweepInterrupted(len(done), len(plan.rows), out / PARTIAL_NAME) from None
-        finally:
-            partial.close()
+    header = csv_line(plan.columns)
+    try:
+        with Runner(plan.roads, base, jobs, scheduler, notice) as runner:
+            _check_work(plan, tasks, runner.jobs, force)
+            out.mkdir(parents=True, exist_ok=True)
+            write_settings(out, plan.settings, runner.jobs)
+            partial = PartialFile(out / PARTIAL_NAME, header, [csv_line(cells) for _, cells in sorted(done.items())])
+            try:
+                _run_rows(plan, pending, runner, tasks, known, done, partial, progress)
+            finally:
+                partial.close()
+    except KeyboardInterrupt:
+        # A signal during the runs, or while the workers shut down after it (a second interrupt
+        # from a worker's failed run): the finished rows are in the partial file either way.
+        if not (out / PARTIAL_NAME).exists():
+            raise
+        raise SweepInterrupted(len(done), len(plan.rows), out / PARTIAL_NAME) from None
     ordered = [done[row.index] for row in plan.rows]
     return SweepResult(
         write_final(out, header, ordered),
