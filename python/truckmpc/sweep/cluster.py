@@ -47,11 +47,15 @@ class Cluster:
         from distributed import Client
 
         self.address, self.local = address, None
-        # Dask's own log lines (a worker lost and its runs rescheduled, a slow connection) are kept
-        # off stderr: the sweep says in one line what matters to its user.
-        self._logger = logging.getLogger("distributed")
-        self._level = self._logger.level
-        self._logger.setLevel(logging.CRITICAL)
+        # Dask's own log lines (a worker lost and its runs rescheduled, a slow connection), and those
+        # of the event loop under it (a cancelled call when a signal stops the sweep mid-gather),
+        # are kept off stderr: the sweep says in one line what matters to its user.
+        # The event loop's stays silenced after the sweep: its callbacks may still run once the
+        # client is closed.
+        self._loggers = [logging.getLogger("distributed")]
+        self._levels = [logger.level for logger in self._loggers]
+        for logger in [*self._loggers, logging.getLogger("tornado.application")]:
+            logger.setLevel(logging.CRITICAL)
         try:
             if address is None:
                 self.local = _local_cluster(workers)
@@ -88,7 +92,8 @@ class Cluster:
             if local is not None:
                 local.close(timeout=10)
         finally:
-            self._logger.setLevel(self._level)
+            for logger, level in zip(self._loggers, self._levels, strict=True):
+                logger.setLevel(level)
 
     def __enter__(self) -> Cluster:
         return self
