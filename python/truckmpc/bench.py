@@ -27,7 +27,6 @@ Usage: ``truckmpc bench [--json] [--road FILE] [--quick] [--set key=value ...]``
 from __future__ import annotations
 
 import json
-import math
 import resource
 import subprocess
 import sys
@@ -146,6 +145,7 @@ def run_one(road_path: str | None, quick: bool, setting: dict[str, Any], extra: 
         "delta_kmh": mpc.delta_kmh,
         "horizon_m": mpc.horizon_m,
         "replan_m": mpc.replan_m,
+        "replan_stages": config.settings.replan_stages,
         "allow_neutral": mpc.allow_neutral,
         "grid": mpc.grid,
         "neutral_rule": config.mpc.neutral_rule,
@@ -246,9 +246,8 @@ _FIGURES = (
 
 def _replan(run: dict[str, Any]) -> str:
     """How often the run solved its horizon: every stage, or every ``replan_m`` metres."""
-    replan_m = run.get("replan_m", 0.0)
-    every_stage = math.floor(replan_m / run["stage_m"] + 0.5) <= 1  # the core rounds replan / S
-    return "solve every stage" if every_stage else f"solve every {replan_m:g} m"
+    every_stage = run.get("replan_stages", 1) <= 1
+    return "solve every stage" if every_stage else f"solve every {run['replan_m']:g} m"
 
 
 def format_bench(result: BenchResult) -> str:

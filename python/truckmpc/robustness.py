@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from truckmpc.compare import compare, delta_pct
+from truckmpc.compare import compare
 from truckmpc.config import RunConfig, config_from_values
 from truckmpc.equal_time import equal_time_baselines
 from truckmpc.errors import ConfigError
@@ -101,9 +101,7 @@ def run_case(road: RoadProfile, config: RunConfig, case: Case, controller: str =
     results = {"pi": simulate(road, truth, "pi"), controller: simulate(_with_map(road, told), world, controller)}
     deltas = compare(results["pi"].summary, results[controller].summary, "pi", controller)
     found = equal_time_baselines(road, truth, results).get(controller)
-    equal = None
-    if found is not None and found.reached and found.fuel_kg is not None:
-        equal = delta_pct(results[controller].summary["fuel_kg"], found.fuel_kg)
+    equal = None if found is None else found.delta_fuel_pct(results[controller].summary["fuel_kg"])
     return {
         "case": case.label,
         "mass_kg": case.mass_kg,

@@ -109,7 +109,7 @@ def run_controllers(
             runs = {"mpc": results["mpc"], **halved}
             searched = {half: _equal_time_of(road, config, results["pi"], run) for half, run in halved.items()}
             equal = {"mpc": equal_times.get("mpc"), **searched}
-            pct = {name: _equal_time_pct(runs[name].summary, equal[name]) for name in runs}
+            pct = {name: _equal_time_pct(runs[name], equal[name]) for name in runs}
         extra["convergence"] = convergence_document(results, halved, halves, pct)
     return ControllerRuns(results, equal_times, extra)
 
@@ -119,8 +119,6 @@ def _equal_time_of(road: RoadProfile, config: RunConfig, pi: RunResult, mpc: Run
     return equal_time_baselines(road, config, {"pi": pi, "mpc": mpc}).get("mpc")
 
 
-def _equal_time_pct(summary: Mapping[str, Any], found: EqualTime | None) -> float | None:
-    """Δfuel [%] of a run against the PI driven to its trip time; None where the search missed it."""
-    if found is None or not found.reached or found.fuel_kg is None:
-        return None
-    return 100.0 * (float(summary["fuel_kg"]) / found.fuel_kg - 1.0)
+def _equal_time_pct(run: RunResult, found: EqualTime | None) -> float | None:
+    """Δfuel [%] of `run` against the PI driven to its trip time; None where the search missed it."""
+    return None if found is None else found.delta_fuel_pct(float(run.summary["fuel_kg"]))

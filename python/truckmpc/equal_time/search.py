@@ -78,6 +78,13 @@ class EqualTime:
     def reached(self) -> bool:
         return self.reason is None and self.time_s is not None
 
+    def delta_fuel_pct(self, fuel_kg: float) -> float | None:
+        """Δfuel [%] of a run that burnt `fuel_kg` [kg] against this baseline run; None where the
+        search missed the time."""
+        if not self.reached or self.fuel_kg is None:
+            return None
+        return delta_pct(fuel_kg, self.fuel_kg)
+
     @property
     def v_ref_kmh(self) -> float | None:
         """The v_ref [km/h] of the closest run: the setting found, or the one kept on a road with

@@ -5,8 +5,8 @@
 //! next stage under the inputs being applied now and chooses the control for that next stage from
 //! the dynamic program over the horizon from there: a solve of the horizon every `replan_m` (every
 //! stage when it is below 1.5 S), and in between a solve against the last one's stored cost-to-go
-//! ([`stored`]). Stage boundaries are counted from the road's start. When a solve finds no admissible path, the
-//! controller counts the event and, by `on_infeasible`, either keeps the inputs it is applying (the
+//! ([`stored`]). Stage boundaries are counted from the road's start. When a solve finds no
+//! admissible path, the controller counts the event and, by `on_infeasible`, either keeps the inputs it is applying (the
 //! thesis's rule) or rescues: a solve with the lower speed bound and the shift limit relaxed (on a
 //! grid no finer than [`crate::dp::params::RELAXED_DELTA_MIN_KMH`]), and failing that the [`Rescue`]
 //! policy until a later solve succeeds.
@@ -233,8 +233,7 @@ impl RecedingController {
             None if relaxed => {
                 // Its own row cache: relaxed solves come in runs (at a step of the target speed),
                 // and on a grid no finer than 0.2 km/h over at most 1.5 km their rows down to
-                // 5 km/h take tens of MB (the VECTO cycle's 116 relaxed solves ran 2.4 times as
-                // fast with it).
+                // 5 km/h take tens of MB.
                 let (params, caching) = (self.solver.params().relaxed(RELAXED_V_MIN_KMH), self.solver.caching());
                 let solver = self.relaxed.get_or_insert_with(|| {
                     let mut solver = Solver::new(params);

@@ -3,8 +3,8 @@
 //! meanings are those of the declarations; the solver converts speeds to m/s through the methods
 //! below.
 
+use crate::params::{stages_in, CruiseParams, MpcParams, ParamSet};
 pub use crate::params::{CostKind, GridAnchor, NeutralRule, OnInfeasible, StageModel};
-use crate::params::{CruiseParams, MpcParams, ParamSet};
 
 use super::fuel_time;
 use crate::band::BandAt;
@@ -217,12 +217,12 @@ impl DpSettings {
 
     /// Number of stages N in the horizon.
     pub fn stages(&self) -> usize {
-        (self.horizon_m / self.stage_m).round().max(1.0) as usize
+        stages_in(self.horizon_m, self.stage_m)
     }
 
-    /// Stages decided from one horizon solve: round(replan / S), at least 1 (a solve every stage).
+    /// Stages decided from one horizon solve (a solve every stage when 1).
     pub fn replan_stages(&self) -> usize {
-        (self.replan_m / self.stage_m).round().max(1.0) as usize
+        stages_in(self.replan_m, self.stage_m)
     }
 
     /// δ [m/s].

@@ -77,6 +77,11 @@ choice_enum! {
 /// Metres per kilometre, for the weights given per kilometre.
 const M_PER_KM: f64 = 1000.0;
 
+/// Stages of `stage_m` [m] in `length_m` [m]: round(length / S), at least 1.
+pub fn stages_in(length_m: f64, stage_m: f64) -> usize {
+    (length_m / stage_m).round().max(1.0) as usize
+}
+
 /// Table 6.1: the shift limit k_lim is chosen so that S · k_lim = 200 m.
 pub const SHIFT_SPACING_M: f64 = 200.0;
 
@@ -196,12 +201,12 @@ impl MpcParams {
 
     /// Number of stages N in the horizon.
     pub fn stages(&self) -> usize {
-        (self.horizon_m / self.stage_m).round().max(1.0) as usize
+        stages_in(self.horizon_m, self.stage_m)
     }
 
-    /// Stages decided from one horizon solve: round(replan / S), at least 1 (a solve every stage).
+    /// Stages decided from one horizon solve (a solve every stage when 1).
     pub fn replan_stages(&self) -> usize {
-        (self.replan_m / self.stage_m).round().max(1.0) as usize
+        stages_in(self.replan_m, self.stage_m)
     }
 
     /// Checks between keys, and against the speed band of `cruise`; the error names the key and

@@ -1,10 +1,11 @@
-//! Cost-to-go kept from one solve, with the grades and bands of its stages, and the one-stage
-//! solves that decide later stages from it: the whole-road optimum's plan, or a horizon solve whose
-//! next stages are decided from it until the next horizon solve (`replan_m`).
+//! Cost-to-go kept from one solve, with the grades and bands of its stages, and the short solves
+//! that decide later stages from it: the whole-road optimum's plan, or a horizon solve whose next
+//! stages are decided from it until the next horizon solve (`replan_m`).
 //!
 //! A DP's cost-to-go is a feedback law over its whole horizon: the control for the state the truck
-//! actually reaches at a later stage comes from a one-stage solve against the next stage's stored
-//! values, without solving the rest of the horizon again.
+//! actually reaches at a later stage comes from a solve against a later stage's stored values
+//! (the next one, or the one where the shift limit lets the truck leave its gear), without solving
+//! the rest of the horizon again.
 
 use crate::dp::horizon::HorizonScratch;
 use crate::dp::{InitialState, Solution, Solver, ValueTable};

@@ -10,7 +10,8 @@ use crate::levels::{brake_accel_on, pedal_accel_on, AffineAccel};
 use crate::vehicle::Vehicle;
 
 /// What a trapezoid pair evaluates at its end speed in the row's gear on the stage's slope: the
-/// pedal's affine map and the half-stage fuel at full pedal [g] (the fuel per unit of pedal).
+/// pedal's affine map and the half-stage fuel at full pedal [g] (the fuel per unit of pedal; NaN
+/// for a map-based truck, whose fuel is evaluated at each pair's own pedal instead).
 #[derive(Debug, Clone, Copy)]
 pub struct AtEnd {
     accel: AffineAccel,
@@ -21,9 +22,13 @@ impl AtEnd {
     /// The values at end speed `v_j` [m/s] for the rows of `end` (stages of `h_m`).
     #[inline]
     pub(super) fn at(end: &EndMaps, v_j: f64, h_m: f64) -> Self {
+        let linear_fuel = end.vehicle.map_model().is_none();
         AtEnd {
             accel: pedal_accel_on(end.vehicle, v_j, end.gear, end.slope_torque),
-            full_half_fuel_g: stage::half_stage_fuel_g(end.vehicle, v_j, 1.0, end.gear, h_m),
+            full_half_fuel_g: match linear_fuel {
+                true => stage::half_stage_fuel_g(end.vehicle, v_j, 1.0, end.gear, h_m),
+                false => f64::NAN,
+            },
         }
     }
 }
