@@ -3,6 +3,7 @@ short table printed and the run directory written; the runs are :func:`truckmpc.
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 from typing import Annotated
 
@@ -12,7 +13,8 @@ from truckmpc.cli.options import ConfigOpt, ForceOpt, SetOpt, VehicleOpt, run_co
 from truckmpc.config import RunConfig
 from truckmpc.convergence import halved_configs
 from truckmpc.record import RunRequest, load_replay, run_record, with_controller_road
-from truckmpc.results import check_run_dir, format_table, write_outputs
+from truckmpc.results import check_run_dir, write_outputs
+from truckmpc.results.run_table import render_text, run_table
 from truckmpc.roads import RoadProfile, default_test_track, load_road
 from truckmpc.run import check_work, run_controllers
 from truckmpc.signals import Stopped, received_signal, stopping_on_signals
@@ -87,6 +89,15 @@ CheckConvergenceOpt = Annotated[
         "delta fuel and delta time move (flagged beyond 0.3 points).",
     ),
 ]
+VerboseOpt = Annotated[
+    bool,
+    typer.Option(
+        "--verbose",
+        "-v",
+        help="Also print the solver statistics (horizon solves, infeasible, relaxed and rescued solves, solve "
+        "times [ms]), the optimum's plan, compute times and what each equal-time search found.",
+    ),
+]
 
 
 def simulate_cmd(
@@ -101,6 +112,7 @@ def simulate_cmd(
     force: ForceOpt = False,
     controller_road: ControllerRoadOpt = None,
     check_convergence: CheckConvergenceOpt = False,
+    verbose: VerboseOpt = False,
 ) -> None:
     """Run controllers over a road; print a short table, write DIR/summary.json and DIR/trace-<controller>.csv.
 
@@ -130,7 +142,9 @@ def simulate_cmd(
             written = write_outputs(out_dir, profile, runs.results, record, runs.extra, runs.equal_times)
         except KeyboardInterrupt:
             raise Stopped("nothing written", received_signal()) from None
-    typer.echo(format_table(profile, runs.results, run_config, runs.extra.get("convergence"), runs.equal_times))
+    # The table is read from the summary.json just written: what it shows is what the file holds.
+    summary = json.loads(written[0].read_text(encoding="utf-8"))
+    typer.echo(render_text(run_table(summary, verbose=verbose)))
     typer.echo("wrote " + ", ".join(str(p) for p in written))
 
 

@@ -91,7 +91,7 @@ def comparison_rows(
             cells = []
             for name in columns:
                 entry = comparisons.get((name, baseline))
-                cells.append("" if entry is None else _number(entry.get(f"delta_{key}_pct"), "+.2f", na="n/a"))
+                cells.append("" if entry is None else _number(entry.get(f"delta_{key}_pct"), "+.2f"))
             rows.append(Row(f"{label} vs {NAMES.get(baseline, baseline)}", "%", tuple(cells)))
     return tuple(rows)
 
@@ -100,7 +100,7 @@ def optimum_rows(summary: Mapping[str, Any], columns: Sequence[str]) -> tuple[Ro
     """The MPC's fuel above the whole-road optimum's [%], in the MPC's column."""
     if "gap_to_optimal_pct" not in summary:
         return ()
-    gap = _number(summary["gap_to_optimal_pct"], "+.2f", na="n/a")
+    gap = _number(summary["gap_to_optimal_pct"], "+.2f")
     return (Row("Δfuel vs optimum", "%", tuple(gap if name == "mpc" else "" for name in columns)),)
 
 
@@ -147,20 +147,19 @@ def heading(summary: Mapping[str, Any]) -> str:
         return text + f"; v_ref {v_ref:g} km/h, band {v_ref - v_dec:g}-{v_ref + v_inc:g} km/h"
     offset = cruise.get("target_offset_kmh") or 0.0
     moved = f" {offset:+g} km/h" if offset else ""
-    return (
-        text + f"; set speed: the road's targets{moved}, at most v_ref {v_ref:g} km/h; band -{v_dec:g}/+{v_inc:g} km/h"
-    )
+    band = f"band -{v_dec:g}/+{v_inc:g} km/h"
+    return text + f"; set speed: the road's targets{moved} up to v_ref {v_ref:g} km/h, {band}"
 
 
-def notes(summary: Mapping[str, Any], columns: Sequence[str]) -> Iterator[str]:
-    """The lines under the table: how the stops are driven, the legend (when a Δ is shown), why a
-    Δ is not comparable, and each run's message."""
+def notes(summary: Mapping[str, Any], columns: Sequence[str], legend: bool) -> Iterator[str]:
+    """The lines under the table: how the stops are driven, the ``legend`` of the Δ (when one is
+    shown), why a Δ is not comparable, and each run's message."""
     runs = [summary[name] for name in columns]
     stops = next((run["stops_not_simulated"] for run in runs if run.get("stops_not_simulated")), None)
     if stops is not None:
         legs = stops.get("legs", max(len(run.get("legs") or ()) for run in runs))
         yield stops_text(stops["count"], stops["total_stop_s"], legs)
-    if _comparisons(summary):
+    if legend:
         yield LEGEND_TARGETS if _has_targets(summary) else LEGEND
     seen = set()
     for (name, baseline), entry in _comparisons(summary).items():
@@ -204,12 +203,10 @@ def _has_targets(summary: Mapping[str, Any]) -> bool:
     return any(key.endswith("_target_offset_kmh") for entry in objects for key in entry)
 
 
-def _number(value: Any, spec: str, scale: float = 1.0, na: str = "") -> str:
-    """``value * scale`` formatted with ``spec``; ``na`` for None, NaN or an infinity."""
-    if value is None or isinstance(value, bool) or (isinstance(value, float) and not math.isfinite(value)):
-        return na
-    if not isinstance(value, int | float):
-        return na
+def _number(value: Any, spec: str, scale: float = 1.0) -> str:
+    """``value * scale`` formatted with ``spec``; "" for None, NaN, an infinity or no number."""
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+        return ""
     if spec.endswith("d"):
         return format(round(value), spec)
     return format(value * scale, spec)

@@ -67,12 +67,14 @@ def run_table(summary: Mapping[str, Any], *, verbose: bool = False) -> RunTable:
         sections.append(Section("the optimum's plan", figure_rows(_PLAN, runs)))
         sections.append(Section("equal trip time: the baseline re-run", equal_time_rows(summary, columns)))
     shown = tuple(Section(s.title, tuple(r for r in s.rows if any(r.cells))) for s in sections)
-    lines = list(notes(summary, columns))
+    legend = any(row.label.startswith("Δ") for section in shown for row in section.rows)
+    lines = list(notes(summary, columns, legend))
     if isinstance(summary.get("convergence"), Mapping):
-        lines += convergence_lines(summary["convergence"], _label_width(shown))
+        lines += [_CONVERGENCE, *convergence_lines(summary["convergence"], _label_width(shown))]
     return RunTable(heading(summary), columns, tuple(s for s in shown if s.rows), tuple(lines))
 
 
+_CONVERGENCE = "convergence: how far the MPC's Δ vs PI moves at half the speed step δ and at half the stage S"
 _AS_DRIVEN = (
     ("fuel", "Δfuel"),
     ("time", "Δtrip time"),
