@@ -78,12 +78,12 @@ def test_summary_json_has_no_reason_when_comparable():
 def test_table_prints_the_reason_instead_of_a_delta():
     runs = {"pi": result("pi", summary(20.0, 400.0)), "mpc": result("mpc", summary(1.0, 40.0, 980.0))}
     lines = format_table(ROAD, runs).splitlines()
-    assert "not comparable: mpc stalled at km 0.98" in lines
-    assert not any(line.startswith("delta") for line in lines)
+    assert "mpc vs pi: not comparable: mpc stalled at km 0.98" in lines
+    assert not any(line.startswith("Δ") for line in lines)
     comparable = format_table(
         ROAD, {"pi": result("pi", summary(20.0, 400.0)), "mpc": result("mpc", summary(19.0, 410.0))}
     )
-    assert "delta fuel [%]" in comparable and "not comparable" not in comparable
+    assert "Δfuel vs PI [%]" in comparable and "not comparable" not in comparable
 
 
 @pytest.mark.parametrize(

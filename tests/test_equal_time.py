@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from table_text import parse_table
 from truckmpc import load_road, load_run_config, simulate
 from truckmpc.cli import app
 from truckmpc.equal_time import TIME_TOLERANCE, EqualTime, baseline_runner, equal_time
@@ -76,7 +77,7 @@ def test_equal_time_pi_hits_a_time_made_by_another_set_speed() -> None:
 def test_simulate_reports_the_mpc_at_equal_time(tmp_path: Path) -> None:
     """`truckmpc simulate` compares the MPC with the PI driven to the MPC's trip time: the PI's time
     is within 0.01 % of the MPC's, and the equal-time delta is the fuel against that PI."""
-    result = runner.invoke(app, ["simulate", "--road", str(EPA), "--out", str(tmp_path / "run")])
+    result = runner.invoke(app, ["simulate", "--road", str(EPA), "--out", str(tmp_path / "run"), "--verbose"])
     assert result.exit_code == 0, result.output
     doc = json.loads((tmp_path / "run" / "summary.json").read_text())
     equal = doc["equal_time"]
@@ -84,7 +85,7 @@ def test_simulate_reports_the_mpc_at_equal_time(tmp_path: Path) -> None:
     assert doc["delta_fuel_equal_time_pct"] == pytest.approx(100 * (doc["mpc"]["fuel_kg"] / equal["pi_fuel_kg"] - 1))
     expected = 100 * (doc["mpc"]["fuel_corrected_kg"] / equal["pi_fuel_corrected_kg"] - 1)
     assert doc["delta_fuel_equal_time_corrected_pct"] == pytest.approx(expected)
-    assert "equal time pi v_ref [km/h]" in result.output
+    assert parse_table(result.stdout).row("PI re-run: v_ref [km/h]")["mpc"] == f"{equal['pi_v_ref_kmh']:.2f}"
 
 
 def test_end_speed_correction_prices_the_kinetic_energy_of_a_speed_up() -> None:

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from table_text import parse_table
 from truckmpc import load_run_config, simulate
 from truckmpc.cli import app
 from truckmpc.roads import default_test_track, make_section
@@ -79,12 +80,14 @@ def test_the_optimum_drives_close_to_its_plan_and_beats_the_pi():
 
 
 def test_controller_all_reports_the_mpcs_gap_to_the_optimum(tmp_path):
-    result = runner.invoke(app, ["simulate", "--controller", "all", "--out", str(tmp_path / "out")])
+    result = runner.invoke(app, ["simulate", "--controller", "all", "--out", str(tmp_path / "out"), "--verbose"])
     assert result.exit_code == 0, result.stderr
     doc = json.loads((tmp_path / "out" / "summary.json").read_text())
     mpc, optimal = doc["mpc"]["fuel_kg"], doc["optimal"]["fuel_kg"]
     assert doc["gap_to_optimal_pct"] == pytest.approx((mpc - optimal) / optimal * 100, abs=1e-12)
     for name in ("mpc", "optimal"):
         assert f"delta_fuel_pct_{name}" in doc
-    assert "gap to optimal [%]" in result.stdout and "plan fuel [kg]" in result.stdout
+    table = parse_table(result.stdout)
+    assert table.row("Δfuel vs optimum [%]") == {"pi": "", "mpc": f"{doc['gap_to_optimal_pct']:+.2f}", "optimal": ""}
+    assert table.row("plan fuel [kg]") == {"pi": "", "mpc": "", "optimal": f"{doc['optimal']['plan_fuel_kg']:.3f}"}
     assert (tmp_path / "out" / "trace-optimal.csv").is_file()
