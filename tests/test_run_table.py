@@ -10,10 +10,12 @@ import math
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
 from typer.testing import CliRunner
 
 from table_text import PrintedTable, parse_table
+from truckmpc import TRACE_COLUMNS, RunResult, format_table, make_section
 from truckmpc.cli import app
 from truckmpc.results.run_table import render_text, run_table
 
@@ -168,3 +170,25 @@ def test_a_road_with_target_speeds_and_stops(tmp_path):
     offset = summary["equal_time"]["pi_target_offset_kmh"]
     assert table.row("PI re-run: target offset [km/h]") == {"pi": "", "mpc": f"{offset:+.2f}"}
     assert "PI re-run: v_ref [km/h]" not in table.labels()
+
+
+def _run(name: str, fuel_kg: float, time_s: float, stall_m: float | None = None) -> RunResult:
+    """A run with only the figures the comparison reads (a stall at `stall_m` [m] if given)."""
+    summary = {
+        "fuel_kg": fuel_kg,
+        "time_s": time_s,
+        "stalled": stall_m is not None,
+        "stall_distance_m": stall_m,
+        "message": None if stall_m is None else f"stalled at km {stall_m / 1000:.2f}",
+    }
+    trace = {column: np.zeros(2) for column in TRACE_COLUMNS}
+    return RunResult(name=name, road="flat", summary=summary, trace=trace)
+
+
+def test_a_stalled_run_leaves_its_delta_cells_blank_and_says_why_once():
+    runs = {"pi": _run("pi", 20.0, 400.0), "pcc": _run("pcc", 19.0, 402.0), "mpc": _run("mpc", 1.0, 40.0, 980.0)}
+    table = parse_table(format_table(make_section("flat", 2000), runs))
+    assert table.row("Δfuel vs PI [%]") == {"pi": "", "pcc": "-5.00", "mpc": ""}
+    assert "Δfuel vs PCC [%]" not in table.labels()  # the only one against the PCC stalled
+    assert table.after.count("mpc vs pi, pcc: not comparable: mpc stalled at km 0.98") == 1
+    assert "mpc: stalled at km 0.98" in table.after

@@ -161,12 +161,12 @@ def notes(summary: Mapping[str, Any], columns: Sequence[str], legend: bool) -> I
         yield stops_text(stops["count"], stops["total_stop_s"], legs)
     if legend:
         yield LEGEND_TARGETS if _has_targets(summary) else LEGEND
-    seen = set()
+    against: dict[tuple[str, str], list[str]] = {}  # (controller, reason): the baselines
     for (name, baseline), entry in _comparisons(summary).items():
-        reason = entry.get("not_comparable")
-        if reason and (name, reason) not in seen:
-            seen.add((name, reason))
-            yield f"{name} vs {baseline}: {reason}"
+        if entry.get("not_comparable"):
+            against.setdefault((name, entry["not_comparable"]), []).append(baseline)
+    for (name, reason), baselines in against.items():
+        yield f"{name} vs {', '.join(baselines)}: {reason}"
     for name, run in zip(columns, runs, strict=True):
         if run.get("message"):
             yield f"{name}: {run['message']}"
