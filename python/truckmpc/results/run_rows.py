@@ -209,4 +209,5 @@ def _number(value: Any, spec: str, scale: float = 1.0) -> str:
         return ""
     if spec.endswith("d"):
         return format(round(value), spec)
-    return format(value * scale, spec)
+    text = format(value * scale, spec)
+    return format(0.0, spec) if float(text) == 0 else text  # no "-0.000"
