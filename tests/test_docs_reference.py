@@ -17,7 +17,9 @@ import markdown
 import pytest
 import yaml
 from mkdocs.exceptions import PluginError
+from typer.testing import CliRunner
 
+from truckmpc.cli import app
 from truckmpc.config import SECTION_NAMES, SPECS
 
 DOCS = Path(__file__).resolve().parents[1] / "docs"
@@ -32,6 +34,7 @@ def hook(name: str) -> ModuleType:
     return module
 
 
+cli_reference = hook("cli_reference")
 parameter_reference = hook("parameter_reference")
 
 
@@ -87,3 +90,78 @@ def test_parameter_page_without_its_place_for_every_section_fails_the_build(chan
     source = (DOCS / "reference" / "parameters.md").read_text(encoding="utf-8")
     with pytest.raises(PluginError, match=named):
         parameter_reference.on_page_markdown(change(source), Page("reference/parameters.md"))
+
+
+# --- the command line -----------------------------------------------------------------------
+
+
+def help_of(path: list[str]) -> dict[str, Any]:
+    """What `truckmpc PATH --help` shows, parsed from its text: the description, the sub-commands,
+    and the names of the arguments and options (`--help` itself left out)."""
+    result = CliRunner().invoke(app, [*path, "--help"], prog_name="truckmpc")
+    assert result.exit_code == 0, result.output
+    sections: dict[str, list[str]] = {}
+    head, *rest = re.split(r"^(\w+):\n", result.output.split("\n", 1)[1], flags=re.M)
+    for title, body in zip(rest[::2], rest[1::2], strict=True):
+        # entries start two spaces in; their wrapped help is indented further
+        sections[title] = [re.split(r" {2,}", line.strip())[0] for line in body.splitlines() if re.match(r"  \S", line)]
+    entries = [e for e in sections.get("Arguments", []) + sections.get("Options", []) if e != "--help"]
+    return {
+        "description": " ".join(head.split()),
+        "commands": sections.get("Commands", []),
+        "entries": entries,
+        "params": [name.split()[0] for entry in entries for name in entry.split(", ")],
+    }
+
+
+def every_command(path: list[str] | None = None) -> list[list[str]]:
+    """Every command path of the app, found by following `--help` from the top."""
+    path = path or []
+    found = [path] if path else []
+    for name in help_of(path)["commands"]:
+        found += every_command([*path, name.split()[0]])
+    return found
+
+
+def command_sections(page: str) -> dict[str, str]:
+    """The generated page cut at its command headings: command path -> that command's Markdown."""
+    parts = re.split(r"^#+ (truckmpc[\w -]*?) \{ #[\w-]+ [^}]*\}$", page, flags=re.M)
+    return dict(zip(parts[1::2], parts[2::2], strict=True))
+
+
+def test_cli_reference_lists_every_command_and_option() -> None:
+    page = cli_reference.cli_reference()
+    sections = command_sections(page)
+    commands = every_command()
+    assert sorted(sections) == sorted(" ".join(["truckmpc", *path]) for path in commands)
+    assert len(commands) > 20 and ["road", "import", "gpx"] in commands  # sub-sub-commands too
+    for path in commands:
+        shown = help_of(path)
+        section = sections[" ".join(["truckmpc", *path])]
+        rows = [line for line in section.splitlines() if line.startswith("| <code>")]
+        row_names = [re.match(r"\| <code>(.*?)</code>", row).group(1) for row in rows]  # type: ignore[union-attr]
+        for param in shown["params"]:
+            assert any(re.search(rf"(^|, ){re.escape(param)}( |,|$)", name) for name in row_names), (path, param)
+        assert len(rows) == len(shown["entries"]), path
+        # the description reads as --help prints it: nothing lost to Markdown (DIR/trace-<controller>.csv)
+        assert shown["description"] in rendered_text(section), path
+
+
+def test_cli_reference_options_carry_their_choices_and_defaults() -> None:
+    text = rendered_text(cli_reference.cli_reference())
+    assert "--method <spline|savgol|none>" in text  # a choice, from the option's type
+    assert "[default: 8.0; x>=0.0]" in text  # a default and a range, as --help shows them
+    assert "kind <flat|hill|crest|depression>" in text  # an argument's choices
+
+
+def test_cli_reference_index_links_every_command_section() -> None:
+    page = cli_reference.cli_reference()
+    anchors = re.findall(r"^#+ truckmpc[\w -]*? \{ #([\w-]+) ", page, flags=re.M)
+    index = re.findall(r"^\| \[<code>[^<]*</code>\]\(#([\w-]+)\) \|", page, flags=re.M)
+    assert index == anchors and len(set(anchors)) == len(anchors)
+
+
+def test_cli_page_without_its_marker_fails_the_build() -> None:
+    with pytest.raises(PluginError, match="<!-- cli-reference -->"):
+        cli_reference.on_page_markdown("# Command line\n", Page("reference/cli.md"))
+    assert cli_reference.on_page_markdown("# Other\n", Page("index.md")) == "# Other\n"
