@@ -1,8 +1,8 @@
 """The documentation site's generated reference pages (the MkDocs hooks of docs/hooks/): the command
 line page lists every command and option that `--help` shows, in the words of `--help`; the
 parameter page carries every declared key with its unit, default and range; both refuse a page
-that lacks the place their text goes. The site itself is built with `mkdocs build --strict` in
-.ci/run."""
+that lacks the place their text goes; the Python API page shows Sphinx roles as code. The site
+itself is built with `mkdocs build --strict` in .ci/run."""
 
 from __future__ import annotations
 
@@ -36,6 +36,7 @@ def hook(name: str) -> ModuleType:
 
 cli_reference = hook("cli_reference")
 parameter_reference = hook("parameter_reference")
+api_reference = hook("api_reference")
 
 
 class Page:
@@ -165,3 +166,17 @@ def test_cli_page_without_its_marker_fails_the_build() -> None:
     with pytest.raises(PluginError, match="<!-- cli-reference -->"):
         cli_reference.on_page_markdown("# Command line\n", Page("reference/cli.md"))
     assert cli_reference.on_page_markdown("# Other\n", Page("index.md")) == "# Other\n"
+
+
+# --- the Python API -------------------------------------------------------------------------
+
+
+def test_api_page_shows_sphinx_roles_as_code() -> None:
+    html_in = (
+        "<p>Read by :func:<code>~truckmpc.roads.vdri.read_vdri</code>, named in :data:<code>CONTROLLERS</code>"
+        " and :class:<code>truckmpc.controller.Controller</code>. Public API::</p>"
+    )
+    assert api_reference.plain_roles(html_in) == (
+        "<p>Read by <code>read_vdri</code>, named in <code>CONTROLLERS</code>"
+        " and <code>truckmpc.controller.Controller</code>. Public API:</p>"
+    )
