@@ -1,11 +1,11 @@
-"""Configuration: the declarations carry the thesis's tables, the packaged files and the README's
-key tables follow from them, layering works, and every bad input gives one line naming its file
-(and line) or --set key, what was expected, and the culprit the user set last."""
+"""Configuration: the declarations carry the thesis's tables, the packaged files follow from them
+(the docs site's key tables: tests/test_docs_reference.py), layering works, and every bad input
+gives one line naming its file (and line) or --set key, what was expected, and the culprit the
+user set last."""
 
 from __future__ import annotations
 
 import math
-import re
 from pathlib import Path
 
 import pytest
@@ -17,13 +17,10 @@ from truckmpc.config import (
     SPECS,
     ConfigError,
     default_config_path,
-    key_table,
     load_run_config,
     packaged_defaults,
     section_keys,
 )
-
-README = Path(__file__).resolve().parent.parent / "README.md"
 
 # Tables A.1 and A.2, with k_b = 1e5 Nm (the printed 20e3 is a misprint: tables B.1/B.2 need 1e5).
 THESIS_40T = {
@@ -158,15 +155,6 @@ def test_packaged_files_are_the_declared_defaults() -> None:
     """Regenerate with `truckmpc config defaults` after changing a declaration."""
     for name, text in packaged_defaults().items():
         assert default_config_path(name).read_text(encoding="utf-8") == text, name
-
-
-def test_readme_key_tables_are_the_declarations() -> None:
-    """Regenerate with `truckmpc config keys` after changing a declaration."""
-    readme = README.read_text(encoding="utf-8")
-    for section in ("vehicle", "cruise", "pi", "mpc", "sim"):
-        found = re.search(rf"<!-- keys:{section} -->\n(.*?)\n<!-- /keys:{section} -->", readme, re.S)
-        assert found, f"README lacks the {section} key table"
-        assert found.group(1) == key_table(section), section
 
 
 def test_every_key_has_unit_doc_and_default_within_range() -> None:

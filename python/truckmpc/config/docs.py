@@ -1,6 +1,6 @@
-"""Text that follows from the declarations: the packaged YAML defaults and the key tables of the
-README. Both are checked against the declarations by the tests; `truckmpc config defaults --dir`
-and `truckmpc config keys` rewrite and print them."""
+"""Text that follows from the declarations: the packaged YAML defaults and the key tables (of the
+docs site's parameter reference, made when the site is built). The tests check both against the
+declarations; `truckmpc config defaults --dir` and `truckmpc config keys` write and print them."""
 
 from __future__ import annotations
 
@@ -89,8 +89,14 @@ def key_table(section: str) -> str:
     lines = ["| key | unit | default | allowed | meaning |", "|---|---|---|---|---|"]
     for spec in _specs_of(section):
         default = yaml_value(spec.default)
-        lines.append(f"| `{spec.name}` | {spec.unit} | `{default}` | {spec.expected} | {spec.doc} |")
+        cells = [f"`{spec.name}`", _cell(spec.unit), f"`{default}`", _cell(spec.expected), _cell(spec.doc)]
+        lines.append(f"| {' | '.join(cells)} |")
     return "\n".join(lines)
+
+
+def _cell(text: str) -> str:
+    """Text for a Markdown table cell: a bare `|` (as in `|Δv|`) would end the cell."""
+    return text.replace("|", "\\|")
 
 
 def rewrite_key_tables(path: Path) -> list[str]:
