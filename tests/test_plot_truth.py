@@ -16,8 +16,10 @@ import pytest
 from typer.testing import CliRunner
 
 from truckmpc.cli import app
+from truckmpc.plot.road import road_figure
 from truckmpc.plot.run import run_figure
 from truckmpc.plot.sweep import sweep_figures
+from truckmpc.roads import load_road
 from truckmpc.sweep.columns import delta_column
 
 runner = CliRunner()
@@ -204,3 +206,16 @@ def test_the_sweep_figure_has_the_equal_time_delta_beside_the_raw_one(tmp_path):
             (line,) = [ln for ln in ax.lines if ln.get_marker() == "o"]  # the data, not the zero line
             expected = sorted((float(r["horizon_m"]), float(r[column])) for r in rows)
             assert np.allclose(np.column_stack([line.get_xdata(), line.get_ydata()]), expected)
+
+
+def test_the_road_figure_draws_a_cycles_targets_and_stops(tmp_path):
+    stretches, stop_m = write_target_road(tmp_path / "targets.csv")
+    fig = road_figure(load_road(tmp_path / "targets.csv"))
+    ax = next(a for a in fig.axes if a.get_ylabel() == "target speed [km/h]")
+    (line,) = by_gid(ax, "target")
+    km, kmh = np.asarray(line.get_xdata()), np.asarray(line.get_ydata())
+    for lo, hi, target in stretches:
+        inside = (km * 1000 >= lo) & (km * 1000 < hi)
+        assert inside.any() and np.all(kmh[inside] == target)
+    for panel in fig.axes:
+        assert [s.get_xdata()[0] * 1000 for s in by_gid(panel, "stop")] == [pytest.approx(stop_m)]

@@ -109,14 +109,13 @@ def band_along(road: RoadProfile | None, cruise: Cruise, end_m: float) -> Band:
         x_m = np.union1d(x_m, road.distance_m)
     x_m = np.union1d(x_m, [stop_m])
     if road is None or road.target_speed_kmh is None:
-        ones = np.ones_like(x_m)
-        low, high = cruise.v_ref_kmh - cruise.v_dec_kmh, cruise.v_ref_kmh + cruise.v_inc_kmh
-        return Band(x_m, cruise.v_ref_kmh * ones, low * ones, high * ones, from_targets=False)
+        v_ref = np.full_like(x_m, cruise.v_ref_kmh)
+        return Band(x_m, v_ref, v_ref - cruise.v_dec_kmh, v_ref + cruise.v_inc_kmh, from_targets=False)
     set_kmh = np.maximum(np.minimum(cruise.v_ref_kmh, road.target_speed_at(x_m)) + cruise.target_offset_kmh, 1.0)
-    high = _falling_top(road, cruise, x_m, set_kmh + cruise.v_inc_kmh)
-    v_ref = np.where(high < set_kmh + cruise.v_inc_kmh, high - cruise.v_inc_kmh, set_kmh)
+    top_kmh = _falling_top(road, cruise, x_m, set_kmh + cruise.v_inc_kmh)
+    v_ref = np.where(top_kmh < set_kmh + cruise.v_inc_kmh, top_kmh - cruise.v_inc_kmh, set_kmh)
     floor = min(cruise.v_ref_kmh - cruise.v_dec_kmh, V_MIN_FLOOR_KMH)
-    return Band(x_m, set_kmh, np.maximum(v_ref - cruise.v_dec_kmh, floor), high, from_targets=True)
+    return Band(x_m, set_kmh, np.maximum(v_ref - cruise.v_dec_kmh, floor), top_kmh, from_targets=True)
 
 
 def _falling_top(road: RoadProfile, cruise: Cruise, x_m: np.ndarray, own_top_kmh: np.ndarray) -> np.ndarray:

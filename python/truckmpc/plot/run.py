@@ -1,7 +1,8 @@
-"""The picture of one run (``run.png``): stacked panels over distance [km] — altitude, speed of PI
-and MPC with v_ref and the allowed band v_ref − v_dec … v_ref + v_inc, gear (neutral, gear 0 in the
-trace, ticked "N" just below the lowest gear used and shaded), pedal and brake levels — as figures
-6.3–6.14 of the thesis. Lines longer than :data:`MAX_POINTS` are reduced by :func:`decimate`.
+"""The picture of one run (``run.png``): stacked panels over distance [km] — altitude, speed of
+every controller with the set speed, the allowed band and the stops
+(:mod:`~truckmpc.plot.run_speed`), gear (neutral, gear 0 in the trace, ticked "N" just below the
+lowest gear used and shaded), pedal and brake levels — as figures 6.3–6.14 of the thesis.
+Lines longer than :data:`MAX_POINTS` are reduced by :func:`decimate`.
 """
 
 from __future__ import annotations

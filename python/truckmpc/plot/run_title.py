@@ -118,7 +118,7 @@ def _stalled(summary: Mapping[str, Any], name: str) -> str | None:
     block = summary.get(name)
     if not (isinstance(block, dict) and block.get("stalled")):
         return None
-    where = block.get("stall_distance_m")
+    where: Any = block.get("stall_distance_m")
     at = f" at km {where / M_PER_KM:.2f}" if _finite(where) else ""
     return f"not comparable: {_SHORT.get(name, name)} stalled{at}"
 
