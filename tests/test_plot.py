@@ -15,6 +15,8 @@ from typer.testing import CliRunner
 
 from truckmpc.cli import app
 from truckmpc.plot import MAX_POINTS, MISSING_MATPLOTLIB, decimate
+from truckmpc.plot.sweep import sweep_figures
+from truckmpc.sweep.columns import RUNS, delta_column
 
 runner = CliRunner()
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
@@ -61,13 +63,16 @@ def write_sweep(
     horizons=range(250, 3001, 250),
     directions=("forward", "reverse"),
     realtime=True,
+    equal_time=True,
 ) -> Path:
     """A synthetic sweep.csv in the layout `truckmpc sweep` writes (road, direction, axes, results)."""
     directory.mkdir(parents=True, exist_ok=True)
     axes = ["horizon_m"] + ["stage_m"] * bool(stages) + ["delta_kmh"] * bool(deltas) + ["allow_neutral"] * bool(neutral)
-    results = ["pi_fuel_kg", "pi_time_s", "mpc_fuel_kg", "mpc_time_s", "neutral_distance_m"]
-    results += ["realtime_ratio", "solve_ms_mean", "solve_ms_max", "infeasible_solves"] * realtime
-    results += ["delta_fuel_pct", "delta_time_pct"]
+    mpc = RUNS["mpc"].column
+    results = ["pi_fuel_kg", "pi_time_s", mpc("fuel_kg"), mpc("time_s"), mpc("neutral_distance_m")]
+    results += [mpc("realtime_ratio"), mpc("solve_ms_mean"), mpc("solve_ms_max"), mpc("infeasible_solves")] * realtime
+    results += [delta_column("mpc", "fuel"), delta_column("mpc", "time")]
+    results += [delta_column("mpc", "fuel_equal_time")] * equal_time
     with (directory / "sweep.csv").open("w", newline="") as handle:
         writer = csv.writer(handle)
         writer.writerow(["road", "direction", *axes, *results])
@@ -84,15 +89,16 @@ def write_sweep(
                 "allow_neutral": str(n).lower(),
                 "pi_fuel_kg": 35.6,
                 "pi_time_s": 4761.2,
-                "mpc_fuel_kg": 35.6 * (1 + saving / 100),
-                "mpc_time_s": 4761.2 * (1 + dtime / 100),
-                "neutral_distance_m": 1200.0 * n,
-                "realtime_ratio": q,
-                "solve_ms_mean": q * 1e3,
-                "solve_ms_max": q * 2e3,
-                "infeasible_solves": 0,
-                "delta_fuel_pct": saving,
-                "delta_time_pct": dtime,
+                mpc("fuel_kg"): 35.6 * (1 + saving / 100),
+                mpc("time_s"): 4761.2 * (1 + dtime / 100),
+                mpc("neutral_distance_m"): 1200.0 * n,
+                mpc("realtime_ratio"): q,
+                mpc("solve_ms_mean"): q * 1e3,
+                mpc("solve_ms_max"): q * 2e3,
+                mpc("infeasible_solves"): 0,
+                delta_column("mpc", "fuel"): saving,
+                delta_column("mpc", "time"): dtime,
+                delta_column("mpc", "fuel_equal_time"): saving + 0.4 * dtime,
             }
             writer.writerow(["test-track", direction, *(cells[c] for c in axes + results)])
     grid = [{"key": a, "values": []} for a in axes]
@@ -206,6 +212,13 @@ def test_a_sweep_without_stage_or_neutral_axes_or_realtime_column(in_tmp):
     assert result.exit_code == 0, result.stderr
     assert_png(in_tmp / "s.png")
     assert not (in_tmp / "s-realtime.png").exists()
+
+
+def test_a_sweep_without_the_equal_time_column_draws_the_raw_deltas_only(in_tmp):
+    sweep = write_sweep(in_tmp / "sweep", equal_time=False, realtime=False)
+    ((fig, _),) = sweep_figures(sweep, sweep / "sweep.png")
+    labels = [ax.get_ylabel() for ax in fig.axes if ax.get_ylabel()]
+    assert labels == ["Δfuel [%]", "Δtime [%]"]
 
 
 def test_a_sweep_without_a_horizon_axis_plots_against_the_axis_that_varies(in_tmp):

@@ -1,20 +1,23 @@
 """Pictures of runs and sweeps (``truckmpc plot``), in the look of the thesis's chapter 6.
 
-- A **run directory** (``summary.json`` and ``trace-pi.csv`` and/or ``trace-mpc.csv``, as written by
+- A **run directory** (``summary.json`` and ``trace-<controller>.csv``, as written by
   ``truckmpc simulate``) gives ``run.png``: stacked panels over distance [km] — altitude, speed of
-  PI and MPC with v_ref and the allowed band v_ref − v_dec … v_ref + v_inc, gear (neutral, gear 0 in
-  the trace, ticked "N" just below the lowest gear used and shaded), pedal and brake levels — as
-  figures 6.3–6.14. Lines longer than :data:`MAX_POINTS` are reduced by :func:`decimate`.
+  every controller with the set speed and the allowed band (set speed − v_dec … + v_inc, following
+  the road's target speeds where it has them) and the road's stops, gear (neutral, gear 0 in the
+  trace, ticked "N" just below the lowest gear used and shaded), pedal and brake levels — as
+  figures 6.3–6.14. The title names every controller and each look-ahead one's Δfuel at equal trip
+  time against the PI and the PCC. Lines longer than :data:`MAX_POINTS` are reduced by :func:`decimate`.
 - A **sweep directory** (``sweep.csv``, as written by ``truckmpc sweep``) gives ``sweep.png``: Δfuel
-  and Δtime [%] against the prediction horizon, one line per (S, δ), one column per road and
-  direction (figures 6.16–6.18; ``allow_neutral = false`` dashed), and ``realtime.png``: the real-time
-  ratio q against the horizon on a log scale (figure 6.19).
+  (raw and at equal trip time) and Δtime [%] against the prediction horizon, one line per (S, δ),
+  one column per road and direction (figures 6.16–6.18; ``allow_neutral = false`` dashed), and
+  ``realtime.png``: the real-time ratio q against the horizon on a log scale (figure 6.19).
 - A **Pareto directory** (``pareto.csv``, as written by ``truckmpc pareto``) gives ``pareto.png``:
   end-speed-corrected fuel against trip time, one curve per controller, the saving at the PI's trip
   time at the reference set speed annotated.
 
-Modules: :mod:`~truckmpc.plot.run` (run pictures), :mod:`~truckmpc.plot.sweep` (sweep pictures),
-:mod:`~truckmpc.plot.figures` (matplotlib and saving).
+Modules: :mod:`~truckmpc.plot.run` (run pictures; their title :mod:`~truckmpc.plot.run_title`,
+their set speed, band and stops :mod:`~truckmpc.plot.run_speed` and :mod:`~truckmpc.plot.band`),
+:mod:`~truckmpc.plot.sweep` (sweep pictures), :mod:`~truckmpc.plot.figures` (matplotlib and saving).
 
 matplotlib is an optional dependency (``pip install 'truckmpc[plot]'``). It is imported only when a
 picture is drawn, and only through its object-oriented API (``matplotlib.figure.Figure``), so no GUI

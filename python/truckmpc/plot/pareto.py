@@ -84,7 +84,9 @@ def _draw_road(
         color, marker = _STYLES.get(name, ("black", "x"))
         minutes = curve.time_s / _S_PER_MIN
         saving = savings.get(name)
-        label = _LABELS.get(name, name) + ("" if saving is None else f": {saving:+.2f} % at equal time")
+        label = _LABELS.get(name, name)
+        if saving is not None and name != "pi":
+            label += f": Δfuel {saving:+.2f} % vs the PI at its trip time".replace("-", "−")
         ax.plot(minutes, curve.fuel_kg, color=color, marker=marker, label=label)
         for x, y, value in zip(minutes, curve.fuel_kg, curve.values, strict=True):
             ax.annotate(f"{value:g}", (x, y), textcoords="offset points", xytext=(4, 3), fontsize=7, color=color)

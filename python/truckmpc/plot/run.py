@@ -1,7 +1,8 @@
-"""The picture of one run (``run.png``): stacked panels over distance [km] — altitude, speed of PI
-and MPC with v_ref and the allowed band v_ref − v_dec … v_ref + v_inc, gear (neutral, gear 0 in the
-trace, ticked "N" just below the lowest gear used and shaded), pedal and brake levels — as figures
-6.3–6.14 of the thesis. Lines longer than :data:`MAX_POINTS` are reduced by :func:`decimate`.
+"""The picture of one run (``run.png``): stacked panels over distance [km] — altitude, speed of
+every controller with the set speed, the allowed band and the stops
+(:mod:`~truckmpc.plot.run_speed`), gear (neutral, gear 0 in the trace, ticked "N" just below the
+lowest gear used and shaded), pedal and brake levels — as figures 6.3–6.14 of the thesis.
+Lines longer than :data:`MAX_POINTS` are reduced by :func:`decimate`.
 """
 
 from __future__ import annotations
@@ -18,19 +19,15 @@ from typing import Any
 import numpy as np
 
 from truckmpc.plot.figures import PlotError, figure_class, save
+from truckmpc.plot.run_speed import speed_references
+from truckmpc.plot.run_title import CONTROLLER_STYLE, run_title
 from truckmpc.units import M_PER_KM
 
 MAX_POINTS = 20_000
 """Most points drawn per line of a run picture; longer traces are reduced to per-bucket min/max."""
 
-CONTROLLER_STYLE = {
-    "pi": ("PI", "tab:blue"),
-    "vecto_cc": ("cruise control (VECTO)", "tab:olive"),
-    "pcc": ("PCC (VECTO)", "tab:green"),
-    "mpc": ("MPC", "tab:red"),
-    "optimal": ("whole-road optimum", "tab:purple"),
-}
-"""Label and colour per controller, the same in every panel."""
+_LEGEND_COLUMNS = 4
+"""Columns of the legend when its labels would not fit on one line."""
 
 
 def _read_json(path: Path) -> dict[str, Any]:
@@ -84,56 +81,10 @@ def decimate(x: np.ndarray, *ys: np.ndarray, max_points: int = MAX_POINTS) -> tu
     return (x[index], *(y[index] for y in ys))
 
 
-def _settings(summary: Mapping[str, Any]) -> dict[str, Any]:
-    """The controller settings a run recorded (the MPC's, which hold v_ref and the band), if any."""
-    for name in ("mpc", "pi"):
-        block = summary.get(name)
-        settings = block.get("settings") if isinstance(block, dict) else None
-        if isinstance(settings, dict):
-            return settings
-    return {}
-
-
 def _block(summary: Mapping[str, Any], name: str) -> Mapping[str, Any]:
     """The summary of controller ``name`` (empty if the file has none)."""
     block = summary.get(name)
     return block if isinstance(block, dict) else {}
-
-
-def _fmt_pct(value: Any) -> str:
-    if not isinstance(value, (int, float)) or not math.isfinite(value):
-        return "–"
-    return "0.00 %" if round(value, 2) == 0 else f"{value:+.2f} %".replace("-", "−")
-
-
-def _title(summary: Mapping[str, Any], names: Sequence[str]) -> str:
-    road = summary.get("road", "?")
-    length = summary.get("length_m")
-    head = f"{road}" + (f", {length / M_PER_KM:.1f} km" if isinstance(length, (int, float)) else "")
-    reason = summary.get("not_comparable")
-    if reason is None and any(isinstance(summary.get(n), dict) and summary[n].get("stalled") for n in names):
-        reason = "not comparable: a run stalled"  # a summary written before not_comparable existed
-    if "delta_fuel_pct" in summary and reason is not None:
-        head += f" — MPC vs PI: {reason}"
-    elif "delta_fuel_pct" in summary:
-        head += (
-            f" — MPC vs PI: Δfuel {_fmt_pct(summary['delta_fuel_pct'])}, Δtime {_fmt_pct(summary['delta_time_pct'])}"
-        )
-    else:
-        head += " — " + " and ".join(CONTROLLER_STYLE.get(n, (n,))[0] for n in names) + " only"
-    s = _settings(summary)
-    if "mpc" in names and s:
-        parts = []
-        if "stage_m" in s:
-            parts.append(f"S {s['stage_m']:g} m")
-        if "delta_kmh" in s:
-            parts.append(f"δ {s['delta_kmh']:g} km/h")
-        if "horizon_m" in s:
-            parts.append(f"horizon {s['horizon_m']:g} m")
-        if "allow_neutral" in s:
-            parts.append("neutral allowed" if s["allow_neutral"] else "no neutral")
-        head += "\nMPC: " + ", ".join(parts)
-    return head
 
 
 def _run_traces(directory: Path) -> dict[str, dict[str, np.ndarray]]:
@@ -149,11 +100,14 @@ def _run_traces(directory: Path) -> dict[str, dict[str, np.ndarray]]:
 
 def plot_run(directory: str | os.PathLike[str], out: str | os.PathLike[str], *, svg: bool = False) -> list[Path]:
     """Draw one run (altitude, speed with v_ref and band, gear, pedal, brake over distance) to ``out``."""
+    return save([(run_figure(directory), Path(out))], svg)
+
+
+def run_figure(directory: str | os.PathLike[str]) -> Any:
+    """The matplotlib Figure of the run in ``directory`` (``summary.json`` and its traces)."""
     directory = Path(directory)
     summary = _read_json(directory / "summary.json")
-    traces = _run_traces(directory)
-    figure = _run_figure(figure_class(), summary, traces)
-    return save([(figure, Path(out))], svg)
+    return _run_figure(figure_class(), summary, _run_traces(directory))
 
 
 def _run_figure(Figure: Any, summary: Mapping[str, Any], traces: Mapping[str, Mapping[str, np.ndarray]]) -> Any:
@@ -166,7 +120,8 @@ def _run_figure(Figure: Any, summary: Mapping[str, Any], traces: Mapping[str, Ma
     lw = 1.0 if n_max <= 5000 else 0.6
     lines: list[Any] = []
     _altitude_panel(ax_alt, longest, lw)
-    references = _speed_band(ax_v, _settings(summary))
+    end_m = _end_m(summary, longest)
+    references = speed_references(ax_v, summary, end_m)
     gears = [t["gear"] for t in traces.values() if "gear" in t]
     neutral_spans = any(np.any(g == 0) for g in gears)
     neutral_y = _neutral_y(gears)
@@ -193,9 +148,7 @@ def _run_figure(Figure: Any, summary: Mapping[str, Any], traces: Mapping[str, Ma
     ax_brake.set_ylabel("brake [-]")
     ax_brake.set_ylim(bottom=-0.02 * max(ax_brake.get_ylim()[1], 0.05))
     ax_brake.set_xlabel("distance [km]")
-    length_m = summary.get("length_m")
-    end_m = length_m if isinstance(length_m, (int, float)) and length_m > 0 else longest["distance_m"][-1]
-    ax_brake.set_xlim(0, max(end_m, longest["distance_m"][-1]) / M_PER_KM)  # a stalled run still shows the whole road
+    ax_brake.set_xlim(0, end_m / M_PER_KM)  # a stalled run still shows the whole road
     for ax in axes:
         ax.grid(True, color="0.9", lw=0.6)
         ax.label_outer()
@@ -205,9 +158,17 @@ def _run_figure(Figure: Any, summary: Mapping[str, Any], traces: Mapping[str, Ma
         from matplotlib.patches import Patch
 
         handles.append(Patch(color="0.5", alpha=0.3, label="neutral gear (N), shaded"))
-    fig.legend(handles=handles, loc="outside lower center", ncol=len(handles), fontsize="small", frameon=False)
-    fig.suptitle(_title(summary, list(traces)), fontsize="medium")
+    ncol = min(len(handles), _LEGEND_COLUMNS) if sum(len(h.get_label()) for h in handles) > 150 else len(handles)
+    fig.legend(handles=handles, loc="outside lower center", ncol=ncol, fontsize="small", frameon=False)
+    fig.suptitle(run_title(summary, list(traces)), fontsize="medium")
     return fig
+
+
+def _end_m(summary: Mapping[str, Any], longest: Mapping[str, np.ndarray]) -> float:
+    """Where the distance axis ends [m]: the road's end, or the longest trace's if further."""
+    length_m = summary.get("length_m")
+    end_m = length_m if isinstance(length_m, (int, float)) and length_m > 0 else longest["distance_m"][-1]
+    return float(max(end_m, longest["distance_m"][-1]))
 
 
 def _altitude_panel(ax: Any, trace: Mapping[str, np.ndarray], lw: float) -> None:
@@ -219,19 +180,6 @@ def _altitude_panel(ax: Any, trace: Mapping[str, np.ndarray], lw: float) -> None
         pad = max(1.0, 0.05 * (alt.max() - alt.min()))
         ax.set_ylim(alt.min() - pad, alt.max() + pad)
     ax.set_ylabel("altitude [m]")
-
-
-def _speed_band(ax: Any, settings: Mapping[str, Any]) -> list[Any]:
-    """v_ref (dashed) and the allowed band [km/h] on the speed panel, if the run recorded them; their
-    legend handles."""
-    if "v_ref_kmh" not in settings:
-        return []
-    v_ref = float(settings["v_ref_kmh"])
-    lo, hi = v_ref - float(settings.get("v_dec_kmh", 0.0)), v_ref + float(settings.get("v_inc_kmh", 0.0))
-    return [
-        ax.axhline(v_ref, color="k", ls="--", lw=1.0, label=f"v_ref {v_ref:g} km/h"),
-        ax.axhspan(lo, hi, color="0.6", alpha=0.2, lw=0, label=f"allowed band {lo:g}–{hi:g} km/h"),
-    ]
 
 
 def _gear_line(ax: Any, km: np.ndarray, gear: np.ndarray, neutral_y: float, color: Any, lw: float) -> None:

@@ -1,5 +1,6 @@
-"""The pictures of a sweep: ``sweep.png``, Δfuel and Δtime [%] of each look-ahead controller the
-sweep ran (MPC, PCC) against the PI, against the prediction horizon, one line per (S, δ), one column
+"""The pictures of a sweep: ``sweep.png``, Δfuel (raw, and at equal trip time: against the PI
+re-tuned to the run's trip time) and Δtime [%] of each look-ahead controller the sweep ran (MPC,
+PCC) against the PI, against the prediction horizon, one line per (S, δ), one column
 per road and direction (figures 6.16–6.18 of the thesis; ``allow_neutral = false`` dashed), and
 ``realtime.png``, the MPC's real-time ratio q against the horizon on a log scale (figure 6.19).
 Without a horizon axis the numeric axis that varies most is used.
@@ -16,13 +17,17 @@ from pathlib import Path
 from typing import Any
 
 from truckmpc.plot.figures import PlotError, figure_class, save
-from truckmpc.plot.sweep_csv import compared_controllers, delta_metrics, grid_axes, read_sweep
+from truckmpc.plot.sweep_csv import COMPARED, compared_controllers, delta_metrics, grid_axes, read_sweep
+from truckmpc.sweep.columns import RUNS, delta_column
 
 Row = Mapping[str, Any]
 Panel = tuple[Any, Any]
 """(road, direction) of one column of panels; None where the CSV has no such column."""
 
-_REALTIME = (("realtime_ratio", "real-time ratio q [-]\n(compute time / driven time)"),)
+REALTIME_COLUMN = RUNS["mpc"].column("realtime_ratio")
+"""The column of the MPC's real-time ratio q [-] (compute time / driven time)."""
+
+_REALTIME = ((REALTIME_COLUMN, "real-time ratio q [-]\n(compute time / driven time)"),)
 _AXIS_LABELS = {"horizon_m": "prediction horizon [m]", "stage_m": "S", "delta_kmh": "δ"}
 _UNITS = (("_kmh", "km/h"), ("_rpm", "rpm"), ("_kg", "kg"), ("_pct", "%"), ("_m", "m"), ("_s", "s"))
 
@@ -41,7 +46,14 @@ class _Layout:
 
 
 def plot_sweep(directory: str | os.PathLike[str], out: str | os.PathLike[str], *, svg: bool = False) -> list[Path]:
-    """Draw a sweep: Δfuel and Δtime against the horizon to ``out``, q against the horizon beside it."""
+    """Draw a sweep: Δfuel (raw and at equal trip time) and Δtime against the horizon to ``out``,
+    q against the horizon beside it."""
+    return save(sweep_figures(directory, out), svg)
+
+
+def sweep_figures(directory: str | os.PathLike[str], out: str | os.PathLike[str]) -> list[tuple[Any, Path]]:
+    """The matplotlib Figures of the sweep in ``directory``, each with the file it goes to: the Δ
+    picture at ``out``, and the real-time picture beside it when the sweep has a q column."""
     directory = Path(directory)
     out = Path(out)
     header, rows = read_sweep(directory)
@@ -60,14 +72,16 @@ def plot_sweep(directory: str | os.PathLike[str], out: str | os.PathLike[str], *
     fixed = [_line_label(a, _varying(rows, a)[0]) for a in axes if len(_varying(rows, a)) == 1]
     note = f" ({', '.join(fixed)})" if fixed else ""
     look_ahead = compared[0][1] if len(compared) == 1 else "look-ahead"
-    pictures: list[tuple[Sequence[tuple[str, str]], bool, str, Path]] = [
-        (delta_metrics(compared), False, f"{subject} against PI: ({look_ahead} − PI) / PI{note}", out)
-    ]
-    if "realtime_ratio" in header:
+    title = f"{subject} against PI: ({look_ahead} − PI) / PI{note}"
+    metrics = delta_metrics(compared, header)
+    if any(column == delta_column(name, "fuel_equal_time") for name, _ in compared for column, _ in metrics):
+        title += f"\nat equal trip time: against the PI re-tuned to the {look_ahead} run's trip time"
+    pictures: list[tuple[Sequence[tuple[str, str]], bool, str, Path]] = [(metrics, False, title, out)]
+    if REALTIME_COLUMN in header:
         realtime = out.with_name(f"{out.stem}-realtime{out.suffix}" if out.name != "sweep.png" else "realtime.png")
         pictures.append((_REALTIME, True, f"MPC closed-loop real-time ratio{note}", realtime))
     Figure = figure_class()
-    return save([(_sweep_figure(Figure, layout, m, log=log, title=t), path) for m, log, t, path in pictures], svg)
+    return [(_sweep_figure(Figure, layout, m, log=log, title=t), path) for m, log, t, path in pictures]
 
 
 def _is_number(value: Any) -> bool:
@@ -152,7 +166,8 @@ def _sweep_figure(Figure: Any, layout: _Layout, metrics: Sequence[tuple[str, str
     from matplotlib.lines import Line2D
 
     ncols = len(layout.panels)
-    fig = Figure(figsize=(max(6.5, 4.6 * ncols), 1.0 + 3.0 * len(metrics)), layout="constrained")
+    row_in = 3.0 if len(metrics) <= 3 else 2.3  # two controllers' six rows stay on a screen or a page
+    fig = Figure(figsize=(max(6.5, 4.6 * ncols), 1.0 + row_in * len(metrics)), layout="constrained")
     grid = fig.subplots(len(metrics), ncols, sharex="col", sharey="row", squeeze=False)
     handles: dict[str, Any] = {}
     for col, panel in enumerate(layout.panels):
@@ -173,6 +188,8 @@ def _sweep_figure(Figure: Any, layout: _Layout, metrics: Sequence[tuple[str, str
                 ax.set_xlabel(_axis_label(layout.x_axis))
     if log:
         _mark_real_time(grid[0])
+    else:
+        _share_fuel_limits(grid, metrics)
     fig.suptitle(title, fontsize="medium")
     entries = list(handles.values())
     if layout.neutral_axis:  # colour says (S, δ), the line style says whether neutral was allowed
@@ -186,6 +203,22 @@ def _sweep_figure(Figure: Any, layout: _Layout, metrics: Sequence[tuple[str, str
             handles=entries, loc="outside lower center", fontsize="small", frameon=False, ncol=min(len(entries), fits)
         )
     return fig
+
+
+def _share_fuel_limits(grid: Any, metrics: Sequence[tuple[str, str]]) -> None:
+    """One y range for each controller's raw and equal-time Δfuel rows, so the two read side by side."""
+    for name, _ in COMPARED:
+        rows = [i for i, (column, _) in enumerate(metrics) if column in _fuel_columns(name)]
+        if len(rows) < 2:
+            continue
+        limits = [grid[i][0].get_ylim() for i in rows]
+        lo, hi = min(lim[0] for lim in limits), max(lim[1] for lim in limits)
+        for i in rows:
+            grid[i][0].set_ylim(lo, hi)
+
+
+def _fuel_columns(name: str) -> tuple[str, str]:
+    return delta_column(name, "fuel"), delta_column(name, "fuel_equal_time")
 
 
 def _draw_lines(ax: Any, layout: _Layout, rows: Sequence[Row], metric: str, log: bool, handles: dict[str, Any]) -> None:

@@ -52,13 +52,21 @@ def compared_controllers(header: Sequence[str]) -> list[tuple[str, str]]:
     ]
 
 
-def delta_metrics(compared: Sequence[tuple[str, str]]) -> list[tuple[str, str]]:
-    """(column, y label) of each Δ panel row: Δfuel and Δtime of each controller (named when several)."""
+DELTA_KINDS = (("fuel", "Δfuel [%]"), ("fuel_equal_time", "Δfuel at equal\ntrip time [%]"), ("time", "Δtime [%]"))
+"""The kinds of Δ a sweep figure draws, one row of panels each (a sweep's columns name them through
+:func:`truckmpc.sweep.columns.delta_column`), with their y labels: the raw Δfuel, the Δfuel against
+the PI re-tuned to the run's trip time, and the Δtime."""
+
+
+def delta_metrics(compared: Sequence[tuple[str, str]], header: Sequence[str]) -> list[tuple[str, str]]:
+    """(column, y label) of each Δ panel row: each controller's Δfuel, its Δfuel at equal trip
+    time where the sweep has that column, and its Δtime (the controller named when several)."""
     named = len(compared) > 1
     return [
-        (delta_column(name, kind), f"{label + ' ' if named else ''}Δ{kind} [%]")
+        (delta_column(name, kind), f"{label + ' ' if named else ''}{text}")
         for name, label in compared
-        for kind in ("fuel", "time")
+        for kind, text in DELTA_KINDS
+        if delta_column(name, kind) in header
     ]
 
 

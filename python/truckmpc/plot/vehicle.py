@@ -10,7 +10,8 @@ import numpy as np
 
 from truckmpc import _core
 from truckmpc.plot.figures import figure_class, save
-from truckmpc.plot.run import CONTROLLER_STYLE, read_trace
+from truckmpc.plot.run import read_trace
+from truckmpc.plot.run_title import CONTROLLER_STYLE
 from truckmpc.units import KMH_PER_MPS, RPM_PER_RAD_S, W_PER_KW
 from truckmpc.vecto import VectoTruck
 
