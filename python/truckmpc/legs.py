@@ -29,7 +29,7 @@ if TYPE_CHECKING:
     from truckmpc.config import RunConfig
     from truckmpc.sim import RunResult
 
-__all__ = ["drive_legs", "merge_legs", "stops_document", "stops_line"]
+__all__ = ["drive_legs", "merge_legs", "stops_document", "stops_line", "stops_text"]
 
 SUMMED = (
     "distance_m",
@@ -73,15 +73,18 @@ Drive = Callable[[RoadProfile, "RunConfig"], "RunResult"]
 def stops_document(road: RoadProfile) -> dict[str, Any]:
     """The summary's `stops_not_simulated`: how many stops `road` has, their total duration [s], why."""
     total_s = road.stop_time_s
-    return {"count": len(road.stops), "total_stop_s": total_s, "note": STOPS_NOTE}
+    return {"count": len(road.stops), "total_stop_s": total_s, "note": STOPS_NOTE, "legs": len(leg_bounds(road))}
 
 
 def stops_line(road: RoadProfile) -> str:
     """One line for the CLI on how a road's stops are driven (`road.stops` must not be empty)."""
-    legs = leg_bounds(road)
-    total_s = road.stop_time_s
+    return stops_text(len(road.stops), road.stop_time_s, len(leg_bounds(road)))
+
+
+def stops_text(count: int, total_s: float, legs: int) -> str:
+    """The line of :func:`stops_line` from `count` stops lasting `total_s` [s], driven as `legs` legs."""
     return (
-        f"stops not simulated: {len(road.stops)} stops ({total_s:g} s); driven as {len(legs)} stop-free legs, "
+        f"stops not simulated: {count} stops ({total_s:g} s); driven as {legs} stop-free legs, "
         "each from its entry target speed (no launch, no braking to standstill)"
     )
 

@@ -74,6 +74,7 @@ def run_record(request: RunRequest, profile: RoadProfile, config: RunConfig) -> 
             "length_m": profile.length_m,
             "sha256": profile.sha256(),
             "reverse": request.reverse,
+            "target_speeds": profile.target_speed_kmh is not None,
         },
         "controllers": list(request.controllers),
         "controller_road": _controller_road(request, profile),

@@ -1,0 +1,215 @@
+"""The rows and lines of a run's table (:mod:`truckmpc.results.run_table`), each read from the
+``summary.json`` document alone: a controller's figures, its Δ against each baseline, the
+equal-time search, the heading and the notes."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator, Mapping, Sequence
+from pathlib import Path
+from typing import Any, NamedTuple
+
+from truckmpc.legs import stops_text
+from truckmpc.results.table_model import Row
+from truckmpc.units import M_PER_KM
+
+__all__ = [
+    "Figure",
+    "comparison_rows",
+    "driving_rows",
+    "equal_time_rows",
+    "figure_rows",
+    "heading",
+    "notes",
+    "optimum_rows",
+]
+
+NAMES = {"pi": "PI", "vecto_cc": "VECTO CC", "pcc": "PCC", "mpc": "MPC", "optimal": "optimum"}
+"""How a controller is named in a row's label."""
+
+LEGEND = (
+    "Δ [%] = (column − baseline) / baseline: negative = less than the baseline; at equal trip time = "
+    "the baseline re-run at the set speed that matches the column's trip time"
+)
+LEGEND_TARGETS = LEGEND.replace("at the set speed", "with its target speeds offset to the speed")
+
+
+class Figure(NamedTuple):
+    """A summary figure: the row reads ``label [unit]``, each cell the run's ``key`` times
+    ``scale``, formatted with ``spec``."""
+
+    label: str
+    key: str
+    unit: str
+    spec: str
+    scale: float = 1.0
+
+
+_DRIVING = (
+    Figure("fuel per 100 km", "fuel_kg_per_100km", "kg", ".2f"),
+    Figure("mean speed", "mean_speed_kmh", "km/h", ".2f"),
+    Figure("end speed", "end_speed_kmh", "km/h", ".2f"),
+    Figure("gear shifts per 100 km", "gear_shifts_per_100km", "", ".1f"),
+    Figure("neutral coasting: entries per 100 km", "neutral_engagements_per_100km", "", ".1f"),
+    Figure("neutral coasting: distance", "neutral_distance_m", "km", ".1f", 1 / M_PER_KM),
+    Figure("PCC eco-roll entries per 100 km", "eco_roll_entries_per_100km", "", ".1f"),
+    Figure("brake energy", "brake_energy_kj", "MJ", ".1f", 1e-3),
+)
+
+
+def figure_rows(figures: Sequence[tuple[Any, ...]], runs: Sequence[Mapping[str, Any]]) -> tuple[Row, ...]:
+    """One row per figure (a :class:`Figure` or its fields), one cell per run ("" where the run
+    has no value)."""
+    rows = []
+    for fields in figures:
+        figure = Figure(*fields)
+        cells = tuple(_number(run.get(figure.key), figure.spec, figure.scale) for run in runs)
+        rows.append(Row(figure.label, figure.unit, cells))
+    return tuple(rows)
+
+
+def driving_rows(runs: Sequence[Mapping[str, Any]]) -> tuple[Row, ...]:
+    """Fuel per 100 km, speeds, gear shifts, neutral coasting, the PCC's eco-roll and brake energy.
+    A gear shift is a change between forward gears (a stretch in neutral bridged); a neutral entry
+    is every declutching from a gear, eco-roll's among them."""
+    return figure_rows(_DRIVING, runs)
+
+
+def comparison_rows(
+    summary: Mapping[str, Any],
+    columns: Sequence[str],
+    measures: Sequence[tuple[str, str]],
+    baselines: Sequence[str] | None = None,
+) -> tuple[Row, ...]:
+    """For each ``(key, label)`` of ``measures`` and each baseline that ran (or of ``baselines``),
+    the row ``label vs BASELINE [%]``: each controller's ``delta_<key>_pct`` against it in its own column (``n/a``
+    where it was not comparable, "" where it was not compared, the baseline's own cell)."""
+    comparisons = _comparisons(summary)
+    rows = []
+    for key, label in measures:
+        for baseline in _baselines(summary) if baselines is None else baselines:
+            cells = []
+            for name in columns:
+                entry = comparisons.get((name, baseline))
+                cells.append("" if entry is None else _number(entry.get(f"delta_{key}_pct"), "+.2f", na="n/a"))
+            rows.append(Row(f"{label} vs {NAMES.get(baseline, baseline)}", "%", tuple(cells)))
+    return tuple(rows)
+
+
+def optimum_rows(summary: Mapping[str, Any], columns: Sequence[str]) -> tuple[Row, ...]:
+    """The MPC's fuel above the whole-road optimum's [%], in the MPC's column."""
+    if "gap_to_optimal_pct" not in summary:
+        return ()
+    gap = _number(summary["gap_to_optimal_pct"], "+.2f", na="n/a")
+    return (Row("Δfuel vs optimum", "%", tuple(gap if name == "mpc" else "" for name in columns)),)
+
+
+def equal_time_rows(summary: Mapping[str, Any], columns: Sequence[str]) -> tuple[Row, ...]:
+    """Per baseline, what its equal-time search found for each controller: its set speed (or target
+    offset), trip time, fuel, runs and time error, and the end-speed-corrected Δfuel."""
+    rows: list[Row] = []
+    for baseline in _baselines(summary):
+        found = [_equal_time(summary, name, baseline) for name in columns]
+        who = f"{NAMES.get(baseline, baseline)} re-run"
+        offset = any(f"{baseline}_target_offset_kmh" in entry for entry in found)
+        setting = ("target offset", "target_offset_kmh", "+.2f") if offset else ("v_ref", "v_ref_kmh", ".2f")
+        for label, key, unit, spec in (
+            (setting[0], setting[1], "km/h", setting[2]),
+            ("trip time", "time_s", "s", ".1f"),
+            ("fuel", "fuel_kg", "kg", ".3f"),
+            ("search runs", "runs", "", "d"),
+        ):
+            cells = tuple(_number(entry.get(f"{baseline}_{key}"), spec) for entry in found)
+            rows.append(Row(f"{who}: {label}", unit, cells))
+        errors = tuple(_number(entry.get("time_error_pct"), "+.3f") for entry in found)
+        rows.append(Row(f"{who}: time error", "%", errors))
+        measure = (("fuel_equal_time_corrected", "Δfuel at equal trip time, end speeds corrected"),)
+        rows += comparison_rows(summary, columns, measure, (baseline,))
+    return tuple(rows)
+
+
+def heading(summary: Mapping[str, Any]) -> str:
+    """``road <name>: 108.17 km; truck 40000 kg; v_ref 85 km/h, band 77-90 km/h`` (on a road with
+    target speeds, the band around them); the truck and band from the run record when present."""
+    text = f"road {summary.get('road', '?')}: {float(summary.get('length_m', math.nan)) / M_PER_KM:.2f} km"
+    run = summary.get("run") or {}
+    settings = run.get("settings") or {}
+    truck = run.get("vehicle")
+    if isinstance(truck, Mapping) and truck.get("mass_kg") is not None:
+        text += f"; truck {truck['mass_kg']:.0f} kg (VECTO {Path(str(truck.get('vecto_job'))).name})"
+    elif (settings.get("vehicle") or {}).get("mass_kg") is not None:
+        text += f"; truck {settings['vehicle']['mass_kg']:.0f} kg"
+    cruise = settings.get("cruise")
+    if not cruise:
+        return text
+    v_ref, v_inc, v_dec = cruise["v_ref_kmh"], cruise["v_inc_kmh"], cruise["v_dec_kmh"]
+    if not _has_targets(summary):
+        return text + f"; v_ref {v_ref:g} km/h, band {v_ref - v_dec:g}-{v_ref + v_inc:g} km/h"
+    offset = cruise.get("target_offset_kmh") or 0.0
+    moved = f" {offset:+g} km/h" if offset else ""
+    return (
+        text + f"; set speed: the road's targets{moved}, at most v_ref {v_ref:g} km/h; band -{v_dec:g}/+{v_inc:g} km/h"
+    )
+
+
+def notes(summary: Mapping[str, Any], columns: Sequence[str]) -> Iterator[str]:
+    """The lines under the table: how the stops are driven, the legend (when a Δ is shown), why a
+    Δ is not comparable, and each run's message."""
+    runs = [summary[name] for name in columns]
+    stops = next((run["stops_not_simulated"] for run in runs if run.get("stops_not_simulated")), None)
+    if stops is not None:
+        legs = stops.get("legs", max(len(run.get("legs") or ()) for run in runs))
+        yield stops_text(stops["count"], stops["total_stop_s"], legs)
+    if _comparisons(summary):
+        yield LEGEND_TARGETS if _has_targets(summary) else LEGEND
+    seen = set()
+    for (name, baseline), entry in _comparisons(summary).items():
+        reason = entry.get("not_comparable")
+        if reason and (name, reason) not in seen:
+            seen.add((name, reason))
+            yield f"{name} vs {baseline}: {reason}"
+    for name, run in zip(columns, runs, strict=True):
+        if run.get("message"):
+            yield f"{name}: {run['message']}"
+
+
+def _comparisons(summary: Mapping[str, Any]) -> dict[tuple[str, str], Mapping[str, Any]]:
+    """The summary's ``comparisons`` by (controller, baseline)."""
+    entries = summary.get("comparisons") or ()
+    return {(entry["controller"], entry["baseline"]): entry for entry in entries}
+
+
+def _baselines(summary: Mapping[str, Any]) -> list[str]:
+    """The baselines compared against, in the summary's order (the PI first)."""
+    return list(dict.fromkeys(baseline for _, baseline in _comparisons(summary)))
+
+
+def _equal_time(summary: Mapping[str, Any], name: str, baseline: str) -> Mapping[str, Any]:
+    """The equal-time object of ``name`` against ``baseline`` ({} when there is none): against the
+    PI ``equal_time_<name>``, or ``equal_time`` when only two controllers ran."""
+    if (name, baseline) not in _comparisons(summary):
+        return {}
+    if baseline != "pi":
+        return summary.get(f"equal_time_{name}_vs_{baseline}") or {}
+    return summary.get(f"equal_time_{name}") or summary.get("equal_time") or {}
+
+
+def _has_targets(summary: Mapping[str, Any]) -> bool:
+    """Whether the road has target speeds: the run record says so, or an equal-time search moved a
+    target offset."""
+    road = (summary.get("run") or {}).get("road") or {}
+    if "target_speeds" in road:
+        return bool(road["target_speeds"])
+    objects = (v for k, v in summary.items() if k.startswith("equal_time") and isinstance(v, Mapping))
+    return any(key.endswith("_target_offset_kmh") for entry in objects for key in entry)
+
+
+def _number(value: Any, spec: str, scale: float = 1.0, na: str = "") -> str:
+    """``value * scale`` formatted with ``spec``; ``na`` for None, NaN or an infinity."""
+    if value is None or isinstance(value, bool) or (isinstance(value, float) and not math.isfinite(value)):
+        return na
+    if not isinstance(value, int | float):
+        return na
+    if spec.endswith("d"):
+        return format(round(value), spec)
+    return format(value * scale, spec)

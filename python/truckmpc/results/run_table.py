@@ -1,0 +1,113 @@
+"""The table of a run read at a glance, built from its ``summary.json`` document alone.
+
+One column per controller, in run order. The headline comes first (fuel, trip time, Δfuel at
+equal trip time against each baseline that ran), then the Δ as driven, the driving figures and
+the realtime ratio; ``verbose`` adds the solver statistics, the optimum's plan and the equal-time
+search. A row that has no value in any column is left out. Each Δ stands in its own controller's
+column; the baseline's own cell is blank. :func:`render_text` prints it (``truckmpc simulate``);
+the HTML report lays out the same :class:`RunTable`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from truckmpc.convergence import convergence_lines
+from truckmpc.results.run_rows import (
+    comparison_rows,
+    driving_rows,
+    equal_time_rows,
+    figure_rows,
+    heading,
+    notes,
+    optimum_rows,
+)
+from truckmpc.results.table_model import Row, RunTable, Section
+
+__all__ = ["Row", "RunTable", "Section", "render_text", "run_table"]
+
+
+_HEADLINE = (("fuel", "fuel_kg", "kg", ".3f"), ("trip time", "time_s", "s", ".1f"))
+_EQUAL_TIME = (("fuel_equal_time", "Δfuel at equal trip time"),)
+_SOLVER = (
+    ("horizon solves", "horizon_solves", "", "d"),
+    ("infeasible solves", "infeasible_solves", "", "d"),
+    ("relaxed solves driven", "fallback_relaxed", "", "d"),
+    ("rescues", "fallback_rescues", "", "d"),
+    ("rescue distance", "fallback_rescue_m", "m", ".0f"),
+    ("solve time mean", "solve_ms_mean", "ms", ".3f"),
+    ("solve time max", "solve_ms_max", "ms", ".3f"),
+    ("PCC coasting starts (use cases 1, 2)", "pcc_events", "", "d"),
+    ("compute time", "compute_time_s", "s", ".2f"),
+)
+_PLAN = (
+    ("plan fuel", "plan_fuel_kg", "kg", ".3f"),
+    ("plan trip time", "plan_time_s", "s", ".1f"),
+    ("plan solve time", "plan_solve_s", "s", ".2f"),
+)
+_COMPUTE = (("realtime ratio", "realtime_ratio", "", ".2e"),)
+
+
+def run_table(summary: Mapping[str, Any], *, verbose: bool = False) -> RunTable:
+    """The table of the run a ``summary.json`` document records (as :func:`json.load` returns it);
+    ``verbose`` adds the solver statistics, the optimum's plan and the equal-time search."""
+    columns = _columns(summary)
+    runs = [summary[name] for name in columns]
+    headline = figure_rows((("fuel", "fuel_kg", "kg", ".3f"), ("trip time", "time_s", "s", ".1f")), runs)
+    sections = [
+        Section(
+            "", (*headline, *comparison_rows(summary, columns, (("fuel_equal_time", "Δfuel at equal trip time"),)))
+        ),
+        Section("as driven", comparison_rows(summary, columns, _AS_DRIVEN) + optimum_rows(summary, columns)),
+        Section("driving", driving_rows(runs)),
+        Section("compute", figure_rows(_SOLVER if verbose else (), runs) + figure_rows(_COMPUTE, runs)),
+    ]
+    if verbose:
+        sections.append(Section("the optimum's plan", figure_rows(_PLAN, runs)))
+        sections.append(Section("equal trip time: the baseline re-run", equal_time_rows(summary, columns)))
+    shown = tuple(Section(s.title, tuple(r for r in s.rows if any(r.cells))) for s in sections)
+    lines = list(notes(summary, columns))
+    if isinstance(summary.get("convergence"), Mapping):
+        lines += convergence_lines(summary["convergence"], _label_width(shown))
+    return RunTable(heading(summary), columns, tuple(s for s in shown if s.rows), tuple(lines))
+
+
+_AS_DRIVEN = (
+    ("fuel", "Δfuel"),
+    ("time", "Δtrip time"),
+    ("fuel_corrected", "Δfuel, end speeds corrected"),
+)
+
+
+def render_text(table: RunTable) -> str:
+    """The table as plain text: the heading line, a header of the controllers, each section (its
+    title on a line of its own after a blank line), then the notes."""
+    width = _label_width(table.sections)
+    cell = max(10, *(len(c) + 2 for c in table.columns))
+    cell = max(cell, *(len(v) + 2 for s in table.sections for r in s.rows for v in r.cells))
+    lines = [table.heading, " " * width + "".join(f"{name:>{cell}}" for name in table.columns)]
+    for section in table.sections:
+        if section.title:
+            lines += ["", section.title]
+        for row in section.rows:
+            line = f"{_head(row):<{width}}" + "".join(f"{value:>{cell}}" for value in row.cells)
+            lines.append(line.rstrip())
+    return "\n".join([*lines, *table.notes])
+
+
+def _head(row: Row) -> str:
+    return f"{row.label} [{row.unit}]" if row.unit else row.label
+
+
+def _label_width(sections: tuple[Section, ...]) -> int:
+    """The label column: the longest ``label [unit]`` and two spaces."""
+    return max((len(_head(row)) + 2 for section in sections for row in section.rows), default=30)
+
+
+def _columns(summary: Mapping[str, Any]) -> tuple[str, ...]:
+    """The controllers that ran, in run order (the run record's; else the summary's own order)."""
+    recorded = (summary.get("run") or {}).get("controllers")
+    if recorded:
+        return tuple(name for name in recorded if isinstance(summary.get(name), Mapping))
+    return tuple(k for k, v in summary.items() if isinstance(v, Mapping) and "fuel_kg" in v)
