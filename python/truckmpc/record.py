@@ -61,13 +61,18 @@ def program_version() -> str:
         return "unknown"
 
 
+def program_record() -> dict[str, str]:
+    """The program that ran: ``{"name": "truckmpc", "version": ...}``."""
+    return {"name": "truckmpc", "version": program_version()}
+
+
 def run_record(request: RunRequest, profile: RoadProfile, config: RunConfig) -> dict[str, Any]:
     """The `run` object of `summary.json`."""
     road_path = None if request.road_path is None else str(Path(request.road_path).resolve())
     settings = config.as_dict()
     settings.pop("sources")
     return {
-        "program": {"name": "truckmpc", "version": program_version()},
+        "program": program_record(),
         "road": {
             "name": profile.name,
             "path": road_path,
