@@ -92,7 +92,10 @@ def _replay_html(run: RunDir) -> str:
     ]
     typed = typed_line(run.summary["run"].get("command"))
     if typed is not None:
-        parts += ["<p>The command as it was given, in the directory it was given in:</p>\n", code_block(typed)]
+        parts += [
+            "<p>The command as it was given, in the directory it was given in:</p>\n",
+            code_block(typed, ident="typed-command"),
+        ]
     return "".join(parts)
 
 
