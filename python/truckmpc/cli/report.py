@@ -26,8 +26,11 @@ def report_cmd(
         typer.Option("--out", metavar="FILE", help="Where to write the page (default: DIR/report.html)."),
     ] = None,
 ) -> None:
-    """Write one self-contained HTML page for a run or a sweep, to hand on: the summary table, the
-    figures, the command that repeats it, its provenance and every parameter. Figures need matplotlib."""
+    """Write an HTML report of a run or a sweep.
+
+    One self-contained page (DIR/report.html) to hand on: the summary table, the figures, the command
+    that repeats the run, its provenance and every parameter with its unit. Figures need matplotlib.
+    """
     report = write_report(directory, out)
     if report.missing_figures is not None:
         typer.echo(f"note: no figures in the report: {report.missing_figures}", err=True)

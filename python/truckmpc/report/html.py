@@ -89,7 +89,7 @@ h3 { font-size: 1.05rem; margin: 1.4rem 0 0.4rem; }
 .subtitle { color: #56616c; margin-top: 0; }
 .lead { font-size: 1.05rem; background: #f2f6fa; border-left: 4px solid #2f6fa7; padding: 0.5rem 1rem; }
 .lead p { margin: 0.3rem 0; }
-nav { font-size: 0.95rem; } nav a { margin-right: 1.1rem; }
+nav { font-size: 0.95rem; margin: 0.9rem 0; } nav a { margin-right: 1.1rem; }
 table { border-collapse: collapse; margin: 0.6rem 0 1rem; font-size: 0.92rem; }
 caption { text-align: left; font-weight: 600; padding-bottom: 0.3rem; }
 th, td { padding: 0.28rem 0.7rem; border-bottom: 1px solid #e3e7eb; vertical-align: top; }

@@ -86,8 +86,8 @@ def _headline(summary: Mapping[str, Any]) -> list[str]:
 
 def _replay_html(run: RunDir) -> str:
     parts = [
-        "<p>Every resolved parameter, from this run's summary.json (the road file must still be the one "
-        "run: its SHA-256 is checked):</p>\n",
+        "<p>Every resolved parameter, from this run's summary.json (the road file must still be the one that "
+        "was run: its SHA-256 is checked):</p>\n",
         code_block(replay_run(run.path), ident="replay-command"),
     ]
     typed = typed_line(run.summary["run"].get("command"))
