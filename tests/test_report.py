@@ -254,3 +254,21 @@ def test_bad_directories_are_one_line_exit_2_and_nothing_written(tmp_path: Path)
         assert not (directory / "report.html").exists()
     code, _, err = cli("report", str(corrupt), "--out", str(tmp_path / "elsewhere.html"))
     assert code == 2 and not (tmp_path / "elsewhere.html").exists()
+
+
+def test_without_matplotlib_the_report_is_written_without_figures_and_says_so(
+    run_dir: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from truckmpc.plot import MISSING_MATPLOTLIB, PlotError
+    from truckmpc.report import figures
+
+    def no_matplotlib(*args: object, **kwargs: object) -> list[Path]:
+        raise PlotError(MISSING_MATPLOTLIB)
+
+    monkeypatch.setattr(figures, "plot_dir", no_matplotlib)
+    target = tmp_path / "plain.html"
+    code, _, err = cli("report", str(run_dir), "--out", str(target))
+    assert code == 0 and MISSING_MATPLOTLIB in err
+    page = Page(target.read_text(encoding="utf-8"))
+    assert not page.images and "No figures: " + MISSING_MATPLOTLIB in "".join(page.text)
+    assert page.tables["run-table"][0] == ["", "pi", "pcc", "mpc"]
