@@ -2,7 +2,8 @@
 
 The record names the program and its version, the road (name, file, length, SHA-256 of its points,
 direction), the map the controllers planned on if it was another road, the controllers, the inputs
-as the user gave them (vehicle file, overlay files, `--set` overrides) and every resolved parameter.
+as the user gave them (vehicle file, overlay files, `--set` overrides), every resolved parameter and
+the command line that asked for the run (with its working directory).
 `truckmpc simulate --replay summary.json` rebuilds the run from the resolved parameters and the
 road file, checking that the road is still the one that was run.
 """
@@ -48,6 +49,8 @@ class RunRequest:
     """Whether the MPC also ran at half δ and half S (`--check-convergence`)."""
     controller_road_path: str | None = None
     """The road the controllers planned on, if not the road driven (`--controller-road`)."""
+    command: Mapping[str, Any] | None = None
+    """The command line that asked for the run, ``{"argv": [...], "cwd": DIR}``; None from the Python API."""
 
 
 def program_version() -> str:
@@ -58,13 +61,18 @@ def program_version() -> str:
         return "unknown"
 
 
+def program_record() -> dict[str, str]:
+    """The program that ran: ``{"name": "truckmpc", "version": ...}``."""
+    return {"name": "truckmpc", "version": program_version()}
+
+
 def run_record(request: RunRequest, profile: RoadProfile, config: RunConfig) -> dict[str, Any]:
     """The `run` object of `summary.json`."""
     road_path = None if request.road_path is None else str(Path(request.road_path).resolve())
     settings = config.as_dict()
     settings.pop("sources")
     return {
-        "program": {"name": "truckmpc", "version": program_version()},
+        "program": program_record(),
         "road": {
             "name": profile.name,
             "path": road_path,
@@ -83,6 +91,7 @@ def run_record(request: RunRequest, profile: RoadProfile, config: RunConfig) -> 
         },
         "settings": settings,
         "vehicle": None if config.truck is None else truck_record(config.truck),
+        "command": None if request.command is None else dict(request.command),
     }
 
 
@@ -155,8 +164,15 @@ def load_replay(path: Path) -> tuple[RunRequest, RoadProfile, RunConfig]:
     unknown = [name for name in controllers if name not in CONTROLLERS]
     if unknown or not controllers:
         raise ConfigError(f"{where}: run.controllers: expected some of {', '.join(CONTROLLERS)}, got {unknown}")
+    command = run.get("command")  # a replay is the run its summary's command asked for
     request = RunRequest(
-        road_path, reverse, controllers, *given, check_convergence=check, controller_road_path=told_path
+        road_path,
+        reverse,
+        controllers,
+        *given,
+        check_convergence=check,
+        controller_road_path=told_path,
+        command=command if isinstance(command, dict) else None,
     )
     return request, profile, config
 

@@ -28,14 +28,16 @@ Commands::
     truckmpc config defaults [--dir DIR]
     truckmpc bench [--json] [--road FILE] [--quick] [--set key=value ...]
     truckmpc plot DIR [--svg] [--out FILE_OR_DIR]
+    truckmpc report DIR [--out FILE]
 
 Modules: :mod:`~truckmpc.cli.simulate` (simulate, its --replay), :mod:`~truckmpc.cli.robustness`,
 :mod:`~truckmpc.cli.sweep`, :mod:`~truckmpc.cli.pareto` (and :mod:`~truckmpc.cli.study`, what those
 two share), :mod:`~truckmpc.cli.model`, :mod:`~truckmpc.cli.road`, :mod:`~truckmpc.cli.vehicle`,
 :mod:`~truckmpc.cli.config`,
-:mod:`~truckmpc.cli.bench`, :mod:`~truckmpc.cli.plot`; :mod:`~truckmpc.cli.options` (the options
-several commands share) and :mod:`~truckmpc.cli.errors` (one-line errors). The library never
-imports this package.
+:mod:`~truckmpc.cli.bench`, :mod:`~truckmpc.cli.plot`, :mod:`~truckmpc.cli.report`;
+:mod:`~truckmpc.cli.options` (the options several commands share), :mod:`~truckmpc.cli.errors`
+(one-line errors) and :mod:`~truckmpc.cli.invocation` (the command line, as recorded). The library
+never imports this package.
 
 Every input problem (a :class:`~truckmpc.errors.TruckmpcError`, a usage error, an unreadable or
 unwritable file) ends the command with exactly one line ``error: ...`` on stderr and exit code 2, no
@@ -52,6 +54,7 @@ from truckmpc.cli.errors import OneLineErrors
 from truckmpc.cli.model import model_app
 from truckmpc.cli.pareto import pareto_cmd
 from truckmpc.cli.plot import plot_cmd
+from truckmpc.cli.report import report_cmd
 from truckmpc.cli.road import road_app
 from truckmpc.cli.robustness import robustness_cmd
 from truckmpc.cli.simulate import simulate_cmd
@@ -77,6 +80,7 @@ app.command("robustness")(robustness_cmd)
 app.command("sweep")(sweep_cmd)
 app.command("pareto")(pareto_cmd)
 app.command("plot")(plot_cmd)
+app.command("report")(report_cmd)
 app.add_typer(model_app, name="model")
 app.add_typer(road_app, name="road")
 app.add_typer(vehicle_app, name="vehicle")

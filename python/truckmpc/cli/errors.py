@@ -11,6 +11,7 @@ from typing import Any, NoReturn
 import typer
 from typer.core import TyperGroup
 
+from truckmpc.cli.invocation import remember_arguments
 from truckmpc.errors import TruckmpcError
 from truckmpc.signals import Stopped
 
@@ -60,6 +61,7 @@ class OneLineErrors(TyperGroup):
         windows_expand_args: bool = True,
         **extra: Any,
     ) -> Any:
+        remember_arguments(args)
         try:
             rv = super().main(
                 args=args,

@@ -9,6 +9,7 @@ from typing import Annotated
 
 import typer
 
+from truckmpc.cli.invocation import typed_command
 from truckmpc.cli.options import ConfigOpt, ForceOpt, SetOpt, VehicleOpt, run_config_from
 from truckmpc.config import RunConfig
 from truckmpc.convergence import halved_configs
@@ -165,7 +166,9 @@ def _requested(
     names = controller_names(BOTH if controller is None else controller)
     inputs = (_text(vehicle), tuple(map(str, config or ())), tuple(set_ or ()))
     told = _text(controller_road)
-    request = RunRequest(_text(road), reverse, names, *inputs, check_convergence, controller_road_path=told)
+    request = RunRequest(
+        _text(road), reverse, names, *inputs, check_convergence, controller_road_path=told, command=typed_command()
+    )
     return request, profile, run_config
 
 

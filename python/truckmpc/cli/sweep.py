@@ -3,14 +3,17 @@ roads, a grid and a fleet, one line printed per row."""
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
+from truckmpc.cli.invocation import typed_command
 from truckmpc.cli.options import ConfigOpt, ForceOpt, JobsOpt, QuietOpt, ReverseAllOpt, RoadsOpt, SchedulerOpt, SetOpt
 from truckmpc.cli.study import notice, pooled_study, stop_notes, study_inputs
+from truckmpc.record import program_record
 from truckmpc.status import status_line
 from truckmpc.sweep import plan_sweep, progress_bar, run_plan
 from truckmpc.sweep.columns import check_controllers, delta_column
@@ -92,6 +95,10 @@ def sweep_cmd(
                 check_convergence=check_convergence,
                 controllers=controllers,
             )
+        # recorded in sweep.json; not part of the sweep's identity, so a resume may be typed differently
+        plan = dataclasses.replace(
+            plan, settings={**plan.settings, "command": typed_command(), "program": program_record()}
+        )
         stop_notes(plan.roads)
         with progress_bar(not quiet) as hook:
             result = run_plan(plan, out, jobs=jobs, progress=hook, force=force, notice=notice, scheduler=scheduler)

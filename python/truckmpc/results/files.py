@@ -71,8 +71,8 @@ def _clean(value: Any) -> Any:
     return value
 
 
-RUN_FILES = ("summary.json", "trace-*.csv", "run.png", "run.svg")
-"""What a run directory holds (its outputs and its plots); a new run replaces them all."""
+RUN_FILES = ("summary.json", "trace-*.csv", "run.png", "run.svg", "report.html")
+"""What a run directory holds (its outputs, its plots and its report); a new run replaces them all."""
 
 
 def check_run_dir(out_dir: str | os.PathLike[str]) -> None:

@@ -1,0 +1,134 @@
+"""The page of a run: the table, the figures, how to repeat the run, where it came from, and every
+parameter it ran with."""
+
+from __future__ import annotations
+
+import base64
+import json
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from truckmpc.report.figures import Figure, figures_html
+from truckmpc.report.html import code_block, definitions, escape, section
+from truckmpc.report.inputs import RunDir
+from truckmpc.report.replay import replay_run, typed_line
+from truckmpc.report.run_table import run_table_html
+from truckmpc.report.settings import settings_html
+from truckmpc.results.run_rows import NAMES
+from truckmpc.results.run_table import run_table
+
+__all__ = ["run_body", "run_title"]
+
+_CONTENTS = (
+    ("summary", "Summary"),
+    ("figures", "Figures"),
+    ("replay", "Repeat the run"),
+    ("provenance", "Provenance"),
+    ("configuration", "Configuration"),
+)
+
+
+def run_title(run: RunDir) -> str:
+    """The page's title: the road and the controllers."""
+    return f"truckmpc run: {run.summary.get('road', run.path.name)} ({', '.join(run.controllers)})"
+
+
+def run_body(run: RunDir, figures: list[Figure], missing: str | None) -> str:
+    """The body of a run's page."""
+    summary = run.summary
+    model = run_table(summary)
+    details = run_table(summary, verbose=True)
+    nav = " ".join(f'<a href="#{ident}">{escape(title)}</a>' for ident, title in _CONTENTS)
+    parts = [
+        f"<h1>{escape(run_title(run))}</h1>\n",
+        f'<p class="subtitle">{escape(model.heading)}</p>\n',
+        _lead(_headline(summary)),
+        f"<nav>{nav}</nav>\n",
+        section(
+            "summary",
+            "Summary",
+            run_table_html(model, ident="run-table")
+            + "<details><summary>Solver statistics and the equal-time search</summary>\n"
+            + run_table_html(details)
+            + "</details>\n",
+        ),
+        section("figures", "Figures", figures_html(figures, missing)),
+        section("replay", "Repeat the run", _replay_html(run)),
+        section("provenance", "Provenance", definitions(_provenance(summary["run"], run.path))),
+        section("configuration", "Configuration", settings_html(summary["run"]["settings"]) + _download(summary)),
+    ]
+    return "".join(parts)
+
+
+def _lead(lines: list[str]) -> str:
+    """The headline sentences in one box at the top of the page."""
+    if not lines:
+        return ""
+    return '<div class="lead">' + "".join(f"<p>{escape(line)}</p>" for line in lines) + "</div>\n"
+
+
+def _headline(summary: Mapping[str, Any]) -> list[str]:
+    """One sentence per comparison: how much less (or more) fuel at equal trip time, else as driven."""
+    lines = []
+    for comparison in summary.get("comparisons") or ():
+        if not isinstance(comparison, Mapping):
+            continue
+        run, base = (NAMES.get(str(comparison.get(k)), str(comparison.get(k))) for k in ("controller", "baseline"))
+        delta, how = comparison.get("delta_fuel_equal_time_pct"), "at equal trip time"
+        if not isinstance(delta, (int, float)):
+            delta, how = comparison.get("delta_fuel_pct"), "as driven"
+        if isinstance(delta, (int, float)):
+            word = "less" if delta < 0 else "more"
+            lines.append(f"The {run} uses {abs(delta):.2f} % {word} fuel than the {base} {how}.")
+    return lines
+
+
+def _replay_html(run: RunDir) -> str:
+    parts = [
+        "<p>Every resolved parameter, from this run's summary.json (the road file must still be the one that "
+        "was run: its SHA-256 is checked):</p>\n",
+        code_block(replay_run(run.path), ident="replay-command"),
+    ]
+    typed = typed_line(run.summary["run"].get("command"))
+    if typed is not None:
+        parts += [
+            "<p>The command as it was given, in the directory it was given in:</p>\n",
+            code_block(typed, ident="typed-command"),
+        ]
+    return "".join(parts)
+
+
+def _provenance(record: Mapping[str, Any], directory: Path) -> dict[str, Any]:
+    """What the run record says about where the run came from, in the words of a reader."""
+    road = record.get("road") or {}
+    inputs = record.get("inputs") or {}
+    program = record.get("program") or {}
+    told = record.get("controller_road")
+    return {
+        "run directory": str(directory.resolve()),
+        "program": f"{program.get('name', 'truckmpc')} {program.get('version', '')}".strip(),
+        "road": road.get("name"),
+        "road file": road.get("path") or "the bundled test track",
+        "road SHA-256": road.get("sha256"),
+        "road length [km]": road["length_m"] / 1000 if isinstance(road.get("length_m"), (int, float)) else None,
+        "direction": "reversed" if road.get("reverse") else "as in the file",
+        "map the controllers planned on": told if told else "the road driven",
+        "controllers": ", ".join(map(str, record.get("controllers") or ())),
+        "convergence check": record.get("check_convergence"),
+        "vehicle file": inputs.get("vehicle") or "none (the packaged 40 t truck)",
+        "configuration files": inputs.get("configs") or "none",
+        "--set overrides": inputs.get("overrides") or "none",
+        "VECTO truck": record.get("vehicle") or "none",
+    }
+
+
+def _download(summary: Mapping[str, Any]) -> str:
+    """The whole summary.json, to read here or save (and replay with ``simulate --replay``)."""
+    text = json.dumps(summary, indent=2)
+    data = base64.b64encode(text.encode("utf-8")).decode("ascii")
+    return (
+        f'<p><a download="summary.json" href="data:application/json;base64,{data}">Save summary.json</a> '
+        "(every figure and parameter of the run, as written by truckmpc simulate).</p>\n"
+        f"<details><summary>summary.json</summary><pre><code>{escape(text)}</code></pre></details>\n"
+    )
