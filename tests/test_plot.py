@@ -65,9 +65,9 @@ def write_sweep(
     """A synthetic sweep.csv in the layout `truckmpc sweep` writes (road, direction, axes, results)."""
     directory.mkdir(parents=True, exist_ok=True)
     axes = ["horizon_m"] + ["stage_m"] * bool(stages) + ["delta_kmh"] * bool(deltas) + ["allow_neutral"] * bool(neutral)
-    results = ["pi_fuel_kg", "pi_time_s", "mpc_fuel_kg", "mpc_time_s", "neutral_distance_m"]
-    results += ["realtime_ratio", "solve_ms_mean", "solve_ms_max", "infeasible_solves"] * realtime
-    results += ["delta_fuel_pct", "delta_time_pct"]
+    results = ["pi_fuel_kg", "pi_time_s", "mpc_fuel_kg", "mpc_time_s", "mpc_neutral_distance_m"]
+    results += ["mpc_realtime_ratio", "mpc_solve_ms_mean", "mpc_solve_ms_max", "mpc_infeasible_solves"] * realtime
+    results += ["mpc_delta_fuel_pct", "mpc_delta_time_pct"]
     with (directory / "sweep.csv").open("w", newline="") as handle:
         writer = csv.writer(handle)
         writer.writerow(["road", "direction", *axes, *results])
@@ -86,13 +86,13 @@ def write_sweep(
                 "pi_time_s": 4761.2,
                 "mpc_fuel_kg": 35.6 * (1 + saving / 100),
                 "mpc_time_s": 4761.2 * (1 + dtime / 100),
-                "neutral_distance_m": 1200.0 * n,
-                "realtime_ratio": q,
-                "solve_ms_mean": q * 1e3,
-                "solve_ms_max": q * 2e3,
-                "infeasible_solves": 0,
-                "delta_fuel_pct": saving,
-                "delta_time_pct": dtime,
+                "mpc_neutral_distance_m": 1200.0 * n,
+                "mpc_realtime_ratio": q,
+                "mpc_solve_ms_mean": q * 1e3,
+                "mpc_solve_ms_max": q * 2e3,
+                "mpc_infeasible_solves": 0,
+                "mpc_delta_fuel_pct": saving,
+                "mpc_delta_time_pct": dtime,
             }
             writer.writerow(["test-track", direction, *(cells[c] for c in axes + results)])
     grid = [{"key": a, "values": []} for a in axes]
@@ -167,8 +167,8 @@ def test_a_long_stalled_run_renders_with_decimated_lines(in_tmp):
                 "allow_neutral": True,
             },
         },
-        "delta_fuel_pct": -3.0,
-        "delta_time_pct": 0.1,
+        "mpc_delta_fuel_pct": -3.0,
+        "mpc_delta_time_pct": 0.1,
     }
     (out / "summary.json").write_text(json.dumps(summary))
     result = run("plot", out)

@@ -17,12 +17,14 @@ from typing import Any
 
 from truckmpc.plot.figures import PlotError, figure_class, save
 from truckmpc.plot.sweep_csv import compared_controllers, delta_metrics, grid_axes, read_sweep
+from truckmpc.sweep.columns import run_column
 
 Row = Mapping[str, Any]
 Panel = tuple[Any, Any]
 """(road, direction) of one column of panels; None where the CSV has no such column."""
 
-_REALTIME = (("realtime_ratio", "real-time ratio q [-]\n(compute time / driven time)"),)
+_REALTIME_COLUMN = run_column("mpc", "realtime_ratio")
+_REALTIME = ((_REALTIME_COLUMN, "real-time ratio q [-]\n(compute time / driven time)"),)
 _AXIS_LABELS = {"horizon_m": "prediction horizon [m]", "stage_m": "S", "delta_kmh": "δ"}
 _UNITS = (("_kmh", "km/h"), ("_rpm", "rpm"), ("_kg", "kg"), ("_pct", "%"), ("_m", "m"), ("_s", "s"))
 
@@ -63,7 +65,7 @@ def plot_sweep(directory: str | os.PathLike[str], out: str | os.PathLike[str], *
     pictures: list[tuple[Sequence[tuple[str, str]], bool, str, Path]] = [
         (delta_metrics(compared), False, f"{subject} against PI: ({look_ahead} − PI) / PI{note}", out)
     ]
-    if "realtime_ratio" in header:
+    if _REALTIME_COLUMN in header:
         realtime = out.with_name(f"{out.stem}-realtime{out.suffix}" if out.name != "sweep.png" else "realtime.png")
         pictures.append((_REALTIME, True, f"MPC closed-loop real-time ratio{note}", realtime))
     Figure = figure_class()
