@@ -26,7 +26,9 @@ OutOpt = Annotated[
     typer.Option(
         "--out",
         metavar="DIR",
-        help="Output directory: sweep.csv, sweep.json (and sweep.partial.csv while running).",
+        help="Output directory: sweep.csv (a row per road and combination, each figure in a column "
+        "<controller>_<figure>: pi_fuel_kg, mpc_delta_fuel_pct), sweep.json (and sweep.partial.csv while running; "
+        "summary.csv for a fleet, sweep.parquet with --parquet).",
     ),
 ]
 GridOpt = Annotated[
