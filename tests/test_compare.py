@@ -98,4 +98,4 @@ def test_sweep_row_and_summary_json_give_the_same_deltas(pi, mpc):
     doc = summary_document(ROAD, {"pi": result("pi", pi), "mpc": result("mpc", mpc)})
     cells = dict(zip(SWEEP_COLUMNS, result_cells({k: pi[k] for k in PI_FIELDS}, mpc), strict=True))
     for key in ("delta_fuel_pct", "delta_time_pct"):
-        assert cells[key] == ("" if doc[key] is None else repr(doc[key]))
+        assert cells[f"mpc_{key}"] == ("" if doc[key] is None else repr(doc[key]))

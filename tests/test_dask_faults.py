@@ -24,7 +24,7 @@ SWEEP = ["--road", str(ROAD), "--grid", "horizon_m=1500:3000:500", "--grid", "al
 SETTINGS = ["--set", "delta_kmh=0.04"]
 ROWS = 8
 COMMAND = [sys.executable, "-c", "from truckmpc.cli import main; main()"]
-TIMING = {"realtime_ratio", "solve_ms_mean", "solve_ms_max"}
+TIMING = {"mpc_realtime_ratio", "mpc_solve_ms_mean", "mpc_solve_ms_max"}
 """Columns that are measured wall times: they differ between two runs of the same row."""
 
 pytestmark = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs Linux /proc")

@@ -70,9 +70,9 @@ def test_a_broken_road_fails_in_its_rows_only(swept) -> None:
     broken = [r for r in rows if r["road"] == "broken"]
     assert len(broken) == 8 and all(r["error"].startswith("pi, mpc: ") for r in broken)
     assert all("broken.csv:1: expected a header" in r["error"] for r in broken)
-    assert all(r["pi_fuel_kg"] == r["delta_fuel_pct"] == r["mpc_stalled"] == "" for r in broken)
+    assert all(r["pi_fuel_kg"] == r["mpc_delta_fuel_pct"] == r["mpc_stalled"] == "" for r in broken)
     others = [r for r in rows if r["road"] != "broken"]
-    assert all(r["error"] == "" and r["delta_fuel_pct"] != "" for r in others)
+    assert all(r["error"] == "" and r["mpc_delta_fuel_pct"] != "" for r in others)
     assert "all rows mpc: delta fuel " in result.stdout and "; 8 failed, on broken" in result.stdout
 
 
@@ -92,12 +92,12 @@ def test_the_summary_gives_mean_spread_and_worst_road_per_axis_value(swept) -> N
     ]
     for entry in summary:
         members = [r for r in rows if entry["axis"] == "all" or r[entry["axis"]] == entry["value"]]
-        fuel = [float(r["delta_fuel_pct"]) for r in members if r["delta_fuel_pct"]]
+        fuel = [float(r["mpc_delta_fuel_pct"]) for r in members if r["mpc_delta_fuel_pct"]]
         failed = sum(bool(r["error"]) for r in members)
         assert (int(entry["rows"]), int(entry["compared"]), int(entry["failed"])) == (len(members), len(fuel), failed)
         assert float(entry["mean_delta_fuel_pct"]) == pytest.approx(statistics.fmean(fuel), rel=1e-5)
         assert float(entry["std_delta_fuel_pct"]) == pytest.approx(statistics.stdev(fuel), rel=1e-5)
-        worst = max((r for r in members if r["delta_fuel_pct"]), key=lambda r: float(r["delta_fuel_pct"]))
+        worst = max((r for r in members if r["mpc_delta_fuel_pct"]), key=lambda r: float(r["mpc_delta_fuel_pct"]))
         assert (entry["worst_road"], entry["worst_direction"], entry["worst_vehicle"]) == (
             worst["road"],
             worst["direction"],

@@ -16,7 +16,7 @@ from truckmpc.sweep import PARTIAL_NAME
 
 runner = CliRunner()
 # Columns that are measured wall times: they differ between two runs of the same row.
-TIMING = {"realtime_ratio", "solve_ms_mean", "solve_ms_max"}
+TIMING = {"mpc_realtime_ratio", "mpc_solve_ms_mean", "mpc_solve_ms_max"}
 
 
 def run(*args: object):

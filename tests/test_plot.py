@@ -173,8 +173,8 @@ def test_a_long_stalled_run_renders_with_decimated_lines(in_tmp):
                 "allow_neutral": True,
             },
         },
-        "delta_fuel_pct": -3.0,
-        "delta_time_pct": 0.1,
+        "mpc_delta_fuel_pct": -3.0,
+        "mpc_delta_time_pct": 0.1,
     }
     (out / "summary.json").write_text(json.dumps(summary))
     result = run("plot", out)

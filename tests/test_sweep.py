@@ -26,7 +26,7 @@ from truckmpc.sweep.columns import MPC_FIELDS, PI_FIELDS, result_cells
 
 runner = CliRunner()
 # Columns that are measured wall times: they differ between two runs of the same row.
-TIMING = {"realtime_ratio", "solve_ms_mean", "solve_ms_max"}
+TIMING = {"mpc_realtime_ratio", "mpc_solve_ms_mean", "mpc_solve_ms_max"}
 
 
 @pytest.fixture(scope="module")
@@ -135,13 +135,13 @@ def test_rows_columns_and_deltas(descent, tmp_path, count_runs):
         "mpc_fuel_kg",
         "mpc_time_s",
         "mpc_end_speed_kmh",
-        "delta_fuel_pct",
-        "delta_time_pct",
-        "realtime_ratio",
-        "solve_ms_mean",
-        "solve_ms_max",
-        "infeasible_solves",
-        "neutral_distance_m",
+        "mpc_delta_fuel_pct",
+        "mpc_delta_time_pct",
+        "mpc_realtime_ratio",
+        "mpc_solve_ms_mean",
+        "mpc_solve_ms_max",
+        "mpc_infeasible_solves",
+        "mpc_neutral_distance_m",
         "pi_brake_energy_kj",
         "mpc_brake_energy_kj",
         "pi_stalled",
@@ -158,14 +158,16 @@ def test_rows_columns_and_deltas(descent, tmp_path, count_runs):
     for row in rows:
         pi_fuel, mpc_fuel = float(row["pi_fuel_kg"]), float(row["mpc_fuel_kg"])
         pi_time, mpc_time = float(row["pi_time_s"]), float(row["mpc_time_s"])
-        assert float(row["delta_fuel_pct"]) == pytest.approx(100 * (mpc_fuel - pi_fuel) / pi_fuel, rel=1e-12)
-        assert float(row["delta_time_pct"]) == pytest.approx(100 * (mpc_time - pi_time) / pi_time, rel=1e-12)
+        assert float(row["mpc_delta_fuel_pct"]) == pytest.approx(100 * (mpc_fuel - pi_fuel) / pi_fuel, rel=1e-12)
+        assert float(row["mpc_delta_time_pct"]) == pytest.approx(100 * (mpc_time - pi_time) / pi_time, rel=1e-12)
         assert row["pi_stalled"] == row["mpc_stalled"] == "false"
-        assert float(row["realtime_ratio"]) > 0
-        equal_fuel = float(row["equal_time_pi_fuel_kg"])
-        assert float(row["delta_fuel_equal_time_pct"]) == pytest.approx(100 * (mpc_fuel / equal_fuel - 1), rel=1e-12)
-        corrected = float(row["mpc_fuel_corrected_kg"]) / float(row["equal_time_pi_fuel_corrected_kg"])
-        assert float(row["delta_fuel_equal_time_corrected_pct"]) == pytest.approx(100 * (corrected - 1), rel=1e-12)
+        assert float(row["mpc_realtime_ratio"]) > 0
+        equal_fuel = float(row["mpc_equal_time_pi_fuel_kg"])
+        assert float(row["mpc_delta_fuel_equal_time_pct"]) == pytest.approx(
+            100 * (mpc_fuel / equal_fuel - 1), rel=1e-12
+        )
+        corrected = float(row["mpc_fuel_corrected_kg"]) / float(row["mpc_equal_time_pi_fuel_corrected_kg"])
+        assert float(row["mpc_delta_fuel_equal_time_corrected_pct"]) == pytest.approx(100 * (corrected - 1), rel=1e-12)
     assert untimed(result.rows) == untimed(rows)
     assert count_runs == {"pi": 1, "mpc": 4} and (result.pi_runs, result.mpc_runs) == (1, 4)
     # The same figures as simulate itself gives for one of the rows.
@@ -183,7 +185,7 @@ def test_deltas_blank_when_a_run_stalled():
     pi = dict.fromkeys(PI_FIELDS, 1.0) | {"stalled": False}
     mpc = dict.fromkeys(MPC_FIELDS, 1.0) | {"stalled": True}
     cells = dict(zip(SWEEP_COLUMNS, result_cells(pi, mpc), strict=True))
-    assert cells["mpc_stalled"] == "true" and cells["delta_fuel_pct"] == cells["delta_time_pct"] == ""
+    assert cells["mpc_stalled"] == "true" and cells["mpc_delta_fuel_pct"] == cells["mpc_delta_time_pct"] == ""
 
 
 @pytest.mark.parametrize(
@@ -383,13 +385,13 @@ def test_check_convergence_adds_the_moves_as_columns(descent, tmp_path):
     )
     assert run.exit_code == 0, run.output
     convergence = json.loads((tmp_path / "s" / "summary.json").read_text())["convergence"]
-    for column in (
+    for key in (
         "delta_fuel_pct_half_delta",
         "delta_fuel_pct_half_stage",
         "delta_time_pct_half_delta",
         "delta_time_pct_half_stage",
     ):
-        assert float(row[column]) == pytest.approx(convergence[column], abs=1e-9), column
+        assert float(row[f"mpc_{key}"]) == pytest.approx(convergence[key], abs=1e-9), key
     # Without the flag the columns are not there, and the two sweeps are not mixed in one directory.
     again = CliRunner().invoke(app, ["sweep", "--road", str(descent), "--grid", "delta_kmh=0.2", "--out", str(out)])
     assert again.exit_code == 2 and "different sweep" in again.output

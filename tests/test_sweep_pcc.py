@@ -18,17 +18,17 @@ from truckmpc.sweep.cells import parse_cell
 from truckmpc.sweep.columns import PCC_FIELDS, PI_FIELDS
 
 runner = CliRunner()
-TIMING = {"realtime_ratio", "solve_ms_mean", "solve_ms_max"}
+TIMING = {"mpc_realtime_ratio", "mpc_solve_ms_mean", "mpc_solve_ms_max"}
 PCC_DELTAS = ("pcc_delta_fuel_pct", "pcc_delta_time_pct", "pcc_delta_fuel_equal_time_pct")
 SUMMARY_KEYS = (
-    (("mpc", "pi"), "delta_fuel_pct", "delta_fuel_pct"),
-    (("mpc", "pi"), "delta_time_pct", "delta_time_pct"),
-    (("mpc", "pi"), "delta_fuel_equal_time_pct", "delta_fuel_equal_time_pct"),
+    (("mpc", "pi"), "delta_fuel_pct", "mpc_delta_fuel_pct"),
+    (("mpc", "pi"), "delta_time_pct", "mpc_delta_time_pct"),
+    (("mpc", "pi"), "delta_fuel_equal_time_pct", "mpc_delta_fuel_equal_time_pct"),
     (("pcc", "pi"), "delta_fuel_pct", "pcc_delta_fuel_pct"),
     (("pcc", "pi"), "delta_time_pct", "pcc_delta_time_pct"),
     (("pcc", "pi"), "delta_fuel_equal_time_pct", "pcc_delta_fuel_equal_time_pct"),
-    (("mpc", "pcc"), "delta_fuel_pct", "delta_fuel_mpc_vs_pcc_pct"),
-    (("mpc", "pcc"), "delta_fuel_equal_time_pct", "delta_fuel_equal_time_mpc_vs_pcc_pct"),
+    (("mpc", "pcc"), "delta_fuel_pct", "mpc_delta_fuel_vs_pcc_pct"),
+    (("mpc", "pcc"), "delta_fuel_equal_time_pct", "mpc_delta_fuel_equal_time_vs_pcc_pct"),
 )
 """(controller, baseline) of an entry of summary.json's comparisons, its key, and the sweep's column."""
 
@@ -83,7 +83,7 @@ def test_a_pcc_sweep_gives_simulates_figures_and_runs_no_mpc(descent, tmp_path, 
     assert "2 PCC and 1 PI runs" in result.stdout
     rows = read_csv(out / "sweep.csv")
     header = list(rows[0])
-    assert not any(column.startswith("mpc_") or column in SWEEP_COLUMNS[-5:] for column in header)
+    assert not any(column.startswith("mpc_") for column in header)
     assert {f"pcc_{name}" for name in PCC_FIELDS} | set(PCC_DELTAS) <= set(header)
     road = load_road(descent)
     for row in rows:
@@ -123,7 +123,7 @@ def test_pcc_and_mpc_sweep_gives_simulates_comparisons(descent, tmp_path):
     for pair, key, column in SUMMARY_KEYS:
         assert float(row[column]) == pytest.approx(comparisons[pair][key], rel=1e-12), column
     mpc_fuel, pcc_fuel = float(row["mpc_fuel_kg"]), float(row["pcc_fuel_kg"])
-    assert float(row["delta_fuel_mpc_vs_pcc_pct"]) == pytest.approx(100 * (mpc_fuel / pcc_fuel - 1), rel=1e-12)
+    assert float(row["mpc_delta_fuel_vs_pcc_pct"]) == pytest.approx(100 * (mpc_fuel / pcc_fuel - 1), rel=1e-12)
     assert float(row["pcc_fuel_kg"]) == summary["pcc"]["fuel_kg"]
     check_deltas_against_pi(row)
 
@@ -199,9 +199,9 @@ def test_the_sweep_plot_draws_the_pcc_deltas(descent, tmp_path, monkeypatch):
 
 
 def test_the_default_sweep_keeps_its_columns():
-    """Without --controller the columns are those of the sweep before the PCC was added, after the
-    error column (blank unless a run of the row failed), with every controller's gear shifts and
-    neutral engagements apart, each also per 100 km (issue 25)."""
+    """Without --controller the columns are the error column (blank unless a run of the row failed),
+    the PI's and the MPC's figures, every controller's gear shifts and neutral engagements apart,
+    each also per 100 km (issue 25), then the MPC's Δ against the PI: each prefixed by its controller."""
     gears = ["gear_shifts", "gear_shifts_per_100km", "neutral_engagements", "neutral_engagements_per_100km"]
     figures = ["fuel_kg", "fuel_corrected_kg", "time_s", "end_speed_kmh", "brake_energy_kj", *gears, "stalled"]
     mpc_own = ["neutral_distance_m", "realtime_ratio", "solve_ms_mean", "solve_ms_max", "infeasible_solves"]
@@ -211,8 +211,8 @@ def test_the_default_sweep_keeps_its_columns():
         "error",
         *(f"pi_{name}" for name in figures),
         *(f"mpc_{name}" for name in figures),
-        *mpc_own,
-        "transitions_per_solve",
-        *equal_time,
-        *(f"delta_{name}_pct" for name in deltas),
+        *(f"mpc_{name}" for name in mpc_own),
+        "mpc_transitions_per_solve",
+        *(f"mpc_{name}" for name in equal_time),
+        *(f"mpc_delta_{name}_pct" for name in deltas),
     ]

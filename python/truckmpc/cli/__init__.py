@@ -65,21 +65,21 @@ __all__ = ["app", "main"]
 
 app = typer.Typer(
     cls=OneLineErrors,
-    help="Look-ahead cruise control for heavy trucks: simulate a PI cruise controller and a look-ahead DP-MPC "
-    "over road profiles and compare their fuel and trip time.",
+    help="Look-ahead cruise control for heavy trucks: simulate a PI cruise controller, VECTO's predictive "
+    "cruise control and a look-ahead DP-MPC over road profiles and compare their fuel and trip time.",
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
     # Plain help: rich markup would take the units in brackets ([km/h], [m]) for style tags and drop them.
     rich_markup_mode=None,
 )
-# The order here is the order of `truckmpc --help`.
-app.command("bench", help=BENCH_HELP)(bench_cmd)
-app.command("simulate")(simulate_cmd)
-app.command("robustness")(robustness_cmd)
-app.command("sweep")(sweep_cmd)
-app.command("pareto")(pareto_cmd)
-app.command("plot")(plot_cmd)
+# The order here is the order of `truckmpc --help`; each summary fits on its line there.
+app.command("bench", help=BENCH_HELP, short_help="Time the MPC's closed-loop runs on long roads.")(bench_cmd)
+app.command("simulate", short_help="Run controllers over a road; compare fuel and trip time.")(simulate_cmd)
+app.command("robustness", short_help="How much saving survives a wrong mass or a noisy map.")(robustness_cmd)
+app.command("sweep", short_help="Run the controllers over a grid of settings and roads.")(sweep_cmd)
+app.command("pareto", short_help="Fuel against trip time over set speeds and beta.")(pareto_cmd)
+app.command("plot", short_help="Draw the figures of a run or a sweep directory.")(plot_cmd)
 app.command("report")(report_cmd)
 app.add_typer(model_app, name="model")
 app.add_typer(road_app, name="road")

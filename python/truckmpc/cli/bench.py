@@ -27,6 +27,7 @@ def bench_cmd(
         Path | None,
         typer.Option(
             "--road",
+            metavar="FILE",
             help="Road profile CSV for every run (default: each run's road of ../shared/roads, "
             "else the bundled test track).",
         ),
@@ -36,6 +37,7 @@ def bench_cmd(
         list[str] | None,
         typer.Option(
             "--set",
+            metavar="KEY=VALUE",
             help="Any other key=value (e.g. neutral_rule=interpolate); "
             "for every run; stage_m, delta_kmh, horizon_m, allow_neutral and grid are fixed.",
         ),

@@ -9,19 +9,26 @@ from typing import Annotated
 import typer
 
 from truckmpc.config import SECTION_NAMES, key_table, rewrite_key_tables, write_packaged_defaults
-from truckmpc.config.keys import CONFIG_DIR
+from truckmpc.config.keys import CONFIG_DIR, SECTION_FILES, VEHICLE_FILES
 
 __all__ = ["config_app"]
 
 config_app = typer.Typer(
-    help="The parameters: key tables and the packaged default files.", no_args_is_help=True, rich_markup_mode=None
+    help="The parameters: key tables and the packaged default files.",
+    short_help="List the parameters; write the default files.",
+    no_args_is_help=True,
+    rich_markup_mode=None,
 )
 
+_DEFAULT_FILES = ", ".join([*VEHICLE_FILES, *SECTION_FILES.values()])
+"""The packaged default files ``config defaults`` writes."""
 
-@config_app.command("keys")
+
+@config_app.command("keys", short_help="Print the table of every parameter key.")
 def config_keys_cmd(
     section: Annotated[
-        str | None, typer.Option("--section", help="vehicle, cruise, pi, mpc or sim (default: all).")
+        str | None,
+        typer.Option("--section", metavar="SECTION", help=f"One of {', '.join(SECTION_NAMES)} (default: all)."),
     ] = None,
     write: Annotated[
         Path | None,
@@ -43,13 +50,17 @@ def config_keys_cmd(
         typer.echo(f"<!-- keys:{name} -->\n{key_table(name)}\n<!-- /keys:{name} -->")
 
 
-@config_app.command("defaults")
+@config_app.command(
+    "defaults",
+    help=f"Write the default YAML files ({_DEFAULT_FILES}) from the parameter declarations.",
+    short_help="Write the packaged default YAML files.",
+)
 def config_defaults_cmd(
     directory: Annotated[
-        Path | None, typer.Option("--dir", help="Directory to write (default: the packaged configs).")
+        Path | None, typer.Option("--dir", metavar="DIR", help="Directory to write (default: the packaged configs).")
     ] = None,
 ) -> None:
-    """Write the default YAML files (trucks, cruise, pi, mpc, simulation) from the parameter declarations."""
+    """Write the default YAML files from the parameter declarations."""
     target = CONFIG_DIR if directory is None else directory
     target.mkdir(parents=True, exist_ok=True)
     written = write_packaged_defaults(target)

@@ -17,7 +17,12 @@ from truckmpc.vecto import load_vecto_truck
 
 __all__ = ["model_app"]
 
-model_app = typer.Typer(help="Query the vehicle model.", no_args_is_help=True, rich_markup_mode=None)
+model_app = typer.Typer(
+    help="Query the vehicle model: what the engine does holding a speed on a grade.",
+    short_help="Query the vehicle model.",
+    no_args_is_help=True,
+    rich_markup_mode=None,
+)
 
 
 def _parse_gear(text: str | None, forward_gears: int) -> int | None:
@@ -34,13 +39,18 @@ def _parse_gear(text: str | None, forward_gears: int) -> int | None:
     return gear
 
 
-@model_app.command("stationary")
+@model_app.command("stationary", short_help="Engine speed, torque and fuel holding a speed on a grade.")
 def stationary_cmd(
-    speed_kmh: Annotated[float, typer.Option("--speed-kmh", help="Speed to hold [km/h].")],
-    slope_pct: Annotated[float, typer.Option("--slope-pct", help="Road grade [%], negative downhill.")],
+    speed_kmh: Annotated[float, typer.Option("--speed-kmh", metavar="KMH", help="Speed to hold [km/h].")],
+    slope_pct: Annotated[float, typer.Option("--slope-pct", metavar="PCT", help="Road grade [%], negative downhill.")],
     gear: Annotated[
         str | None,
-        typer.Option("--gear", help="Gear 1..12 or 'neutral' (default: the PI gear logic's gear at this speed)."),
+        typer.Option(
+            "--gear",
+            metavar="GEAR",
+            help="A forward gear, 1 to the truck's top gear (12 for the packaged truck), or 'neutral' (default: "
+            "the PI gear logic's gear at this speed).",
+        ),
     ] = None,
     vehicle: VehicleOpt = None,
     config: ConfigOpt = None,

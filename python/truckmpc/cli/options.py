@@ -9,10 +9,12 @@ from typing import Annotated
 import typer
 
 from truckmpc.config import RunConfig, load_run_config
+from truckmpc.config.keys import preset_names
 from truckmpc.errors import VehicleError
 from truckmpc.geo.options import Method
 
 __all__ = [
+    "CONFIG_HELP",
     "ConfigOpt",
     "ForceOpt",
     "GradeLimitOpt",
@@ -39,16 +41,23 @@ VehicleOpt = Annotated[
     typer.Option(
         "--vehicle",
         metavar="FILE",
-        help="Vehicle: a YAML file (default: packaged truck-40t.yaml), a VECTO job (.vecto) or declaration .xml.",
+        help="Vehicle: a YAML file (default: the packaged 40 t truck, truck-40t.yaml), a VECTO job (.vecto) or "
+        "a VECTO declaration (.xml).",
     ),
 ]
-ConfigOpt = Annotated[
-    list[Path] | None, typer.Option("--config", metavar="FILE", help="Controller/simulation YAML overlay; repeatable.")
-]
+CONFIG_HELP = (
+    "Controller/simulation YAML overlay, or a packaged preset by name: "
+    f"{', '.join(preset_names())}; repeatable, later ones win."
+)
+"""The help of ``--config``, naming the packaged presets (configs/presets/*.yaml)."""
+ConfigOpt = Annotated[list[Path] | None, typer.Option("--config", metavar="FILE|PRESET", help=CONFIG_HELP)]
 SetOpt = Annotated[
     list[str] | None,
     typer.Option(
-        "--set", metavar="KEY=VALUE", help="Override any vehicle, controller or simulation key: key=value; repeatable."
+        "--set",
+        metavar="KEY=VALUE",
+        help="Override any vehicle, controller or simulation key (listed with their units by truckmpc config "
+        "keys), the value in the key's unit; repeatable.",
     ),
 ]
 ForceOpt = Annotated[
@@ -68,7 +77,10 @@ ReverseAllOpt = Annotated[bool, typer.Option("--reverse", help="Drive every road
 JobsOpt = Annotated[
     int | None,
     typer.Option(
-        "--jobs", min=1, help="Worker processes of the embedded Dask cluster (default: all cores); 1 runs in-process."
+        "--jobs",
+        min=1,
+        metavar="N",
+        help="Worker processes of the embedded Dask cluster (default: all cores); 1 runs in-process.",
     ),
 ]
 SchedulerOpt = Annotated[
@@ -84,29 +96,40 @@ SchedulerOpt = Annotated[
 QuietOpt = Annotated[bool, typer.Option("--quiet", help="No progress bar.")]
 
 # Road files (road import, info, plot); the defaults are truckmpc.geo.options's.
-TrackArg = Annotated[Path, typer.Argument(metavar="FILE", help="The track file.")]
-RoadOutputOpt = Annotated[Path, typer.Option("-o", "--output", help="Road CSV to write.")]
-MethodOpt = Annotated[Method, typer.Option("--method", help="Elevation smoothing: spline (default), savgol or none.")]
+TrackArg = Annotated[Path, typer.Argument(metavar="FILE", help="The track file to import.")]
+RoadOutputOpt = Annotated[Path, typer.Option("-o", "--output", metavar="FILE", help="Road CSV to write.")]
+MethodOpt = Annotated[Method, typer.Option("--method", help=f"Elevation smoothing: {', '.join(Method)}.")]
 NoiseOpt = Annotated[
     float,
     typer.Option(
-        "--noise-m", min=0.0, help="Expected std of the elevations [m]; sets the smoothing length (0: no smoothing)."
+        "--noise-m",
+        min=0.0,
+        metavar="M",
+        help="Expected std of the elevations [m]; sets the smoothing length (0: no smoothing).",
     ),
 ]
 SmoothOpt = Annotated[
     float | None,
     typer.Option(
-        "--smooth-m", min=0.0, help="Smoothing length [m] (spline bandwidth, savgol window); overrides --noise-m."
+        "--smooth-m",
+        min=0.0,
+        metavar="M",
+        help="Smoothing length [m] (spline bandwidth, savgol window); overrides --noise-m (default: from it).",
     ),
 ]
 StepOpt = Annotated[
     float | None,
     typer.Option(
-        "--step-m", help="Resampling step [m], no finer than the track's point spacing (default: that spacing)."
+        "--step-m",
+        metavar="M",
+        help="Resampling step [m], no finer than the track's point spacing (default: that spacing).",
     ),
 ]
 GradeLimitOpt = Annotated[
-    float, typer.Option("--grade-limit-pct", min=0.0, help="Report grades steeper than this [%] (never clipped).")
+    float,
+    typer.Option(
+        "--grade-limit-pct", min=0.0, metavar="PCT", help="Report grades steeper than this [%] (never clipped)."
+    ),
 ]
 RoadFileArg = Annotated[Path, typer.Argument(metavar="FILE", help="A road CSV or a GPX track.")]
 

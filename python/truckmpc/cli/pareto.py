@@ -22,12 +22,15 @@ from truckmpc.cli.options import (
 from truckmpc.cli.study import notice, pooled_study, stop_notes, study_inputs
 from truckmpc.errors import TruckmpcError
 from truckmpc.pareto import equal_time_savings, plan_pareto, run_pareto
+from truckmpc.pareto.plan import CURVE_CONTROLLERS
 from truckmpc.plot.pareto import plot_pareto
 from truckmpc.sweep import SweepError, parse_axis, progress_bar
 
 __all__ = ["pareto_cmd"]
 
-OutOpt = Annotated[Path, typer.Option("--out", help="Output directory: pareto.csv, pareto.json, pareto.png.")]
+OutOpt = Annotated[
+    Path, typer.Option("--out", metavar="DIR", help="Output directory: pareto.csv, pareto.json, pareto.png.")
+]
 SpeedsOpt = Annotated[
     str | None,
     typer.Option(
@@ -45,7 +48,15 @@ BetasOpt = Annotated[
         "beta derived from each).",
     ),
 ]
-CurvesOpt = Annotated[str, typer.Option("--curves", help="Curves to run, comma-separated: pi, pcc, mpc, fuel_time.")]
+CurvesOpt = Annotated[
+    str,
+    typer.Option(
+        "--curves",
+        metavar="LIST",
+        help=f"Curves to run, a comma list of {', '.join(CURVE_CONTROLLERS)} (fuel_time: the MPC with the "
+        "fuel-time cost over beta).",
+    ),
+]
 
 
 def pareto_cmd(

@@ -21,7 +21,8 @@ def plot_cmd(
     ],
     svg: Annotated[bool, typer.Option("--svg", help="Also write an SVG beside every PNG.")] = False,
     out: Annotated[
-        Path | None, typer.Option("--out", help="Output directory, or a .png/.svg file name (default: DIR).")
+        Path | None,
+        typer.Option("--out", metavar="PATH", help="Output directory, or a .png/.svg file name (default: DIR)."),
     ] = None,
 ) -> None:
     """Plot a run (DIR/run.png: altitude, speed, gear, pedal, brake over distance) or a sweep

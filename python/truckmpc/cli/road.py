@@ -22,6 +22,7 @@ from truckmpc.cli.options import (
 )
 from truckmpc.geo.options import DEFAULT_GRADE_LIMIT_PCT, DEFAULT_NOISE_M, Method
 from truckmpc.roads import COLUMNS_COMMENT, make_section, write_road, write_shipped_roads
+from truckmpc.roads.sections import SECTION_KINDS
 from truckmpc.roads.vdri import cycle_summary, import_comments, read_vdri
 from truckmpc.units import M_PER_KM
 
@@ -30,29 +31,45 @@ __all__ = ["road_app"]
 road_app = typer.Typer(help="Make, import, inspect and plot roads.", no_args_is_help=True, rich_markup_mode=None)
 road_import_app = typer.Typer(
     help="Make a road CSV from a GPS track, a track drawn on a map or a VECTO driving cycle.",
+    short_help="Make a road CSV from GPS or a VECTO cycle.",
     no_args_is_help=True,
     rich_markup_mode=None,
 )
 road_app.add_typer(road_import_app, name="import")
 
 
-class SectionKind(enum.StrEnum):
-    flat = "flat"
-    hill = "hill"
-    crest = "crest"
-    depression = "depression"
+# Built from the kinds so that they are listed once; mypy cannot see members made this way.
+SectionKind = enum.StrEnum("SectionKind", {kind: kind for kind in SECTION_KINDS})  # type: ignore[misc]
+"""The kinds of ``road make``: :data:`~truckmpc.roads.sections.SECTION_KINDS`."""
 
 
-@road_app.command("make")
+def _kind_defaults_m(which: int) -> str:
+    """The default lead-in (`which` 0) or run-out (1) of each section kind [m], as help text."""
+    by_length: dict[float, list[str]] = {}
+    for kind, lengths in SECTION_KINDS.items():
+        by_length.setdefault(lengths[which], []).append(kind)
+    return "; ".join(f"{length:g} m for {', '.join(kinds)}" for length, kinds in by_length.items())
+
+
+@road_app.command("make", short_help="Write an artificial road section as a road CSV.")
 def road_make_cmd(
     kind: Annotated[SectionKind, typer.Argument(help="Section shape.")],
-    length_m: Annotated[float, typer.Option("--length-m", help="Length of the hill (or crest/depression) [m].")],
-    output: Annotated[Path, typer.Option("-o", "--output", help="CSV file to write.")],
+    length_m: Annotated[
+        float, typer.Option("--length-m", metavar="M", help="Length of the hill (or crest/depression) [m].")
+    ],
+    output: Annotated[Path, typer.Option("-o", "--output", metavar="FILE", help="CSV file to write.")],
     slope_pct: Annotated[
-        float | None, typer.Option("--slope-pct", help="Grade [%] (negative for a descent); not for flat.")
+        float | None,
+        typer.Option("--slope-pct", metavar="PCT", help="Grade [%] (negative for a descent); not for flat."),
     ] = None,
-    lead_m: Annotated[float | None, typer.Option("--lead-m", help="Flat lead-in [m] (default: the thesis's).")] = None,
-    tail_m: Annotated[float | None, typer.Option("--tail-m", help="Flat run-out [m] (default: the thesis's).")] = None,
+    lead_m: Annotated[
+        float | None,
+        typer.Option("--lead-m", metavar="M", help=f"Flat lead-in [m] (default, the thesis's: {_kind_defaults_m(0)})."),
+    ] = None,
+    tail_m: Annotated[
+        float | None,
+        typer.Option("--tail-m", metavar="M", help=f"Flat run-out [m] (default, the thesis's: {_kind_defaults_m(1)})."),
+    ] = None,
 ) -> None:
     """Write an artificial road section (thesis sections 1.2, 6.2, 6.3) as a road CSV."""
     profile = make_section(kind.value, length_m, slope_pct, lead_m=lead_m, tail_m=tail_m)
@@ -63,16 +80,18 @@ def road_make_cmd(
     typer.echo(f"wrote {output} ({profile.name}, {profile.length_m / M_PER_KM:.2f} km)")
 
 
-@road_app.command("regenerate")
+@road_app.command("regenerate", short_help="Rewrite the shipped example roads from their definitions.")
 def road_regenerate_cmd(
-    directory: Annotated[Path, typer.Option("--dir", help="Directory of the shipped roads.")] = Path("roads"),
+    directory: Annotated[Path, typer.Option("--dir", metavar="DIR", help="Directory of the shipped roads.")] = Path(
+        "roads"
+    ),
 ) -> None:
     """Rewrite the shipped example sections and the test track from their definitions."""
     written = write_shipped_roads(directory)
     typer.echo(f"wrote {len(written)} road files to {directory}")
 
 
-@road_import_app.command("vdri")
+@road_import_app.command("vdri", short_help="Convert a VECTO driving cycle (.vdri) into a road CSV.")
 def road_import_vdri_cmd(
     cycle: Annotated[Path, typer.Argument(metavar="FILE", help="VECTO distance-based driving cycle (.vdri).")],
     output: RoadOutputOpt,
@@ -108,14 +127,14 @@ def _track_import_command(kind: str, doc: str) -> Callable[..., None]:
     return command
 
 
-road_import_app.command("gpx")(
+road_import_app.command("gpx", short_help="Make a road CSV from a GPX track.")(
     _track_import_command(
         "gpx",
         """Make a road CSV from a GPX file's track points (else its route points): geodesic distance,
     elevation resampled and smoothed, steep grades reported (README: Roads from GPS tracks).""",
     )
 )
-road_import_app.command("csv")(
+road_import_app.command("csv", short_help="Make a road CSV from a lat,lon,ele table.")(
     _track_import_command(
         "csv",
         """Make a road CSV from a plain lat,lon,ele table (degrees, metres; one point per row in travel
@@ -124,7 +143,7 @@ road_import_app.command("csv")(
 )
 
 
-@road_app.command("info")
+@road_app.command("info", short_help="Print a road's length, climb, grades and origin.")
 def road_info_cmd(file: RoadFileArg) -> None:
     """Print a road's length, climb and descent, grade histogram, steepest stretches and, for an
     imported road, how it was made (smoothing included)."""
@@ -134,10 +153,12 @@ def road_info_cmd(file: RoadFileArg) -> None:
         typer.echo(line)
 
 
-@road_app.command("plot")
+@road_app.command("plot", short_help="Draw a road's altitude and grade over distance.")
 def road_plot_cmd(
     file: RoadFileArg,
-    out: Annotated[Path | None, typer.Option("-o", "--out", help="Picture to write (default: FILE.png).")] = None,
+    out: Annotated[
+        Path | None, typer.Option("-o", "--out", metavar="FILE", help="Picture to write (default: FILE.png).")
+    ] = None,
     svg: Annotated[bool, typer.Option("--svg", help="Also write an SVG beside the PNG.")] = False,
 ) -> None:
     """Draw a road's altitude and grade over distance; for an imported road, the raw elevation under

@@ -16,24 +16,37 @@ from truckmpc.roads import load_road
 from truckmpc.signals import stopping_on_signals
 from truckmpc.status import status_line
 
-__all__ = ["robustness_cmd"]
+__all__ = ["STUDIED", "robustness_cmd"]
+
+STUDIED = ("mpc", "optimal", "pcc")
+"""The look-ahead controllers ``robustness --controller`` takes."""
 
 
 def robustness_cmd(
-    road: Annotated[Path, typer.Option("--road", metavar="FILE", help="Road profile the truck drives.")],
+    road: Annotated[
+        Path,
+        typer.Option("--road", metavar="FILE", help="Road profile CSV or VECTO .vdri cycle the truck drives."),
+    ],
     controller: Annotated[
-        str, typer.Option("--controller", help="The look-ahead controller studied: mpc, optimal or pcc.")
-    ] = "mpc",
-    seeds: Annotated[int, typer.Option("--seeds", min=1, help="Noisy maps per grade-noise level.")] = 2,
+        str,
+        typer.Option("--controller", metavar="NAME", help=f"The look-ahead controller studied: {', '.join(STUDIED)}."),
+    ] = STUDIED[0],
+    seeds: Annotated[
+        int, typer.Option("--seeds", min=1, metavar="N", help="Noisy maps (random seeds) per grade-noise level.")
+    ] = 2,
     vehicle: VehicleOpt = None,
     config: ConfigOpt = None,
     set_: SetOpt = None,
-    out: Annotated[Path | None, typer.Option("--out", metavar="JSON", help="Also write the rows as JSON.")] = None,
+    out: Annotated[
+        Path | None, typer.Option("--out", metavar="FILE", help="Also write the rows to this JSON file.")
+    ] = None,
 ) -> None:
     """How much of the controller's saving survives a mass it does not know (+-25 %) and a map with
     grade noise (sigma 0.2, 0.5, 1 %): each case against the PI on the true truck and road."""
-    if controller not in ("mpc", "optimal", "pcc"):
-        raise typer.BadParameter(f"expected mpc, optimal or pcc, got {controller!r}", param_hint="'--controller'")
+    if controller not in STUDIED:
+        raise typer.BadParameter(
+            f"expected one of {', '.join(STUDIED)}, got {controller!r}", param_hint="'--controller'"
+        )
     run_config = run_config_from(vehicle, config, set_)
     profile = load_road(road)
     with stopping_on_signals(), status_line(f"robustness of {controller}: driving {profile.name}"):

@@ -57,18 +57,20 @@ RoadOpt = Annotated[
         "driven as its stop-free legs.",
     ),
 ]
-ControllerOpt = Annotated[
-    str | None,
-    typer.Option(
-        "--controller",
-        help="Controllers to run: a comma list of pi, vecto_cc, pcc, mpc, optimal (pi,vecto_cc,pcc,mpc), or "
-        "both = pi,mpc (default), all = pi,mpc,optimal. pi is the thesis's PI cruise control, vecto_cc VECTO's "
-        "cruise driver, pcc VECTO's predictive cruise control, mpc the look-ahead controller, optimal its "
-        "whole-road optimum. Each look-ahead controller (pcc, mpc, optimal) is compared with every baseline "
-        "that ran (pi, vecto_cc) and the mpc and optimal with the pcc.",
-    ),
+CONTROLLER_HELP = (
+    f"Controllers to run: a comma list of {', '.join(CONTROLLERS)} (e.g. pi,pcc,mpc), or "
+    + ", ".join(f"{group} = {','.join(names)}" for group, names in GROUPS.items())
+    + f" (default: {BOTH}). pi is the thesis's PI cruise control, vecto_cc VECTO's cruise driver, pcc VECTO's "
+    "predictive cruise control, mpc the look-ahead controller, optimal its whole-road optimum. Each look-ahead "
+    "controller (pcc, mpc, optimal) is compared with every baseline that ran (pi, vecto_cc) and the mpc and "
+    "optimal with the pcc."
+)
+"""The help of ``simulate --controller``, its lists built from :data:`~truckmpc.sim.CONTROLLERS` and
+:data:`GROUPS`."""
+ControllerOpt = Annotated[str | None, typer.Option("--controller", metavar="LIST", help=CONTROLLER_HELP)]
+OutOpt = Annotated[
+    Path | None, typer.Option("--out", metavar="DIR", help="Output directory (default: out/<road name>).")
 ]
-OutOpt = Annotated[Path | None, typer.Option("--out", help="Output directory (default: out/<road name>).")]
 ReverseOpt = Annotated[bool, typer.Option("--reverse", help="Drive the road in the opposite direction.")]
 ReplayOpt = Annotated[
     Path | None,

@@ -16,27 +16,40 @@ from truckmpc.cli.study import notice, pooled_study, stop_notes, study_inputs
 from truckmpc.record import program_record
 from truckmpc.status import status_line
 from truckmpc.sweep import plan_sweep, progress_bar, run_plan
-from truckmpc.sweep.columns import check_controllers, delta_column
+from truckmpc.sweep.columns import DEFAULT_CONTROLLERS, LOOK_AHEAD, check_controllers, delta_column
 from truckmpc.sweep.summary import check_parquet, fleet_outputs
 
 __all__ = ["sweep_cmd"]
 
+DEFAULT_CONTROLLER = ",".join(DEFAULT_CONTROLLERS)
+"""``sweep --controller`` when not given."""
+
 OutOpt = Annotated[
     Path,
-    typer.Option("--out", help="Output directory: sweep.csv, sweep.json (and sweep.partial.csv while running)."),
+    typer.Option(
+        "--out",
+        metavar="DIR",
+        help="Output directory: sweep.csv (a row per road and combination, each figure in a column "
+        "<controller>_<figure>: pi_fuel_kg, mpc_delta_fuel_pct), sweep.json (and sweep.partial.csv while running; "
+        "summary.csv for a fleet, sweep.parquet with --parquet).",
+    ),
 ]
 GridOpt = Annotated[
     list[str] | None,
     typer.Option(
-        "--grid", metavar="KEY=SPEC", help="Axis KEY=start:stop:step or KEY=v1,v2,...; any config key; repeatable."
+        "--grid",
+        metavar="KEY=SPEC",
+        help="An axis: KEY=start:stop:step or KEY=v1,v2,... over any config key (listed with their units by "
+        "truckmpc config keys), the values in the key's unit; repeatable.",
     ),
 ]
 ControllerOpt = Annotated[
     str,
     typer.Option(
         "--controller",
-        help="Look-ahead controllers to run on each row, a comma list of pcc, mpc; the pi always runs, "
-        "as the baseline.",
+        metavar="LIST",
+        help=f"Look-ahead controllers to run on each row, a comma list of {', '.join(LOOK_AHEAD)}; the pi always "
+        "runs, as the baseline.",
     ),
 ]
 BothWaysOpt = Annotated[bool, typer.Option("--both-ways", help="Drive every road in both directions (a row for each).")]
@@ -45,7 +58,8 @@ FleetOpt = Annotated[
     typer.Option(
         "--vehicle",
         metavar="FILE",
-        help="Vehicle YAML file (default: packaged truck-40t.yaml); repeatable, for a fleet (a vehicle column).",
+        help="Vehicle: a YAML file (default: the packaged 40 t truck, truck-40t.yaml), a VECTO job (.vecto) or "
+        "a VECTO declaration (.xml); repeatable, for a fleet (a vehicle column).",
     ),
 ]
 ParquetOpt = Annotated[
@@ -65,7 +79,7 @@ def sweep_cmd(
     road: RoadsOpt,
     out: OutOpt,
     grid: GridOpt = None,
-    controller: ControllerOpt = "mpc",
+    controller: ControllerOpt = DEFAULT_CONTROLLER,
     reverse: ReverseAllOpt = False,
     both_ways: BothWaysOpt = False,
     jobs: JobsOpt = None,

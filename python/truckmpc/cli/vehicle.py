@@ -19,12 +19,13 @@ __all__ = ["vehicle_app"]
 
 vehicle_app = typer.Typer(
     help="Read a truck's component files (VECTO .vecto jobs or declaration .xml files).",
+    short_help="Read a VECTO truck's component files.",
     no_args_is_help=True,
     rich_markup_mode=None,
 )
 
 
-@vehicle_app.command("info")
+@vehicle_app.command("info", short_help="Print a VECTO truck's masses, ratios, drag and maps.")
 def info_cmd(
     job: Annotated[
         Path,
@@ -44,11 +45,14 @@ def info_cmd(
     typer.echo("\n".join(_text(doc)))
 
 
-@vehicle_app.command("plot")
+@vehicle_app.command("plot", short_help="Draw a VECTO truck's fuel map and a run's points.")
 def plot_cmd(
     job: Annotated[Path, typer.Argument(metavar="FILE", help="A VECTO job (.vecto) or declaration XML (.xml).")],
     out: Annotated[
-        Path | None, typer.Option("-o", "--out", help="A .png or .svg file (default: <job name>-fuel-map.png here).")
+        Path | None,
+        typer.Option(
+            "-o", "--out", metavar="FILE", help="A .png or .svg file (default: <job name>-fuel-map.png here)."
+        ),
     ] = None,
     svg: Annotated[bool, typer.Option("--svg", help="Also write an SVG beside the PNG.")] = False,
     run: Annotated[

@@ -13,6 +13,7 @@ from truckmpc.config import KEYS
 from truckmpc.plot.figures import PlotError
 from truckmpc.sweep.cells import parse_cell
 from truckmpc.sweep.columns import ALL_COLUMNS, delta_column
+from truckmpc.sweep.renamed import current_name
 
 RESULT_COLUMNS = frozenset({"road", "direction", *ALL_COLUMNS})
 """Column names of sweep.csv that are not grid axes."""
@@ -25,13 +26,13 @@ COMPARED = (("mpc", "MPC"), ("pcc", "PCC"))
 
 
 def read_sweep(directory: Path) -> tuple[list[str], list[dict[str, Any]]]:
-    """The header and the rows (column -> value) of ``sweep.csv``."""
+    """The header and the rows (column -> value) of ``sweep.csv``, its columns by today's names."""
     path = directory / "sweep.csv"
     try:
         with path.open(newline="", encoding="utf-8") as handle:
             reader = csv.DictReader(handle)
-            header = list(reader.fieldnames or [])
-            rows = [{k: parse_cell(v or "") for k, v in row.items() if k is not None} for row in reader]
+            header = [current_name(name) for name in reader.fieldnames or []]
+            rows = [{current_name(k): parse_cell(v or "") for k, v in row.items() if k is not None} for row in reader]
     except OSError as err:
         raise PlotError(f"{path}: {err.strerror or err}") from err
     if not compared_controllers(header):

@@ -3,12 +3,17 @@
 
 After ``road``, ``direction``, ``vehicle`` (when a sweep has several) and one column per axis
 come ``error`` (blank unless a run of the row failed), the PI figures, then those of each
-look-ahead controller the sweep runs (``--controller``: the PCC's prefixed ``pcc_``; the MPC's
-prefixed ``mpc_``, its solver's and equal-time baseline's without a prefix, as before the PCC was
-added), then the comparisons of :data:`VERSUS` whose two controllers ran: blank when either run
-stalled or the baseline is zero (:func:`truckmpc.compare.compare`), and the equal-time ones also
-where the baseline could not be re-tuned to the other's trip time. One table per kind, so the
-columns of every selection follow from :data:`RUNS` and :data:`VERSUS`.
+look-ahead controller the sweep runs (``--controller``), then the comparisons of :data:`VERSUS`
+whose two controllers ran: blank when either run stalled or the baseline is zero
+(:func:`truckmpc.compare.compare`), and the equal-time ones also where the baseline could not be
+re-tuned to the other's trip time.
+
+Every column but ``error`` belongs to one controller and follows one pattern,
+``<controller>_<figure>`` (:func:`run_column`): ``pi_fuel_kg``, ``mpc_neutral_distance_m``,
+``pcc_equal_time_pi_fuel_kg``; a comparison is the figure ``delta_<kind>_pct`` of the controller
+compared, against the PI, or ``delta_<kind>_vs_<base>_pct`` against another baseline
+(:func:`versus_column`): ``mpc_delta_fuel_pct``, ``mpc_delta_fuel_vs_pcc_pct``. Names written by
+earlier versions are read through :mod:`truckmpc.sweep.renamed`.
 """
 
 from __future__ import annotations
@@ -65,23 +70,30 @@ PCC_FIELDS = (*PI_FIELDS, "neutral_distance_m", *EQUAL_TIME_FIELDS)
 
 @dataclass(frozen=True)
 class RunColumns:
-    """How one controller's run goes to the CSV: its figures, each in the column ``<name>_<figure>``
-    but those in `bare`, written without the prefix."""
+    """How one controller's run goes to the CSV: its figures, each in the column ``<name>_<figure>``."""
 
     name: str
     fields: tuple[str, ...]
-    bare: frozenset[str] = frozenset()
 
     def column(self, field: str) -> str:
-        return field if field in self.bare else f"{self.name}_{field}"
+        return f"{self.name}_{field}"
 
 
 RUNS = {
     "pi": RunColumns("pi", PI_FIELDS),
     "pcc": RunColumns("pcc", PCC_FIELDS),
-    "mpc": RunColumns("mpc", MPC_FIELDS, frozenset(MPC_FIELDS) - frozenset(PI_FIELDS)),
+    "mpc": RunColumns("mpc", MPC_FIELDS),
 }
 """Every controller a sweep can run, in column order."""
+
+
+def run_column(controller: str, field: str) -> str:
+    """The column of `controller`'s figure `field` (``run_column("mpc", "realtime_ratio")``)."""
+    return RUNS[controller].column(field)
+
+
+BASELINE = "pi"
+"""The controller every row runs, that the others are compared with first."""
 
 LOOK_AHEAD = ("pcc", "mpc")
 """The controllers ``sweep --controller`` takes (the PI always runs, as the baseline)."""
@@ -90,47 +102,37 @@ DEFAULT_CONTROLLERS = ("mpc",)
 """``sweep --controller`` when not given."""
 
 
+def versus_column(run: str, base: str, kind: str) -> str:
+    """The column of `run`'s Δ [%] of `kind` (``fuel``, ``time``, ...) against `base`:
+    ``<run>_delta_<kind>_pct`` against the PI, ``<run>_delta_<kind>_vs_<base>_pct`` otherwise."""
+    against = "" if base == BASELINE else f"_vs_{base}"
+    return f"{run}_delta_{kind}{against}_pct"
+
+
 @dataclass(frozen=True)
 class Versus:
     """One comparison of a row: `run` against `base`, each kind of Δ [%] (see :func:`deltas`) in
-    its column."""
+    its column (:func:`versus_column`)."""
 
     run: str
     base: str
-    columns: tuple[tuple[str, str], ...]
+    kinds: tuple[str, ...]
+
+    @property
+    def columns(self) -> tuple[tuple[str, str], ...]:
+        """(kind, column) of each Δ."""
+        return tuple((kind, versus_column(self.run, self.base, kind)) for kind in self.kinds)
 
     @property
     def equal_time(self) -> bool:
         """Whether `base` is re-tuned to `run`'s trip time for it (in `run`'s worker)."""
-        return any(kind.startswith("fuel_equal_time") for kind, _ in self.columns)
+        return any(kind.startswith("fuel_equal_time") for kind in self.kinds)
 
 
 VERSUS = (
-    Versus(
-        "mpc",
-        "pi",
-        (
-            ("fuel", "delta_fuel_pct"),
-            ("time", "delta_time_pct"),
-            ("fuel_corrected", "delta_fuel_corrected_pct"),
-            ("fuel_equal_time", "delta_fuel_equal_time_pct"),
-            ("fuel_equal_time_corrected", "delta_fuel_equal_time_corrected_pct"),
-        ),
-    ),
-    Versus(
-        "pcc",
-        "pi",
-        (
-            ("fuel", "pcc_delta_fuel_pct"),
-            ("time", "pcc_delta_time_pct"),
-            ("fuel_equal_time", "pcc_delta_fuel_equal_time_pct"),
-        ),
-    ),
-    Versus(
-        "mpc",
-        "pcc",
-        (("fuel", "delta_fuel_mpc_vs_pcc_pct"), ("fuel_equal_time", "delta_fuel_equal_time_mpc_vs_pcc_pct")),
-    ),
+    Versus("mpc", "pi", ("fuel", "time", "fuel_corrected", "fuel_equal_time", "fuel_equal_time_corrected")),
+    Versus("pcc", "pi", ("fuel", "time", "fuel_equal_time")),
+    Versus("mpc", "pcc", ("fuel", "fuel_equal_time")),
 )
 """The comparisons of a row, in column order; each is there when both its controllers ran."""
 
@@ -138,19 +140,24 @@ VERSUS = (
 def delta_column(run: str, kind: str, base: str = "pi") -> str:
     """The column of `run`'s Δ of `kind` (``fuel``, ``time``, ...) against `base`."""
     versus = next(v for v in VERSUS if (v.run, v.base) == (run, base))
-    return dict(versus.columns)[kind]
+    if kind not in versus.kinds:
+        raise KeyError(f"no {kind} delta of {run} against {base}")
+    return versus_column(run, base, kind)
 
 
 ERROR_COLUMN = "error"
 """The first result column: why a row's runs failed (``pi: ...; mpc: ...``), blank when they did
 not; the failed runs' figures and their comparisons are blank."""
 
-CONVERGENCE_COLUMNS = (
+CONVERGENCE_FIELDS = (
     "delta_fuel_pct_half_delta",
     "delta_fuel_pct_half_stage",
     "delta_time_pct_half_delta",
     "delta_time_pct_half_stage",
 )
+"""The MPC's figures of :mod:`truckmpc.convergence`."""
+
+CONVERGENCE_COLUMNS = tuple(RUNS["mpc"].column(field) for field in CONVERGENCE_FIELDS)
 """With ``--check-convergence``: how far Δfuel and Δtime move [points] with the MPC at half δ and at
 half S (:mod:`truckmpc.convergence`); blank where a halved run is not comparable."""
 
@@ -229,7 +236,8 @@ class Layout:
             values.update({column: by_kind.get(kind) for kind, column in v.columns})
         if self.check_convergence:  # the moves of the MPC's deltas against the PI
             comparable = not {"pi", "mpc"} & set(failed) and compare(runs["pi"], runs["mpc"]).not_comparable is None
-            values.update({c: runs["mpc"].get(c) if comparable else None for c in CONVERGENCE_COLUMNS})
+            moves = zip(CONVERGENCE_COLUMNS, CONVERGENCE_FIELDS, strict=True)
+            values.update({c: runs["mpc"].get(f) if comparable else None for c, f in moves})
         values[ERROR_COLUMN] = error_text(failed)
         return [cell(values[c]) for c in self.columns]
 

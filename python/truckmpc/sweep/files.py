@@ -39,8 +39,11 @@ def _identity(settings: Mapping[str, Any]) -> dict[str, Any]:
     return doc
 
 
-def check_out_dir(out: Path, settings: Mapping[str, Any], stem: str = "sweep") -> None:
-    """Refuse to mix studies: an existing ``<stem>.json`` in ``out`` must describe this one."""
+def check_out_dir(
+    out: Path, settings: Mapping[str, Any], stem: str = "sweep", renames: Mapping[str, str] | None = None
+) -> None:
+    """Refuse to mix studies: an existing ``<stem>.json`` in ``out`` must describe this one, its
+    ``columns`` read through `renames` (old name -> new name)."""
     csv_name, partial_name, settings_name = file_names(stem)
     path = out / settings_name
     try:
@@ -53,7 +56,10 @@ def check_out_dir(out: Path, settings: Mapping[str, Any], stem: str = "sweep") -
         return
     except (json.JSONDecodeError, UnicodeDecodeError):
         raise SweepError(f"{path}: not a {stem} settings file; use another --out or remove it") from None
-    mine, theirs = _identity(settings), _identity(old if isinstance(old, dict) else {})
+    theirs = _identity(old if isinstance(old, dict) else {})
+    if renames and isinstance(theirs["columns"], list):
+        theirs["columns"] = _renamed(theirs["columns"], renames)
+    mine = _identity(settings)
     differ = [key for key in _IDENTITY if mine[key] != theirs[key]]
     if differ:
         raise SweepError(
@@ -73,10 +79,13 @@ def csv_line(cells: Sequence[str]) -> str:
     return buffer.getvalue()
 
 
-def read_rows(path: Path, columns: Sequence[str]) -> list[tuple[int, list[str]]]:
-    """(line number, cells) of each complete line of a sweep CSV after its header, whatever its
-    number of cells (a last line cut short by an interruption is ignored; bytes that are not UTF-8
-    are read as U+FFFD, so a damaged line is still a line)."""
+def read_rows(
+    path: Path, columns: Sequence[str], renames: Mapping[str, str] | None = None
+) -> list[tuple[int, list[str]]]:
+    """(line number, cells) of each complete line of a sweep CSV after its header (whose names are
+    read through `renames`, old name -> new name), whatever its number of cells (a last line cut
+    short by an interruption is ignored; bytes that are not UTF-8 are read as U+FFFD, so a damaged
+    line is still a line)."""
     try:
         text = path.read_bytes().decode("utf-8", errors="replace")
     except FileNotFoundError:
@@ -87,7 +96,7 @@ def read_rows(path: Path, columns: Sequence[str]) -> list[tuple[int, list[str]]]
     lines[-1] = lines[-1][:-1]  # what follows the last newline: a line cut short, or nothing
     if not lines[0]:
         return []
-    if next(csv.reader([lines[0]]), []) != list(columns):
+    if _renamed(next(csv.reader([lines[0]]), []), renames or {}) != list(columns):
         raise SweepError(f"{path}: its columns are not this sweep's; remove it or use another --out")
     rows = []
     for number, line in enumerate(lines[1:], start=2):
@@ -101,14 +110,21 @@ def read_rows(path: Path, columns: Sequence[str]) -> list[tuple[int, list[str]]]
     return rows
 
 
-def finished_rows(out: Path, columns: Sequence[str], stem: str = "sweep") -> list[tuple[str, list[str]]]:
+def finished_rows(
+    out: Path, columns: Sequence[str], stem: str = "sweep", renames: Mapping[str, str] | None = None
+) -> list[tuple[str, list[str]]]:
     """The rows already in ``<stem>.csv`` and ``<stem>.partial.csv`` (possibly repeated), each with
-    where it was read (``DIR/sweep.partial.csv:7``)."""
+    where it was read (``DIR/sweep.partial.csv:7``); see :func:`read_rows` for `renames`."""
     return [
         (f"{out / name}:{number}", cells)
         for name in file_names(stem)[:2]
-        for number, cells in read_rows(out / name, columns)
+        for number, cells in read_rows(out / name, columns, renames)
     ]
+
+
+def _renamed(names: Sequence[Any], renames: Mapping[str, str]) -> list[Any]:
+    """`names` with each old name in `renames` replaced by its new one."""
+    return [renames.get(name, name) if isinstance(name, str) else name for name in names]
 
 
 class PartialFile:

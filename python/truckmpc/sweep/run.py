@@ -24,6 +24,7 @@ from truckmpc.sweep.files import (
 )
 from truckmpc.sweep.grid import Axis
 from truckmpc.sweep.plan import SHARED_SECTIONS, Row, SweepPlan, plan_sweep
+from truckmpc.sweep.renamed import RENAMED_COLUMNS
 from truckmpc.sweep.runner import ProgressHook, Runner
 from truckmpc.sweep.task import RunBase, Task
 from truckmpc.sweep.waiting import Run, Waiting
@@ -101,7 +102,7 @@ def run_plan(
 
     ``jobs``: worker processes of the embedded Dask cluster (default ``os.cpu_count()``); 1 runs in
     this process. ``scheduler``: the address of a running Dask cluster's scheduler to send the runs
-    to instead. ``realtime_ratio`` of each row is measured under whatever load the other jobs make.
+    to instead. ``mpc_realtime_ratio`` of each row is measured under whatever load the other jobs make.
     Raises :class:`SweepError` if ``out`` holds a different sweep,
     :class:`~truckmpc.workload.WorkError` if the runs left would take more than an hour (unless
     ``force``); damaged rows resumed from ``out`` are dropped, to run again, and ``notice`` (default:
@@ -111,7 +112,7 @@ def run_plan(
     and :class:`SweepInterrupted` (a ``KeyboardInterrupt``) says how many.
     """
     out, notice = Path(out), notice or _to_stderr
-    check_out_dir(out, plan.settings)
+    check_out_dir(out, plan.settings, renames=RENAMED_COLUMNS)
     done = _resumed_rows(plan, out, notice)
     resumed = len(done)
     pending = [row for row in plan.rows if row.index not in done]
@@ -215,7 +216,7 @@ def _resumed_rows(plan: SweepPlan, out: Path, notice: Callable[[str], None]) -> 
     done: dict[int, list[str]] = {}
     dropped: list[str] = []
     failed: set[int] = set()
-    for where, cells in finished_rows(out, plan.columns):
+    for where, cells in finished_rows(out, plan.columns, renames=RENAMED_COLUMNS):
         row = by_key.get(tuple(cells[:first_result]))
         if row is not None and plan.layout.failed(cells[first_result:]):
             failed.add(row.index)

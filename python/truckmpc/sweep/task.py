@@ -15,7 +15,7 @@ from truckmpc.equal_time import equal_time_baselines
 from truckmpc.errors import RoadError, TruckmpcError
 from truckmpc.roads import RoadProfile
 from truckmpc.sim import RunResult, simulate
-from truckmpc.sweep.columns import CONVERGENCE_COLUMNS, ERROR_COLUMN, RUNS, equal_time_fields
+from truckmpc.sweep.columns import CONVERGENCE_FIELDS, ERROR_COLUMN, RUNS, equal_time_fields
 
 ERROR = ERROR_COLUMN
 """The key of a failed run's one-line error in its figures (which hold nothing else): the name of
@@ -98,7 +98,7 @@ def _figures(profile: RoadProfile, config: RunConfig, task: Task) -> dict[str, A
     if task.convergence:
         halves = halved_configs(config)
         moves = convergence_document({"pi": bases["pi"], "mpc": result}, run_halves(profile, halves), halves)
-        figures.update({column: moves[column] for column in CONVERGENCE_COLUMNS})
+        figures.update({field: moves[field] for field in CONVERGENCE_FIELDS})
     return figures
 
 
