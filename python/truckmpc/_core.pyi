@@ -150,6 +150,18 @@ class Road:
     def end_m(self) -> float: ...
     def altitude_at(self, s_m: float) -> float: ...
     def mean_slope(self, s0_m: float, s1_m: float) -> float: ...
+    def speed_band(
+        self,
+        distance_m: npt.NDArray[np.float64],
+        v_ref_kmh: float,
+        v_dec_kmh: float,
+        v_inc_kmh: float,
+        target_offset_kmh: float,
+        target_decel_mps2: float,
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+        """The band the controllers work to at each of `distance_m` [m] (increasing) for one cruise
+        setting [km/h]: the stretch's set speed (without the top falling ahead of a lower one),
+        v_min and v_max."""
 
 @final
 class RunOutput:

@@ -4,8 +4,8 @@ On a road without target speeds the band is the cruise band everywhere: the set 
 v_ref − v_dec … v_ref + v_inc [km/h]. On a road with target speeds (a VECTO ``.vdri`` cycle, a road
 CSV with a ``target_speed_kmh`` column) each stretch's set speed is min(v_ref, target) +
 target_offset and the band follows it; ahead of a lower set speed its top falls no faster than the
-deceleration ``target_decel_mps2``, and v_min never drops below 5 km/h — as the simulation's core
-builds it, so the picture shows what the controllers were asked to do.
+deceleration ``target_decel_mps2``. The band is the simulation core's own (``Road.speed_band``), so
+the picture shows what the controllers were asked to do.
 
 The road is read again from the file the run recorded (``run.road`` in ``summary.json``) and must
 still hash to the recorded SHA-256; the cruise settings come from the run's recorded configuration
@@ -22,10 +22,6 @@ import numpy as np
 
 from truckmpc.errors import TruckmpcError
 from truckmpc.roads import RoadProfile, default_test_track, load_road
-from truckmpc.units import KMH_PER_MPS
-
-V_MIN_FLOOR_KMH = 5.0
-"""Lowest v_min [km/h] a stretch's band takes (unless the cruise band's own is lower)."""
 
 SAMPLE_STEP_M = 25.0
 """Finest spacing [m] of the points the band is evaluated at (besides the road's own points)."""
@@ -111,24 +107,12 @@ def band_along(road: RoadProfile | None, cruise: Cruise, end_m: float) -> Band:
     if road is None or road.target_speed_kmh is None:
         v_ref = np.full_like(x_m, cruise.v_ref_kmh)
         return Band(x_m, v_ref, v_ref - cruise.v_dec_kmh, v_ref + cruise.v_inc_kmh, from_targets=False)
-    set_kmh = np.maximum(np.minimum(cruise.v_ref_kmh, road.target_speed_at(x_m)) + cruise.target_offset_kmh, 1.0)
-    top_kmh = _falling_top(road, cruise, x_m, set_kmh + cruise.v_inc_kmh)
-    v_ref = np.where(top_kmh < set_kmh + cruise.v_inc_kmh, top_kmh - cruise.v_inc_kmh, set_kmh)
-    floor = min(cruise.v_ref_kmh - cruise.v_dec_kmh, V_MIN_FLOOR_KMH)
-    return Band(x_m, set_kmh, np.maximum(v_ref - cruise.v_dec_kmh, floor), top_kmh, from_targets=True)
-
-
-def _falling_top(road: RoadProfile, cruise: Cruise, x_m: np.ndarray, own_top_kmh: np.ndarray) -> np.ndarray:
-    """The band's top [km/h] at `x_m`: its own stretch's, or lower where a lower stretch ahead
-    could not be reached braking at ``target_decel_mps2``: √(top_j² + 2·a·(start_j − x))."""
-    targets = road.target_speed_kmh
-    assert targets is not None
-    set_kmh = np.maximum(np.minimum(cruise.v_ref_kmh, targets[:-1]) + cruise.target_offset_kmh, 1.0)
-    changes = np.flatnonzero(np.diff(set_kmh)) + 1  # the first point of each stretch after the first
-    top = own_top_kmh.copy()
-    for j in changes:
-        start_m, top_mps = road.distance_m[j], (set_kmh[j] + cruise.v_inc_kmh) / KMH_PER_MPS
-        ahead_m = start_m - x_m
-        ramp_kmh = np.sqrt(top_mps**2 + 2.0 * cruise.target_decel_mps2 * np.maximum(ahead_m, 0.0)) * KMH_PER_MPS
-        top = np.where(ahead_m > 0, np.minimum(top, ramp_kmh), top)
-    return top
+    set_kmh, low_kmh, high_kmh = road.core().speed_band(
+        np.ascontiguousarray(x_m),
+        cruise.v_ref_kmh,
+        cruise.v_dec_kmh,
+        cruise.v_inc_kmh,
+        cruise.target_offset_kmh,
+        cruise.target_decel_mps2,
+    )
+    return Band(x_m, set_kmh, low_kmh, high_kmh, from_targets=True)

@@ -2,9 +2,11 @@
 
 use std::sync::Arc;
 
-use numpy::PyReadonlyArray1;
+use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
-use truckmpc_core::Road;
+use truckmpc_core::band::SpeedBand;
+use truckmpc_core::params::ParamSet;
+use truckmpc_core::{CruiseParams, Road};
 
 use crate::errors::to_py;
 
@@ -59,4 +61,36 @@ impl PyRoad {
     fn mean_slope(&self, s0_m: f64, s1_m: f64) -> f64 {
         self.inner.mean_slope(s0_m, s1_m)
     }
+
+    /// The speed band every controller works to on this road for one cruise setting [km/h],
+    /// at each of `distance_m` [m] (in increasing order): the stretch's set speed (without the
+    /// top falling ahead of a lower one), v_min and v_max.
+    #[pyo3(signature = (distance_m, v_ref_kmh, v_dec_kmh, v_inc_kmh, target_offset_kmh, target_decel_mps2))]
+    #[allow(clippy::too_many_arguments)] // the cruise keys, one argument each
+    fn speed_band<'py>(
+        &self,
+        py: Python<'py>,
+        distance_m: PyReadonlyArray1<'_, f64>,
+        v_ref_kmh: f64,
+        v_dec_kmh: f64,
+        v_inc_kmh: f64,
+        target_offset_kmh: f64,
+        target_decel_mps2: f64,
+    ) -> PyResult<SpeedBandArrays<'py>> {
+        let cruise = CruiseParams { v_ref_kmh, v_dec_kmh, v_inc_kmh, target_offset_kmh, target_decel_mps2 };
+        cruise.check_ranges().map_err(to_py)?;
+        let band = SpeedBand::new(&self.inner, &cruise);
+        let mut hint = 0;
+        let (mut set_kmh, mut v_min_kmh, mut v_max_kmh) = (Vec::new(), Vec::new(), Vec::new());
+        for &s_m in distance_m.as_array() {
+            set_kmh.push(band.set_speed_kmh(s_m, &mut hint));
+            let at = band.at(s_m, &mut hint);
+            v_min_kmh.push(at.v_min_kmh);
+            v_max_kmh.push(at.v_max_kmh);
+        }
+        Ok((set_kmh.into_pyarray(py), v_min_kmh.into_pyarray(py), v_max_kmh.into_pyarray(py)))
+    }
 }
+
+/// The set speed, v_min and v_max along a road [km/h], as numpy arrays.
+type SpeedBandArrays<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
