@@ -16,6 +16,7 @@ import pytest
 from typer.testing import CliRunner
 
 from truckmpc.cli import app
+from truckmpc.sweep.columns import delta_column
 
 ROADS = Path(__file__).resolve().parent.parent / "roads"
 ROAD = ROADS / "hill_L500_A2.csv"
@@ -226,7 +227,8 @@ def test_a_sweep_report_has_a_row_per_row_of_the_sweep(sweep_dir: Path, tmp_path
         assert float(cells[0]) == float(row["horizon_m"])
         for at, name in zip(fuel_at, ("pi", "pcc", "mpc"), strict=True):
             assert float(cells[at]) == pytest.approx(float(row[f"{name}_fuel_kg"]), abs=5e-4)
-        assert float(cells[equal_time_at]) == pytest.approx(float(row["delta_fuel_equal_time_pct"]), abs=5e-3)
+        mpc_equal_time = float(row[delta_column("mpc", "fuel_equal_time")])
+        assert float(cells[equal_time_at]) == pytest.approx(mpc_equal_time, abs=5e-3)
     assert len(page.images) == 2 and all(is_png(src) for src in page.images)
     replay = shlex.split(page.codes["replay-command"])
     assert replay[:2] == ["cd", json.loads((sweep_dir / "sweep.json").read_text())["command"]["cwd"]]

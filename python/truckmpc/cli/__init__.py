@@ -80,7 +80,7 @@ app.command("robustness", short_help="How much saving survives a wrong mass or a
 app.command("sweep", short_help="Run the controllers over a grid of settings and roads.")(sweep_cmd)
 app.command("pareto", short_help="Fuel against trip time over set speeds and beta.")(pareto_cmd)
 app.command("plot", short_help="Draw the figures of a run or a sweep directory.")(plot_cmd)
-app.command("report")(report_cmd)
+app.command("report", short_help="Write an HTML page of a run or a sweep to hand on.")(report_cmd)
 app.add_typer(model_app, name="model")
 app.add_typer(road_app, name="road")
 app.add_typer(vehicle_app, name="vehicle")
