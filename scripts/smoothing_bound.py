@@ -10,7 +10,7 @@ resamples on its uniform grid before smoothing (ImportedRoad.raw_altitude_m), an
 several ways, each measured with the same grade_rms_error_pct:
 
 - ``spline default``: the importer's default, the cubic smoothing spline for an assumed σ of 2 m
-  (176 m bandwidth), as the noise test and the README's table use it;
+  (176 m bandwidth), as the noise test and the table of docs/validation/gps.md use it;
 - ``spline rule``: the spline for the actual σ (Smoothing.for_noise, 140 m × (σ / 1 m)^(1/3));
 - ``spline oracle length`` [ORACLE]: the spline bandwidth, on a 10 m grid, with the least mean error
   over the seeds, chosen knowing the truth;

@@ -1,7 +1,7 @@
 """The noise test (issue 15, item 3): GPS tracks made from the shared roads' altitude along a
 synthetic path, with altitude noise of σ = 2 m correlated over 100 m and 2 m of horizontal jitter
 (truckmpc.geo.synthetic), imported with the defaults and compared with the true road. The full study,
-with its numbers, is scripts/gps_noise_study.py (README: "Roads from GPS tracks")."""
+with its numbers, is scripts/gps_noise_study.py (docs/validation/gps.md)."""
 
 from __future__ import annotations
 
@@ -48,7 +48,7 @@ def test_sigma_2m_gives_a_grade_within_half_a_point(name):
 @needs_shared
 @pytest.mark.xfail(
     reason="0.3 points at sigma 2 m is below the oracle Wiener bound, 0.33-0.39 points "
-    "(scripts/smoothing_bound.py, README): no linear shift-invariant smoother reaches it on average",
+    "(scripts/smoothing_bound.py, docs/validation/gps.md): no linear shift-invariant smoother reaches it on average",
 )
 @pytest.mark.parametrize("name", list(PIECES))
 def test_sigma_2m_gives_a_grade_within_the_aim_of_0_3_points(name):
