@@ -1,63 +1,61 @@
-"""Make the figures of the README and the documentation site (docs/images/), from real runs.
+"""Draw the figures of the README and the documentation site (docs/images/*.png) from real runs.
 
-Usage: python scripts/docs_figures.py [OUT_DIR]
-(default: docs/images). Needs the shared roads at ../shared/roads (beside the checkout) and
-matplotlib (pip install '.[plot]').
+    python scripts/docs_figures.py [--out docs/images]
 
-Each figure is a `truckmpc simulate` run followed by `truckmpc plot`, driven through the command
-line exactly as a user would type it, so a figure always shows what the commands draw today:
+Each figure is a `truckmpc simulate` run followed by `truckmpc plot`, run as a user would type them,
+so a figure always shows what the commands draw today. Needs matplotlib (pip install '.[plot]').
 
-- vecto108-pi-pcc-mpc.png: the PI, VECTO's PCC and the look-ahead MPC on the EU VECTO long-haul
-  road (108 km), the 40 t truck at the defaults.
+- vecto108-pi-pcc-mpc.png (README, getting started): the PI, VECTO's PCC and the default MPC on
+  the EU VECTO long-haul road (108 km, ../shared/roads beside the checkout), the 40 t truck.
+- thesis-fig6-*.png (docs/validation/thesis.md): the `thesis` preset at the settings of the
+  thesis's detail study (table 6.1: 1000 m horizon, S 25 m, δ 0.2 km/h, 40 t, 85 km/h) against the
+  PI on the thesis's artificial sections in roads/, one figure per section of chapter 6.
 """
 
 from __future__ import annotations
 
+import argparse
 import shutil
+import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
-from truckmpc.cli import app
-
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parent.parent
 SHARED_ROADS = REPO.parent / "shared" / "roads"
-
-# figure name -> (road file under ../shared/roads, controllers)
-FIGURES = {
-    "vecto108-pi-pcc-mpc.png": ("eu_vecto_longhaul_2015_108km.csv", "pi,pcc,mpc"),
-}
-
-
-def truckmpc(*args: str) -> None:
-    """Run one `truckmpc` command in this process; stop the script if it fails."""
-    print("truckmpc", " ".join(args), flush=True)
-    try:
-        app(list(args), prog_name="truckmpc")
-    except SystemExit as done:
-        if done.code not in (0, None):
-            sys.exit(f"truckmpc {args[0]} failed (exit {done.code})")
+DETAIL = ["--config", "thesis", "--set", "horizon_m=1000"]
+NEAREST = ["--set", "neutral_rule=nearest"]
+# image name, road file, options
+FIGURES: list[tuple[str, Path, list[str]]] = [
+    ("vecto108-pi-pcc-mpc.png", SHARED_ROADS / "eu_vecto_longhaul_2015_108km.csv", ["--controller", "pi,pcc,mpc"]),
+    ("thesis-fig6-3-ascent.png", REPO / "roads" / "hill_L500_A3.5.csv", DETAIL),
+    ("thesis-fig6-5-short-descent.png", REPO / "roads" / "hill_L300_A-3.csv", DETAIL + NEAREST),
+    ("thesis-fig6-6-descent.png", REPO / "roads" / "hill_L500_A-3.csv", DETAIL),
+    ("thesis-fig6-9-crest.png", REPO / "roads" / "crest_L1500_A2.csv", DETAIL + NEAREST),
+    ("thesis-fig6-10-depression.png", REPO / "roads" / "depression_L1500_A2.csv", DETAIL + NEAREST),
+]
 
 
-def make_figure(name: str, road_file: str, controllers: str, out_dir: Path) -> Path:
-    """Simulate `controllers` on a shared road and plot the run to out_dir/name."""
-    road = SHARED_ROADS / road_file
+def draw(image: Path, road: Path, options: list[str]) -> None:
+    """Simulate on `road` with `options` and keep the run's figure as `image`."""
     if not road.is_file():
         sys.exit(f"{road}: not found (the shared roads belong at ../shared/roads beside the checkout)")
-    with tempfile.TemporaryDirectory() as tmp:
-        run_dir = Path(tmp) / "run"
-        truckmpc("simulate", "--road", str(road), "--controller", controllers, "--out", str(run_dir))
-        truckmpc("plot", str(run_dir), "--out", str(Path(tmp) / name))
-        target = out_dir / name
-        shutil.copyfile(Path(tmp) / name, target)
-    return target
+    with tempfile.TemporaryDirectory() as run:
+        subprocess.run(
+            ["truckmpc", "simulate", "--road", str(road), *options, "--out", run], check=True, stdout=subprocess.DEVNULL
+        )
+        subprocess.run(["truckmpc", "plot", run], check=True, stdout=subprocess.DEVNULL)
+        shutil.copyfile(Path(run) / "run.png", image)
 
 
 def main() -> None:
-    out_dir = Path(sys.argv[1]) if len(sys.argv) > 1 else REPO / "docs" / "images"
-    out_dir.mkdir(parents=True, exist_ok=True)
-    for name, (road_file, controllers) in FIGURES.items():
-        print("wrote", make_figure(name, road_file, controllers, out_dir))
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--out", type=Path, default=REPO / "docs" / "images", help="directory of the images")
+    out = parser.parse_args().out
+    out.mkdir(parents=True, exist_ok=True)
+    for name, road, options in FIGURES:
+        draw(out / name, road, options)
+        print(out / name)
 
 
 if __name__ == "__main__":

@@ -1,0 +1,174 @@
+"""Print the validation pages' tables (docs/validation/) as Markdown, by running `truckmpc simulate`.
+
+    python scripts/validation_tables.py pcc                  # docs/validation/pcc.md, the controllers compared
+    python scripts/validation_tables.py convergence          # docs/validation/convergence.md, the default
+    python scripts/validation_tables.py thesis-convergence   # docs/validation/convergence.md, the thesis preset
+
+Each row is one `truckmpc simulate` run on a shared road (../shared/roads from the repository root,
+or $TRUCKMPC_SHARED_ROADS); the command of every row is printed above the table. Δ are in %, moves
+in percentage points, read from the run's summary.json.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+REPO = Path(__file__).resolve().parent.parent
+SHARED = Path(os.environ.get("TRUCKMPC_SHARED_ROADS", REPO.parent / "shared" / "roads"))
+TRACTOR = SHARED.parent / "vehicles" / "vecto-generic-class5-tractor" / "Class5_Tractor_DECL.vecto"
+TRUCK_20T = ["--set", "mass_kg=20000"]
+VECTO_108 = "eu_vecto_longhaul_2015_108km.csv"
+VECTO_100 = "eu_vecto_longhaul_100km.csv"
+SE = "se_E6_E20_goteborg_malmo_volvo_chalmers.csv"
+EPA = "us_epa_gem_ph2_grade_20km.csv"
+US_805 = "us_fastsim_longhaul_805km.csv"
+CYCLE = "raw/vecto-longhaul-2015.vdri"
+Case = tuple[str, str, list[str]]  # label, road file under SHARED, extra arguments
+
+HILLY: list[Case] = [
+    ("VECTO 108 km", VECTO_108, []),
+    ("VECTO 108 km reversed", VECTO_108, ["--reverse"]),
+    ("VECTO 100 km", VECTO_100, []),
+    ("VECTO 100 km reversed", VECTO_100, ["--reverse"]),
+    ("SE E6/E20 Göteborg → Malmö", SE, []),
+    ("SE E6/E20 Malmö → Göteborg", SE, ["--reverse"]),
+    ("US EPA grade 20 km", EPA, []),
+    ("US EPA grade 20 km reversed", EPA, ["--reverse"]),
+]
+PCC_CASES: list[Case] = [
+    *HILLY,
+    ("VECTO cycle (.vdri, target speeds)", CYCLE, []),
+    ("VECTO 108 km, 20 t", VECTO_108, TRUCK_20T),
+    ("US long-haul 805 km", US_805, []),
+    ("US long-haul 805 km reversed", US_805, ["--reverse"]),
+    ("VECTO 108 km, VECTO tractor", VECTO_108, ["--vehicle", str(TRACTOR)]),
+    ("VECTO 100 km, VECTO tractor", VECTO_100, ["--vehicle", str(TRACTOR)]),
+    ("SE E6/E20, VECTO tractor", SE, ["--vehicle", str(TRACTOR)]),
+    ("US EPA 20 km, VECTO tractor", EPA, ["--vehicle", str(TRACTOR)]),
+]
+THESIS_CASES: list[Case] = [
+    ("VECTO 108 km", VECTO_108, []),
+    ("VECTO 100 km", VECTO_100, []),
+    ("SE E6/E20 Göteborg → Malmö", SE, []),
+    ("SE E6/E20 Malmö → Göteborg (`--reverse`)", SE, ["--reverse"]),
+    ("US EPA grade 20 km", EPA, []),
+    ("US long-haul 805 km", US_805, []),
+]
+
+
+def simulate(road: str, extra: list[str]) -> dict[str, Any]:
+    """Run `truckmpc simulate` on a shared road into a temporary directory; return its summary.json."""
+    with tempfile.TemporaryDirectory() as out:
+        command = ["truckmpc", "simulate", "--road", str(SHARED / road), *extra, "--out", out]
+        subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
+        summary: dict[str, Any] = json.loads((Path(out) / "summary.json").read_text(encoding="utf-8"))
+        return summary
+
+
+def signed(value: float | None, digits: int = 2) -> str:
+    """A signed figure, `n/a` where the summary has none (a stalled run, no equal-time set speed)."""
+    return "n/a" if value is None else f"{value:+.{digits}f}"
+
+
+def comparison(summary: dict[str, Any], controller: str, baseline: str) -> dict[str, Any]:
+    """The summary's comparison of one controller against one baseline."""
+    return next(c for c in summary["comparisons"] if c["controller"] == controller and c["baseline"] == baseline)
+
+
+def raw_and_equal_time(summary: dict[str, Any], controller: str, baseline: str) -> str:
+    """Δfuel [%] raw / at equal trip time."""
+    found = comparison(summary, controller, baseline)
+    return f"{signed(found['delta_fuel_pct'])} / {signed(found.get('delta_fuel_equal_time_pct'))}"
+
+
+def per_100km(summary: dict[str, Any], controller: str, key: str) -> str:
+    return f"{summary[controller][key]:.1f}"
+
+
+def pcc_row(summary: dict[str, Any]) -> list[str]:
+    """One road of the controller comparison (docs/validation/pcc.md)."""
+    cc = comparison(summary, "vecto_cc", "pi")
+    return [
+        f"{signed(cc['delta_fuel_pct'])} ({signed(cc['delta_time_pct'])})",
+        raw_and_equal_time(summary, "pcc", "pi"),
+        raw_and_equal_time(summary, "pcc", "vecto_cc"),
+        raw_and_equal_time(summary, "mpc", "vecto_cc"),
+        f"**{raw_and_equal_time(summary, 'mpc', 'pcc')}**",
+        raw_and_equal_time(summary, "optimal", "pcc"),
+        per_100km(summary, "pcc", "eco_roll_entries_per_100km"),
+        ", ".join(per_100km(summary, c, "neutral_engagements_per_100km") for c in ("pcc", "mpc")),
+        ", ".join(per_100km(summary, c, "gear_shifts_per_100km") for c in ("pcc", "mpc")),
+    ]
+
+
+def convergence_row(summary: dict[str, Any]) -> list[str]:
+    """Moves at δ/2 and at S/2: raw Δfuel / Δtime / Δfuel at equal trip time [points]."""
+    moves = summary["convergence"]
+    return [
+        " / ".join(
+            signed(moves.get(f"delta_{figure}_pct_half_{half}")) for figure in ("fuel", "time", "fuel_equal_time")
+        )
+        for half in ("delta", "stage")
+    ]
+
+
+def thesis_row(summary: dict[str, Any]) -> list[str]:
+    """Δfuel / Δtime against the PI, then the Δfuel moves at δ/2 and S/2 [points]."""
+    moves = summary["convergence"]
+    return [
+        f"{signed(summary['delta_fuel_pct'])} % / {signed(summary['delta_time_pct'])} %",
+        f"{signed(moves['delta_fuel_pct_half_delta'], 3)}, {signed(moves['delta_fuel_pct_half_stage'], 3)}",
+    ]
+
+
+Study = tuple[list[Case], list[str], list[str], Callable[[dict[str, Any]], list[str]]]
+STUDIES: dict[str, Study] = {
+    "pcc": (
+        PCC_CASES,
+        ["--controller", "pi,vecto_cc,pcc,mpc,optimal"],
+        [
+            "vecto_cc vs PI, raw (Δtime)",
+            "PCC vs PI",
+            "PCC vs vecto_cc",
+            "MPC vs vecto_cc",
+            "**MPC vs PCC**",
+            "optimum vs PCC",
+            "eco-roll entries / 100 km PCC",
+            "neutral engagements / 100 km PCC, MPC",
+            "gear shifts / 100 km PCC, MPC",
+        ],
+        pcc_row,
+    ),
+    "convergence": (HILLY, ["--controller", "pi,mpc", "--check-convergence"], ["δ/2", "S/2"], convergence_row),
+    "thesis-convergence": (
+        THESIS_CASES,
+        ["--config", "thesis", "--check-convergence"],
+        ["thesis preset: Δfuel / Δtime", "moves at δ/2, S/2"],
+        thesis_row,
+    ),
+}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("study", choices=sorted(STUDIES))
+    study = STUDIES[parser.parse_args().study]
+    cases, arguments, header, row = study
+    print(f"truckmpc simulate --road ROAD {' '.join(arguments)} (per row: the road and its options)\n")
+    print("| road | " + " | ".join(header) + " |")
+    print("|---|" + "---|" * len(header))
+    for label, road, extra in cases:
+        print(f"| {label} | " + " | ".join(row(simulate(road, [*arguments, *extra]))) + " |", flush=True)
+        print(f"  {label}: --road {road} {' '.join(extra)}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
