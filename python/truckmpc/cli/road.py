@@ -131,7 +131,7 @@ road_import_app.command("gpx", short_help="Make a road CSV from a GPX track.")(
     _track_import_command(
         "gpx",
         """Make a road CSV from a GPX file's track points (else its route points): geodesic distance,
-    elevation resampled and smoothed, steep grades reported (README: Roads from GPS tracks).""",
+    elevation resampled and smoothed, steep grades reported (docs: tutorials/gps-road.md).""",
     )
 )
 road_import_app.command("csv", short_help="Make a road CSV from a lat,lon,ele table.")(

@@ -28,10 +28,10 @@ NAMES = {"pi": "PI", "vecto_cc": "VECTO CC", "pcc": "PCC", "mpc": "MPC", "optima
 """How a controller is named in a row's label."""
 
 LEGEND = (
-    "Δ [%] = (column − baseline) / baseline: negative = less than the baseline; at equal trip time = "
-    "the baseline re-run at the set speed that matches the column's trip time"
+    "Δ [%] = (column − baseline) / baseline: negative = less than the baseline.",
+    "At equal trip time: the baseline re-run at the set speed that matches the column's trip time.",
 )
-LEGEND_TARGETS = LEGEND.replace("at the set speed", "with its target speeds offset to the speed")
+LEGEND_TARGETS = (LEGEND[0], LEGEND[1].replace("at the set speed", "with its target speeds offset to the speed"))
 
 
 class Figure(NamedTuple):
@@ -160,7 +160,7 @@ def notes(summary: Mapping[str, Any], columns: Sequence[str], legend: bool) -> I
         legs = stops.get("legs", max(len(run.get("legs") or ()) for run in runs))
         yield stops_text(stops["count"], stops["total_stop_s"], legs)
     if legend:
-        yield LEGEND_TARGETS if _has_targets(summary) else LEGEND
+        yield from LEGEND_TARGETS if _has_targets(summary) else LEGEND
     against: dict[tuple[str, str], list[str]] = {}  # (controller, reason): the baselines
     for (name, baseline), entry in _comparisons(summary).items():
         if entry.get("not_comparable"):
