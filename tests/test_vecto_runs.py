@@ -14,11 +14,12 @@ from typer.testing import CliRunner
 
 from truckmpc.cli import app
 from truckmpc.config import load_run_config
-from truckmpc.roads import RoadProfile
+from truckmpc.roads import RoadProfile, load_road
 from truckmpc.sim import simulate
 from vecto_files import TRACTOR_JOB, needs_tractor, write_job
 
 runner = CliRunner()
+VECTO_108 = Path(__file__).resolve().parents[1].parent / "shared" / "roads" / "eu_vecto_longhaul_2015_108km.csv"
 KMH_PER_MPS = 3.6
 
 
@@ -221,6 +222,25 @@ def test_the_pi_does_not_hunt_between_gears_up_a_long_steep_climb() -> None:
     result = simulate(road, load_run_config(TRACTOR_JOB), "pi")
     assert not result.summary["stalled"]
     assert result.summary["gear_shifts"] <= 8
+
+
+@needs_tractor
+def test_after_a_rescue_shifts_down_the_mpc_keeps_its_gear_for_the_shift_limit() -> None:
+    # VECTO 108 km, km 82-87: a 1.5-2 % climb that leaves the tractor at the band's bottom in 12th,
+    # where one rescue shifts down to 11th. The rescue decides at every plant step; when those steps
+    # counted as stages of the shift limit, the MPC shifted back up a stage later and the rescue down
+    # again, 26 shifts in 5 km. The limit counts stages: shifts less than k_lim stages apart are at
+    # most the one pair around the rescue.
+    road = load_road(str(VECTO_108)).between(82_000.0, 87_000.0)
+    result = simulate(road, load_run_config(TRACTOR_JOB), "mpc")
+    settings = result.summary["settings"]
+    gear, distance_m = result.trace["gear"], result.trace["distance_m"]
+    forward = gear != 0
+    gear, distance_m = gear[forward], distance_m[forward]
+    shifts_m = distance_m[1:][np.diff(gear) != 0]
+    too_close = np.diff(shifts_m) < settings["k_lim"] * settings["stage_m"]
+    assert result.summary["fallback_rescues"] <= 2
+    assert too_close.sum() <= 1 and shifts_m.size <= 5
 
 
 def test_replay_refuses_a_loss_map_that_was_missing_when_the_run_ran(tmp_path: Path) -> None:

@@ -86,6 +86,9 @@ pub struct RecedingController {
     rescue_from_m: f64,
     /// Position of the latest rescue decision [m].
     rescue_last_m: f64,
+    /// The last stage the shift limit counted while rescuing (the rescue decides at every plant
+    /// step, the limit counts stages).
+    rescue_counted: i64,
     stats: SolverStats,
     /// Whether this is the whole-road optimum (one solve over the whole road).
     whole_road: bool,
@@ -123,6 +126,7 @@ impl RecedingController {
             rescuing: None,
             rescue_from_m: 0.0,
             rescue_last_m: 0.0,
+            rescue_counted: 0,
             stats: SolverStats::default(),
             whole_road: false,
             stored: None,
@@ -307,7 +311,12 @@ impl RecedingController {
             }
         }
         let u = self.rescue.step(self.gear, state.v_mps, at.v_max_kmh);
-        self.shifts.record(self.gear, u.gear);
+        // A shift restarts the limit's count, a new stage adds one: counting plant steps would
+        // free the look-ahead to shift back a few metres after the rescue's own shift.
+        if u.gear != self.gear || stage > self.rescue_counted {
+            self.shifts.record(self.gear, u.gear);
+            self.rescue_counted = stage;
+        }
         self.gear = u.gear;
         Decision { control: u, until_m: None }
     }
@@ -315,6 +324,7 @@ impl RecedingController {
     fn enter_rescue(&mut self, road: &Road, state: &PlantState) -> Decision {
         self.rescue_next = false;
         self.rescuing = Some(self.stage_at(state.s_m));
+        self.rescue_counted = self.stage_at(state.s_m) - 1;
         self.rescue_from_m = state.s_m;
         self.stats.fallback_rescues += 1;
         self.rescue_step(road, state)
