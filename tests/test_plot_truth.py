@@ -206,6 +206,8 @@ def test_the_sweep_figure_has_the_equal_time_delta_beside_the_raw_one(tmp_path):
             (line,) = [ln for ln in ax.lines if ln.get_marker() == "o"]  # the data, not the zero line
             expected = sorted((float(r["horizon_m"]), float(r[column])) for r in rows)
             assert np.allclose(np.column_stack([line.get_xdata(), line.get_ydata()]), expected)
+    # one line per panel, named by its y label: no legend calling every line "MPC and PCC"
+    assert fig.legends == []
 
 
 def test_the_road_figure_draws_a_cycles_targets_and_stops(tmp_path):

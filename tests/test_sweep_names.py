@@ -72,6 +72,19 @@ def test_the_pcc_and_mpc_columns_share_their_figures_names() -> None:
     assert {"neutral_distance_m", "equal_time_pi_fuel_kg", "delta_fuel_pct", "delta_fuel_equal_time_pct"} <= pcc & mpc
 
 
+REPO = Path(__file__).resolve().parent.parent
+# A sweep column as the pages quote it: a look-ahead controller's Δ or its equal-time baseline.
+QUOTED_COLUMN = re.compile(r"`((?:pcc|mpc)_(?:delta|equal_time)_[a-z_]+)`")
+
+
+def test_every_sweep_column_the_pages_quote_is_one_a_sweep_writes() -> None:
+    pages = [REPO / "README.md", *sorted((REPO / "docs").rglob("*.md"))]
+    quoted = {name: page.name for page in pages for name in QUOTED_COLUMN.findall(page.read_text(encoding="utf-8"))}
+    written = set(Layout(LOOK_AHEAD, check_convergence=True).columns)
+    assert quoted, "no page quotes a sweep column"
+    assert {name: page for name, page in quoted.items() if name not in written} == {}
+
+
 def read_csv(path: Path) -> tuple[list[str], list[list[str]]]:
     with path.open(newline="", encoding="utf-8") as handle:
         header, *rows = list(csv.reader(handle))

@@ -70,7 +70,8 @@ RoadsOpt = Annotated[
     typer.Option(
         "--road",
         metavar="FILE",
-        help="Road profile CSV or VECTO .vdri cycle, a directory of them, or a glob (quoted); repeatable.",
+        help="Road profile CSV, VECTO .vdri cycle or GPS track (.gpx), a directory of them, or a glob (quoted); "
+        "repeatable.",
     ),
 ]
 ReverseAllOpt = Annotated[bool, typer.Option("--reverse", help="Drive every road in the opposite direction.")]

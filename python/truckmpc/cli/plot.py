@@ -16,7 +16,9 @@ def plot_cmd(
     directory: Annotated[
         Path,
         typer.Argument(
-            metavar="DIR", help="A run directory (summary.json, trace-*.csv) or a sweep directory (sweep.csv)."
+            metavar="DIR",
+            help="A run directory (summary.json, trace-*.csv), a sweep directory (sweep.csv) or a Pareto directory "
+            "(pareto.csv).",
         ),
     ],
     svg: Annotated[bool, typer.Option("--svg", help="Also write an SVG beside every PNG.")] = False,
@@ -25,7 +27,8 @@ def plot_cmd(
         typer.Option("--out", metavar="PATH", help="Output directory, or a .png/.svg file name (default: DIR)."),
     ] = None,
 ) -> None:
-    """Plot a run (DIR/run.png: altitude, speed, gear, pedal, brake over distance) or a sweep
-    (DIR/sweep.png: delta fuel and delta time against the horizon; DIR/realtime.png). Needs matplotlib."""
+    """Plot a run (DIR/run.png: altitude, speed, gear, pedal, brake over distance), a sweep
+    (DIR/sweep.png: delta fuel, raw and at equal trip time, and delta time against the swept
+    parameter; DIR/realtime.png) or a Pareto study (DIR/pareto.png). Needs matplotlib."""
     written = plot_dir(directory, out=out, svg=svg)
     typer.echo("wrote " + ", ".join(str(p) for p in written))

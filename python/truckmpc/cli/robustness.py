@@ -25,7 +25,9 @@ STUDIED = ("mpc", "optimal", "pcc")
 def robustness_cmd(
     road: Annotated[
         Path,
-        typer.Option("--road", metavar="FILE", help="Road profile CSV or VECTO .vdri cycle the truck drives."),
+        typer.Option(
+            "--road", metavar="FILE", help="Road profile CSV, VECTO .vdri cycle or GPS track (.gpx) the truck drives."
+        ),
     ],
     controller: Annotated[
         str,

@@ -53,8 +53,8 @@ RoadOpt = Annotated[
     typer.Option(
         "--road",
         metavar="FILE",
-        help="Road profile CSV or VECTO .vdri cycle (default: the bundled test track). A road with stops is "
-        "driven as its stop-free legs.",
+        help="Road profile CSV, VECTO .vdri cycle or GPS track (.gpx, imported with the defaults of road import "
+        "gpx) (default: the bundled test track). A road with stops is driven as its stop-free legs.",
     ),
 ]
 CONTROLLER_HELP = (
@@ -119,8 +119,11 @@ def simulate_cmd(
 ) -> None:
     """Run controllers over a road; print a short table, write DIR/summary.json and DIR/trace-<controller>.csv.
 
-    The default, both, runs PI and MPC and reports delta fuel and delta time, (MPC - PI) / PI in %.
-    A directory holding an earlier run is replaced whole.
+    By default (--controller both) the PI and the MPC run. The table has a column per controller: its
+    fuel and trip time, then its delta fuel against each baseline, (controller - baseline) /
+    baseline in % (negative: fuel saved), at equal trip time (the baseline re-run at the set speed
+    that matches the controller's trip time) and as driven. A directory holding an earlier run is
+    replaced whole.
     """
     options = (road, controller, vehicle, config, set_, reverse, check_convergence, controller_road)
     if replay is not None:

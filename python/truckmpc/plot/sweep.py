@@ -42,7 +42,6 @@ class _Layout:
     x_axis: str
     line_axes: Sequence[str]
     neutral_axis: bool
-    subject: str = "MPC"
 
 
 def plot_sweep(directory: str | os.PathLike[str], out: str | os.PathLike[str], *, svg: bool = False) -> list[Path]:
@@ -67,7 +66,6 @@ def sweep_figures(directory: str | os.PathLike[str], out: str | os.PathLike[str]
         x_axis,
         [a for a in axes if a != x_axis and a != "allow_neutral" and len(_varying(rows, a)) > 1],
         "allow_neutral" in axes and len(_varying(rows, "allow_neutral")) > 1,
-        subject,
     )
     fixed = [_line_label(a, _varying(rows, a)[0]) for a in axes if len(_varying(rows, a)) == 1]
     note = f" ({', '.join(fixed)})" if fixed else ""
@@ -245,9 +243,10 @@ def _draw_lines(ax: Any, layout: _Layout, rows: Sequence[Row], metric: str, log:
             if not points:
                 continue
             xs, ys = zip(*points, strict=True)
-            label = ", ".join(_line_label(a, v) for a, v in combo) or layout.subject
             ax.plot(xs, ys, color=color, ls="-" if neutral in (None, True) else "--", marker="o", ms=3, lw=1.2)
-            handles.setdefault(label, Line2D([], [], color=color, marker="o", ms=3, lw=1.2, label=label))
+            if combo:  # a lone line needs no legend: the y label and the title say what it is
+                label = ", ".join(_line_label(a, v) for a, v in combo)
+                handles.setdefault(label, Line2D([], [], color=color, marker="o", ms=3, lw=1.2, label=label))
 
 
 def _mark_real_time(axes: Sequence[Any]) -> None:

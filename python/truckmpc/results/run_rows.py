@@ -82,8 +82,9 @@ def comparison_rows(
     baselines: Sequence[str] | None = None,
 ) -> tuple[Row, ...]:
     """For each ``(key, label)`` of ``measures`` and each baseline that ran (or of ``baselines``),
-    the row ``label vs BASELINE [%]``: each controller's ``delta_<key>_pct`` against it in its own column (``n/a``
-    where it was not comparable, "" where it was not compared, the baseline's own cell)."""
+    the row ``label vs BASELINE [%]``: each controller's ``delta_<key>_pct`` against it in its own
+    column; "" where it was not compared (the baseline's own cell) or not comparable (a stalled run:
+    :func:`notes` says why)."""
     comparisons = _comparisons(summary)
     rows = []
     for key, label in measures:

@@ -54,11 +54,8 @@ def run_table(summary: Mapping[str, Any], *, verbose: bool = False) -> RunTable:
     ``verbose`` adds the solver statistics, the optimum's plan and the equal-time search."""
     columns = _columns(summary)
     runs = [summary[name] for name in columns]
-    headline = figure_rows((("fuel", "fuel_kg", "kg", ".3f"), ("trip time", "time_s", "s", ".1f")), runs)
     sections = [
-        Section(
-            "", (*headline, *comparison_rows(summary, columns, (("fuel_equal_time", "Δfuel at equal trip time"),)))
-        ),
+        Section("", figure_rows(_HEADLINE, runs) + comparison_rows(summary, columns, _EQUAL_TIME)),
         Section("as driven", comparison_rows(summary, columns, _AS_DRIVEN) + optimum_rows(summary, columns)),
         Section("driving", driving_rows(runs)),
         Section("compute", figure_rows(_SOLVER if verbose else (), runs) + figure_rows(_COMPUTE, runs)),
