@@ -86,8 +86,8 @@ def test_the_table_prints_each_move_and_flags_those_beyond_a_third_of_a_point(ch
     # At δ 0.4 km/h and S 50 m this descent is far from converged: the coarse grid cannot coast.
     assert abs(conv["delta_fuel_pct_half_delta"]) > 0.3
     for label, key in (
-        ("delta fuel δ/2 [pts]", "delta_fuel_pct_half_delta"),
-        ("delta time S/2", "delta_time_pct_half_stage"),
+        ("Δfuel vs PI δ/2 [pts]", "delta_fuel_pct_half_delta"),
+        ("Δtrip time vs PI S/2", "delta_time_pct_half_stage"),
     ):
         line = next(line for line in stdout.splitlines() if line.startswith(label))
         assert f"{conv[key]:+.2f}" in line

@@ -73,7 +73,7 @@ def test_a_broken_road_fails_in_its_rows_only(swept) -> None:
     assert all(r["pi_fuel_kg"] == r["mpc_delta_fuel_pct"] == r["mpc_stalled"] == "" for r in broken)
     others = [r for r in rows if r["road"] != "broken"]
     assert all(r["error"] == "" and r["mpc_delta_fuel_pct"] != "" for r in others)
-    assert "all rows mpc: delta fuel " in result.stdout and "; 8 failed, on broken" in result.stdout
+    assert "all rows mpc: Δfuel vs PI " in result.stdout and "; 8 failed, on broken" in result.stdout
 
 
 def test_the_summary_gives_mean_spread_and_worst_road_per_axis_value(swept) -> None:

@@ -300,7 +300,7 @@ def test_cli_parallel_matches_in_process(descent, tmp_path):
     one = runner.invoke(app, [*args, "--jobs", "1", "--out", str(tmp_path / "one")])
     two = runner.invoke(app, [*args, "--jobs", "2", "--out", str(tmp_path / "two")])
     assert one.exit_code == 0 and two.exit_code == 0, (one.stderr, two.stderr)
-    assert "4 rows: 4 MPC and 1 PI runs" in two.stdout and "delta fuel" in two.stdout
+    assert "4 rows: 4 MPC and 1 PI runs" in two.stdout and "Δfuel vs PI" in two.stdout
     assert untimed(read_csv(tmp_path / "one" / "sweep.csv")) == untimed(read_csv(tmp_path / "two" / "sweep.csv"))
     assert two.stderr == ""  # no progress bar when stderr is not a terminal
 

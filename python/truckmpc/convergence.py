@@ -110,16 +110,21 @@ def convergence_document(
     return doc
 
 
+_MOVED = {"fuel": "Δfuel vs PI", "time": "Δtrip time vs PI", "fuel_equal_time": "Δfuel at equal trip time vs PI"}
+"""How each moved Δ is named in the printed lines."""
+
+
 def convergence_lines(doc: Mapping[str, Any], width: int) -> list[str]:
     """The printed table's lines for a ``convergence`` object: how far each Δ moves at the halved
-    setting (``delta fuel δ/2 [pts]``), flagged beyond :data:`FLAG_POINTS`, or why it is not
+    setting (``Δfuel vs PI δ/2 [pts]``), flagged beyond :data:`FLAG_POINTS`, or why it is not
     comparable."""
     lines = []
+    width = max(width, max(len(text) for text in _MOVED.values()) + len(" S/2 [pts]") + 2)
     for half, label in (("half_delta", "δ/2"), ("half_stage", "S/2")):
         for name in ("fuel", "time", "fuel_equal_time"):
             key = f"delta_{name}_pct_{half}"
             value = doc.get(key)
-            text = f"delta {name.replace('_', ' ')} {label} [pts]"
+            text = f"{_MOVED[name]} {label} [pts]"
             if value is None:
                 lines.append(f"{text:<{width}}{'n/a':>14}  {doc[half].get('not_comparable', '')}")
                 continue

@@ -149,7 +149,7 @@ def study(
 def format_study(rows: list[dict[str, Any]], controller: str) -> str:
     """The study as a text table: Δfuel, Δtime and Δfuel at equal time against the PI [%], and the
     share of the reference's equal-time saving kept [%]."""
-    header = f"{'case':<44} {'dfuel %':>8} {'dtime %':>8} {'dfuel eq-t %':>13} {'kept %':>7}"
+    header = f"{'case':<44} {'Δfuel %':>8} {'Δtime %':>8} {'Δfuel eq.t. %':>13} {'kept %':>7}"
     lines = [f"{controller} against the pi on the true truck and road", header]
     for row in rows:
         cells = [_cell(row[key], width) for key, width in _COLUMNS]

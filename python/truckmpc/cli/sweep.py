@@ -154,11 +154,11 @@ def _sweep_controllers(text: str) -> tuple[str, ...]:
 
 
 def _sweep_deltas(row: Mapping[str, str], controllers: Sequence[str]) -> str:
-    """`delta fuel -1.23 %, delta time +0.45 %` of each look-ahead controller against the PI (named
+    """`Δfuel vs PI -1.23 %, Δtrip time +0.45 %` of each look-ahead controller against the PI (named
     when there are several), `-` where blank."""
     parts = []
     for name in controllers:
         shown = [f"{float(v):+.2f}" if v else "-" for v in (row[delta_column(name, k)] for k in ("fuel", "time"))]
         named = f"{name} " if len(controllers) > 1 else ""
-        parts.append(f"{named}delta fuel {shown[0]} %, delta time {shown[1]} %")
+        parts.append(f"{named}Δfuel vs PI {shown[0]} %, Δtrip time {shown[1]} %")
     return "; ".join(parts)

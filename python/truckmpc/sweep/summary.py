@@ -122,8 +122,8 @@ def summary_lines(summary: Sequence[Mapping[str, str]]) -> list[str]:
         if row["mean_delta_fuel_pct"]:
             worst = ", ".join(v for v in (row["worst_direction"], row["worst_vehicle"]) if v)
             text = (
-                f"delta fuel {float(row['mean_delta_fuel_pct']):+.2f} % ± {float(row['std_delta_fuel_pct']):.2f}, "
-                f"delta time {float(row['mean_delta_time_pct']):+.2f} % over {row['compared']} rows; worst "
+                f"Δfuel vs PI {float(row['mean_delta_fuel_pct']):+.2f} % ± {float(row['std_delta_fuel_pct']):.2f}, "
+                f"Δtrip time {float(row['mean_delta_time_pct']):+.2f} % over {row['compared']} rows; worst "
                 f"{row['worst_road']} ({worst}) {float(row['worst_delta_fuel_pct']):+.2f} %"
             )
         else:
