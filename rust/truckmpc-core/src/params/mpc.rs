@@ -117,7 +117,7 @@ declare_params! {
         /// Q4, weight per gear shift.
         q_gear_shift: f64 = 20.0, unit "1/shift", range Range::between(0.0, 1e6);
         /// Price per engagement of neutral (a coasting episode; on top of Q4 where shift_price_neutral): a drivability price, not fuel.
-        q_neutral: f64 = 20.0, unit "1/engagement", range Range::between(0.0, 1e6);
+        q_neutral: f64 = 30.0, unit "1/engagement", range Range::between(0.0, 1e6);
         /// Whether Q4 also prices each shift into and out of neutral (the thesis's cost); false: Q4 prices changes of forward gear only, and q_neutral each neutral engagement.
         shift_price_neutral: bool = false, unit "-", range Range::ANY;
         /// After coasting in neutral, engage only the highest gear usable at the speed (as an automated gearbox does); false: any usable gear.
