@@ -16,6 +16,7 @@ from pathlib import Path
 import pytest
 
 from truckmpc import run_sweep
+from truckmpc.sweep.columns import WALL_TIME_COLUMNS
 from waiting import data_rows, wait_for
 
 REPO = Path(__file__).resolve().parents[1]
@@ -24,7 +25,6 @@ SWEEP = ["--road", str(ROAD), "--grid", "horizon_m=1500:3000:500", "--grid", "al
 SETTINGS = ["--set", "delta_kmh=0.04"]
 ROWS = 8
 COMMAND = [sys.executable, "-c", "from truckmpc.cli import main; main()"]
-TIMING = {"mpc_realtime_ratio", "mpc_solve_ms_mean", "mpc_solve_ms_max"}
 """Columns that are measured wall times: they differ between two runs of the same row."""
 
 pytestmark = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs Linux /proc")
@@ -32,7 +32,7 @@ pytestmark = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="ne
 
 def untimed(path: Path) -> list[dict[str, str]]:
     with path.open(newline="", encoding="utf-8") as handle:
-        return [{k: v for k, v in row.items() if k not in TIMING} for row in csv.DictReader(handle)]
+        return [{k: v for k, v in row.items() if k not in WALL_TIME_COLUMNS} for row in csv.DictReader(handle)]
 
 
 def stop(proc: subprocess.Popen[str]) -> None:

@@ -13,10 +13,9 @@ from typer.testing import CliRunner
 from truckmpc import make_section, write_road
 from truckmpc.cli import app
 from truckmpc.sweep import PARTIAL_NAME
+from truckmpc.sweep.columns import WALL_TIME_COLUMNS
 
 runner = CliRunner()
-# Columns that are measured wall times: they differ between two runs of the same row.
-TIMING = {"mpc_realtime_ratio", "mpc_solve_ms_mean", "mpc_solve_ms_max"}
 
 
 def run(*args: object):
@@ -109,7 +108,7 @@ def test_a_grid_of_1e8_combinations_is_refused_before_it_is_expanded(in_tmp, sho
 
 def read_rows(path: Path) -> list[dict[str, str]]:
     with path.open(newline="", encoding="utf-8") as handle:
-        return [{k: v for k, v in row.items() if k not in TIMING} for row in csv.DictReader(handle)]
+        return [{k: v for k, v in row.items() if k not in WALL_TIME_COLUMNS} for row in csv.DictReader(handle)]
 
 
 @pytest.mark.parametrize(

@@ -22,11 +22,9 @@ from truckmpc.sweep import (
     plan_sweep,
 )
 from truckmpc.sweep.cells import cell, parse_cell
-from truckmpc.sweep.columns import MPC_FIELDS, PI_FIELDS, result_cells
+from truckmpc.sweep.columns import MPC_FIELDS, PI_FIELDS, WALL_TIME_COLUMNS, result_cells
 
 runner = CliRunner()
-# Columns that are measured wall times: they differ between two runs of the same row.
-TIMING = {"mpc_realtime_ratio", "mpc_solve_ms_mean", "mpc_solve_ms_max"}
 
 
 @pytest.fixture(scope="module")
@@ -63,7 +61,7 @@ def read_csv(path: Path) -> list[dict[str, str]]:
 
 
 def untimed(rows: list[dict[str, str]]) -> list[dict[str, str]]:
-    return [{k: v for k, v in row.items() if k not in TIMING} for row in rows]
+    return [{k: v for k, v in row.items() if k not in WALL_TIME_COLUMNS} for row in rows]
 
 
 # ---------------------------------------------------------------------------------------------

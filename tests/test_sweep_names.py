@@ -34,8 +34,6 @@ OLD_TO_NEW = {
 }
 """The default sweep's columns as earlier versions named them (their README's list), and now."""
 
-TIMING = {"mpc_realtime_ratio", "mpc_solve_ms_mean", "mpc_solve_ms_max"}
-
 
 @pytest.fixture(scope="module")
 def descent(tmp_path_factory) -> Path:

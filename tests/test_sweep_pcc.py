@@ -15,10 +15,9 @@ from truckmpc import _core, load_road, load_run_config, make_section, run_sweep,
 from truckmpc.cli import app
 from truckmpc.sweep import PARTIAL_NAME, SWEEP_COLUMNS
 from truckmpc.sweep.cells import parse_cell
-from truckmpc.sweep.columns import PCC_FIELDS, PI_FIELDS
+from truckmpc.sweep.columns import PCC_FIELDS, PI_FIELDS, WALL_TIME_COLUMNS
 
 runner = CliRunner()
-TIMING = {"mpc_realtime_ratio", "mpc_solve_ms_mean", "mpc_solve_ms_max"}
 PCC_DELTAS = ("pcc_delta_fuel_pct", "pcc_delta_time_pct", "pcc_delta_fuel_equal_time_pct")
 SUMMARY_KEYS = (
     (("mpc", "pi"), "delta_fuel_pct", "mpc_delta_fuel_pct"),
@@ -58,7 +57,7 @@ def core_runs(monkeypatch) -> list[str]:
 
 
 def untimed(rows: list[dict[str, str]]) -> list[dict[str, str]]:
-    return [{k: v for k, v in row.items() if k not in TIMING} for row in rows]
+    return [{k: v for k, v in row.items() if k not in WALL_TIME_COLUMNS} for row in rows]
 
 
 def read_csv(path: Path) -> list[dict[str, str]]:

@@ -149,6 +149,11 @@ ERROR_COLUMN = "error"
 """The first result column: why a row's runs failed (``pi: ...; mpc: ...``), blank when they did
 not; the failed runs' figures and their comparisons are blank."""
 
+WALL_TIME_COLUMNS = frozenset(
+    RUNS["mpc"].column(field) for field in ("realtime_ratio", "solve_ms_mean", "solve_ms_max")
+)
+"""The columns that are measured wall times: they differ between two runs of the same row."""
+
 CONVERGENCE_FIELDS = (
     "delta_fuel_pct_half_delta",
     "delta_fuel_pct_half_stage",
