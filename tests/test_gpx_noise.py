@@ -59,11 +59,6 @@ def test_sigma_2m_gives_a_grade_within_the_aim_of_0_3_points(name):
 
 @needs_shared
 @pytest.mark.slow
-@pytest.mark.xfail(
-    reason="with the fuel + β·time default (issue 25) the noisy import's raw Δfuel is −8.86 % against the true "
-    "road's −6.15 % (seed 1): the new cost trades fuel for time on the import's spurious grades; not yet resolved",
-    strict=True,
-)
 def test_the_mpc_saving_on_an_imported_road_stays_near_the_true_one():
     """Δfuel (MPC against PI) on 10 km of the VECTO road, imported from a σ = 2 m track, against
     the true road's; coarse MPC settings to keep it short."""

@@ -59,7 +59,7 @@ def test_a_road_with_a_stop_adds_up_its_legs_driven_alone(controller: str) -> No
         (JOIN_M, 5000.0, 80.0),
     ]
     assert [leg["fuel_kg"] for leg in summary["legs"]] == [one["fuel_kg"], two["fuel_kg"]]
-    assert summary["stops_not_simulated"] == {"count": 1, "total_stop_s": 45.0, "note": STOPS_NOTE}
+    assert summary["stops_not_simulated"] == {"count": 1, "total_stop_s": 45.0, "note": STOPS_NOTE, "legs": 2}
     if controller == "pcc":
         for key in ("pcc_events", "eco_roll_entries"):
             assert summary[key] == one[key] + two[key], key
