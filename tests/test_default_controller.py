@@ -8,11 +8,13 @@ and the whole-road optimum's plan is what the plant then burns.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 from truckmpc.config import load_run_config
-from truckmpc.roads import default_test_track, make_section
+from truckmpc.roads import default_test_track, load_road, make_section
 from truckmpc.sim import simulate
 
 FLAT = make_section("flat", 6000)
@@ -86,3 +88,25 @@ def test_the_whole_road_plan_is_what_the_plant_burns():
     optimal = simulate(default_test_track(), config, "optimal").summary
     assert optimal["infeasible_solves"] == 0
     assert optimal["plan_fuel_kg"] == pytest.approx(optimal["fuel_kg"], rel=2e-3)
+
+
+EPA = Path(__file__).resolve().parents[1] / ".." / "shared" / "roads" / "us_epa_gem_ph2_grade_20km.csv"
+
+
+@pytest.mark.skipif(not EPA.is_file(), reason="shared road profiles (../shared/roads) not present")
+def test_the_rescue_solve_changes_gear_directly_not_through_a_one_stage_coast():
+    """US EPA 20 km reversed, km 5.5: a climb the band's bottom holds only from its top, where a
+    solve finds no admissible path and the relaxed one drives. Without the shift limit a coast may
+    last one stage, and with a shift priced above an engagement the relaxed plan shifted
+    12 -> 11 -> N -> 12 within 75 m (20 shifts per 100 km, the PCC 10). In gear it does not."""
+    config = load_run_config(overrides=["q_gear_shift=60", "q_neutral=30"])
+    road = load_road(EPA).reversed()
+    mpc, pcc = simulate(road, config, "mpc"), simulate(road, config, "pcc")
+    assert mpc.summary["fallback_relaxed"] >= 1
+    assert mpc.summary["gear_shifts"] <= pcc.summary["gear_shifts"]
+    gear, stage_m = mpc.trace["gear"], config.mpc.stage_m
+    distance = mpc.trace["distance_m"]
+    starts = np.flatnonzero((gear[1:] == 0) & (gear[:-1] != 0)) + 1
+    ends = np.flatnonzero((gear[1:] != 0) & (gear[:-1] == 0)) + 1
+    coasts_m = distance[ends] - distance[starts[: len(ends)]]
+    assert np.all(coasts_m >= config.settings.k_lim_stages * stage_m), coasts_m

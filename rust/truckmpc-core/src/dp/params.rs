@@ -201,14 +201,20 @@ impl DpSettings {
         })
     }
 
-    /// The same settings with the lower speed bound at `v_min_kmh`, no shift limit and a grid step
-    /// of at least [`RELAXED_DELTA_MIN_KMH`]: the rescue solve when these admit no path. (Its band
-    /// reaches down to `v_min_kmh`, many times the cruise band's width: at δ 0.025 km/h one such
-    /// solve took 0.7 s without the row cache.)
+    /// The same settings with the lower speed bound at `v_min_kmh`, no shift limit, no neutral
+    /// after the first stage and a grid step of at least [`RELAXED_DELTA_MIN_KMH`]: the rescue
+    /// solve when these admit no path. (Its band reaches down to `v_min_kmh`, many times the cruise
+    /// band's width: at δ 0.025 km/h one such solve took 0.7 s without the row cache.)
+    ///
+    /// Without the shift limit a neutral engagement may last a single stage, and a change of gear
+    /// routed through it is priced q_neutral instead of Q4: with Q4 above q_neutral the rescue
+    /// shifted 12 → 11 → N → 12 in three stages on a climb. A rescue is the way back into the
+    /// band, not a coast: it plans in gear.
     pub fn relaxed(&self, v_min_kmh: f64) -> Self {
         DpSettings {
             v_dec_kmh: (self.v_ref_kmh - v_min_kmh).max(self.v_dec_kmh),
             k_lim: 1,
+            allow_neutral: false,
             delta_kmh: self.delta_kmh.max(RELAXED_DELTA_MIN_KMH),
             horizon_m: self.horizon_m.min(RELAXED_HORIZON_MAX_M).max(self.stage_m),
             ..self.clone()
@@ -280,11 +286,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_relaxed_solve_lowers_v_min_drops_the_shift_limit_and_keeps_a_grid_of_at_least_0_2_kmh() {
+    fn the_relaxed_solve_lowers_v_min_drops_the_shift_limit_and_neutral_and_keeps_a_grid_of_at_least_0_2_kmh() {
         let fine = DpSettings::default();
-        assert!(fine.delta_kmh < RELAXED_DELTA_MIN_KMH);
+        assert!(fine.delta_kmh < RELAXED_DELTA_MIN_KMH && fine.allow_neutral);
         let relaxed = fine.relaxed(5.0);
-        assert_eq!((relaxed.v_min_mps() * 3.6, relaxed.k_lim), (5.0, 1));
+        assert_eq!((relaxed.v_min_mps() * 3.6, relaxed.k_lim, relaxed.allow_neutral), (5.0, 1, false));
         assert_eq!(relaxed.delta_kmh, RELAXED_DELTA_MIN_KMH);
         // A coarser grid is kept as it is.
         let coarse = DpSettings { delta_kmh: 0.4, ..DpSettings::thesis() }.relaxed(5.0);
@@ -295,6 +301,7 @@ mod tests {
                 delta_kmh: 0.0,
                 v_dec_kmh: relaxed.v_dec_kmh,
                 k_lim: 1,
+                allow_neutral: false,
                 horizon_m: RELAXED_HORIZON_MAX_M,
                 ..fine
             }
