@@ -3,6 +3,8 @@
     python scripts/validation_tables.py pcc                  # docs/validation/pcc.md, the controllers compared
     python scripts/validation_tables.py convergence          # docs/validation/convergence.md, the default
     python scripts/validation_tables.py thesis-convergence   # docs/validation/convergence.md, the thesis preset
+    python scripts/validation_tables.py shift-price          # docs/validation/pcc.md, the MPC at each Q4
+    python scripts/validation_tables.py neutral-price        # docs/validation/pcc.md, the MPC at each q_neutral
 
 Each row is one `truckmpc simulate` run on a shared road (../shared/roads from the repository root,
 or $TRUCKMPC_SHARED_ROADS); the command of every row is printed above the table. Δ are in %, moves
@@ -157,10 +159,65 @@ STUDIES: dict[str, Study] = {
 }
 
 
+# A price study: per road (rows), one run of the MPC and the PCC per value of one MPC key (columns).
+PriceStudy = tuple[list[Case], str, list[str], str]
+PRICES: dict[str, PriceStudy] = {
+    "shift-price": (
+        [
+            ("VECTO 100 km", VECTO_100, []),
+            ("US EPA grade 20 km reversed", EPA, ["--reverse"]),
+            ("US long-haul 805 km", US_805, []),
+            *PCC_CASES[-4:],
+        ],
+        "q_gear_shift",
+        ["20", "40", "60", "80"],
+        "gear_shifts_per_100km",
+    ),
+    "neutral-price": (
+        [
+            ("SE E6/E20 Göteborg → Malmö", SE, []),
+            ("VECTO 108 km", VECTO_108, []),
+            ("VECTO 100 km", VECTO_100, []),
+            ("US long-haul 805 km", US_805, []),
+            *PCC_CASES[-3:-1],
+        ],
+        "q_neutral",
+        ["20", "30", "40", "60"],
+        "neutral_engagements_per_100km",
+    ),
+}
+
+
+def price_cell(summary: dict[str, Any], count: str) -> str:
+    """Δfuel of the MPC against the PCC at equal trip time [%]; then `count` of the PCC and the MPC."""
+    found = comparison(summary, "mpc", "pcc")
+    return f"{signed(found.get('delta_fuel_equal_time_pct'))}; " + ", ".join(
+        per_100km(summary, c, count) for c in ("pcc", "mpc")
+    )
+
+
+def price_table(study: PriceStudy) -> None:
+    """Print a price study's table, a row per road and a column per value of its key."""
+    cases, key, values, count = study
+    print(f"truckmpc simulate --road ROAD --controller pcc,mpc --set {key}=VALUE (per row: the road and its options)\n")
+    print("| road | " + " | ".join(f"{key} {value}" for value in values) + " |")
+    print("|---|" + "---|" * len(values))
+    for label, road, extra in cases:
+        cells = [
+            price_cell(simulate(road, ["--controller", "pcc,mpc", "--set", f"{key}={value}", *extra]), count)
+            for value in values
+        ]
+        print(f"| {label} | " + " | ".join(cells) + " |", flush=True)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("study", choices=sorted(STUDIES))
-    study = STUDIES[parser.parse_args().study]
+    parser.add_argument("study", choices=sorted([*STUDIES, *PRICES]))
+    name = parser.parse_args().study
+    if name in PRICES:
+        price_table(PRICES[name])
+        return
+    study = STUDIES[name]
     cases, arguments, header, row = study
     print(f"truckmpc simulate --road ROAD {' '.join(arguments)} (per row: the road and its options)\n")
     print("| road | " + " | ".join(header) + " |")

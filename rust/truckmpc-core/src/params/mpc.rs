@@ -115,7 +115,7 @@ declare_params! {
         /// Q3, weight per m/s of speed change over a stage.
         q_speed_change: f64 = 0.0, unit "1/(m/s)", range Range::between(0.0, 1e6);
         /// Q4, weight per gear shift.
-        q_gear_shift: f64 = 20.0, unit "1/shift", range Range::between(0.0, 1e6);
+        q_gear_shift: f64 = 60.0, unit "1/shift", range Range::between(0.0, 1e6);
         /// Price per engagement of neutral (a coasting episode; on top of Q4 where shift_price_neutral): a drivability price, not fuel.
         q_neutral: f64 = 30.0, unit "1/engagement", range Range::between(0.0, 1e6);
         /// Whether Q4 also prices each shift into and out of neutral (the thesis's cost); false: Q4 prices changes of forward gear only, and q_neutral each neutral engagement.
