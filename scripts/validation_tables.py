@@ -196,18 +196,28 @@ def price_cell(summary: dict[str, Any], count: str) -> str:
     )
 
 
+def table_head(arguments: str, header: list[str]) -> None:
+    """Print the command a table's rows run and the table's heading."""
+    print(f"truckmpc simulate --road ROAD {arguments} (per row: the road and its options)\n")
+    print("| road | " + " | ".join(header) + " |")
+    print("|---|" + "---|" * len(header))
+
+
+def table_row(case: Case, cells: list[str]) -> None:
+    """Print one road's row; its road and options to stderr."""
+    label, road, extra = case
+    print(f"| {label} | " + " | ".join(cells) + " |", flush=True)
+    print(f"  {label}: --road {road} {' '.join(extra)}", file=sys.stderr)
+
+
 def price_table(study: PriceStudy) -> None:
     """Print a price study's table, a row per road and a column per value of its key."""
     cases, key, values, count = study
-    print(f"truckmpc simulate --road ROAD --controller pcc,mpc --set {key}=VALUE (per row: the road and its options)\n")
-    print("| road | " + " | ".join(f"{key} {value}" for value in values) + " |")
-    print("|---|" + "---|" * len(values))
-    for label, road, extra in cases:
-        cells = [
-            price_cell(simulate(road, ["--controller", "pcc,mpc", "--set", f"{key}={value}", *extra]), count)
-            for value in values
-        ]
-        print(f"| {label} | " + " | ".join(cells) + " |", flush=True)
+    table_head(f"--controller pcc,mpc --set {key}=VALUE", [f"{key} {value}" for value in values])
+    for case in cases:
+        _, road, extra = case
+        runs = [simulate(road, ["--controller", "pcc,mpc", "--set", f"{key}={value}", *extra]) for value in values]
+        table_row(case, [price_cell(summary, count) for summary in runs])
 
 
 def main() -> None:
@@ -219,12 +229,10 @@ def main() -> None:
         return
     study = STUDIES[name]
     cases, arguments, header, row = study
-    print(f"truckmpc simulate --road ROAD {' '.join(arguments)} (per row: the road and its options)\n")
-    print("| road | " + " | ".join(header) + " |")
-    print("|---|" + "---|" * len(header))
-    for label, road, extra in cases:
-        print(f"| {label} | " + " | ".join(row(simulate(road, [*arguments, *extra]))) + " |", flush=True)
-        print(f"  {label}: --road {road} {' '.join(extra)}", file=sys.stderr)
+    table_head(" ".join(arguments), header)
+    for case in cases:
+        _, road, extra = case
+        table_row(case, row(simulate(road, [*arguments, *extra])))
 
 
 if __name__ == "__main__":

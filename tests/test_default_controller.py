@@ -8,11 +8,10 @@ and the whole-road optimum's plan is what the plant then burns.
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 
+from gps_tracks import SHARED_ROADS
 from truckmpc.config import load_run_config
 from truckmpc.roads import default_test_track, load_road, make_section
 from truckmpc.sim import simulate
@@ -90,7 +89,7 @@ def test_the_whole_road_plan_is_what_the_plant_burns():
     assert optimal["plan_fuel_kg"] == pytest.approx(optimal["fuel_kg"], rel=2e-3)
 
 
-EPA = Path(__file__).resolve().parents[1] / ".." / "shared" / "roads" / "us_epa_gem_ph2_grade_20km.csv"
+EPA = SHARED_ROADS / "us_epa_gem_ph2_grade_20km.csv"
 
 
 @pytest.mark.skipif(not EPA.is_file(), reason="shared road profiles (../shared/roads) not present")
