@@ -31,6 +31,39 @@ fn a_curve_is_linear_between_its_points_and_holds_its_end_values() {
     assert!(c.covers(600.0) && c.covers(2000.0) && !c.covers(2000.1));
 }
 
+/// The bucketed look-up finds the segment a binary search finds, on curves with very uneven
+/// spacing (points 1e-3 apart next to gaps of hundreds), at the points themselves, between them
+/// and outside the range.
+#[test]
+fn a_curve_finds_the_same_segment_as_a_search_however_its_points_are_spaced() {
+    let mut seed: u64 = 12345;
+    let mut next = move || {
+        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..200 {
+        let mut x = -50.0 + 100.0 * next();
+        let mut points = Vec::new();
+        for _ in 0..2 + (next() * 40.0) as usize {
+            points.push((x, next() * 10.0));
+            x += if next() < 0.3 { 1e-3 * next() + 1e-9 } else { 300.0 * next() + 1e-6 };
+        }
+        let c = Curve::new("c", &points).unwrap();
+        let (xs, ys): (Vec<f64>, Vec<f64>) = points.iter().copied().unzip();
+        let search = |x: f64| {
+            let n = xs.len();
+            let x = x.clamp(xs[0], xs[n - 1]);
+            let i = xs.partition_point(|&xi| xi <= x).clamp(1, n - 1);
+            ys[i - 1] + (ys[i] - ys[i - 1]) * (x - xs[i - 1]) / (xs[i] - xs[i - 1])
+        };
+        let (lo, hi) = c.x_range();
+        let probes = xs.iter().copied().chain((0..300).map(|_| lo - 10.0 + (hi - lo + 20.0) * next()));
+        for x in probes {
+            assert_eq!(c.at(x).to_bits(), search(x).to_bits(), "x {x} on {points:?}");
+        }
+    }
+}
+
 #[test]
 fn a_curve_refuses_x_that_does_not_increase() {
     let err = Curve::new("full_load_curve", &[(600.0, 1.0), (600.0, 2.0)]).unwrap_err();
