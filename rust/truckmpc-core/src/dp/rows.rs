@@ -13,13 +13,15 @@
 //! `rows/trapezoid.rs`.
 
 mod euler;
+mod pedal_fuel;
 #[cfg(test)]
 mod tests;
 mod trapezoid;
 
 use self::euler::{forward_row_euler, pair_euler};
-pub use self::trapezoid::EndMemo;
-use self::trapezoid::{forward_row_trapezoid, pair_trapezoid, trapezoid_pedal_band, AtEnd};
+use self::pedal_fuel::PedalFuel;
+use self::trapezoid::EndMemo;
+use self::trapezoid::{forward_row_trapezoid, map_stage_fuel_g, pair_trapezoid, trapezoid_pedal_band, AtEnd};
 use super::params::{DpSettings, StageModel};
 use super::stage;
 use crate::levels::{brake_accel_on, pedal_accel_on, stage_fuel_g, AffineAccel};
@@ -81,6 +83,14 @@ pub fn floor_i64(x: f64) -> i64 {
 
 /// |v_j − v_max| must be below δ times this for a brake transition (5.4.3).
 pub const BRAKE_WINDOW: f64 = 1.0 - 1e-9;
+
+/// What rows keep between calls to [`forward_row`]: the values at the end speeds of one stage and
+/// gear, and a map-based truck's fuel over the pedal at the fixed grid's speeds.
+#[derive(Debug, Clone, Default)]
+pub struct RowMemo {
+    ends: EndMemo,
+    fuel: PedalFuel,
+}
 
 /// Where a row's costs start on the next grid, and how many there are.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -212,7 +222,8 @@ fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64, v_max: f64) -> Option<(
         return None;
     }
     if let Some(end) = &m.trapezoid {
-        return pair_trapezoid(p, (m, end), (v_i, v_j, v_max), || AtEnd::at(end, v_j, p.stage_m));
+        let fuel = |pedal: f64| map_stage_fuel_g(end, (v_i, v_j), pedal, p.stage_m);
+        return pair_trapezoid(p, (m, end), (v_i, v_j, v_max), || AtEnd::at(end, v_j, p.stage_m), fuel);
     }
     pair_euler(p, m, v_i, v_j, v_max)
 }
@@ -220,8 +231,9 @@ fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64, v_max: f64) -> Option<(
 /// Append to `out` the costs of joining `v_i` in forward `gear` to the grid indices of the next
 /// stage; return their span and where its first cost is in `out`. Indices no input reaches inside
 /// the span hold +∞; a row with no admissible target appends nothing (len 0). Each cost is
-/// [`pair`]'s, bit for bit. `v_max_mps` is the top of the next stage's band. `memo` keeps what
-/// trapezoid rows of one gear, slope and next grid evaluate at each end speed.
+/// [`pair`]'s, bit for bit, but for a map-based truck's fuel on a fixed grid, which is interpolated
+/// over the pedal (within 0.1 % of the full-pedal fuel). `v_max_mps` is the top of the next
+/// stage's band. `memo` keeps what trapezoid rows evaluate at each end speed.
 #[allow(clippy::too_many_arguments)]
 pub fn forward_row(
     vehicle: &Vehicle,
@@ -231,7 +243,7 @@ pub fn forward_row(
     slope_torque: f64,
     grid: GridIndex,
     v_max_mps: f64,
-    (out, memo): (&mut Vec<f64>, &mut EndMemo),
+    (out, memo): (&mut Vec<f64>, &mut RowMemo),
 ) -> (RowSpan, usize) {
     let (from, target) = ((v_i, gear, slope_torque), (grid, v_max_mps));
     match p.stage_model {

@@ -43,7 +43,7 @@ use self::ends::Ends;
 use self::grids::StageGrid;
 use super::cache::{RowCache, RowScratch, StageKey, StageRows, PAD};
 use super::params::DpSettings;
-use super::rows::EndMemo;
+use super::rows::RowMemo;
 use super::space::{self, Intervals};
 use super::values::{StageValues, ValueTable};
 use crate::band::BandAt;
@@ -141,8 +141,8 @@ pub struct Solver {
     offsets: Vec<usize>,
     choices: Choices,
     scratch: RowScratch,
-    /// What the rows of one stage and gear evaluate at each end speed.
-    end_memo: EndMemo,
+    /// What rows keep between calls: end-speed values, a map-based truck's pedal fuel table.
+    row_memo: RowMemo,
     /// Rows of the stage being solved when they do not come from the cache.
     scratch_rows: StageRows,
     cache: RowCache,
@@ -178,7 +178,7 @@ impl Solver {
             offsets: Vec::new(),
             choices: Choices::default(),
             scratch: RowScratch::default(),
-            end_memo: EndMemo::default(),
+            row_memo: RowMemo::default(),
             scratch_rows: StageRows::default(),
             cache: RowCache::default(),
             interval_memo: space::IntervalMemo::default(),

@@ -51,6 +51,20 @@ pub fn end_speed(
     slope_torque_nm: f64,
     (branch, u): (Branch, f64),
 ) -> f64 {
+    end_speed_within(model, vehicle, (v_mps, h_m), gear, slope_torque_nm, (branch, u), 0.0)
+}
+
+/// [`end_speed`], with the trapezoid's iteration stopped once a step moves the speed by less than
+/// `tol_mps` [m/s] (the error left is then about a hundredth of that); `tol_mps` 0 iterates fully.
+pub fn end_speed_within(
+    model: StageModel,
+    vehicle: &Vehicle,
+    (v_mps, h_m): (f64, f64),
+    gear: usize,
+    slope_torque_nm: f64,
+    (branch, u): (Branch, f64),
+    tol_mps: f64,
+) -> f64 {
     let at_start = accel_map(vehicle, v_mps, gear, slope_torque_nm, branch);
     let euler = at_start.step(v_mps, h_m, u);
     match model {
@@ -65,7 +79,12 @@ pub fn end_speed(
                 if e_j <= 0.0 {
                     return 0.0;
                 }
-                v_j = (2.0 * e_j).sqrt();
+                let next = (2.0 * e_j).sqrt();
+                let step = (next - v_j).abs();
+                v_j = next;
+                if step < tol_mps {
+                    break;
+                }
             }
             v_j
         }

@@ -17,7 +17,7 @@ fn rows_hold_the_costs_of_pair_in(p: &DpSettings) {
     let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
     let p = p.clone();
     let mut out = vec![1.0; 3];
-    let mut memo = EndMemo::default();
+    let mut memo = RowMemo::default();
     for (s, slope) in [-0.06, -0.03, -0.01, 0.0, 0.01, 0.03, 0.06].into_iter().enumerate() {
         let torque = vehicle.slope_torque_nm(slope);
         for gear in 1..=vehicle.forward_gears() {

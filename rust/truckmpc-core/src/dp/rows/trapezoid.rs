@@ -3,7 +3,8 @@
 //! full-pedal end is an exact arc of the solver's), and from zero where fuel cut is one too. Costs
 //! in the units of (5.9).
 
-use super::{change_cost, clamp_span, maps, trim, EndMaps, GridIndex, Inputs, RowMaps, RowSpan, BRAKE_WINDOW};
+use super::pedal_fuel::{grid_index_of, interpolate, STRIDE};
+use super::{change_cost, clamp_span, maps, trim, EndMaps, GridIndex, Inputs, RowMaps, RowMemo, RowSpan, BRAKE_WINDOW};
 use crate::dp::params::{DpSettings, GridAnchor, StageModel};
 use crate::dp::stage::{self, Branch};
 use crate::levels::{brake_accel_on, pedal_accel_on, AffineAccel};
@@ -73,14 +74,24 @@ impl EndMemo {
     }
 }
 
+/// The fuel [g] of a trapezoid stage of a map-based truck from `v_i` to `v_j` [m/s] at `pedal`,
+/// from the map at both ends.
+#[inline]
+pub(super) fn map_stage_fuel_g(end: &EndMaps, (v_i, v_j): (f64, f64), pedal: f64, h_m: f64) -> f64 {
+    let half = |v: f64| stage::half_stage_fuel_g(end.vehicle, v, pedal, end.gear, h_m);
+    half(v_i) + half(v_j)
+}
+
 /// [`pair`](super::pair) on a trapezoid stage: the inputs from the maps at both ends, the fuel from
-/// the fuel per metre at both ends; `at_j` gives the values at the end speed when they are needed.
+/// the fuel per metre at both ends; `at_j` gives the values at the end speed when they are needed,
+/// and `map_fuel_g` a map-based truck's stage fuel [g] at a pedal level.
 #[inline]
 pub(super) fn pair_trapezoid(
     p: &DpSettings,
     (m, end): (&RowMaps, &EndMaps),
     (v_i, v_j, v_max): (f64, f64, f64),
     at_j: impl FnOnce() -> AtEnd,
+    map_fuel_g: impl FnOnce(f64) -> f64,
 ) -> Option<(Inputs, f64)> {
     let h = p.stage_m;
     let change = change_cost(p.q_speed_change, p.q_speed_change_sq, v_i - v_j);
@@ -92,8 +103,7 @@ pub(super) fn pair_trapezoid(
         if pedal >= pedal_lo && pedal <= pedal_hi {
             let clipped = pedal.clamp(0.0, 1.0);
             let fuel = if m.map_fuel.is_some() {
-                let half = |v: f64| stage::half_stage_fuel_g(end.vehicle, v, clipped, end.gear, h);
-                p.q_fuel * (half(v_i) + half(v_j))
+                p.q_fuel * map_fuel_g(clipped)
             } else {
                 let fuel_per_pedal = m.full_fuel_g + full_half_fuel_g;
                 p.q_fuel * fuel_per_pedal * clipped
@@ -134,25 +144,39 @@ pub(super) fn trapezoid_pedal_band(p: &DpSettings, v_i: f64, gain: f64) -> (f64,
 
 /// [`forward_row`](super::forward_row) on a trapezoid stage: the span from the end speeds of the
 /// pedal band's ends (one index wider each way, the implicit step being solved to rounding), each
-/// cost from [`pair_trapezoid`].
+/// cost from [`pair_trapezoid`]. A map-based truck's fuel comes from the memo's pedal table when
+/// both speeds are on a fixed grid, else from the map.
 pub(super) fn forward_row_trapezoid(
     (vehicle, p): (&Vehicle, &DpSettings),
     (v_i, gear, slope_torque): (f64, usize, f64),
     (grid, v_max): (GridIndex, f64),
-    (out, memo): (&mut Vec<f64>, &mut EndMemo),
+    (out, memo): (&mut Vec<f64>, &mut RowMemo),
 ) -> (RowSpan, usize) {
     let start = out.len();
     let m = maps(vehicle, p, v_i, gear, slope_torque);
     let end = m.trapezoid.expect("a trapezoid row");
     let h = p.stage_m;
+    let RowMemo { ends: memo, fuel: table } = memo;
     memo.keyed([gear as u64, slope_torque.to_bits(), grid.origin_mps.to_bits(), grid.delta_mps.to_bits(), h.to_bits()]);
     let (mut first, mut last) = (i64::MAX, i64::MIN);
     let pedal_on = m.pedal.gain > 0.0;
     let mut band_lo = f64::INFINITY;
     if pedal_on {
         let (pedal_lo, pedal_hi) = end.pedal_band;
-        let at =
-            |u: f64| stage::end_speed(StageModel::Trapezoid, vehicle, (v_i, h), gear, slope_torque, (Branch::Pedal, u));
+        // The span only needs its ends to within a grid step (it is one index wider each way and
+        // every pair is checked on its own), so the implicit end speed stops at a tenth of one.
+        let tol = 0.1 * grid.delta_mps;
+        let at = |u: f64| {
+            stage::end_speed_within(
+                StageModel::Trapezoid,
+                vehicle,
+                (v_i, h),
+                gear,
+                slope_torque,
+                (Branch::Pedal, u),
+                tol,
+            )
+        };
         band_lo = at(pedal_lo);
         first = grid.ceil(band_lo) - 1;
         last = grid.floor(at(pedal_hi)) + 1;
@@ -165,10 +189,25 @@ pub(super) fn forward_row_trapezoid(
     if last < first {
         return (RowSpan { first: 0, len: 0 }, start);
     }
-    out.extend((first..=last).map(|index| {
-        let v_j = grid.speed(index);
-        let at_j = || memo.get(index, || AtEnd::at(&end, v_j, h));
-        pair_trapezoid(p, (&m, &end), (v_i, v_j, v_max), at_j).map_or(f64::INFINITY, |(_, cost)| cost)
-    }));
+    let tabled = m.map_fuel.is_some() && p.grid == GridAnchor::Fixed && grid.origin_mps == 0.0;
+    match tabled.then(|| grid_index_of(v_i, grid.delta_mps)).flatten() {
+        Some(index_i) => {
+            table.fill(vehicle, (index_i.min(first), index_i.max(last)), grid.delta_mps, gear);
+            let entry_i = table.entries((index_i, index_i), gear);
+            let ends = table.entries((first, last), gear).chunks_exact(STRIDE);
+            out.extend((first..=last).zip(ends).map(|(index, entry_j)| {
+                let v_j = grid.speed(index);
+                let at_j = || memo.get(index, || AtEnd::at(&end, v_j, h));
+                let fuel = |pedal: f64| 0.5 * h * (interpolate(entry_i, pedal) + interpolate(entry_j, pedal));
+                pair_trapezoid(p, (&m, &end), (v_i, v_j, v_max), at_j, fuel).map_or(f64::INFINITY, |(_, cost)| cost)
+            }));
+        }
+        None => out.extend((first..=last).map(|index| {
+            let v_j = grid.speed(index);
+            let at_j = || memo.get(index, || AtEnd::at(&end, v_j, h));
+            let fuel = |pedal: f64| map_stage_fuel_g(&end, (v_i, v_j), pedal, h);
+            pair_trapezoid(p, (&m, &end), (v_i, v_j, v_max), at_j, fuel).map_or(f64::INFINITY, |(_, cost)| cost)
+        })),
+    }
     trim(out, start, first)
 }

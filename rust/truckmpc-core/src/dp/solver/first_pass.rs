@@ -53,7 +53,7 @@ impl Solver {
                 continue;
             }
             let rows = stage.gear(g);
-            let memo = &mut self.end_memo;
+            let memo = &mut self.row_memo;
             *computed += rows.fill(key_lo, key_hi, &mut self.scratch, |key, buf| {
                 let v_i = here.index.speed(key);
                 forward_row(vehicle, p, v_i, g, slope_torque, next.index, v_max_next, (buf, &mut *memo))
