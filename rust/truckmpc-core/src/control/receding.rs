@@ -18,8 +18,7 @@ use super::pi::GearLogic;
 use super::rescue::Rescue;
 use super::{Controller, Decision};
 use crate::band::SpeedBand;
-use crate::dp::stage;
-use crate::dp::{horizon, DpSettings, InitialState, Solver};
+use crate::dp::{horizon, stage, DpSettings, InitialState, Solver};
 use crate::levels::stationary;
 use crate::params::OnInfeasible;
 use crate::plant::{Control, PlantState};
@@ -158,24 +157,42 @@ impl RecedingController {
         let began = Instant::now();
         let solution = self.solver.solve_recording(&self.vehicle, start, &plan.ahead.slopes, bands, &mut plan.table);
         let solve_s = began.elapsed().as_secs_f64();
-        // The trajectory's point k holds the inputs of stage k and the speed at its start; each
-        // stage priced by the DP's own stage model.
-        let model = self.solver.params().stage_model;
-        let (fuel_g, time_s) = solution.trajectory.windows(2).take(stages).fold((0.0, 0.0), |(fuel, time), pair| {
-            let (point, v_end) = (pair[0], pair[1].v_mps);
-            let speeds = (point.v_mps, v_end);
-            let stage_fuel = stage::fuel_g(model, &self.vehicle, speeds, point.pedal, point.gear, h);
-            (fuel + stage_fuel, time + stage::time_s(model, speeds, h))
-        });
-        self.stats.plan = Some(PlanStats {
-            fuel_kg: if solution.feasible { fuel_g / 1000.0 } else { f64::NAN },
-            time_s: if solution.feasible { time_s } else { f64::NAN },
-            cost: solution.cost,
-            solve_s,
-            stages: stages as u64,
-            table_bytes: plan.table.bytes() as u64,
-        });
+        let table_bytes = plan.table.bytes() as u64;
         self.stored = Some(plan);
+        let followed = solution.feasible.then(|| self.follow_plan(road, s0_m, start, stages)).flatten();
+        let (fuel_g, time_s) = followed.unwrap_or((f64::NAN, f64::NAN));
+        let (cost, stages) = (solution.cost, stages as u64);
+        self.stats.plan = Some(PlanStats { fuel_kg: fuel_g / 1000.0, time_s, cost, solve_s, stages, table_bytes });
+    }
+
+    /// The fuel [g] and time [s] of driving the stored plan on the DP's own stage model: each
+    /// stage's control from [`RecedingController::solve`] at the speed and gear the model predicts
+    /// there, as the run decides from the plant's (the plan's grid path alone would restart from a
+    /// grid speed after each arc). None where no solve, relaxed ones included, finds a control.
+    /// The run's counts are left as they were.
+    fn follow_plan(&mut self, road: &Road, s0_m: f64, start: InitialState, stages: usize) -> Option<(f64, f64)> {
+        let kept = (self.stats, self.shifts);
+        let (model, h_m) = (self.solver.params().stage_model, self.solver.params().stage_m);
+        let (mut v_mps, mut gear) = (start.v_mps, start.gear);
+        let mut totals = Some((0.0, 0.0));
+        for k in 0..stages {
+            let s_m = s0_m + k as f64 * h_m;
+            let h = h_m.min(road.end_m() - s_m);
+            let next = self.solve(road, s_m, v_mps, gear).and_then(|u| {
+                let v_next = horizon::predict_speed((&self.vehicle, model), road, s_m, v_mps, u, h);
+                (v_next > 0.0).then_some((u, v_next))
+            });
+            let (Some((u, v_next)), Some((fuel_g, time_s))) = (next, totals) else {
+                totals = None;
+                break;
+            };
+            let fuel = stage::fuel_g(model, &self.vehicle, (v_mps, v_next), u.pedal, u.gear, h);
+            totals = Some((fuel_g + fuel, time_s + stage::time_s(model, (v_mps, v_next), h)));
+            self.shifts.record(gear, u.gear);
+            (v_mps, gear) = (v_next, u.gear);
+        }
+        (self.stats, self.shifts) = kept;
+        totals
     }
 
     /// The one-stage solve at the stage starting at `s_m` against the stored cost-to-go (None

@@ -32,9 +32,11 @@ pub struct SolverStats {
 /// own model and what the plan cost to compute.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct PlanStats {
-    /// Fuel of the planned trajectory [kg] (one Euler stage per S, as the DP predicts it).
+    /// Fuel of following the plan [kg] on the DP's own stage model, each stage decided from the
+    /// state the model predicts as the controller decides from the plant's (NaN where the plan
+    /// has no path, or such a state falls outside what its values reach).
     pub fuel_kg: f64,
-    /// Trip time of the planned trajectory [s] (S / v per stage).
+    /// Trip time of following the plan [s], likewise.
     pub time_s: f64,
     /// The plan's optimal cost J_0.
     pub cost: f64,
