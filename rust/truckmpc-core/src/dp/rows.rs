@@ -109,13 +109,15 @@ pub struct Inputs {
     pub brake: f64,
 }
 
-/// The per-state constants of a row: both affine maps of (B.1) at v_i and the full-pedal fuel
-/// (Euler: the whole stage's; trapezoid: the half at v_i), and with the trapezoid stage what the
-/// maps at the end speed need.
+/// The per-state constants of a row: the affine maps of (B.1) at v_i and the full-pedal fuel
+/// (Euler: the whole stage's; trapezoid: the half at v_i; NaN for a map-based truck, whose fuel is
+/// evaluated at each pedal level), and with the trapezoid stage what the maps at the end speed
+/// need.
 #[derive(Debug, Clone, Copy)]
 struct RowMaps<'a> {
     pedal: AffineAccel,
-    brake: AffineAccel,
+    /// The brake's map, for Euler rows (a trapezoid row evaluates it at its few brake pairs).
+    brake: Option<AffineAccel>,
     full_fuel_g: f64,
     trapezoid: Option<EndMaps<'a>>,
     /// For a map-based truck, whose fuel is not proportional to the pedal: the vehicle and gear to
@@ -147,19 +149,20 @@ struct EndMaps<'a> {
 fn maps<'a>(vehicle: &'a Vehicle, p: &DpSettings, v_i: f64, gear: usize, slope_torque: f64) -> RowMaps<'a> {
     let trapezoid = p.stage_model == StageModel::Trapezoid;
     let pedal = pedal_accel_on(vehicle, v_i, gear, slope_torque);
+    let map_fuel = vehicle.map_model().map(|_| (vehicle, gear));
     RowMaps {
         pedal,
-        brake: brake_accel_on(vehicle, v_i, gear, slope_torque),
-        full_fuel_g: if trapezoid {
-            stage::half_stage_fuel_g(vehicle, v_i, 1.0, gear, p.stage_m)
-        } else {
-            stage_fuel_g(vehicle, v_i, 1.0, gear, p.stage_m)
+        brake: (!trapezoid).then(|| brake_accel_on(vehicle, v_i, gear, slope_torque)),
+        full_fuel_g: match (map_fuel, trapezoid) {
+            (Some(_), _) => f64::NAN,
+            (None, true) => stage::half_stage_fuel_g(vehicle, v_i, 1.0, gear, p.stage_m),
+            (None, false) => stage_fuel_g(vehicle, v_i, 1.0, gear, p.stage_m),
         },
         trapezoid: trapezoid.then(|| {
             let pedal_band = if pedal.gain > 0.0 { trapezoid_pedal_band(p, v_i, pedal.gain) } else { (0.0, 0.0) };
             EndMaps { vehicle, gear, slope_torque, pedal_band }
         }),
-        map_fuel: vehicle.map_model().map(|_| (vehicle, gear)),
+        map_fuel,
     }
 }
 

@@ -31,7 +31,7 @@ pub(super) fn pair_euler(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64, v_max:
     // No pedal level reaches v_j because even fuel cut ends faster: brake, but only next to v_max
     // (strictly closer than δ; a grid point exactly δ away does not qualify, whatever the rounding).
     if (v_j - v_max).abs() < p.delta_mps() * BRAKE_WINDOW {
-        let brake = m.brake.input_for(v_i, v_j, h);
+        let brake = m.brake.expect("an Euler row's brake map").input_for(v_i, v_j, h);
         if (0.0..=1.0).contains(&brake) {
             return Some((Inputs { pedal: 0.0, brake }, p.q_brake * brake + change));
         }
@@ -80,7 +80,8 @@ pub(super) fn forward_row_euler(
     let fuel_per_pedal = p.q_fuel * m.full_fuel_g;
     let window = p.delta_mps() * BRAKE_WINDOW;
     let (a_pedal, g_pedal) = (m.pedal.accel_at_zero, m.pedal.gain);
-    let (a_brake, g_brake) = (m.brake.accel_at_zero, m.brake.gain);
+    let brake = m.brake.expect("an Euler row's brake map");
+    let (a_brake, g_brake) = (brake.accel_at_zero, brake.gain);
     let cost = |index: i64| {
         let v_j = grid.speed(index);
         let change = change_cost(q_change, q_change_sq, v_i - v_j);

@@ -116,7 +116,8 @@ pub(super) fn pair_trapezoid(
     }
     if (v_j - v_max).abs() < p.delta_mps() * BRAKE_WINDOW {
         let at_j = brake_accel_on(end.vehicle, v_j, end.gear, end.slope_torque);
-        let brake = stage::input_for(model, &m.brake, &at_j, (v_i, v_j), h);
+        let at_i = brake_accel_on(end.vehicle, v_i, end.gear, end.slope_torque);
+        let brake = stage::input_for(model, &at_i, &at_j, (v_i, v_j), h);
         if (0.0..=1.0).contains(&brake) {
             return Some((Inputs { pedal: 0.0, brake }, p.q_brake * brake + change));
         }
