@@ -4,12 +4,14 @@ thresholds: the figures depend on the machine and are for people (and CI's gross
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from truckmpc.bench import CASES, SETTINGS, BenchResult, _first, format_bench
+from truckmpc.bench import SETTINGS, BenchResult, cases_to_run, format_bench
+from truckmpc.bench.runs import _first
 from truckmpc.cli import app
 from truckmpc.config import load_run_config
 from truckmpc.roads import default_test_track, make_section, write_road
@@ -50,9 +52,10 @@ RUN_KEYS = (
 
 def _check_runs(runs: list[dict], length_m: float) -> None:
     """Each case's run, at its settings: the default's configured ones, the worst case's fixed ones."""
-    assert [run["case"] for run in runs] == [case["case"] for case in CASES]
+    cases = cases_to_run()
+    assert [run["case"] for run in runs] == [case["case"] for case in cases]
     own = load_run_config().mpc
-    for run, case in zip(runs, CASES, strict=True):
+    for run, case in zip(runs, cases, strict=True):
         expected = case["settings"] or {key: getattr(own, key) for key in SETTINGS}
         assert {key: run[key] for key in SETTINGS} == expected
     for run in runs:
@@ -92,15 +95,17 @@ def test_quick_json_gives_the_documented_figures_per_case():
     shared = not runs[0]["fallback"]
     names = [run["road"] for run in runs]
     if shared:
-        assert names == [case["road"].removesuffix(".csv") + "-first10km" for case in CASES]
+        assert names == [Path(case["road"]).stem + "-first10km" for case in cases_to_run()]
     else:
         assert set(names) == {"test-track"}
     _check_runs(runs, 10_000.0 if shared else default_test_track().length_m)
     # the default solves its horizon every replan_m and decides the stages between from that solve's
     # cost-to-go; the thesis's worst case solves its horizon every stage
-    default, _, worst = runs
+    default, _, worst, *tractor = runs
     assert worst["horizon_solves"] == worst["solves"]
     assert default["horizon_solves"] < default["solves"] / 10
+    # VECTO's tractor where its files are found, on the same road as the first default run
+    assert [run["label"] for run in tractor] == [default["label"]] * len(tractor)
 
 
 def test_table_on_a_given_road_names_it_and_each_case(tmp_path):

@@ -15,7 +15,8 @@ __all__ = ["BENCH_HELP", "bench_cmd"]
 BENCH_HELP = (
     "Time closed-loop MPC runs, each in its own process: the default controller at its own settings on the "
     "VECTO long-haul road (108 km) and the Swedish E6/E20 (294 km), then the thesis's worst case (S 25 m, "
-    "δ 0.1 km/h, 3000 m, neutral allowed, fixed grid) on the VECTO road.\n\n"
+    "δ 0.1 km/h, 3000 m, neutral allowed, fixed grid) on the VECTO road, then the default with VECTO's generic "
+    "tractor on the VECTO road (where ../shared/vehicles has it).\n\n"
     "Reports the realtime ratio (compute time / simulated time), the time per DP solve, the states and "
     "transitions per solve, the time per transition and the peak memory of each run."
 )
