@@ -168,28 +168,27 @@ impl RecedingController {
     /// The fuel [g] and time [s] of driving the stored plan on the DP's own stage model: each
     /// stage's control from [`RecedingController::solve`] at the speed and gear the model predicts
     /// there, as the run decides from the plant's (the plan's grid path alone would restart from a
-    /// grid speed after each arc). None where no solve, relaxed ones included, finds a control.
-    /// The run's counts are left as they were.
+    /// grid speed after each arc); where no solve finds one, the control before is held, as the
+    /// run holds it. None where the model's truck stops. The run's counts are left as they were.
     fn follow_plan(&mut self, road: &Road, s0_m: f64, start: InitialState, stages: usize) -> Option<(f64, f64)> {
         let kept = (self.stats, self.shifts);
         let (model, h_m) = (self.solver.params().stage_model, self.solver.params().stage_m);
         let (mut v_mps, mut gear) = (start.v_mps, start.gear);
+        let mut held = self.holding(v_mps, gear);
         let mut totals = Some((0.0, 0.0));
         for k in 0..stages {
             let s_m = s0_m + k as f64 * h_m;
             let h = h_m.min(road.end_m() - s_m);
-            let next = self.solve(road, s_m, v_mps, gear).and_then(|u| {
-                let v_next = horizon::predict_speed((&self.vehicle, model), road, s_m, v_mps, u, h);
-                (v_next > 0.0).then_some((u, v_next))
-            });
-            let (Some((u, v_next)), Some((fuel_g, time_s))) = (next, totals) else {
+            let u = self.solve(road, s_m, v_mps, gear).unwrap_or(held);
+            let v_next = horizon::predict_speed((&self.vehicle, model), road, s_m, v_mps, u, h);
+            let (true, Some((fuel_g, time_s))) = (v_next > 0.0, totals) else {
                 totals = None;
                 break;
             };
             let fuel = stage::fuel_g(model, &self.vehicle, (v_mps, v_next), u.pedal, u.gear, h);
             totals = Some((fuel_g + fuel, time_s + stage::time_s(model, (v_mps, v_next), h)));
             self.shifts.record(gear, u.gear);
-            (v_mps, gear) = (v_next, u.gear);
+            (v_mps, gear, held) = (v_next, u.gear, u);
         }
         (self.stats, self.shifts) = kept;
         totals
