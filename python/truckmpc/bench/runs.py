@@ -52,12 +52,7 @@ SE = "roads/se_E6_E20_goteborg_malmo_volvo_chalmers.csv"
 
 CASES: tuple[dict[str, Any], ...] = (
     {"case": "default", "road": VECTO_108, "label": "VECTO 108 km", "settings": {}},
-    {
-        "case": "default",
-        "road": "roads/se_E6_E20_goteborg_malmo_volvo_chalmers.csv",
-        "label": "SE E6/E20",
-        "settings": {},
-    },
+    {"case": "default", "road": SE, "label": "SE E6/E20", "settings": {}},
     {"case": "thesis worst case", "road": VECTO_108, "label": "VECTO 108 km", "settings": SETTINGS},
     {"case": "default, VECTO tractor", "road": VECTO_108, "label": "VECTO 108 km", "settings": {}, "vehicle": TRACTOR},
 )
@@ -185,7 +180,7 @@ def _spawn(
 @dataclass(frozen=True)
 class BenchResult:
     """What :func:`run_bench` measured: one figures dict per case, each with its ``case``
-    (``default`` or ``thesis worst case``), its ``road`` (name, with ``-first10km`` under
+    (``default``, ``thesis worst case`` or ``default, VECTO tractor``), its ``road`` (name, with ``-first10km`` under
     ``--quick``) and ``label`` (short, for tables), ``path`` (None for the bundled test track) and
     ``fallback`` (True when the case's road was not found and the test track was driven)."""
 

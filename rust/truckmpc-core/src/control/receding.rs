@@ -168,8 +168,10 @@ impl RecedingController {
     /// The fuel [g] and time [s] of driving the stored plan on the DP's own stage model: each
     /// stage's control from [`RecedingController::solve`] at the speed and gear the model predicts
     /// there, as the run decides from the plant's (the plan's grid path alone would restart from a
-    /// grid speed after each arc); where no solve finds one, the control before is held, as the
-    /// run holds it. None where the model's truck stops. The run's counts are left as they were.
+    /// grid speed after each arc); where no solve finds one, the control before is held (what
+    /// `on_infeasible: hold` does; a run that rescues drives its rescue policy there instead).
+    /// None where the model's truck stops. The run's counts are left as they were; its compute
+    /// time includes this, about one more drive's worth of one-stage solves.
     fn follow_plan(&mut self, road: &Road, s0_m: f64, start: InitialState, stages: usize) -> Option<(f64, f64)> {
         let kept = (self.stats, self.shifts);
         let (model, h_m) = (self.solver.params().stage_model, self.solver.params().stage_m);

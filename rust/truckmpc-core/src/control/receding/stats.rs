@@ -34,7 +34,7 @@ pub struct SolverStats {
 pub struct PlanStats {
     /// Fuel of following the plan [kg] on the DP's own stage model, each stage decided from the
     /// state the model predicts as the controller decides from the plant's (NaN where the plan
-    /// has no path, or such a state falls outside what its values reach).
+    /// has no path, or the model's truck stops on the way).
     pub fuel_kg: f64,
     /// Trip time of following the plan [s], likewise.
     pub time_s: f64,

@@ -7,7 +7,8 @@
 //! fuel rate is too, and nearly affine (a Willans line): a table of [`STRIDE`] values over the
 //! pedal, exact at fuel cut, at its nodes and at full pedal, gives it to within 0.1 % of the
 //! full-pedal rate between them, on a map with a strong curvature and a kink where its fuel reaches
-//! zero (`tests::the_table_is_close_to_the_map`; the error halves as the nodes double). On a fixed grid the
+//! zero (`tests::the_table_is_close_to_the_map`; the error halves as the nodes double). Trapezoid
+//! rows use it (Euler rows read the map). On a fixed grid the
 //! speeds are the same at every stage and in every solve, so each speed and gear is tabulated once
 //! per run; a moving grid's speeds change with each stage, and its rows evaluate the map instead.
 
@@ -101,36 +102,8 @@ pub fn grid_index_of(v_mps: f64, delta_mps: f64) -> Option<i64> {
 
 #[cfg(test)]
 mod tests {
-    use std::sync::Arc;
-
+    use super::super::tests::curved_map_truck;
     use super::*;
-    use crate::powertrain::{Body, Driveline, Engine, MapModel, MapTruck};
-    use crate::vehicle::VehicleParams;
-
-    /// A truck whose fuel map curves in torque (z = n/1000 · (1500 + 40 T + 0.004 T²) g/h), so
-    /// the rate is not affine in the pedal and interpolating it has an error to bound.
-    fn curved_map_truck() -> Vehicle {
-        let mut points = Vec::new();
-        for n in (6..=20).map(|k| 100.0 * k as f64) {
-            for t in (-3..=25).map(|k| 100.0 * k as f64) {
-                points.push((n, t, n / 1000.0 * (1500.0 + 40.0 * t + 0.004 * t * t).max(0.0)));
-            }
-        }
-        let full_load = [(600.0, 1200.0, -150.0), (1200.0, 2400.0, -200.0), (2000.0, 1800.0, -280.0)];
-        let engine = Engine::new(600.0, 4.0, &full_load, &points).unwrap();
-        let driveline = Driveline::new((&[3.0, 2.0, 1.4, 1.0], 2.6), (0.98, 0.97, 20.0), 0.5).unwrap();
-        let body = Body {
-            mass_kg: 40_000.0,
-            wheels_inertia_kgm2: 60.0,
-            cda_m2: 6.0,
-            air_density_kg_m3: 1.2,
-            rolling_resistance: 0.006,
-            aux_power_w: 4_000.0,
-        };
-        let truck = MapTruck::new(engine, driveline, body).unwrap();
-        let model = MapModel::new(truck, 1.0e5, 0.0);
-        Vehicle::from_map(Arc::new(model), &VehicleParams::default()).unwrap()
-    }
 
     /// Against the map itself, at pedals between the nodes over speeds 43–97 km/h in every gear
     /// that turns the engine in its range: exact at fuel cut, at the nodes and at full pedal, and

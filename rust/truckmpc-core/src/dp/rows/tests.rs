@@ -1,6 +1,10 @@
 //! Rows against `pair`'s costs bit for bit, and the integer ceil and floor against libm's.
 
+use std::sync::Arc;
+
 use super::*;
+use crate::params::GridAnchor;
+use crate::powertrain::{Body, Driveline, Engine, MapModel, MapTruck};
 use crate::vehicle::VehicleParams;
 
 /// Every cost of a row is `pair`'s, bit for bit (whichever path computed it), and the row is
@@ -47,6 +51,71 @@ fn rows_hold_the_costs_of_pair_in(p: &DpSettings) {
             }
         }
     }
+}
+
+/// A map-based truck's rows on the fixed grid read its fuel from the pedal table: every cost is
+/// `pair`'s (which reads the map) to within 0.1 % of the stage's full-pedal fuel, and the same
+/// targets are admissible. Speeds are visited downwards and then upwards past the first ones, so
+/// the table grows below and above what it holds.
+#[test]
+fn a_map_trucks_rows_on_the_fixed_grid_are_pairs_costs_to_within_the_tables_error() {
+    let vehicle = curved_map_truck();
+    let p = DpSettings { grid: GridAnchor::Fixed, ..DpSettings::default() };
+    assert_eq!(p.stage_model, StageModel::Trapezoid);
+    let grid = GridIndex { origin_mps: 0.0, delta_mps: p.delta_mps() };
+    let mut memo = RowMemo::default();
+    let mut out = Vec::new();
+    let mut rows = 0;
+    let indices = (1500..1700).rev().step_by(3).chain((1690..1900).step_by(5));
+    for index in indices {
+        let v_i = grid.speed(index);
+        for gear in 2..=4 {
+            for slope in [-0.02, 0.0, 0.015] {
+                let torque = vehicle.slope_torque_nm(slope);
+                out.clear();
+                let (span, at) =
+                    forward_row(&vehicle, &p, v_i, gear, torque, grid, p.v_max_mps(), (&mut out, &mut memo));
+                let m = maps(&vehicle, &p, v_i, gear, torque);
+                for (t, &cost) in out[at..at + span.len].iter().enumerate() {
+                    let v_j = grid.speed(span.first + t as i64);
+                    let exact = pair(&p, &m, v_i, v_j, p.v_max_mps()).map_or(f64::INFINITY, |(_, c)| c);
+                    assert_eq!(cost.is_finite(), exact.is_finite(), "v {v_i} gear {gear} slope {slope}");
+                    let full = stage::half_stage_fuel_g(&vehicle, v_i, 1.0, gear, p.stage_m)
+                        + stage::half_stage_fuel_g(&vehicle, v_j, 1.0, gear, p.stage_m);
+                    if exact.is_finite() {
+                        assert!((cost - exact).abs() <= 1e-3 * p.q_fuel * full + 1e-12, "{cost} vs {exact}");
+                    }
+                }
+                rows += usize::from(span.len > 0);
+            }
+        }
+    }
+    assert!(rows > 300, "{rows} rows with targets");
+}
+
+/// A truck whose fuel map curves in torque (z = n/1000 · (1500 + 40 T + 0.004 T²) g/h), so
+/// the rate is not affine in the pedal and interpolating it has an error to bound.
+pub(in crate::dp::rows) fn curved_map_truck() -> Vehicle {
+    let mut points = Vec::new();
+    for n in (6..=20).map(|k| 100.0 * k as f64) {
+        for t in (-3..=25).map(|k| 100.0 * k as f64) {
+            points.push((n, t, n / 1000.0 * (1500.0 + 40.0 * t + 0.004 * t * t).max(0.0)));
+        }
+    }
+    let full_load = [(600.0, 1200.0, -150.0), (1200.0, 2400.0, -200.0), (2000.0, 1800.0, -280.0)];
+    let engine = Engine::new(600.0, 4.0, &full_load, &points).unwrap();
+    let driveline = Driveline::new((&[3.0, 2.0, 1.4, 1.0], 2.6), (0.98, 0.97, 20.0), 0.5).unwrap();
+    let body = Body {
+        mass_kg: 40_000.0,
+        wheels_inertia_kgm2: 60.0,
+        cda_m2: 6.0,
+        air_density_kg_m3: 1.2,
+        rolling_resistance: 0.006,
+        aux_power_w: 4_000.0,
+    };
+    let truck = MapTruck::new(engine, driveline, body).unwrap();
+    let model = MapModel::new(truck, 1.0e5, 0.0);
+    Vehicle::from_map(Arc::new(model), &VehicleParams::default()).unwrap()
 }
 
 #[test]

@@ -191,7 +191,7 @@ pub(super) fn forward_row_trapezoid(
         return (RowSpan { first: 0, len: 0 }, start);
     }
     let tabled = m.map_fuel.is_some() && p.grid == GridAnchor::Fixed && grid.origin_mps == 0.0;
-    match tabled.then(|| grid_index_of(v_i, grid.delta_mps)).flatten() {
+    match tabled.then(|| grid_index_of(v_i, grid.delta_mps)).flatten().filter(|&index| index > 0) {
         Some(index_i) => {
             table.fill(vehicle, (index_i.min(first), index_i.max(last)), grid.delta_mps, gear);
             let entry_i = table.entries((index_i, index_i), gear);
