@@ -177,23 +177,23 @@ impl RecedingController {
         let (model, h_m) = (self.solver.params().stage_model, self.solver.params().stage_m);
         let (mut v_mps, mut gear) = (start.v_mps, start.gear);
         let mut held = self.holding(v_mps, gear);
-        let mut totals = Some((0.0, 0.0));
+        let (mut fuel_g, mut time_s, mut stopped) = (0.0, 0.0, false);
         for k in 0..stages {
             let s_m = s0_m + k as f64 * h_m;
             let h = h_m.min(road.end_m() - s_m);
             let u = self.solve(road, s_m, v_mps, gear).unwrap_or(held);
             let v_next = horizon::predict_speed((&self.vehicle, model), road, s_m, v_mps, u, h);
-            let (true, Some((fuel_g, time_s))) = (v_next > 0.0, totals) else {
-                totals = None;
+            if !(v_next > 0.0) {
+                stopped = true;
                 break;
-            };
-            let fuel = stage::fuel_g(model, &self.vehicle, (v_mps, v_next), u.pedal, u.gear, h);
-            totals = Some((fuel_g + fuel, time_s + stage::time_s(model, (v_mps, v_next), h)));
+            }
+            fuel_g += stage::fuel_g(model, &self.vehicle, (v_mps, v_next), u.pedal, u.gear, h);
+            time_s += stage::time_s(model, (v_mps, v_next), h);
             self.shifts.record(gear, u.gear);
             (v_mps, gear, held) = (v_next, u.gear, u);
         }
         (self.stats, self.shifts) = kept;
-        totals
+        (!stopped).then_some((fuel_g, time_s))
     }
 
     /// The one-stage solve at the stage starting at `s_m` against the stored cost-to-go (None

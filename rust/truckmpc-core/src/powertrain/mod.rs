@@ -28,7 +28,7 @@ pub mod truck;
 #[cfg(test)]
 mod dynamics_tests;
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 
 pub use curve::Curve;
 pub use driveline::Driveline;

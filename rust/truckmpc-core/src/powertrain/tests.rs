@@ -130,17 +130,21 @@ fn the_engine_cuts_fuel_at_or_below_its_drag_torque_and_reads_its_map_above() {
     assert!((power_w - 1600.0 * 1800.0 * 2.0 * std::f64::consts::PI / 60.0).abs() < 1e-6);
 }
 
-pub(super) fn truck() -> MapTruck {
-    let driveline = Driveline::new((&[3.0, 2.0, 1.0], 3.0), (0.98, 0.97, 20.0), 0.5).unwrap();
-    let body = Body {
+/// The body of the test trucks: 40 t, 6 m² drag area, 4 kW of auxiliaries.
+pub(crate) fn body() -> Body {
+    Body {
         mass_kg: 40_000.0,
         wheels_inertia_kgm2: 60.0,
         cda_m2: 6.0,
         air_density_kg_m3: 1.2,
         rolling_resistance: 0.006,
         aux_power_w: 4_000.0,
-    };
-    MapTruck::new(engine(), driveline, body).unwrap()
+    }
+}
+
+pub(super) fn truck() -> MapTruck {
+    let driveline = Driveline::new((&[3.0, 2.0, 1.0], 3.0), (0.98, 0.97, 20.0), 0.5).unwrap();
+    MapTruck::new(engine(), driveline, body()).unwrap()
 }
 
 #[test]

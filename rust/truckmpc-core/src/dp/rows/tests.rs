@@ -4,7 +4,8 @@ use std::sync::Arc;
 
 use super::*;
 use crate::params::GridAnchor;
-use crate::powertrain::{Body, Driveline, Engine, MapModel, MapTruck};
+use crate::powertrain::tests::body;
+use crate::powertrain::{Driveline, Engine, MapModel, MapTruck};
 use crate::vehicle::VehicleParams;
 
 /// Every cost of a row is `pair`'s, bit for bit (whichever path computed it), and the row is
@@ -105,15 +106,7 @@ pub(in crate::dp::rows) fn curved_map_truck() -> Vehicle {
     let full_load = [(600.0, 1200.0, -150.0), (1200.0, 2400.0, -200.0), (2000.0, 1800.0, -280.0)];
     let engine = Engine::new(600.0, 4.0, &full_load, &points).unwrap();
     let driveline = Driveline::new((&[3.0, 2.0, 1.4, 1.0], 2.6), (0.98, 0.97, 20.0), 0.5).unwrap();
-    let body = Body {
-        mass_kg: 40_000.0,
-        wheels_inertia_kgm2: 60.0,
-        cda_m2: 6.0,
-        air_density_kg_m3: 1.2,
-        rolling_resistance: 0.006,
-        aux_power_w: 4_000.0,
-    };
-    let truck = MapTruck::new(engine, driveline, body).unwrap();
+    let truck = MapTruck::new(engine, driveline, body()).unwrap();
     let model = MapModel::new(truck, 1.0e5, 0.0);
     Vehicle::from_map(Arc::new(model), &VehicleParams::default()).unwrap()
 }

@@ -166,7 +166,7 @@ pub(super) fn forward_row_trapezoid(
         let (pedal_lo, pedal_hi) = end.pedal_band;
         // The span only needs its ends to within a grid step (it is one index wider each way and
         // every pair is checked on its own), so the implicit end speed stops at a tenth of one.
-        let tol = 0.1 * grid.delta_mps;
+        let tol_mps = 0.1 * grid.delta_mps;
         let at = |u: f64| {
             stage::end_speed_within(
                 StageModel::Trapezoid,
@@ -175,7 +175,7 @@ pub(super) fn forward_row_trapezoid(
                 gear,
                 slope_torque,
                 (Branch::Pedal, u),
-                tol,
+                tol_mps,
             )
         };
         band_lo = at(pedal_lo);
@@ -190,6 +190,8 @@ pub(super) fn forward_row_trapezoid(
     if last < first {
         return (RowSpan { first: 0, len: 0 }, start);
     }
+    // One loop per source of fuel (the pedal table, or the maps and closed forms), so that neither
+    // branches on it per transition.
     let tabled = m.map_fuel.is_some() && p.grid == GridAnchor::Fixed && grid.origin_mps == 0.0;
     match tabled.then(|| grid_index_of(v_i, grid.delta_mps)).flatten().filter(|&index| index > 0) {
         Some(index_i) => {
