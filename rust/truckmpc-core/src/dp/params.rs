@@ -90,6 +90,8 @@ pub struct DpSettings {
     /// marginal fuel cost (the speed_penalty cost leaves it out: its Q3·|Δv| is larger at any Δv a
     /// stage can make).
     pub q_speed_change_sq: f64,
+    /// K of the pedal-level arcs (levels 1/K … (K−1)/K per forward gear); 0: none.
+    pub pedal_levels: u32,
     /// Neutral arcs' rule.
     pub neutral_rule: NeutralRule,
     /// Grid anchoring.
@@ -151,6 +153,7 @@ impl DpSettings {
             q_time_per_s: 0.0,
             q_terminal_per_half_v2: 0.0,
             q_speed_change_sq: 0.0,
+            pedal_levels: mpc.pedal_levels,
             neutral_rule: mpc.neutral_rule,
             grid: mpc.grid,
             on_infeasible: mpc.on_infeasible,

@@ -97,7 +97,7 @@ impl Decision {
     }
 }
 
-/// Flag on a choice's next-grid index (`all_j`, `shift_j`): the way into the target gear is its
+/// Flag on a choice's next-grid index (`all_j`, `shift_j`; its top byte holds the flag): the way into the target gear is its
 /// fuel-cut arc, whose end speed is off the grid and whose control is zero pedal and brake; the
 /// index is the grid point nearest to the arc's end. Grid indices stay below 2^16.
 pub(super) const ARC: u32 = 1 << 24;
@@ -106,5 +106,21 @@ pub(super) const ARC: u32 = 1 << 24;
 /// trapezoid stage's), whose end speed is off the grid and whose control is full pedal.
 pub(super) const FULL: u32 = 1 << 25;
 
-/// Both flags of a choice's next-grid index.
-pub(super) const FLAGS: u32 = ARC | FULL;
+/// The flag byte of pedal level 1 less one: the way into the target gear is the arc of pedal
+/// level l/K (1 ≤ l < K, `pedal_levels`), flagged `(LEVEL0 + l) << 24`.
+const LEVEL0: u32 = 2;
+
+/// The flag of the arc of pedal level `l` on a choice's next-grid index.
+#[inline]
+pub(super) fn level_flag(l: u32) -> u32 {
+    (LEVEL0 + l) << 24
+}
+
+/// The pedal level l of a decision's flag byte, if it is a pedal-level arc's.
+#[inline]
+pub(super) fn level_of(arc: u8) -> Option<u32> {
+    (arc as u32 > LEVEL0).then(|| arc as u32 - LEVEL0)
+}
+
+/// Every flag bit of a choice's next-grid index (its top byte).
+pub(super) const FLAGS: u32 = 0xff00_0000;

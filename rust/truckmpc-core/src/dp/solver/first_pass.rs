@@ -4,7 +4,7 @@
 //! full-pedal ways are exact arcs ([`super::arcs`]). Costs in the units of (5.9).
 
 use super::arcs::{better_by_arc, exact_arc, neutral_choices, ArcJoin};
-use super::choices::{ARC, FULL};
+use super::choices::{level_flag, ARC, FULL};
 use super::{stride, Solver, INF};
 use crate::dp::cache::{Block, StageKey, StageRows, LANES, PAD};
 use crate::dp::params::StageModel;
@@ -87,9 +87,15 @@ impl Solver {
             let fuel_cut = p.fuel_cut_arcs.then(|| (g, (Branch::Brake, 0.0), ArcJoin::new(p, next, (lo, hi)), ARC));
             let full = (p.stage_model == StageModel::Trapezoid)
                 .then(|| (gears + g, (Branch::Pedal, 1.0), ArcJoin::full_pedal(p, next, (lo, hi)), FULL));
+            // The pedal levels l/K between them, as exact arcs too (`pedal_levels`).
+            let k_levels = p.pedal_levels;
+            let levels = (1..k_levels.max(1)).map(|l| {
+                let slot = (2 + l as usize - 1) * gears + g;
+                (slot, (Branch::Pedal, l as f64 / k_levels as f64), ArcJoin::new(p, next, (lo, hi)), level_flag(l))
+            });
             let block = g * stride(next.count) + PAD;
             let slot0 = out + (key_lo - ch.base_key) as usize;
-            for (slot, input, join, flag) in fuel_cut.into_iter().chain(full) {
+            for (slot, input, join, flag) in fuel_cut.into_iter().chain(full).chain(levels) {
                 let arcs = stage.arcs(slot);
                 arcs.fill(key_lo, key_hi, |key| exact_arc(p, vehicle, here.index.speed(key), g, slope_torque, input));
                 let (cost_next, counter_next) = (&self.cost_next[block..], &self.counter_next[block..]);

@@ -1,7 +1,7 @@
 //! The traceback: the stored decisions followed from the initial state, giving the first control
 //! and the predicted trajectory (speeds [m/s], gears, pedal and brake levels [0, 1]).
 
-use super::choices::{ARC, FULL};
+use super::choices::{level_of, ARC, FULL};
 use super::{InitialState, Solution, Solver, TrajectoryPoint};
 use crate::dp::params::StageModel;
 use crate::dp::rows::{inputs, Inputs};
@@ -27,6 +27,8 @@ impl Solver {
                 (0.0, 0.0)
             } else if d.arc == (FULL >> 24) as u8 {
                 (1.0, 0.0)
+            } else if let Some(l) = level_of(d.arc) {
+                (l as f64 / self.params.pedal_levels as f64, 0.0)
             } else {
                 let v_max = self.bands[k + 1].v_max_mps();
                 let torque = self.slope_torques[k];
