@@ -11,7 +11,7 @@ from typer.testing import CliRunner
 
 from truckmpc import load_road, load_run_config, simulate
 from truckmpc.cli import app
-from truckmpc.convergence import convergence_document, halved_configs, run_halves
+from truckmpc.convergence import convergence_document, convergence_lines, halved_configs, run_halves
 
 runner = CliRunner()
 HILL = Path(__file__).resolve().parents[1] / "roads" / "hill_L500_A-3.csv"
@@ -75,9 +75,30 @@ def test_each_move_is_the_halved_delta_minus_the_runs_delta_in_points(checked):
         # at equal trip time: each against the PI re-tuned to its own trip time
         equal_move = conv[half]["delta_fuel_equal_time_pct"] - doc["delta_fuel_equal_time_pct"]
         assert conv[f"delta_fuel_equal_time_pct_{half}"] == pytest.approx(equal_move, abs=1e-9)
-    moves = {k: v for k, v in conv.items() if k.startswith("delta_")}
+    moves = {k: v for k, v in conv.items() if k.startswith("delta_") and v is not None}
     assert len(moves) == 6
     assert conv["flagged"] == [k for k, v in moves.items() if abs(v) > 0.3]
+    # The thesis's cost is not fuel + β·time: no move of that cost.
+    assert conv["delta_cost_pct_half_delta"] is None and conv["delta_cost_pct_half_stage"] is None
+
+
+def test_the_fuel_time_costs_move_is_corrected_fuel_plus_beta_time_over_the_pis_fuel():
+    """With the default cost the check also reports how far fuel (end speed corrected) + β·time
+    moves, in points of the PI's fuel, computed here from the runs' own figures."""
+    road = load_road(HILL)
+    config = load_run_config()
+    results = {name: simulate(road, config, name) for name in ("pi", "mpc")}
+    halves = halved_configs(config)
+    halved = run_halves(road, halves)
+    doc = convergence_document(results, halved, halves)
+    beta = config.settings.beta_g_per_s_resolved
+    run, pi_g = results["mpc"].summary, 1000 * results["pi"].summary["fuel_kg"]
+    for half, result in halved.items():
+        at = result.summary
+        moved_g = 1000 * (at["fuel_corrected_kg"] - run["fuel_corrected_kg"]) + beta * (at["time_s"] - run["time_s"])
+        assert doc[f"delta_cost_pct_{half}"] == pytest.approx(100 * moved_g / pi_g, abs=1e-9)
+    lines = convergence_lines(doc, 40)
+    assert sum(line.startswith("fuel + β·time vs PI") for line in lines) == 2
 
 
 def test_the_table_prints_each_move_and_flags_those_beyond_a_third_of_a_point(checked):
@@ -92,6 +113,24 @@ def test_the_table_prints_each_move_and_flags_those_beyond_a_third_of_a_point(ch
         line = next(line for line in stdout.splitlines() if line.startswith(label))
         assert f"{conv[key]:+.2f}" in line
         assert ("not converged" in line) == (key in conv["flagged"])
+
+
+def test_with_pedal_levels_the_check_also_doubles_them_and_reports_that_move(tmp_path):
+    """A run planning 4 pedal levels off the grid is checked at 8 levels too (its control resolution
+    halved, δ and S kept); the halved run is the MPC run alone with `pedal_levels=8`."""
+    out = tmp_path / "levels"
+    args = ["--road", HILL, "--set", "pedal_levels=4", "--check-convergence", "--out", out]
+    result = run("simulate", *args)
+    assert result.exit_code == 0, result.stderr
+    conv = json.loads((out / "summary.json").read_text())["convergence"]
+    assert (conv["half_pedal"]["pedal_levels"], conv["half_pedal"]["delta_kmh"]) == (8, 0.05)
+    assert conv["half_pedal"]["stage_m"] == 25.0
+    alone = simulate(load_road(HILL), load_run_config(overrides=["pedal_levels=8"]), "mpc").summary
+    assert conv["half_pedal"]["fuel_kg"] == alone["fuel_kg"]
+    line = next(line for line in result.stdout.splitlines() if line.startswith("Δfuel vs PI 2×levels [pts]"))
+    assert f"{conv['delta_fuel_pct_half_pedal']:+.2f}" in line
+    # Without pedal levels there is no such run.
+    assert "half_pedal" not in halved_configs(load_run_config())
 
 
 def test_replay_runs_the_check_again(checked, tmp_path):

@@ -59,7 +59,8 @@ def test_every_result_column_is_a_controller_that_ran_then_its_figure(layout: La
         assert match, column
         assert match.group(1) in layout.runs, (column, layout.runs)
     comparisons = [c for c in layout.columns if "_delta_" in c]
-    assert all(re.fullmatch(r"(pcc|mpc)_delta_[a-z_]+?(_vs_(pcc))?_pct(_half_(delta|stage))?", c) for c in comparisons)
+    named = r"(pcc|mpc)_delta_[a-z_]+?(_vs_(pcc))?_pct(_half_(delta|stage|pedal))?"
+    assert all(re.fullmatch(named, c) for c in comparisons)
 
 
 def test_the_pcc_and_mpc_columns_share_their_figures_names() -> None:

@@ -1,5 +1,6 @@
-"""The discretisation error of a look-ahead run: the MPC driven again at half the speed step δ and
-at half the stage length S, and how far Δfuel and Δtime against the baseline move.
+"""The discretisation error of a look-ahead run: the MPC driven again at half the speed step δ, at
+half the stage length S and, where it plans pedal levels off the grid, at twice the levels, and how
+far Δfuel and Δtime against the baseline move.
 
 The halved runs solve the same problem at a finer resolution: the shift limit keeps its spacing in
 metres (k_lim doubled at S/2), weights given per kilometre (``q_speed_below_per_km``,
@@ -13,13 +14,17 @@ rounding.
     "convergence": {"delta_fuel_pct_half_delta": <points>, "delta_fuel_pct_half_stage": ...,
                     "delta_time_pct_half_delta": ..., "delta_time_pct_half_stage": ...,
                     "delta_fuel_equal_time_pct_half_delta": ..., "..._half_stage": ...,
+                    "delta_cost_pct_half_delta": ..., "delta_cost_pct_half_stage": ...,
                     "half_delta": {"delta_kmh", "delta_fuel_pct", "delta_time_pct",
                                    "delta_fuel_equal_time_pct", "fuel_kg", "time_s"},
                     "half_stage": {"stage_m", "k_lim", ...},
+                    "half_pedal": {"pedal_levels", ...} and its moves, where pedal_levels > 0,
                     "flag_points": 0.3, "flagged": [<fields beyond it>]}
 
 Each ``*_half_*`` field is Δ at the halved setting minus Δ of the run, in percentage points; null
-(with ``not_comparable`` in the half's object) when a halved run is not comparable. The equal-time
+(with ``not_comparable`` in the half's object) when a halved run is not comparable. With the
+fuel_time cost, ``delta_cost_pct_half_*`` is how far what that cost minimises moves, fuel (end speed
+corrected) + β·trip time, in percent of the PI's fuel; null with another cost. The equal-time
 move compares each at the PI re-tuned to its own trip time: a finer resolution that trades fuel for
 time along the cost's β moves the raw Δfuel but not this one (null where a search missed its time).
 """
@@ -33,17 +38,23 @@ from truckmpc.compare import compare
 from truckmpc.config import RunConfig, config_from_values
 from truckmpc.roads import RoadProfile
 from truckmpc.sim import RunResult, simulate
+from truckmpc.units import G_PER_KG
 
 FLAG_POINTS = 0.3
-"""A Δ that moves by more than this many percentage points at half δ or half S is flagged."""
+"""A Δ that moves by more than this many percentage points at a halved setting is flagged."""
 
-HALVES = ("half_delta", "half_stage")
-"""The halved settings, in the order they run."""
+HALVES = ("half_delta", "half_stage", "half_pedal")
+"""The halved settings, in the order they run: δ/2, S/2 and, where the run plans pedal levels off
+the grid (``pedal_levels`` K > 0), the pedal step halved (2K levels)."""
+
+_LABELS = {"half_delta": "δ/2", "half_stage": "S/2", "half_pedal": "2×levels"}
+"""How each halving is named in the printed lines."""
 
 
 def halved_configs(config: RunConfig) -> dict[str, RunConfig]:
     """The run's configuration at δ/2 and at S/2: weights given per kilometre kept, a Q2 given per
-    stage (or by table 6.2's δ rule) held at the run's value, k_lim kept at its spacing in metres."""
+    stage (or by table 6.2's δ rule) held at the run's value, k_lim kept at its spacing in metres;
+    with pedal levels K > 0, also at 2K levels (the pedal step halved)."""
     settings = config.settings
     values = settings.values()
     # Q2 given per kilometre scales with S by itself; per stage (or by the δ rule) it is held.
@@ -51,12 +62,16 @@ def halved_configs(config: RunConfig) -> dict[str, RunConfig]:
     if values["q_speed_below_per_km"] is None:
         pinned["q_speed_below"] = settings.q_speed_below_weight
     where = "--check-convergence"
-    return {
+    halves = {
         "half_delta": config_from_values({**pinned, "delta_kmh": values["delta_kmh"] / 2}, where, config.truck),
         "half_stage": config_from_values(
             {**pinned, "stage_m": values["stage_m"] / 2, "k_lim": 2 * settings.k_lim_stages}, where, config.truck
         ),
     }
+    if values["pedal_levels"] > 0:
+        levels = 2 * values["pedal_levels"]
+        halves["half_pedal"] = config_from_values({**pinned, "pedal_levels": levels}, where, config.truck)
+    return halves
 
 
 def run_halves(road: RoadProfile, configs: Mapping[str, RunConfig]) -> dict[str, RunResult]:
@@ -72,14 +87,14 @@ def convergence_document(
 ) -> dict[str, Any]:
     """The ``convergence`` object of ``summary.json`` from the run's PI and MPC results and the
     halved MPC runs; `equal_time_pct`: Δfuel [%] against the PI re-tuned to the trip time of the
-    run (``"mpc"``) and of each half (by :data:`HALVES`), None where a search missed it."""
+    run (``"mpc"``) and of each half (the keys of `halves`), None where a search missed it."""
     base, mpc = results["pi"].summary, results["mpc"].summary
     run = compare(base, mpc)
     equal_time_pct = equal_time_pct or {}
     run_equal = equal_time_pct.get("mpc")
     doc: dict[str, Any] = {}
     objects: dict[str, dict[str, Any]] = {}
-    for half in HALVES:
+    for half in (half for half in HALVES if half in halves):
         summary = halves[half].summary
         moved = compare(base, summary)
         mpc_settings = configs[half].mpc
@@ -87,6 +102,7 @@ def convergence_document(
             "delta_kmh": mpc_settings.delta_kmh,
             "stage_m": mpc_settings.stage_m,
             "k_lim": configs[half].settings.k_lim_stages,
+            "pedal_levels": mpc_settings.pedal_levels,
             "delta_fuel_pct": moved.delta_fuel_pct,
             "delta_time_pct": moved.delta_time_pct,
             "delta_fuel_equal_time_pct": equal_time_pct.get(half),
@@ -102,6 +118,8 @@ def convergence_document(
             ("fuel_equal_time", run_equal, detail["delta_fuel_equal_time_pct"]),
         ):
             doc[f"delta_{name}_pct_{half}"] = None if at_run is None or at_half is None else at_half - at_run
+        beta = configs[half].settings.beta_g_per_s_resolved if configs[half].mpc.cost == "fuel_time" else None
+        doc[f"delta_cost_pct_{half}"] = None if reason is not None else cost_move_pct(base, mpc, summary, beta)
         objects[half] = detail
     moves = {key: value for key, value in doc.items() if value is not None}
     doc.update(objects)
@@ -110,7 +128,27 @@ def convergence_document(
     return doc
 
 
-_MOVED = {"fuel": "Δfuel vs PI", "time": "Δtrip time vs PI", "fuel_equal_time": "Δfuel at equal trip time vs PI"}
+def cost_move_pct(
+    base: Mapping[str, Any], run: Mapping[str, Any], half: Mapping[str, Any], beta_g_per_s: float | None
+) -> float | None:
+    """How far the cost the fuel_time controller minimises moves from `run` to `half` (summaries),
+    in percent of the baseline's fuel: (fuel with the end speed corrected [g] + β·trip time [s]) at
+    the half less at the run, over the baseline's fuel [g]. None without β (another cost) or where a
+    run has no corrected fuel (a stall). The drivability prices (shifts, neutral engagements) are
+    left out: they are not fuel or time."""
+    fuels = (run.get("fuel_corrected_kg"), half.get("fuel_corrected_kg"))
+    if beta_g_per_s is None or fuels[0] is None or fuels[1] is None:
+        return None
+    moved_g = G_PER_KG * (fuels[1] - fuels[0]) + beta_g_per_s * (half["time_s"] - run["time_s"])
+    return float(100.0 * moved_g / (G_PER_KG * base["fuel_kg"]))
+
+
+_MOVED = {
+    "fuel": "Δfuel vs PI",
+    "time": "Δtrip time vs PI",
+    "fuel_equal_time": "Δfuel at equal trip time vs PI",
+    "cost": "fuel + β·time vs PI",
+}
 """How each moved Δ is named in the printed lines."""
 
 
@@ -119,12 +157,14 @@ def convergence_lines(doc: Mapping[str, Any], width: int) -> list[str]:
     setting (``Δfuel vs PI δ/2 [pts]``), flagged beyond :data:`FLAG_POINTS`, or why it is not
     comparable."""
     lines = []
-    width = max(width, max(len(text) for text in _MOVED.values()) + len(" S/2 [pts]") + 2)
-    for half, label in (("half_delta", "δ/2"), ("half_stage", "S/2")):
-        for name in ("fuel", "time", "fuel_equal_time"):
+    width = max(width, max(len(text) for text in _MOVED.values()) + len(" 2×levels [pts]") + 2)
+    for half, label in ((half, label) for half, label in _LABELS.items() if half in doc):
+        for name in ("fuel", "time", "fuel_equal_time", "cost"):
             key = f"delta_{name}_pct_{half}"
             value = doc.get(key)
             text = f"{_MOVED[name]} {label} [pts]"
+            if name == "cost" and value is None:
+                continue
             if value is None:
                 lines.append(f"{text:<{width}}{'n/a':>14}  {doc[half].get('not_comparable', '')}")
                 continue

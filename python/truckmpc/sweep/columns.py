@@ -159,12 +159,18 @@ CONVERGENCE_FIELDS = (
     "delta_fuel_pct_half_stage",
     "delta_time_pct_half_delta",
     "delta_time_pct_half_stage",
+    "delta_cost_pct_half_delta",
+    "delta_cost_pct_half_stage",
+    "delta_fuel_pct_half_pedal",
+    "delta_time_pct_half_pedal",
+    "delta_cost_pct_half_pedal",
 )
 """The MPC's figures of :mod:`truckmpc.convergence`."""
 
 CONVERGENCE_COLUMNS = tuple(RUNS["mpc"].column(field) for field in CONVERGENCE_FIELDS)
-"""With ``--check-convergence``: how far Δfuel and Δtime move [points] with the MPC at half δ and at
-half S (:mod:`truckmpc.convergence`); blank where a halved run is not comparable."""
+"""With ``--check-convergence``: how far Δfuel, Δtime and (with the fuel_time cost) fuel + β·time move
+[points] with the MPC at half δ, at half S and at twice its pedal levels (:mod:`truckmpc.convergence`);
+blank where a halved run is not comparable, and the last three where the row plans no pedal levels."""
 
 
 def deltas(base: Mapping[str, Any], run: Mapping[str, Any], base_name: str, run_name: str) -> dict[str, Any]:

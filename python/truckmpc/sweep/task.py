@@ -98,7 +98,7 @@ def _figures(profile: RoadProfile, config: RunConfig, task: Task) -> dict[str, A
     if task.convergence:
         halves = halved_configs(config)
         moves = convergence_document({"pi": bases["pi"], "mpc": result}, run_halves(profile, halves), halves)
-        figures.update({field: moves[field] for field in CONVERGENCE_FIELDS})
+        figures.update({field: moves.get(field) for field in CONVERGENCE_FIELDS})
     return figures
 
 
