@@ -11,7 +11,7 @@ from typer.testing import CliRunner
 
 import truckmpc.sweep.run as sweep_run
 import truckmpc.workload as workload
-from truckmpc import default_test_track, load_run_config, simulate
+from truckmpc import default_test_track, load_road, load_run_config, simulate
 from truckmpc.cli import app
 from truckmpc.sweep import expand_grid, parse_axis
 from truckmpc.sweep.cells import yaml_text
@@ -60,6 +60,17 @@ def test_a_fine_speed_grid_is_refused_naming_where_it_was_set(in_tmp):
     assert_refused(run("simulate", *fine, "--out", "res"), "--set delta_kmh")
     (in_tmp / "fine.yaml").write_text("# overlay\nreplan_m: 0\ndelta_kmh: 0.001\n")
     assert_refused(run("simulate", "--config", "fine.yaml", "--out", "res"), "fine.yaml:3: key 'delta_kmh'")
+    assert not (in_tmp / "res").exists()
+
+
+def test_pedal_levels_whose_arcs_alone_take_hours_are_refused_naming_the_key(in_tmp):
+    # 10 000 km of flat road: at the defaults minutes of DP; 120 pedal levels add about
+    # 400 000 stages × 261 grid points × 120 levels arcs of a few tenths of a microsecond each.
+    (in_tmp / "long.csv").write_text("distance_m,altitude_m\n0,0\n10000000,0\n")
+    long_road = ("--road", "long.csv", "--controller", "mpc", "--out", "res")
+    assert_refused(run("simulate", *long_road, "--set", "pedal_levels=120"), "--set pedal_levels")
+    config = load_run_config()
+    assert workload.run_work(load_road(in_tmp / "long.csv"), config, "mpc").total_s < workload.MAX_WORK_S
     assert not (in_tmp / "res").exists()
 
 
@@ -129,7 +140,7 @@ def test_a_sweep_counts_the_memory_of_the_runs_it_holds_at_once(in_tmp, monkeypa
 
 def test_the_estimate_is_within_a_factor_of_ten_of_a_measured_run():
     road = default_test_track()
-    for overrides in ((), ("delta_kmh=0.1", "horizon_m=2000")):
+    for overrides in ((), ("delta_kmh=0.1", "horizon_m=2000"), ("pedal_levels=16",)):
         config = load_run_config(overrides=overrides)
         for controller in ("pi", "mpc"):
             started = time.perf_counter()

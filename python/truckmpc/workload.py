@@ -10,6 +10,8 @@ The estimates are rough (within a factor of a few) and only decide whether to re
   nanoseconds each, folded into one constant, which grows once a solve's rows no longer fit in the
   processor's caches;
 - the DP's memory ≈ stages × (speed band / δ)² units at a few bytes each (its cached rows);
+- with ``pedal_levels`` K > 0, road stages × (band / δ) × K arcs, each computed once (a few tenths of
+  a microsecond), and stages × (band / δ) × K arcs held (some 70 bytes each, all gears);
 - trace rows ≈ road length / trace_step_m, each kept in memory and written to the trace CSV.
 """
 
@@ -68,8 +70,19 @@ peaked at 1.21 GB at δ 0.025 km/h (401 points, 94 bytes a unit) and at 0.66 GB 
 (201 points, 103 bytes a unit); its relaxed solves keep no rows (no row cache, a grid of at least
 0.1 km/h)."""
 
+LEVEL_UNIT_S = 4e-7
+"""Seconds per pedal-level arc unit (one road stage × one grid point × one level, ``pedal_levels``)
+[s]: each is computed once per road stage in every usable gear. On VECTO 108 km at δ 0.05 km/h, 16
+and 120 levels added 1.4e-7 and 1.5e-7 s a unit with the thesis's truck, 3.9e-7 and 4.1e-7 with
+VECTO's generic tractor (more gears, fuel from its map)."""
+
+LEVEL_BYTES_PER_UNIT = 70.0
+"""Memory [bytes] per cached stage × grid point × pedal level: the arcs of every gear, kept while the
+stage stays in the horizon. On VECTO 108 km at δ 0.05 km/h, 120 levels added 323 MB of peak memory
+(150 stages, 261 points: 69 bytes a unit) with the thesis's truck."""
+
 _PLANT_KEYS = ("plant_dt_s", "v_ref_kmh")
-_DP_KEYS = ("delta_kmh", "stage_m", "horizon_m", "replan_m", "v_inc_kmh", "v_dec_kmh")
+_DP_KEYS = ("delta_kmh", "stage_m", "horizon_m", "replan_m", "v_inc_kmh", "v_dec_kmh", "pedal_levels")
 
 
 class WorkError(TruckmpcError):
@@ -128,14 +141,21 @@ def run_work(profile: RoadProfile, config: RunConfig, controller: str) -> Work:
     `profile`. The whole-road optimum is one solve over all the road's stages (its rows not cached)
     and a one-stage solve per stage, holding every stage's values."""
     plant_s = plant_steps(profile, config) * PLANT_STEP_S
+    stages, points = road_stages(profile, config), grid_points(config)
+    levels = float(config.settings.get("pedal_levels"))
+    # Level arcs: once per road stage in the MPC's cache; twice in the optimum (its whole-road solve
+    # and its one-stage solves keep no rows).
+    levels_s = stages * points * levels * LEVEL_UNIT_S
     if controller == "optimal":
-        stages, points = road_stages(profile, config), grid_points(config)
-        return Work(plant_s, stages * points**2 * DP_UNIT_LARGE_S, stages * points * WHOLE_ROAD_BYTES_PER_POINT)
+        dp_s = stages * points**2 * DP_UNIT_LARGE_S + 2 * levels_s
+        return Work(plant_s, dp_s, stages * points * WHOLE_ROAD_BYTES_PER_POINT)
     if controller != "mpc":
         return Work(plant_s, 0.0)
-    dp_bytes = solve_units(config) * DP_BYTES_PER_UNIT
-    unit_s = DP_UNIT_S if dp_bytes <= DP_CACHED_BYTES else DP_UNIT_LARGE_S
-    return Work(plant_s, dp_units(profile, config) * unit_s, dp_bytes)
+    rows_bytes = solve_units(config) * DP_BYTES_PER_UNIT
+    unit_s = DP_UNIT_S if rows_bytes <= DP_CACHED_BYTES else DP_UNIT_LARGE_S
+    cached_stages = config.settings.horizon_stages + config.settings.replan_stages
+    dp_bytes = rows_bytes + cached_stages * points * levels * LEVEL_BYTES_PER_UNIT
+    return Work(plant_s, dp_units(profile, config) * unit_s + levels_s, dp_bytes)
 
 
 def memory_limit_bytes() -> float:
