@@ -2,6 +2,7 @@
 
     python scripts/validation_tables.py pcc                  # docs/validation/pcc.md, the controllers compared
     python scripts/validation_tables.py convergence          # docs/validation/convergence.md, the default
+    python scripts/validation_tables.py levels-convergence   # docs/validation/convergence.md, 16 pedal levels
     python scripts/validation_tables.py thesis-convergence   # docs/validation/convergence.md, the thesis preset
     python scripts/validation_tables.py shift-price          # docs/validation/pcc.md, the MPC at each Q4
     python scripts/validation_tables.py neutral-price        # docs/validation/pcc.md, the MPC at each q_neutral
@@ -111,15 +112,17 @@ def pcc_row(summary: dict[str, Any]) -> list[str]:
     ]
 
 
-def convergence_row(summary: dict[str, Any]) -> list[str]:
-    """Moves at δ/2 and at S/2: raw Δfuel / Δtime / Δfuel at equal trip time [points]."""
+def convergence_row(summary: dict[str, Any], halves: tuple[str, ...] = ("delta", "stage")) -> list[str]:
+    """Moves at each of `halves` (δ/2 and S/2): raw Δfuel / Δtime / Δfuel at equal trip time / fuel +
+    β·time [points]."""
     moves = summary["convergence"]
-    return [
-        " / ".join(
-            signed(moves.get(f"delta_{figure}_pct_half_{half}")) for figure in ("fuel", "time", "fuel_equal_time")
-        )
-        for half in ("delta", "stage")
-    ]
+    figures = ("fuel", "time", "fuel_equal_time", "cost")
+    return [" / ".join(signed(moves.get(f"delta_{figure}_pct_half_{half}")) for figure in figures) for half in halves]
+
+
+def levels_row(summary: dict[str, Any]) -> list[str]:
+    """Moves at δ/2, S/2 and twice the pedal levels, as :func:`convergence_row`."""
+    return convergence_row(summary, ("delta", "stage", "pedal"))
 
 
 def thesis_row(summary: dict[str, Any]) -> list[str]:
@@ -149,7 +152,13 @@ STUDIES: dict[str, Study] = {
         ],
         pcc_row,
     ),
-    "convergence": (HILLY, ["--controller", "pi,mpc", "--check-convergence"], ["δ/2", "S/2"], convergence_row),
+    "convergence": (PCC_CASES, ["--controller", "pi,mpc", "--check-convergence"], ["δ/2", "S/2"], convergence_row),
+    "levels-convergence": (
+        HILLY[::2],
+        ["--controller", "pi,mpc", "--set", "pedal_levels=16", "--check-convergence"],
+        ["δ/2", "S/2", "32 levels"],
+        levels_row,
+    ),
     "thesis-convergence": (
         THESIS_CASES,
         ["--config", "thesis", "--check-convergence"],
