@@ -244,7 +244,8 @@ pub struct StageRows {
     key: StageKey,
     /// Indexed by gear; entry 0 (neutral) is unused.
     gears: Vec<GearBlocks>,
-    /// Coasting arcs per gear: neutral at entry 0, fuel cut in the forward gears (when used).
+    /// Exact arcs by slot: neutral at 0, then per forward gear g fuel cut at g, full pedal at
+    /// gears + g and pedal level l at (l + 1)·gears + g (gears counting neutral), when used.
     arcs: Vec<Keyed<CoastArc>>,
 }
 
@@ -261,13 +262,13 @@ impl StageRows {
         }
     }
 
-    /// The coasting arcs in `gear` (neutral, or fuel cut in a forward gear).
+    /// The exact arcs of `slot` (the layout of [`StageRows::arcs`]'s field).
     #[inline]
-    pub fn arcs(&mut self, gear: usize) -> &mut Keyed<CoastArc> {
-        if self.arcs.len() <= gear {
-            self.arcs.resize_with(gear + 1, Keyed::default);
+    pub fn arcs(&mut self, slot: usize) -> &mut Keyed<CoastArc> {
+        if self.arcs.len() <= slot {
+            self.arcs.resize_with(slot + 1, Keyed::default);
         }
-        &mut self.arcs[gear]
+        &mut self.arcs[slot]
     }
 
     /// The row blocks towards forward `gear`.

@@ -1,5 +1,6 @@
 //! The exact arcs and their joins: over a stage with an input held (neutral coasting, fuel cut at
-//! zero pedal, or full pedal on trapezoid stages) the end speed [m/s] falls off the grid, so each
+//! zero pedal, full pedal on trapezoid stages, or a pedal level of `pedal_levels`) the end speed
+//! [m/s] falls off the grid, so each
 //! arc is joined to the next grid by a rule (nearest point, linear or quadratic interpolation of
 //! the cost-to-go) within the target gear's states. Costs in the units of (5.9).
 

@@ -78,9 +78,10 @@ impl Choices {
     }
 }
 
-/// The decision stored for a state: the next state (grid index, gear) and whether the stage is
-/// driven as a fuel-cut arc. `repr(C)`: the AVX2 second pass writes it as one u32, j in the low
-/// half, the gear in the byte above and the top byte of the choice's index (its [`ARC`] flag) last.
+/// The decision stored for a state: the next state (grid index, gear) and how the stage is driven
+/// (its flag byte: a row, or an exact arc of fuel cut, full pedal or a pedal level). `repr(C)`: the
+/// AVX2 second pass writes it as one u32, j in the low half, the gear in the byte above and the top
+/// byte of the choice's index (its flag) last.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 #[repr(C)]
 pub(super) struct Decision {
@@ -90,7 +91,7 @@ pub(super) struct Decision {
 }
 
 impl Decision {
-    /// The decision for a choice's next-grid index `j` (with its [`ARC`] flag) into `gear`.
+    /// The decision for a choice's next-grid index `j` (with its flag byte) into `gear`.
     #[inline]
     pub(super) fn new(j: u32, gear: u32) -> Self {
         Decision { j: j as u16, gear: gear as u8, arc: (j >> 24) as u8 }
@@ -110,9 +111,14 @@ pub(super) const FULL: u32 = 1 << 25;
 /// level l/K (1 ≤ l < K, `pedal_levels`), flagged `(LEVEL0 + l) << 24`.
 const LEVEL0: u32 = 2;
 
+/// The most pedal levels a solver plans (the range of `pedal_levels`): their flags fit the byte.
+pub const MAX_PEDAL_LEVELS: u32 = 240;
+const _: () = assert!(LEVEL0 + MAX_PEDAL_LEVELS <= u8::MAX as u32);
+
 /// The flag of the arc of pedal level `l` on a choice's next-grid index.
 #[inline]
 pub(super) fn level_flag(l: u32) -> u32 {
+    debug_assert!(l < MAX_PEDAL_LEVELS, "pedal level {l} beyond the flag byte");
     (LEVEL0 + l) << 24
 }
 

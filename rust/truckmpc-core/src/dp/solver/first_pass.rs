@@ -1,13 +1,14 @@
 //! The first pass of a stage (per target gear): for every source speed, the cheapest way into each
 //! gear of the next stage (row cost + cost-to-go) and the cheapest that allows a shift now. Forward
-//! gears take the min-plus pass over their cached rows ([`crate::dp::simd`]); neutral, fuel-cut and
-//! full-pedal ways are exact arcs ([`super::arcs`]). Costs in the units of (5.9).
+//! gears take the min-plus pass over their cached rows ([`crate::dp::simd`]); neutral, fuel-cut,
+//! full-pedal and pedal-level ways are exact arcs ([`super::arcs`]). Costs in the units of (5.9).
 
 use super::arcs::{better_by_arc, exact_arc, neutral_choices, ArcJoin};
-use super::choices::{level_flag, ARC, FULL};
+use super::choices::{level_flag, Choices, ARC, FULL};
+use super::grids::StageGrid;
 use super::{stride, Solver, INF};
 use crate::dp::cache::{Block, StageKey, StageRows, LANES, PAD};
-use crate::dp::params::StageModel;
+use crate::dp::params::{DpSettings, StageModel};
 use crate::dp::rows::forward_row;
 use crate::dp::simd::{self, LaneMins, LaneOut};
 use crate::dp::stage::Branch;
@@ -82,34 +83,73 @@ impl Solver {
                 shift_j: &mut ch.shift_j[span],
             };
             transitions += gear_pass_dispatch(&pass, choices);
-            // Fuel cut, and on trapezoid stages (whose rows stop at full pedal) full pedal too, as
-            // exact arcs: (cache slot, input held, join, flag of the choice).
-            let fuel_cut = p.fuel_cut_arcs.then(|| (g, (Branch::Brake, 0.0), ArcJoin::new(p, next, (lo, hi)), ARC));
-            let full = (p.stage_model == StageModel::Trapezoid)
-                .then(|| (gears + g, (Branch::Pedal, 1.0), ArcJoin::full_pedal(p, next, (lo, hi)), FULL));
-            // The pedal levels l/K between them, as exact arcs too (`pedal_levels`).
-            let k_levels = p.pedal_levels;
-            let levels = (1..k_levels.max(1)).map(|l| {
-                let slot = (2 + l as usize - 1) * gears + g;
-                (slot, (Branch::Pedal, l as f64 / k_levels as f64), ArcJoin::new(p, next, (lo, hi)), level_flag(l))
-            });
             let block = g * stride(next.count) + PAD;
-            let slot0 = out + (key_lo - ch.base_key) as usize;
-            for (slot, input, join, flag) in fuel_cut.into_iter().chain(full).chain(levels) {
-                let arcs = stage.arcs(slot);
-                arcs.fill(key_lo, key_hi, |key| exact_arc(p, vehicle, here.index.speed(key), g, slope_torque, input));
-                let (cost_next, counter_next) = (&self.cost_next[block..], &self.counter_next[block..]);
-                for (at, arc) in (slot0..).zip(arcs.get(key_lo, key_hi)) {
-                    // The counter of the grid point the path continues from, not the stencil's
-                    // smallest (the neutral state's rule): this arc's state is a forward gear's.
-                    let (cost, j, _) = join.join(arc, cost_next, counter_next);
-                    better_by_arc(cost, j | flag, counter_next[j as usize] >= p.k_lim, ch, at);
-                }
-                transitions += (key_hi - key_lo + 1) as usize;
-            }
+            let values = (&self.cost_next[block..], &self.counter_next[block..]);
+            let to = ArcTarget { gear: g, gears, next, lo, hi };
+            transitions += arc_choices(p, vehicle, stage, (here, slope_torque), (key_lo, key_hi), to, values, ch);
         }
         transitions
     }
+}
+
+/// A forward target gear of the exact arcs: its number (of `gears`, neutral included), the next
+/// stage's grid and the gear's states `lo..=hi` on it.
+struct ArcTarget {
+    gear: usize,
+    gears: usize,
+    next: StageGrid,
+    lo: u32,
+    hi: u32,
+}
+
+/// The exact arcs into a forward gear from the sources `key_lo..=key_hi` of the grid `here` on a
+/// stage of wheel torque `slope_torque` [Nm]: fuel cut, full pedal on trapezoid stages (whose rows
+/// stop there), and the pedal levels l/K between them (`pedal_levels`), each filled into its cache
+/// slot where missing, joined to the gear's states against their cost-to-go and counters
+/// (`values`, from state 0), and taking a source's choice where cheaper. Returns the transitions
+/// evaluated.
+#[allow(clippy::too_many_arguments)]
+fn arc_choices(
+    p: &DpSettings,
+    vehicle: &Vehicle,
+    stage: &mut StageRows,
+    (here, slope_torque): (StageGrid, f64),
+    (key_lo, key_hi): (i64, i64),
+    to: ArcTarget,
+    (cost_next, counter_next): (&[f64], &[u32]),
+    ch: &mut Choices,
+) -> usize {
+    let (g, next, range) = (to.gear, to.next, (to.lo, to.hi));
+    // (cache slot, input held, join, flag of the choice) of each kind of arc.
+    let fuel_cut = p.fuel_cut_arcs.then(|| (g, (Branch::Brake, 0.0), ArcJoin::new(p, next, range), ARC));
+    let full = (p.stage_model == StageModel::Trapezoid)
+        .then(|| (to.gears + g, (Branch::Pedal, 1.0), ArcJoin::full_pedal(p, next, range), FULL));
+    let k_levels = p.pedal_levels;
+    let levels = (1..k_levels.max(1)).map(|l| {
+        let input = (Branch::Pedal, l as f64 / k_levels as f64);
+        (level_slot(l, to.gears, g), input, ArcJoin::new(p, next, range), level_flag(l))
+    });
+    let slot0 = g * ch.width + (key_lo - ch.base_key) as usize;
+    let mut transitions = 0;
+    for (slot, input, join, flag) in fuel_cut.into_iter().chain(full).chain(levels) {
+        let arcs = stage.arcs(slot);
+        arcs.fill(key_lo, key_hi, |key| exact_arc(p, vehicle, here.index.speed(key), g, slope_torque, input));
+        for (at, arc) in (slot0..).zip(arcs.get(key_lo, key_hi)) {
+            // The counter of the grid point the path continues from, not the stencil's
+            // smallest (the neutral state's rule): this arc's state is a forward gear's.
+            let (cost, j, _) = join.join(arc, cost_next, counter_next);
+            better_by_arc(cost, j | flag, counter_next[j as usize] >= p.k_lim, ch, at);
+        }
+        transitions += (key_hi - key_lo + 1) as usize;
+    }
+    transitions
+}
+
+/// The cache slot of the arcs of pedal level `l` into forward gear `g` (of `gears`, neutral
+/// included): after neutral's (slot 0), fuel cut's (`g`) and full pedal's (`gears + g`).
+#[inline]
+fn level_slot(l: u32, gears: usize, g: usize) -> usize {
+    (l as usize + 1) * gears + g
 }
 
 /// What the first pass reads for one forward target gear.

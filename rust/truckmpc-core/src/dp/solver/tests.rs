@@ -4,7 +4,7 @@
 #[cfg(target_arch = "x86_64")]
 use super::arcs::{join_nearest_avx2, NeutralOut};
 use super::arcs::{quadratic_to_go, ArcJoin};
-use super::choices::{Decision, ARC, NO_GEAR};
+use super::choices::{level_flag, level_of, Decision, ARC, FLAGS, FULL, MAX_PEDAL_LEVELS, NO_GEAR};
 use super::first_pass::block_mins;
 #[cfg(target_arch = "x86_64")]
 use super::second_pass::rank_avx2;
@@ -77,8 +77,9 @@ fn second_pass_in_avx2_equals_the_scalar_loop() {
         let second_gear: Vec<u32> = second_cost.iter().map(|&c| gear_of(c)).collect();
         let counter_next: Vec<u32> =
             (0..40).map(|_| [0, 1, 2, 7, 8, 9, u32::MAX / 2, u32::MAX - 1, u32::MAX][next(9) as usize]).collect();
-        // Some choices are fuel-cut arcs, flagged on their index.
-        let mut index = |n: u64| next(n) as u32 | if next(3) == 0 { ARC } else { 0 };
+        // Some choices are exact arcs, flagged on their index's top byte: fuel cut, full pedal or
+        // a pedal level (any byte up to that of the most levels).
+        let mut index = |n: u64| next(n) as u32 | if next(3) == 0 { (next(243) as u32) << 24 } else { 0 };
         let all_j: Vec<u32> = (0..m).map(|_| index(40)).collect();
         let shift_j: Vec<u32> = (0..width * gears).map(|_| index(1000)).collect();
         let penalty: Vec<f64> = (0..m).map(|_| next(5) as f64 * 0.25).collect();
@@ -354,5 +355,19 @@ fn block_pass_inside_and_beyond_the_margins_matches_a_scalar_scan() {
                 assert_eq!((shift[l], step(shift_j[l], l)), want, "base {base} lane {l}");
             }
         }
+    }
+}
+
+#[test]
+fn a_pedal_levels_flag_gives_its_level_back_and_reads_as_no_other_arc() {
+    for l in 1..MAX_PEDAL_LEVELS {
+        let flagged = 1234 | level_flag(l);
+        let d = Decision::new(flagged, 3);
+        assert_eq!((d.j, d.gear, level_of(d.arc)), (1234, 3, Some(l)));
+        assert!(u32::from(d.arc) != ARC >> 24 && u32::from(d.arc) != FULL >> 24);
+        assert_eq!(flagged & !FLAGS, 1234);
+    }
+    for other in [0, ARC >> 24, FULL >> 24] {
+        assert_eq!(level_of(other as u8), None);
     }
 }

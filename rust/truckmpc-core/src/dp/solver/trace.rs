@@ -28,6 +28,7 @@ impl Solver {
             } else if d.arc == (FULL >> 24) as u8 {
                 (1.0, 0.0)
             } else if let Some(l) = level_of(d.arc) {
+                debug_assert!(l < self.params.pedal_levels, "level {l} of {} levels", self.params.pedal_levels);
                 (l as f64 / self.params.pedal_levels as f64, 0.0)
             } else {
                 let v_max = self.bands[k + 1].v_max_mps();
