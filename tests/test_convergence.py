@@ -11,7 +11,13 @@ from typer.testing import CliRunner
 
 from truckmpc import load_road, load_run_config, simulate
 from truckmpc.cli import app
-from truckmpc.convergence import convergence_document, convergence_lines, halved_configs, run_halves
+from truckmpc.convergence import (
+    convergence_document,
+    convergence_lines,
+    cost_move_pct,
+    halved_configs,
+    run_halves,
+)
 
 runner = CliRunner()
 HILL = Path(__file__).resolve().parents[1] / "roads" / "hill_L500_A-3.csv"
@@ -79,7 +85,7 @@ def test_each_move_is_the_halved_delta_minus_the_runs_delta_in_points(checked):
     assert len(moves) == 6
     assert conv["flagged"] == [k for k, v in moves.items() if abs(v) > 0.3]
     # The thesis's cost is not fuel + β·time: no move of that cost.
-    assert conv["delta_cost_pct_half_delta"] is None and conv["delta_cost_pct_half_stage"] is None
+    assert "delta_cost_pct_half_delta" not in conv and "delta_cost_pct_half_stage" not in conv
 
 
 def test_the_fuel_time_costs_move_is_corrected_fuel_plus_beta_time_over_the_pis_fuel():
@@ -99,6 +105,20 @@ def test_the_fuel_time_costs_move_is_corrected_fuel_plus_beta_time_over_the_pis_
         assert doc[f"delta_cost_pct_{half}"] == pytest.approx(100 * moved_g / pi_g, abs=1e-9)
     lines = convergence_lines(doc, 40)
     assert sum(line.startswith("fuel + β·time vs PI") for line in lines) == 2
+    moves = {k: v for k, v in doc.items() if k.startswith("delta_") and v is not None}
+    assert doc["flagged"] == [k for k, v in moves.items() if abs(v) > 0.3]
+
+
+def test_the_cost_move_on_figures_made_by_hand():
+    """10 kg of PI fuel; the half burns 20 g less (end speed corrected) and takes 1 s more at β 5 g/s:
+    fuel + β·time moves by −15 g, −0.15 points. No figure without β or a corrected fuel (a stall)."""
+    base = {"fuel_kg": 10.0}
+    run_summary = {"fuel_corrected_kg": 9.0, "time_s": 1000.0}
+    half = {"fuel_corrected_kg": 8.98, "time_s": 1001.0}
+    assert cost_move_pct(base, run_summary, half, 5.0) == pytest.approx(-0.15, abs=1e-12)
+    assert cost_move_pct(base, run_summary, {**half, "time_s": 1004.0}, 5.0) == pytest.approx(0.0, abs=1e-12)
+    assert cost_move_pct(base, run_summary, half, None) is None
+    assert cost_move_pct(base, run_summary, {**half, "fuel_corrected_kg": None}, 5.0) is None
 
 
 def test_the_table_prints_each_move_and_flags_those_beyond_a_third_of_a_point(checked):
@@ -129,8 +149,11 @@ def test_with_pedal_levels_the_check_also_doubles_them_and_reports_that_move(tmp
     assert conv["half_pedal"]["fuel_kg"] == alone["fuel_kg"]
     line = next(line for line in result.stdout.splitlines() if line.startswith("Δfuel vs PI 2×levels [pts]"))
     assert f"{conv['delta_fuel_pct_half_pedal']:+.2f}" in line
-    # Without pedal levels there is no such run.
+    # Without pedal levels there is no such run; past the levels' range, the check says why.
     assert "half_pedal" not in halved_configs(load_run_config())
+    too_many = run("simulate", "--road", HILL, "--set", "pedal_levels=121", "--check-convergence", "--out", out / "x")
+    assert too_many.exit_code == 2 and too_many.stderr.count("\n") == 1
+    assert "pedal_levels" in too_many.stderr and "twice pedal_levels = 121" in too_many.stderr
 
 
 def test_replay_runs_the_check_again(checked, tmp_path):

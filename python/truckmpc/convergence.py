@@ -24,7 +24,7 @@ rounding.
 Each ``*_half_*`` field is Δ at the halved setting minus Δ of the run, in percentage points; null
 (with ``not_comparable`` in the half's object) when a halved run is not comparable. With the
 fuel_time cost, ``delta_cost_pct_half_*`` is how far what that cost minimises moves, fuel (end speed
-corrected) + β·trip time, in percent of the PI's fuel; null with another cost. The equal-time
+corrected) + β·trip time, in percent of the PI's fuel; absent with another cost. The equal-time
 move compares each at the PI re-tuned to its own trip time: a finer resolution that trades fuel for
 time along the cost's β moves the raw Δfuel but not this one (null where a search missed its time).
 """
@@ -36,6 +36,7 @@ from typing import Any
 
 from truckmpc.compare import compare
 from truckmpc.config import RunConfig, config_from_values
+from truckmpc.errors import ConfigError
 from truckmpc.roads import RoadProfile
 from truckmpc.sim import RunResult, simulate
 from truckmpc.units import G_PER_KG
@@ -69,8 +70,11 @@ def halved_configs(config: RunConfig) -> dict[str, RunConfig]:
         ),
     }
     if values["pedal_levels"] > 0:
-        levels = 2 * values["pedal_levels"]
-        halves["half_pedal"] = config_from_values({**pinned, "pedal_levels": levels}, where, config.truck)
+        levels = values["pedal_levels"]
+        try:
+            halves["half_pedal"] = config_from_values({**pinned, "pedal_levels": 2 * levels}, where, config.truck)
+        except ConfigError as error:
+            raise ConfigError(f"{error} (the check runs the MPC again at twice pedal_levels = {levels})") from None
     return halves
 
 
@@ -118,8 +122,9 @@ def convergence_document(
             ("fuel_equal_time", run_equal, detail["delta_fuel_equal_time_pct"]),
         ):
             doc[f"delta_{name}_pct_{half}"] = None if at_run is None or at_half is None else at_half - at_run
-        beta = configs[half].settings.beta_g_per_s_resolved if configs[half].mpc.cost == "fuel_time" else None
-        doc[f"delta_cost_pct_{half}"] = None if reason is not None else cost_move_pct(base, mpc, summary, beta)
+        if configs[half].mpc.cost == "fuel_time":
+            beta = configs[half].settings.beta_g_per_s_resolved
+            doc[f"delta_cost_pct_{half}"] = None if reason is not None else cost_move_pct(base, mpc, summary, beta)
         objects[half] = detail
     moves = {key: value for key, value in doc.items() if value is not None}
     doc.update(objects)
@@ -157,14 +162,16 @@ def convergence_lines(doc: Mapping[str, Any], width: int) -> list[str]:
     setting (``Δfuel vs PI δ/2 [pts]``), flagged beyond :data:`FLAG_POINTS`, or why it is not
     comparable."""
     lines = []
-    width = max(width, max(len(text) for text in _MOVED.values()) + len(" 2×levels [pts]") + 2)
-    for half, label in ((half, label) for half, label in _LABELS.items() if half in doc):
+    halves = [(half, label) for half, label in _LABELS.items() if half in doc]
+    longest = max(len(text) for text in _MOVED.values()) + max(len(f" {label} [pts]") for _, label in halves)
+    width = max(width, longest + 2)
+    for half, label in halves:
         for name in ("fuel", "time", "fuel_equal_time", "cost"):
             key = f"delta_{name}_pct_{half}"
-            value = doc.get(key)
-            text = f"{_MOVED[name]} {label} [pts]"
-            if name == "cost" and value is None:
+            if key not in doc:  # the cost's move, with another cost than fuel_time
                 continue
+            value = doc[key]
+            text = f"{_MOVED[name]} {label} [pts]"
             if value is None:
                 lines.append(f"{text:<{width}}{'n/a':>14}  {doc[half].get('not_comparable', '')}")
                 continue

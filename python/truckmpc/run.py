@@ -1,6 +1,6 @@
 """What ``truckmpc simulate`` drives, as library calls: several controllers over one road, each
 look-ahead run against the PI (and against the PCC, when it ran) re-tuned to its trip time, and the
-MPC at half δ and half S when asked (:mod:`truckmpc.convergence`)::
+MPC at half δ, half S (and twice its pedal levels) when asked (:mod:`truckmpc.convergence`)::
 
     from truckmpc import default_test_track, load_run_config, write_outputs
     from truckmpc.run import run_controllers
@@ -103,7 +103,7 @@ def run_controllers(
         equal_times.update({f"{name}{suffix}": value for name, value in found.items()})
     extra = {}
     if halves:
-        with status(f"mpc at half delta_kmh and half stage_m: driving {road.name}"):
+        with status(f"mpc at half delta_kmh, half stage_m (and twice pedal_levels): driving {road.name}"):
             halved = run_halves(road, halves)
         with status(f"pi re-tuned to each halved run's trip time: driving {road.name}"):
             runs = {"mpc": results["mpc"], **halved}

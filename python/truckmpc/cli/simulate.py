@@ -88,8 +88,9 @@ CheckConvergenceOpt = Annotated[
     bool,
     typer.Option(
         "--check-convergence",
-        help="Also run the MPC at half the speed step and at half the stage length, and report how far "
-        "delta fuel and delta time move (flagged beyond 0.3 points).",
+        help="Also run the MPC at half the speed step, at half the stage length and (with pedal_levels) at "
+        "twice the pedal levels, and report how far delta fuel, delta time and fuel + beta*time move "
+        "(flagged beyond 0.3 points).",
     ),
 ]
 VerboseOpt = Annotated[

@@ -71,7 +71,10 @@ def run_table(summary: Mapping[str, Any], *, verbose: bool = False) -> RunTable:
     return RunTable(heading(summary), columns, tuple(s for s in shown if s.rows), tuple(lines))
 
 
-_CONVERGENCE = "convergence: how far the MPC's Δ vs PI moves at half the speed step δ and at half the stage S"
+_CONVERGENCE = (
+    "convergence: how far the MPC's Δ vs PI moves at half the speed step δ and at half the stage S "
+    "(and at twice pedal_levels)"
+)
 _AS_DRIVEN = (
     ("fuel", "Δfuel"),
     ("time", "Δtrip time"),

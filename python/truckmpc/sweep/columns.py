@@ -155,15 +155,8 @@ WALL_TIME_COLUMNS = frozenset(
 """The columns that are measured wall times: they differ between two runs of the same row."""
 
 CONVERGENCE_FIELDS = (
-    "delta_fuel_pct_half_delta",
-    "delta_fuel_pct_half_stage",
-    "delta_time_pct_half_delta",
-    "delta_time_pct_half_stage",
-    "delta_cost_pct_half_delta",
-    "delta_cost_pct_half_stage",
-    "delta_fuel_pct_half_pedal",
-    "delta_time_pct_half_pedal",
-    "delta_cost_pct_half_pedal",
+    *(f"delta_{figure}_pct_half_{half}" for figure in ("fuel", "time", "cost") for half in ("delta", "stage")),
+    *(f"delta_{figure}_pct_half_pedal" for figure in ("fuel", "time", "cost")),
 )
 """The MPC's figures of :mod:`truckmpc.convergence`."""
 

@@ -115,8 +115,8 @@ def plan_sweep(
     None for the packaged truck); raise a one-line :class:`~truckmpc.errors.TruckmpcError` naming
     the road, the ``--set``, the ``--grid`` axis or the ``--controller``. `reverse`: drive the roads
     reversed, or ``"both"`` ways. Each row runs the PI and `controllers` (``pcc``, ``mpc``). With
-    `check_convergence` every MPC row is also driven at half δ and half S (its work counts them) and
-    gets the convergence columns."""
+    `check_convergence` every MPC row is also driven at half δ and half S, and at twice its pedal
+    levels (its work counts them), and gets the convergence columns."""
     layout = _checked_layout(controllers, check_convergence)
     checked = checked_axes(axes, overrides)
     profiles, directions = load_fleet(roads, reverse)
@@ -201,7 +201,7 @@ def _checked_layout(controllers: Sequence[str], check_convergence: bool) -> Layo
 
 
 def _look_ahead_work(profile: RoadProfile, config: RunConfig, layout: Layout) -> Work:
-    """The estimated work of a row's MPC run, with its runs at half δ and half S when checked; a
+    """The estimated work of a row's MPC run, with its runs at half δ, half S and twice its pedal levels when checked; a
     PCC run's (the plant's) without the MPC."""
     if "mpc" not in layout.controllers:
         return run_work(profile, config, "pcc")
