@@ -48,6 +48,20 @@ def test_replay_reproduces_the_run_bit_for_bit(tmp_path: Path) -> None:
         assert (first / name).read_bytes() == (second / name).read_bytes()
 
 
+def test_a_summary_recorded_before_a_key_existed_replays_with_the_value_that_drove_it(tmp_path: Path) -> None:
+    """`pedal_levels` came later; a summary.json without it replays as it ran, with none."""
+    first, second = tmp_path / "first", tmp_path / "second"
+    code, _, err = simulate("--road", str(ROADS / "hill_L500_A2.csv"), "--out", str(first))
+    assert code == 0, err
+    doc = json.loads((first / "summary.json").read_text())
+    assert doc["run"]["settings"]["mpc"].pop("pedal_levels") == 0
+    (first / "summary.json").write_text(json.dumps(doc))
+    code, _, err = simulate("--replay", str(first / "summary.json"), "--out", str(second))
+    assert code == 0, err
+    again = json.loads((second / "summary.json").read_text())
+    assert again["mpc"]["fuel_kg"] == doc["mpc"]["fuel_kg"] and again["run"]["settings"]["mpc"]["pedal_levels"] == 0
+
+
 def test_replay_refuses_a_changed_road_and_extra_options(tmp_path: Path) -> None:
     road = tmp_path / "hill.csv"
     road.write_text((ROADS / "hill_L500_A2.csv").read_text())

@@ -130,6 +130,11 @@ def map_with_targets_of(profile: RoadProfile, told: RoadProfile) -> RoadProfile:
     return dataclasses.replace(told, target_speed_kmh=targets, stops=())
 
 
+LATER_KEYS: dict[str, object] = {"pedal_levels": 0}
+"""Keys declared after some runs were recorded, each with the value that drives those runs as they
+were (a summary.json without the key replays with it)."""
+
+
 def load_replay(path: Path) -> tuple[RunRequest, RoadProfile, RunConfig]:
     """The request, road and configuration recorded in a `summary.json`; the road must still hash
     to the recorded SHA-256, and the controllers be some of :data:`truckmpc.sim.CONTROLLERS`."""
@@ -144,6 +149,7 @@ def load_replay(path: Path) -> tuple[RunRequest, RoadProfile, RunConfig]:
     values = {
         key: value for section in settings.values() if isinstance(section, dict) for key, value in section.items()
     }
+    values = {**LATER_KEYS, **values}
     config = config_from_values(values, f"{where}: run.settings", replay_truck(run.get("vehicle"), where))
     road_path = _field(road, "path", (str, type(None)), f"{where}: run.road")
     reverse = _field(road, "reverse", bool, f"{where}: run.road")

@@ -10,8 +10,8 @@ The estimates are rough (within a factor of a few) and only decide whether to re
   nanoseconds each, folded into one constant, which grows once a solve's rows no longer fit in the
   processor's caches;
 - the DP's memory ≈ stages × (speed band / δ)² units at a few bytes each (its cached rows);
-- with ``pedal_levels`` K > 0, road stages × (band / δ) × K arcs, each computed once (a few tenths of
-  a microsecond), and stages × (band / δ) × K arcs held (some 70 bytes each, all gears);
+- with ``pedal_levels`` K ≥ 2, road stages × (band / δ) × (K − 1) arcs, each computed once (a few
+  tenths of a microsecond), and stages × (band / δ) × (K − 1) arcs held (some 70 bytes each, all gears);
 - trace rows ≈ road length / trace_step_m, each kept in memory and written to the trace CSV.
 """
 
@@ -142,7 +142,7 @@ def run_work(profile: RoadProfile, config: RunConfig, controller: str) -> Work:
     and a one-stage solve per stage, holding every stage's values."""
     plant_s = plant_steps(profile, config) * PLANT_STEP_S
     stages, points = road_stages(profile, config), grid_points(config)
-    levels = float(config.settings.get("pedal_levels"))
+    levels = max(float(config.settings.get("pedal_levels")) - 1, 0.0)  # the arcs between 0 and 1
     # Level arcs: once per road stage in the MPC's cache; twice in the optimum (its whole-road solve
     # and its one-stage solves keep no rows).
     levels_s = stages * points * levels * LEVEL_UNIT_S
