@@ -88,6 +88,13 @@ impl<T: Copy + Default> Keyed<T> {
         computed
     }
 
+    /// The value of `key` if it has been filled.
+    #[inline]
+    pub fn at(&self, key: i64) -> Option<&T> {
+        let offset = key.checked_sub(self.key_lo)?;
+        (offset >= 0 && (offset as usize) < self.len()).then(|| &self.data[self.start + offset as usize])
+    }
+
     /// The values of keys `lo..=hi` (which must have been filled).
     #[inline]
     pub fn get(&self, lo: i64, hi: i64) -> &[T] {
@@ -269,6 +276,13 @@ impl StageRows {
             self.arcs.resize_with(slot + 1, Keyed::default);
         }
         &mut self.arcs[slot]
+    }
+
+    /// The row blocks towards forward `gear` with the arcs of two slots (filled or not).
+    pub fn gear_with_arcs(&mut self, gear: usize, slots: [usize; 2]) -> (&mut GearBlocks, [&Keyed<CoastArc>; 2]) {
+        self.gear(gear);
+        self.arcs(slots[0].max(slots[1]));
+        (&mut self.gears[gear], slots.map(|slot| &self.arcs[slot]))
     }
 
     /// The row blocks towards forward `gear`.

@@ -3,6 +3,7 @@
 use std::sync::Arc;
 
 use super::*;
+use crate::dp::stage::Branch;
 use crate::params::GridAnchor;
 use crate::powertrain::tests::body;
 use crate::powertrain::{Driveline, Engine, MapModel, MapTruck};
@@ -31,8 +32,16 @@ fn rows_hold_the_costs_of_pair_in(p: &DpSettings) {
                 let v_i = p.v_max_mps() - 0.37 * step as f64 / 3.6;
                 let grid = GridIndex { origin_mps: 15.0 + 0.013 * s as f64, delta_mps: p.delta_mps() };
                 let before = out.len();
-                let (span, at) =
-                    forward_row(&vehicle, &p, v_i, gear, torque, grid, p.v_max_mps(), (&mut out, &mut memo));
+                let (span, at) = forward_row(
+                    &vehicle,
+                    &p,
+                    (v_i, [None; 2]),
+                    gear,
+                    torque,
+                    grid,
+                    p.v_max_mps(),
+                    (&mut out, &mut memo),
+                );
                 assert_eq!(out.len(), at + span.len);
                 assert!(at >= before);
                 let m = maps(&vehicle, &p, v_i, gear, torque);
@@ -74,8 +83,16 @@ fn a_map_trucks_rows_on_the_fixed_grid_are_pairs_costs_to_within_the_tables_erro
             for slope in [-0.02, 0.0, 0.015] {
                 let torque = vehicle.slope_torque_nm(slope);
                 out.clear();
-                let (span, at) =
-                    forward_row(&vehicle, &p, v_i, gear, torque, grid, p.v_max_mps(), (&mut out, &mut memo));
+                let (span, at) = forward_row(
+                    &vehicle,
+                    &p,
+                    (v_i, [None; 2]),
+                    gear,
+                    torque,
+                    grid,
+                    p.v_max_mps(),
+                    (&mut out, &mut memo),
+                );
                 let m = maps(&vehicle, &p, v_i, gear, torque);
                 for (t, &cost) in out[at..at + span.len].iter().enumerate() {
                     let v_j = grid.speed(span.first + t as i64);
@@ -92,6 +109,45 @@ fn a_map_trucks_rows_on_the_fixed_grid_are_pairs_costs_to_within_the_tables_erro
         }
     }
     assert!(rows > 300, "{rows} rows with targets");
+}
+
+/// A trapezoid row given the exact end speeds of its band (the solver's fuel-cut and full-pedal
+/// arcs) is the row it finds by iterating for them, span and costs bit for bit: with the thesis's
+/// truck (full pedal only: its fuel cut is the drag curve, not the map at zero pedal) and a map
+/// truck (both ends), over speeds, gears and slopes on the fixed grid.
+#[test]
+fn a_row_given_its_ends_by_the_arcs_is_the_row_it_finds_itself() {
+    let p = DpSettings::default();
+    assert!(p.stage_model == StageModel::Trapezoid && p.grid == GridAnchor::Fixed && p.fuel_cut_arcs);
+    let grid = GridIndex { origin_mps: 0.0, delta_mps: p.delta_mps() };
+    let trucks = [(Vehicle::new(VehicleParams::default()).unwrap(), false), (curved_map_truck(), true)];
+    let (mut compared, mut differ, mut out) = (0, 0, Vec::<f64>::new());
+    for (vehicle, map) in &trucks {
+        let mut memo = RowMemo::default();
+        for index in (1300..1850).step_by(7) {
+            let v_i = grid.speed(index);
+            for gear in 1..=vehicle.forward_gears() {
+                for slope in [-0.04, -0.01, 0.0, 0.02, 0.05] {
+                    let torque = vehicle.slope_torque_nm(slope);
+                    let arc =
+                        |input| stage::end_speed(StageModel::Trapezoid, vehicle, (v_i, p.stage_m), gear, torque, input);
+                    let known = [map.then(|| arc((Branch::Brake, 0.0))), Some(arc((Branch::Pedal, 1.0)))];
+                    // The top given a grid step short: the check can fail.
+                    let short = [known[0], known[1].map(|v| v - 1.5 * grid.delta_mps)];
+                    let [found, given, shortened] = [[None; 2], known, short].map(|ends| {
+                        out.clear();
+                        let row = (&mut out, &mut memo);
+                        let (span, at) = forward_row(vehicle, &p, (v_i, ends), gear, torque, grid, p.v_max_mps(), row);
+                        (span, out[at..].iter().map(|c| c.to_bits()).collect::<Vec<u64>>())
+                    });
+                    assert_eq!(found, given, "v {v_i} gear {gear} slope {slope}");
+                    compared += usize::from(found.0.len > 0);
+                    differ += usize::from(found != shortened);
+                }
+            }
+        }
+    }
+    assert!(compared > 500 && differ > 500, "{compared} rows with targets, {differ} changed by a short top");
 }
 
 /// A truck whose fuel map curves in torque (z = n/1000 · (1500 + 40 T + 0.004 T²) g/h), so

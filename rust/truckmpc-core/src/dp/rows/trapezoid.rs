@@ -150,6 +150,7 @@ pub(super) fn trapezoid_pedal_band(p: &DpSettings, v_i: f64, gain: f64) -> (f64,
 pub(super) fn forward_row_trapezoid(
     (vehicle, p): (&Vehicle, &DpSettings),
     (v_i, gear, slope_torque): (f64, usize, f64),
+    known_ends: [Option<f64>; 2],
     (grid, v_max): (GridIndex, f64),
     (out, memo): (&mut Vec<f64>, &mut RowMemo),
 ) -> (RowSpan, usize) {
@@ -178,9 +179,11 @@ pub(super) fn forward_row_trapezoid(
                 tol_mps,
             )
         };
-        band_lo = at(pedal_lo);
+        // Where the caller knows the band's ends exactly (its arcs), they serve as well.
+        let end = |pedal: f64, e: usize| known_ends[e].filter(|_| pedal == e as f64).unwrap_or_else(|| at(pedal));
+        band_lo = end(pedal_lo, 0);
         first = grid.ceil(band_lo) - 1;
-        last = grid.floor(at(pedal_hi)) + 1;
+        last = grid.floor(end(pedal_hi, 1)) + 1;
     }
     if band_lo > v_max - p.delta_mps() {
         first = first.min(grid.floor(v_max - p.delta_mps()));

@@ -53,11 +53,18 @@ impl Solver {
                 transitions += i_hi - i_lo + 1;
                 continue;
             }
-            let rows = stage.gear(g);
+            let to = ArcTarget { gear: g, gears, next, lo, hi };
+            fill_arcs(p, vehicle, stage, (here, slope_torque), (key_lo, key_hi), &to);
+            // A row's band ends where the fuel-cut and full-pedal arcs end, when those are its
+            // inputs: full pedal on trapezoid stages, and fuel cut for a map truck, whose engine at
+            // fuel cut gives the same wheel torque as its map at zero pedal.
+            let reuse = [p.fuel_cut_arcs && vehicle.map_model().is_some(), p.stage_model == StageModel::Trapezoid];
+            let (rows, ends) = stage.gear_with_arcs(g, [g, gears + g]);
             let memo = &mut self.row_memo;
             *computed += rows.fill(key_lo, key_hi, &mut self.scratch, |key, buf| {
-                let v_i = here.index.speed(key);
-                forward_row(vehicle, p, v_i, g, slope_torque, next.index, v_max_next, (buf, &mut *memo))
+                let known = [0, 1].map(|e| reuse[e].then(|| ends[e].at(key).map(|arc| arc.v_end_mps)).flatten());
+                let from = (here.index.speed(key), known);
+                forward_row(vehicle, p, from, g, slope_torque, next.index, v_max_next, (buf, &mut *memo))
             });
             let values = g * stride(next.count)..(g + 1) * stride(next.count);
             let (blocks, first_key) = rows.get(key_lo, key_hi);
@@ -85,8 +92,7 @@ impl Solver {
             transitions += gear_pass_dispatch(&pass, choices);
             let block = g * stride(next.count) + PAD;
             let values = (&self.cost_next[block..], &self.counter_next[block..]);
-            let to = ArcTarget { gear: g, gears, next, lo, hi };
-            transitions += arc_choices(p, vehicle, stage, (here, slope_torque), (key_lo, key_hi), to, values, ch);
+            transitions += join_arcs(p, stage, (key_lo, key_hi), &to, values, ch);
         }
         transitions
     }
@@ -102,39 +108,55 @@ struct ArcTarget {
     hi: u32,
 }
 
-/// The exact arcs into a forward gear from the sources `key_lo..=key_hi` of the grid `here` on a
-/// stage of wheel torque `slope_torque` [Nm]: fuel cut, full pedal on trapezoid stages (whose rows
-/// stop there), and the pedal levels l/K between them (`pedal_levels`), each filled into its cache
-/// slot where missing, joined to the gear's states against their cost-to-go and counters
-/// (`values`, from state 0), and taking a source's choice where cheaper. Returns the transitions
-/// evaluated.
-#[allow(clippy::too_many_arguments)]
-fn arc_choices(
+/// The exact arcs into a forward gear: fuel cut, full pedal on trapezoid stages (whose rows stop
+/// there), and the pedal levels l/K between them (`pedal_levels`), as (cache slot, input held, join,
+/// flag of the choice).
+fn arc_kinds<'a>(p: &'a DpSettings, to: &ArcTarget) -> impl Iterator<Item = (usize, (Branch, f64), ArcJoin, u32)> + 'a {
+    let (g, gears, next, range) = (to.gear, to.gears, to.next, (to.lo, to.hi));
+    let fuel_cut = p.fuel_cut_arcs.then(|| (g, (Branch::Brake, 0.0), ArcJoin::new(p, next, range), ARC));
+    let full = (p.stage_model == StageModel::Trapezoid)
+        .then(|| (gears + g, (Branch::Pedal, 1.0), ArcJoin::full_pedal(p, next, range), FULL));
+    let k_levels = p.pedal_levels;
+    let levels = (1..k_levels.max(1)).map(move |l| {
+        let input = (Branch::Pedal, l as f64 / k_levels as f64);
+        (level_slot(l, gears, g), input, ArcJoin::new(p, next, range), level_flag(l))
+    });
+    fuel_cut.into_iter().chain(full).chain(levels)
+}
+
+/// Fill the exact arcs ([`arc_kinds`]) into a forward gear from the sources `key_lo..=key_hi` of
+/// the grid `here` on a stage of wheel torque `slope_torque` [Nm], where missing.
+fn fill_arcs(
     p: &DpSettings,
     vehicle: &Vehicle,
     stage: &mut StageRows,
     (here, slope_torque): (StageGrid, f64),
     (key_lo, key_hi): (i64, i64),
-    to: ArcTarget,
+    to: &ArcTarget,
+) {
+    for (slot, input, _, _) in arc_kinds(p, to) {
+        let g = to.gear;
+        stage
+            .arcs(slot)
+            .fill(key_lo, key_hi, |key| exact_arc(p, vehicle, here.index.speed(key), g, slope_torque, input));
+    }
+}
+
+/// The exact arcs into a forward gear from the sources `key_lo..=key_hi` (filled by
+/// [`fill_arcs`]) joined to the gear's states against their cost-to-go and counters (`values`,
+/// from state 0), each taking a source's choice where cheaper. Returns the transitions evaluated.
+fn join_arcs(
+    p: &DpSettings,
+    stage: &mut StageRows,
+    (key_lo, key_hi): (i64, i64),
+    to: &ArcTarget,
     (cost_next, counter_next): (&[f64], &[u32]),
     ch: &mut Choices,
 ) -> usize {
-    let (g, next, range) = (to.gear, to.next, (to.lo, to.hi));
-    // (cache slot, input held, join, flag of the choice) of each kind of arc.
-    let fuel_cut = p.fuel_cut_arcs.then(|| (g, (Branch::Brake, 0.0), ArcJoin::new(p, next, range), ARC));
-    let full = (p.stage_model == StageModel::Trapezoid)
-        .then(|| (to.gears + g, (Branch::Pedal, 1.0), ArcJoin::full_pedal(p, next, range), FULL));
-    let k_levels = p.pedal_levels;
-    let levels = (1..k_levels.max(1)).map(|l| {
-        let input = (Branch::Pedal, l as f64 / k_levels as f64);
-        (level_slot(l, to.gears, g), input, ArcJoin::new(p, next, range), level_flag(l))
-    });
-    let slot0 = g * ch.width + (key_lo - ch.base_key) as usize;
+    let slot0 = to.gear * ch.width + (key_lo - ch.base_key) as usize;
     let mut transitions = 0;
-    for (slot, input, join, flag) in fuel_cut.into_iter().chain(full).chain(levels) {
-        let arcs = stage.arcs(slot);
-        arcs.fill(key_lo, key_hi, |key| exact_arc(p, vehicle, here.index.speed(key), g, slope_torque, input));
-        for (at, arc) in (slot0..).zip(arcs.get(key_lo, key_hi)) {
+    for (slot, _, join, flag) in arc_kinds(p, to) {
+        for (at, arc) in (slot0..).zip(stage.arcs(slot).get(key_lo, key_hi)) {
             // The counter of the grid point the path continues from, not the stencil's
             // smallest (the neutral state's rule): this arc's state is a forward gear's.
             let (cost, j, _) = join.join(arc, cost_next, counter_next);
