@@ -71,7 +71,7 @@ peaked at 1.21 GB at δ 0.025 km/h (401 points, 94 bytes a unit) and at 0.66 GB 
 0.1 km/h)."""
 
 LEVEL_UNIT_S = 4e-7
-"""Seconds per pedal-level arc unit (one road stage × one grid point × one level, ``pedal_levels``)
+"""Seconds per pedal-level arc unit (one road stage × one grid point × one level arc, ``pedal_levels``)
 [s]: each is computed once per road stage in every usable gear. On VECTO 108 km at δ 0.05 km/h, 16
 and 120 levels added 1.4e-7 and 1.5e-7 s a unit with the thesis's truck, 3.9e-7 and 4.1e-7 with
 VECTO's generic tractor (more gears, fuel from its map)."""
@@ -142,10 +142,10 @@ def run_work(profile: RoadProfile, config: RunConfig, controller: str) -> Work:
     and a one-stage solve per stage, holding every stage's values."""
     plant_s = plant_steps(profile, config) * PLANT_STEP_S
     stages, points = road_stages(profile, config), grid_points(config)
-    levels = max(float(config.settings.get("pedal_levels")) - 1, 0.0)  # the arcs between 0 and 1
+    level_arcs = max(float(config.settings.get("pedal_levels")) - 1, 0.0)  # the levels between 0 and 1
     # Level arcs: once per road stage in the MPC's cache; twice in the optimum (its whole-road solve
     # and its one-stage solves keep no rows).
-    levels_s = stages * points * levels * LEVEL_UNIT_S
+    levels_s = stages * points * level_arcs * LEVEL_UNIT_S
     if controller == "optimal":
         dp_s = stages * points**2 * DP_UNIT_LARGE_S + 2 * levels_s
         return Work(plant_s, dp_s, stages * points * WHOLE_ROAD_BYTES_PER_POINT)
@@ -154,7 +154,7 @@ def run_work(profile: RoadProfile, config: RunConfig, controller: str) -> Work:
     rows_bytes = solve_units(config) * DP_BYTES_PER_UNIT
     unit_s = DP_UNIT_S if rows_bytes <= DP_CACHED_BYTES else DP_UNIT_LARGE_S
     cached_stages = config.settings.horizon_stages + config.settings.replan_stages
-    dp_bytes = rows_bytes + cached_stages * points * levels * LEVEL_BYTES_PER_UNIT
+    dp_bytes = rows_bytes + cached_stages * points * level_arcs * LEVEL_BYTES_PER_UNIT
     return Work(plant_s, dp_units(profile, config) * unit_s + levels_s, dp_bytes)
 
 

@@ -234,8 +234,8 @@ fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64, v_max: f64) -> Option<(
 /// Append to `out` the costs of joining `v_i` in forward `gear` to the grid indices of the next
 /// stage; return their span and where its first cost is in `out`. `known_ends`: the end speeds
 /// [m/s] at zero and at full pedal (the pedal branch's) where the caller has them exactly, which a
-/// trapezoid row then takes for the ends of its span instead of iterating for them. Indices no input reaches inside
-/// the span hold +∞; a row with no admissible target appends nothing (len 0). Each cost is
+/// trapezoid row then takes for the ends of its span instead of iterating for them. Indices no
+/// input reaches inside the span hold +∞; a row with no admissible target appends nothing (len 0). Each cost is
 /// [`pair`]'s, bit for bit, but for a map-based truck's fuel on a fixed grid, which is interpolated
 /// over the pedal (within 0.1 % of the full-pedal fuel). `v_max_mps` is the top of the next
 /// stage's band. `memo` keeps what trapezoid rows evaluate at each end speed.

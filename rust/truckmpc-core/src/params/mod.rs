@@ -19,7 +19,7 @@ mod vehicle;
 
 pub use cruise::CruiseParams;
 pub use drivable::SpeedLimits;
-pub use mpc::{stages_in, CostKind, GridAnchor, MpcParams, NeutralRule, OnInfeasible, StageModel};
+pub use mpc::{stages_in, CostKind, GridAnchor, MpcParams, NeutralRule, OnInfeasible, StageModel, MAX_PEDAL_LEVELS};
 pub use pcc::PccParams;
 pub use pi::PiParams;
 pub use settings::RunSettings;

@@ -82,6 +82,9 @@ pub fn stages_in(length_m: f64, stage_m: f64) -> usize {
     (length_m / stage_m).round().max(1.0) as usize
 }
 
+/// The most pedal levels (`pedal_levels`) a solver plans: the DP marks a level's arc in one byte.
+pub const MAX_PEDAL_LEVELS: u32 = 240;
+
 /// Table 6.1: the shift limit k_lim is chosen so that S · k_lim = 200 m.
 pub const SHIFT_SPACING_M: f64 = 200.0;
 
@@ -135,7 +138,7 @@ declare_params! {
         /// Fuel cut in a forward gear is also an exact arc: its end speed off the grid, joined to the next stage's grid by neutral_rule (otherwise only the grid point above fuel cut, at a small pedal, or below it within ε).
         fuel_cut_arcs: bool = true, unit "-", range Range::ANY;
         /// Pedal levels planned off the grid: with K ≥ 2 every forward gear also drives the pedal levels 1/K, 2/K, …, (K−1)/K over a stage as exact arcs, each ending off the speed grid and joined to it by neutral_rule, so the pedal's resolution is 1/K whatever δ; 0 (or 1): only fuel cut, full pedal and the levels that land on grid speeds, about δ·v/(gain·S) apart. At most 120 with --check-convergence, which doubles it.
-        pedal_levels: u32 = 0, unit "levels", range Range::between(0.0, 240.0);
+        pedal_levels: u32 = 0, unit "levels", range Range::between(0.0, MAX_PEDAL_LEVELS as f64);
         /// Neutral arcs end on the nearest grid point, or interpolate the cost-to-go linearly or through the three nearest points.
         neutral_rule: NeutralRule = NeutralRule::Quadratic, unit "-", range Range::ANY;
         /// Speed grid anchored at each stage's lower bound (moving, 5.8) or on multiples of δ (fixed).

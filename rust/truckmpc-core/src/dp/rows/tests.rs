@@ -32,16 +32,7 @@ fn rows_hold_the_costs_of_pair_in(p: &DpSettings) {
                 let v_i = p.v_max_mps() - 0.37 * step as f64 / 3.6;
                 let grid = GridIndex { origin_mps: 15.0 + 0.013 * s as f64, delta_mps: p.delta_mps() };
                 let before = out.len();
-                let (span, at) = forward_row(
-                    &vehicle,
-                    &p,
-                    (v_i, [None; 2]),
-                    gear,
-                    torque,
-                    grid,
-                    p.v_max_mps(),
-                    (&mut out, &mut memo),
-                );
+                let (span, at) = row_of(&vehicle, &p, (v_i, gear, torque), grid, (&mut out, &mut memo));
                 assert_eq!(out.len(), at + span.len);
                 assert!(at >= before);
                 let m = maps(&vehicle, &p, v_i, gear, torque);
@@ -83,16 +74,7 @@ fn a_map_trucks_rows_on_the_fixed_grid_are_pairs_costs_to_within_the_tables_erro
             for slope in [-0.02, 0.0, 0.015] {
                 let torque = vehicle.slope_torque_nm(slope);
                 out.clear();
-                let (span, at) = forward_row(
-                    &vehicle,
-                    &p,
-                    (v_i, [None; 2]),
-                    gear,
-                    torque,
-                    grid,
-                    p.v_max_mps(),
-                    (&mut out, &mut memo),
-                );
+                let (span, at) = row_of(&vehicle, &p, (v_i, gear, torque), grid, (&mut out, &mut memo));
                 let m = maps(&vehicle, &p, v_i, gear, torque);
                 for (t, &cost) in out[at..at + span.len].iter().enumerate() {
                     let v_j = grid.speed(span.first + t as i64);
@@ -148,6 +130,18 @@ fn a_row_given_its_ends_by_the_arcs_is_the_row_it_finds_itself() {
         }
     }
     assert!(compared > 500 && differ > 500, "{compared} rows with targets, {differ} changed by a short top");
+}
+
+/// [`forward_row`] from `v_i` [m/s] in `gear` on a slope of wheel torque `torque` [Nm] to `grid`
+/// below the settings' v_max, the row finding its band's ends itself.
+fn row_of(
+    vehicle: &Vehicle,
+    p: &DpSettings,
+    (v_i, gear, torque): (f64, usize, f64),
+    grid: GridIndex,
+    buffers: (&mut Vec<f64>, &mut RowMemo),
+) -> (RowSpan, usize) {
+    forward_row(vehicle, p, (v_i, [None; 2]), gear, torque, grid, p.v_max_mps(), buffers)
 }
 
 /// A truck whose fuel map curves in torque (z = n/1000 · (1500 + 40 T + 0.004 T²) g/h), so

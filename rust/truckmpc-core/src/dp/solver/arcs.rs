@@ -1,8 +1,8 @@
 //! The exact arcs and their joins: over a stage with an input held (neutral coasting, fuel cut at
 //! zero pedal, full pedal on trapezoid stages, or a pedal level of `pedal_levels`) the end speed
-//! [m/s] falls off the grid, so each
-//! arc is joined to the next grid by a rule (nearest point, linear or quadratic interpolation of
-//! the cost-to-go) within the target gear's states. Costs in the units of (5.9).
+//! [m/s] falls off the grid, so each arc is joined to the next grid by a rule (nearest point, linear
+//! or quadratic interpolation of the cost-to-go) within the target gear's states. Costs in the
+//! units of (5.9).
 
 use super::choices::Choices;
 use super::grids::StageGrid;

@@ -4,6 +4,7 @@
 
 use super::INF;
 use crate::dp::cache::LANES;
+use crate::params::MAX_PEDAL_LEVELS;
 
 /// What the first pass of a stage finds, per target gear and source slot [gear * width + slot]
 /// (slot = source grid index − `base_key`, blocks of `LANES` aligned): the cheapest way into that
@@ -98,9 +99,10 @@ impl Decision {
     }
 }
 
-/// Flag on a choice's next-grid index (`all_j`, `shift_j`; its top byte holds the flag): the way into the target gear is its
-/// fuel-cut arc, whose end speed is off the grid and whose control is zero pedal and brake; the
-/// index is the grid point nearest to the arc's end. Grid indices stay below 2^16.
+/// Flag on a choice's next-grid index (`all_j`, `shift_j`; its top byte holds the flag): the way
+/// into the target gear is its fuel-cut arc, whose end speed is off the grid and whose control is
+/// zero pedal and brake; the index is the grid point nearest to the arc's end. Grid indices stay
+/// below 2^16.
 pub(super) const ARC: u32 = 1 << 24;
 
 /// Flag on a choice's next-grid index: the way into the target gear is its full-pedal arc (a
@@ -111,8 +113,7 @@ pub(super) const FULL: u32 = 1 << 25;
 /// level l/K (1 ≤ l < K, `pedal_levels`), flagged `(LEVEL0 + l) << 24`.
 const LEVEL0: u32 = 2;
 
-/// The most pedal levels a solver plans (the range of `pedal_levels`): their flags fit the byte.
-pub const MAX_PEDAL_LEVELS: u32 = 240;
+// The flag of the most pedal levels `pedal_levels` allows fits the byte.
 const _: () = assert!(LEVEL0 + MAX_PEDAL_LEVELS <= u8::MAX as u32);
 
 /// The flag of the arc of pedal level `l` on a choice's next-grid index.

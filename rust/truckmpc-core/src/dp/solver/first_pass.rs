@@ -41,6 +41,10 @@ impl Solver {
         let slope_torque = self.slope_torques[k];
         let (key_lo, key_hi) = (here.first + i_lo as i64, here.first + i_hi as i64);
         let ch = &mut self.choices;
+        // A row's band ends where the fuel-cut and full-pedal arcs end, when those are its inputs:
+        // full pedal on trapezoid stages, and fuel cut for a map truck, whose engine at fuel cut
+        // gives the same wheel torque as its map at zero pedal.
+        let reuse = [p.fuel_cut_arcs && vehicle.map_model().is_some(), p.stage_model == StageModel::Trapezoid];
         let mut transitions = 0;
         for &g in active_next {
             let (lo, hi) = self.gear_ranges[(k + 1) * gears + g];
@@ -55,14 +59,10 @@ impl Solver {
             }
             let to = ArcTarget { gear: g, gears, next, lo, hi };
             fill_arcs(p, vehicle, stage, (here, slope_torque), (key_lo, key_hi), &to);
-            // A row's band ends where the fuel-cut and full-pedal arcs end, when those are its
-            // inputs: full pedal on trapezoid stages, and fuel cut for a map truck, whose engine at
-            // fuel cut gives the same wheel torque as its map at zero pedal.
-            let reuse = [p.fuel_cut_arcs && vehicle.map_model().is_some(), p.stage_model == StageModel::Trapezoid];
-            let (rows, ends) = stage.gear_with_arcs(g, [g, gears + g]);
+            let (rows, ends) = stage.gear_with_arcs(g, end_slots(gears, g));
             let memo = &mut self.row_memo;
             *computed += rows.fill(key_lo, key_hi, &mut self.scratch, |key, buf| {
-                let known = [0, 1].map(|e| reuse[e].then(|| ends[e].at(key).map(|arc| arc.v_end_mps)).flatten());
+                let known = [0, 1].map(|e| ends[e].at(key).filter(|_| reuse[e]).map(|arc| arc.v_end_mps));
                 let from = (here.index.speed(key), known);
                 forward_row(vehicle, p, from, g, slope_torque, next.index, v_max_next, (buf, &mut *memo))
             });
@@ -113,9 +113,10 @@ struct ArcTarget {
 /// flag of the choice).
 fn arc_kinds<'a>(p: &'a DpSettings, to: &ArcTarget) -> impl Iterator<Item = (usize, (Branch, f64), ArcJoin, u32)> + 'a {
     let (g, gears, next, range) = (to.gear, to.gears, to.next, (to.lo, to.hi));
-    let fuel_cut = p.fuel_cut_arcs.then(|| (g, (Branch::Brake, 0.0), ArcJoin::new(p, next, range), ARC));
+    let [cut_slot, full_slot] = end_slots(gears, g);
+    let fuel_cut = p.fuel_cut_arcs.then(|| (cut_slot, (Branch::Brake, 0.0), ArcJoin::new(p, next, range), ARC));
     let full = (p.stage_model == StageModel::Trapezoid)
-        .then(|| (gears + g, (Branch::Pedal, 1.0), ArcJoin::full_pedal(p, next, range), FULL));
+        .then(|| (full_slot, (Branch::Pedal, 1.0), ArcJoin::full_pedal(p, next, range), FULL));
     let k_levels = p.pedal_levels;
     let levels = (1..k_levels.max(1)).map(move |l| {
         let input = (Branch::Pedal, l as f64 / k_levels as f64);
@@ -167,8 +168,15 @@ fn join_arcs(
     transitions
 }
 
+/// The cache slots of the fuel-cut and full-pedal arcs into forward gear `g` (of `gears`, neutral
+/// included), after neutral's (slot 0).
+#[inline]
+fn end_slots(gears: usize, g: usize) -> [usize; 2] {
+    [g, gears + g]
+}
+
 /// The cache slot of the arcs of pedal level `l` into forward gear `g` (of `gears`, neutral
-/// included): after neutral's (slot 0), fuel cut's (`g`) and full pedal's (`gears + g`).
+/// included): after neutral's and the [`end_slots`].
 #[inline]
 fn level_slot(l: u32, gears: usize, g: usize) -> usize {
     (l as usize + 1) * gears + g

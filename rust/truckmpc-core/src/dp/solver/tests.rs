@@ -4,7 +4,7 @@
 #[cfg(target_arch = "x86_64")]
 use super::arcs::{join_nearest_avx2, NeutralOut};
 use super::arcs::{quadratic_to_go, ArcJoin};
-use super::choices::{level_flag, level_of, Decision, ARC, FLAGS, FULL, MAX_PEDAL_LEVELS, NO_GEAR};
+use super::choices::{level_flag, level_of, Decision, ARC, FLAGS, FULL, NO_GEAR};
 use super::first_pass::block_mins;
 #[cfg(target_arch = "x86_64")]
 use super::second_pass::rank_avx2;
@@ -13,6 +13,7 @@ use super::*;
 use crate::dp::cache::{Block, CoastArc, LANES, PAD};
 use crate::dp::params::{GridAnchor, NeutralRule};
 use crate::dp::simd::{self, LaneOut};
+use crate::params::MAX_PEDAL_LEVELS;
 use crate::road::Road;
 use crate::vehicle::{VehicleParams, NEUTRAL};
 
