@@ -49,10 +49,10 @@ def trajectory_cost(result, config) -> float:
     mpc = config.mpc
     return float(
         mpc.q_fuel * fuel_g.sum()
-        + s.q_speed_below_weight * (deficit**2).sum()
+        + s.resolved()["q_speed_below"] * (deficit**2).sum()
         + mpc.q_speed_change * np.abs(np.diff(v)).sum()
         + mpc.q_gear_shift * shifts
-        + s.q_brake_weight * trace["brake"][at][:-1].sum()
+        + s.resolved()["q_brake"] * trace["brake"][at][:-1].sum()
     )
 
 

@@ -75,9 +75,9 @@ def test_ascent_downshifts_and_upshifts_after(config):
 
 def test_steady_gear_follows_table_a3(config):
     vehicle = config.core_vehicle
-    assert _core.steady_gear(config.settings, 85 / KMH) == 12
+    assert config.settings.steady_gear(85 / KMH) == 12
     for v_kmh in np.arange(5.0, 120.0, 2.5):
-        gear = _core.steady_gear(config.settings, v_kmh / KMH)
+        gear = config.settings.steady_gear(v_kmh / KMH)
         rpm = vehicle.engine_speed_rpm(v_kmh / KMH, gear)
         assert gear == 12 or rpm <= config.pi.gear_up_rpm[gear - 1]
         assert gear == 1 or rpm >= config.pi.gear_down_rpm[gear - 1]

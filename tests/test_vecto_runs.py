@@ -95,7 +95,7 @@ def test_beta_of_vectos_tractor_is_the_exact_maps_marginal_price_of_time() -> No
     # speed in the band (the cost is that flat: 0.2 % from end to end).
     config = load_run_config(TRACTOR_JOB)
     settings, truck = config.settings, config.truck.core
-    beta = settings.beta_g_per_s_resolved
+    beta = settings.resolved()["beta_g_per_s"]
     assert beta is not None and settings.kinetic_fuel_g_per_half_v2 > 0.0
     v_ref = config.cruise.v_ref_kmh
 

@@ -3,7 +3,7 @@
 Checked against the compiled module by `python -m mypy.stubtest truckmpc._core` in `.ci/run`.
 """
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import Any, final
 
 import numpy as np
@@ -11,6 +11,9 @@ import numpy.typing as npt
 
 __all__ = [
     "G_MPS2",
+    "Body",
+    "Driveline",
+    "Engine",
     "MapTruck",
     "ParamError",
     "ParamSpec",
@@ -18,11 +21,11 @@ __all__ = [
     "RunOutput",
     "Settings",
     "Vehicle",
+    "controllers",
     "parameter_specs",
     "replaced_keys",
     "run",
     "run_python",
-    "steady_gear",
 ]
 
 class ParamError(ValueError):
@@ -62,29 +65,27 @@ def replaced_keys() -> list[tuple[str, str]]:
 
 @final
 class Settings:
-    """A validated set of every parameter of a run (keys not given take their defaults)."""
+    """A run's settings and truck, checked against each other (keys not given take their defaults)."""
 
     def __new__(cls, values: Mapping[str, Any], truck: MapTruck | None = None) -> Settings: ...
+    def with_values(self, changes: Mapping[str, Any]) -> Settings:
+        """These settings with `changes` made, the same truck."""
     def values(self) -> dict[str, Any]: ...
     def get(self, key: str) -> Any: ...
+    def resolved(self) -> dict[str, Any]:
+        """The resolved keys (`k_lim`, `q_speed_below`, `q_brake`, `beta_g_per_s`) with the values the run uses."""
     @property
     def vehicle(self) -> Vehicle: ...
     @property
     def v_ref_range_kmh(self) -> tuple[float, float]: ...
     @property
-    def k_lim_stages(self) -> int: ...
-    @property
     def horizon_stages(self) -> int: ...
     @property
     def replan_stages(self) -> int: ...
     @property
-    def q_speed_below_weight(self) -> float: ...
-    @property
-    def q_brake_weight(self) -> float: ...
-    @property
-    def beta_g_per_s_resolved(self) -> float | None: ...
-    @property
     def kinetic_fuel_g_per_half_v2(self) -> float: ...
+    def steady_gear(self, v_mps: float) -> int:
+        """The gear the PI gear logic settles in at constant speed `v_mps` [m/s]."""
 
 @final
 class Vehicle:
@@ -102,11 +103,54 @@ class Vehicle:
 G_MPS2: float
 """Gravitational acceleration [m/s²] of the map-based truck (VECTO 3's)."""
 
+_Rows = Sequence[tuple[float, float, float]]
+
+@final
+class Engine:
+    """An engine: idle speed [rpm], inertia [kg m²], full-load rows (speed [rpm], full-load and drag
+    torque [Nm]) and fuel map rows (speed [rpm], torque [Nm], fuel [g/h]), checked."""
+
+    def __new__(cls, idle_speed_rpm: float, inertia_kgm2: float, full_load: _Rows, fuel_map: _Rows) -> Engine: ...
+
+@final
+class Driveline:
+    """Gearbox and axle ratios, their losses (affine, or loss maps replacing them) and the tyres' radius, checked."""
+
+    def __new__(
+        cls,
+        gear_ratios: Sequence[float],
+        axle_ratio: float,
+        gear_efficiency: float,
+        axle_efficiency: float,
+        loss_torque_nm: float,
+        wheel_radius_m: float,
+        gear_loss_maps: Sequence[_Rows] | None = None,
+        axle_loss_map: _Rows | None = None,
+    ) -> Driveline: ...
+
+@final
+class Body:
+    """Mass [kg], wheels' inertia [kg m²], Cd·A [m²] (or a curve over speed [m/s]), air density
+    [kg/m³], rolling resistance [-] and auxiliary power [W]."""
+
+    def __new__(
+        cls,
+        mass_kg: float,
+        wheels_inertia_kgm2: float,
+        cda_m2: float,
+        air_density_kg_m3: float,
+        rolling_resistance: float,
+        aux_power_w: float,
+        cda_curve: Sequence[tuple[float, float]] | None = None,
+    ) -> Body: ...
+
 @final
 class MapTruck:
-    """A truck from component data: engine maps, driveline and body."""
+    """A truck from component data: engine, driveline, body, and its gearbox's traction interruption [s]."""
 
-    def __new__(cls, engine: dict[str, Any], driveline: dict[str, Any], body: dict[str, Any]) -> MapTruck: ...
+    def __new__(
+        cls, engine: Engine, driveline: Driveline, body: Body, traction_interruption_s: float = 0.0
+    ) -> MapTruck: ...
     @property
     def gears(self) -> int: ...
     @property
@@ -194,5 +238,5 @@ def run_python(
 ) -> RunOutput:
     """Drive `road` with a controller written in Python, in the same closed loop."""
 
-def steady_gear(settings: Settings, v_mps: float) -> int:
-    """The gear the PI gear logic settles in at constant speed `v_mps` [m/s]."""
+def controllers() -> list[tuple[str, str, bool]]:
+    """The built-in controllers: (name, what it is, whether it solves the DP)."""

@@ -35,7 +35,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from truckmpc.compare import compare
-from truckmpc.config import RunConfig, config_from_values
+from truckmpc.config import RunConfig
 from truckmpc.errors import ConfigError
 from truckmpc.roads import RoadProfile
 from truckmpc.sim import RunResult, simulate
@@ -57,22 +57,20 @@ def halved_configs(config: RunConfig) -> dict[str, RunConfig]:
     stage (or by table 6.2's δ rule) held at the run's value, k_lim kept at its spacing in metres;
     with pedal levels K > 0, also at 2K levels (the pedal step halved)."""
     settings = config.settings
-    values = settings.values()
+    resolved = settings.resolved()
     # Q2 given per kilometre scales with S by itself; per stage (or by the δ rule) it is held.
-    pinned = dict(values)
-    if values["q_speed_below_per_km"] is None:
-        pinned["q_speed_below"] = settings.q_speed_below_weight
+    pinned: dict[str, Any] = {}
+    if settings.get("q_speed_below_per_km") is None:
+        pinned["q_speed_below"] = resolved["q_speed_below"]
     where = "--check-convergence"
+    stage_m, delta_kmh, levels = settings.get("stage_m"), settings.get("delta_kmh"), settings.get("pedal_levels")
     halves = {
-        "half_delta": config_from_values({**pinned, "delta_kmh": values["delta_kmh"] / 2}, where, config.truck),
-        "half_stage": config_from_values(
-            {**pinned, "stage_m": values["stage_m"] / 2, "k_lim": 2 * settings.k_lim_stages}, where, config.truck
-        ),
+        "half_delta": config.with_values({**pinned, "delta_kmh": delta_kmh / 2}, where),
+        "half_stage": config.with_values({**pinned, "stage_m": stage_m / 2, "k_lim": 2 * resolved["k_lim"]}, where),
     }
-    if values["pedal_levels"] > 0:
-        levels = values["pedal_levels"]
+    if levels > 0:
         try:
-            halves["half_pedal"] = config_from_values({**pinned, "pedal_levels": 2 * levels}, where, config.truck)
+            halves["half_pedal"] = config.with_values({**pinned, "pedal_levels": 2 * levels}, where)
         except ConfigError as error:
             raise ConfigError(f"{error} (the check runs the MPC again at twice pedal_levels = {levels})") from None
     return halves
@@ -105,7 +103,7 @@ def convergence_document(
         detail: dict[str, Any] = {
             "delta_kmh": mpc_settings.delta_kmh,
             "stage_m": mpc_settings.stage_m,
-            "k_lim": configs[half].settings.k_lim_stages,
+            "k_lim": configs[half].settings.resolved()["k_lim"],
             "pedal_levels": mpc_settings.pedal_levels,
             "delta_fuel_pct": moved.delta_fuel_pct,
             "delta_time_pct": moved.delta_time_pct,
@@ -123,7 +121,7 @@ def convergence_document(
         ):
             doc[f"delta_{name}_pct_{half}"] = None if at_run is None or at_half is None else at_half - at_run
         if configs[half].mpc.cost == "fuel_time":
-            beta = configs[half].settings.beta_g_per_s_resolved
+            beta = configs[half].settings.resolved()["beta_g_per_s"]
             doc[f"delta_cost_pct_{half}"] = None if reason is not None else cost_move_pct(base, mpc, summary, beta)
         objects[half] = detail
     moves = {key: value for key, value in doc.items() if value is not None}

@@ -19,7 +19,6 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from truckmpc.config import config_from_values
 from truckmpc.errors import RoadError
 from truckmpc.roads.profile import RoadProfile
 from truckmpc.roads.stops import MIN_LEG_M, STOPS_NOTE, leg_bounds, leg_road
@@ -107,10 +106,9 @@ def drive_legs(road: RoadProfile, config: RunConfig, drive: Drive) -> RunResult:
 def _leg_config(config: RunConfig, number: int) -> RunConfig:
     """The configuration of leg `number` (from 1): a configured start speed is the first leg's;
     the others start at their entry set speed."""
-    values = config.settings.values()
-    if number == 1 or values["start_speed_kmh"] is None:
+    if number == 1 or config.settings.get("start_speed_kmh") is None:
         return config
-    return config_from_values({**values, "start_speed_kmh": None}, f"leg {number}", config.truck)
+    return config.with_values({"start_speed_kmh": None}, f"leg {number}")
 
 
 def merge_legs(road: RoadProfile, results: Sequence[RunResult], bounds: Sequence[tuple[float, float]]) -> RunResult:

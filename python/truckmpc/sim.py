@@ -54,14 +54,11 @@ TRACE_COLUMNS = (
 )
 """Trace columns, in CSV order. `fuel_g` and `brake_energy_kj` are cumulative."""
 
-CONTROLLERS: tuple[str, ...] = ("pi", "vecto_cc", "pcc", "mpc", "optimal")
-"""Built-in controllers selectable by name (`truckmpc simulate --controller`): the PI of section 2.5,
-VECTO's cruise driver for a truck without predictive cruise control (`vecto_cc`), VECTO's
-rule-based predictive cruise control with eco-roll acting through that driver (`pcc`), the DP-MPC of
-chapter 5, and the whole-road optimum (the same DP solved once over the entire road, then driven
-from the measured state stage by stage against its stored cost-to-go)."""
+CONTROLLERS: tuple[str, ...] = tuple(name for name, _, _ in _core.controllers())
+"""Built-in controllers selectable by name (`truckmpc simulate --controller`), from the core's
+registry (`_core.controllers()` says what each is): `pi`, `vecto_cc`, `pcc`, `mpc`, `optimal`."""
 
-DP_CONTROLLERS = frozenset({"mpc", "optimal"})
+DP_CONTROLLERS = frozenset(name for name, _, solves_dp in _core.controllers() if solves_dp)
 """The built-in controllers that solve the DP (their summaries carry its settings and solves)."""
 
 
@@ -143,9 +140,9 @@ def _drive(road: RoadProfile, config: RunConfig, controller: str | Controller) -
             raise ConfigError(f"controller: expected one of {', '.join(CONTROLLERS)}, got {controller!r}")
         told = None if road.controller_map is None else road.controller_map.core()
         out = _core.run(config.settings, road.core(), altitude_m, controller, told)
-        name, extra = controller, _mpc_settings(config) if controller in DP_CONTROLLERS else {}
+        name, extra = controller, {}
     else:
-        if config.settings.values()["controller_mass_kg"] is not None:
+        if config.settings.get("controller_mass_kg") is not None:
             raise ConfigError(
                 f"controller_mass_kg: expected null with the Python controller {controller.name!r} "
                 "(it is given the truck's state, not a model), got a mass"
@@ -162,13 +159,3 @@ def _drive(road: RoadProfile, config: RunConfig, controller: str | Controller) -
         None if summary["stalled"] else corrected_fuel_kg(summary, config.settings.kinetic_fuel_g_per_half_v2)
     )
     return RunResult(name=name, road=road.name, summary=summary, trace=dict(out.trace))
-
-
-def _mpc_settings(config: RunConfig) -> dict[str, Any]:
-    """The MPC's parameters as the DP takes them (k_lim, Q2 and Q5 per stage resolved), for its summary."""
-    params = {**config.mpc, **config.cruise}
-    params["k_lim"] = config.settings.k_lim_stages
-    params["q_speed_below"] = config.settings.q_speed_below_weight
-    params["q_brake"] = config.settings.q_brake_weight
-    params["beta_g_per_s"] = config.settings.beta_g_per_s_resolved
-    return {"settings": params}

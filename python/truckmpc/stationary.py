@@ -7,7 +7,6 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from truckmpc import _core
 from truckmpc.config import RunConfig
 from truckmpc.units import KMH_PER_MPS, PCT_PER_FRACTION
 from truckmpc.vecto import VectoTruck
@@ -25,7 +24,7 @@ def stationary_point(config: RunConfig, speed_kmh: float, slope_pct: float, gear
     ``fuel_rate_g_per_h`` there.
     """
     v_mps = speed_kmh / KMH_PER_MPS
-    chosen = _core.steady_gear(config.settings, v_mps) if gear is None else gear
+    chosen = config.settings.steady_gear(v_mps) if gear is None else gear
     point = config.core_vehicle.stationary(v_mps, slope_pct / PCT_PER_FRACTION, chosen)
     return {
         "speed_kmh": speed_kmh,

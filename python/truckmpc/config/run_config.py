@@ -132,6 +132,18 @@ class RunConfig:
         """v_max = v_ref + v_inc [km/h], above which the PI brakes."""
         return float(self.cruise.v_ref_kmh + self.cruise.v_inc_kmh)
 
+    def with_values(self, changes: Mapping[str, Any], where: str) -> RunConfig:
+        """This configuration with `changes` (key: user value) made and checked by the core, the same
+        truck: the runs a study derives from this one. An error names `where` and the key."""
+        try:
+            settings = self.settings.with_values(dict(changes))
+        except _core.ParamError as err:
+            got = "" if err.got is None else f", got {err.got}"
+            raise ConfigError(f"{where}: key {err.key!r}: expected {err.expected}{got}") from None
+        rank = max((origin.rank for origin in self.origins.values()), default=0) + 1
+        origins = {**self.origins, **{key: Origin(where, rank) for key in changes}}
+        return RunConfig(settings=settings, origins=origins, truck=self.truck)
+
     def sources(self) -> list[str]:
         """The files and overrides the values came from, in layer order, each once."""
         ordered = sorted(self.origins.values(), key=lambda origin: origin.rank)

@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 
-from truckmpc.config import RunConfig, config_from_values
+from truckmpc.config import RunConfig
 from truckmpc.equal_time.search import TARGET_OFFSET_LIMIT_KMH, EqualTime, RunAt, equal_time
 from truckmpc.roads.profile import RoadProfile
 from truckmpc.sim import RunResult, simulate
@@ -35,20 +35,22 @@ def baseline_runner(road: RoadProfile, config: RunConfig, controller: str = "pi"
     the start speed kept at the run's (clipped into the moved band: a truck starting above v_max
     would only brake the difference away). On a road with target speeds it takes x = v_ref +
     target_offset_kmh and moves the offset (x − v_ref), v_ref and the start speed kept as configured."""
-    values = config.settings.values()
+    settings, where = config.settings, "equal-time baseline"
+    v_ref_kmh = settings.get("v_ref_kmh")
     if road.target_speed_kmh is not None:
 
         def run_offset(x_kmh: float) -> RunResult:
-            changed = {**values, "target_offset_kmh": x_kmh - values["v_ref_kmh"]}
-            return simulate(road, config_from_values(changed, "equal-time baseline", config.truck), controller)
+            return simulate(road, config.with_values({"target_offset_kmh": x_kmh - v_ref_kmh}, where), controller)
 
         return run_offset
-    start_kmh = values["start_speed_kmh"] if values["start_speed_kmh"] is not None else values["v_ref_kmh"]
+    start_kmh = settings.get("start_speed_kmh")
+    start_kmh = v_ref_kmh if start_kmh is None else start_kmh
+    v_dec_kmh, v_inc_kmh = settings.get("v_dec_kmh"), settings.get("v_inc_kmh")
 
     def run_at(v_ref_kmh: float) -> RunResult:
-        band = (v_ref_kmh - values["v_dec_kmh"], v_ref_kmh + values["v_inc_kmh"])
-        changed = {**values, "v_ref_kmh": v_ref_kmh, "start_speed_kmh": min(max(start_kmh, band[0]), band[1])}
-        return simulate(road, config_from_values(changed, "equal-time baseline", config.truck), controller)
+        band = (v_ref_kmh - v_dec_kmh, v_ref_kmh + v_inc_kmh)
+        changed = {"v_ref_kmh": v_ref_kmh, "start_speed_kmh": min(max(start_kmh, band[0]), band[1])}
+        return simulate(road, config.with_values(changed, where), controller)
 
     return run_at
 

@@ -92,7 +92,7 @@ class Combinations:
     def __init__(self, base: Base, base_config: RunConfig, axes: Sequence[Axis]) -> None:
         _check_truck_axes(base_config, axes)
         self._base, self._axes = base, axes
-        self._values = base_config.settings.values()
+        self._settings = base_config.settings
         self._truck = base_config.truck
         self._origins = dict(base_config.origins)
         self._rank = max((origin.rank for origin in self._origins.values()), default=0) + 1
@@ -100,17 +100,16 @@ class Combinations:
 
     def config(self, values: tuple[Any, ...], texts: tuple[str, ...]) -> RunConfig:
         """The validated configuration of one combination (``texts``: its ``key=value`` overrides)."""
-        merged, origins = dict(self._values), dict(self._origins)
+        changes, origins = {}, dict(self._origins)
         try:
             for i, text in enumerate(texts):
                 key, _, raw = text.partition("=")
-                merged[key] = self._parse(raw)
+                changes[key] = self._parse(raw)
                 origins[key] = Origin(f"--set {key}", self._rank + i)
-            truck = self._truck
-            settings = _core.Settings(merged, None if truck is None else truck.core)
+            settings = self._settings.with_values(changes)
         except (yaml.YAMLError, _core.ParamError):
             return _combination_config(self._base, self._axes, values, texts)
-        return RunConfig(settings=settings, origins=origins, truck=truck)
+        return RunConfig(settings=settings, origins=origins, truck=self._truck)
 
     def _parse(self, raw: str) -> Any:
         if raw not in self._parsed:

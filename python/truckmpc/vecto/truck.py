@@ -134,29 +134,12 @@ def load_vecto_truck(path: Path, values: dict[str, Any] | None = None) -> VectoT
     cda0 = vehicle.cda_m2 + segment.trailer_delta_cda_m2
     curve = decl.cross_wind_cda_curve(cda0, keys.cross_wind, segment.cross_wind_parameters, segment.height_m)
     aux = decl.auxiliary_power_w(job.auxiliaries, str(job.path)) if keys.aux_power_w is None else keys.aux_power_w
-    body = {
-        "mass_kg": mass,
-        "wheels_inertia_kgm2": wheels_inertia,
-        "cda_m2": cda0,
-        "cda_curve": curve,
-        "air_density_kg_m3": keys.air_density_kg_m3,
-        "rolling_resistance": rrc,
-        "aux_power_w": aux,
-    }
-    driveline = {
-        "gear_ratios": list(job.gearbox.gear_ratios),
-        "axle_ratio": job.gearbox.axle_ratio,
-        "gear_efficiency": keys.gear_efficiency,
-        "axle_efficiency": keys.axle_efficiency,
-        "loss_torque_nm": keys.loss_torque_nm,
-        "wheel_radius_m": radius,
-        "traction_interruption_s": job.gearbox.traction_interruption_s
-        if keys.traction_interruption_s is None
-        else keys.traction_interruption_s,
-        **_loss_maps(job, keys),
-    }
-    _refuse_replaced_loss_keys(path, driveline, values or {})
-    core = _core_truck(job, driveline, body)
+    body = _core.Body(mass, wheels_inertia, cda0, keys.air_density_kg_m3, rrc, aux, cda_curve=curve)
+    loss_maps = _loss_maps(job, keys)
+    _refuse_replaced_loss_keys(path, loss_maps, values or {})
+    interruption_s = job.gearbox.traction_interruption_s
+    interruption_s = interruption_s if keys.traction_interruption_s is None else keys.traction_interruption_s
+    core = _core_truck(job, keys, radius, loss_maps, body, interruption_s)
     return VectoTruck(job, segment, mass, payload, trailer, radius, rrc, tuple(curve), aux, keys, core)
 
 
@@ -175,12 +158,12 @@ def _loss_maps(job: VectoJob, keys: TruckKeys) -> dict[str, Any]:
     return out
 
 
-def _refuse_replaced_loss_keys(path: Path, driveline: dict[str, Any], values: dict[str, Any]) -> None:
+def _refuse_replaced_loss_keys(path: Path, loss_maps: dict[str, Any], values: dict[str, Any]) -> None:
     """The affine losses' keys do nothing where loss maps replace them: refused, not ignored."""
     replaced = {"gear_loss_maps": ("gear_efficiency", "loss_torque_nm"), "axle_loss_map": ("axle_efficiency",)}
     for maps, keys in replaced.items():
         given = [k for k in keys if k in values]
-        if maps in driveline and given:
+        if maps in loss_maps and given:
             raise VehicleError(
                 f"{path}: {given[0]}: expected no value where the job's loss maps give the losses "
                 f"(set use_loss_maps=false to use it), got {values[given[0]]!r}"
@@ -237,23 +220,28 @@ def _wheels(job: VectoJob, segment: decl.Segment, mass_kg: float) -> tuple[float
     return decl.combination_rolling_resistance(axles, mass_kg), inertia
 
 
-def _core_truck(job: VectoJob, driveline: dict[str, Any], body: dict[str, Any]) -> _core.MapTruck:
+def _core_truck(
+    job: VectoJob, keys: TruckKeys, radius_m: float, loss_maps: dict[str, Any], body: _core.Body, interruption_s: float
+) -> _core.MapTruck:
     """The core's truck; its checks' errors name the file the offending data came from."""
-    engine = job.engine
+    engine, gearbox = job.engine, job.gearbox
     fld, fmap = engine.files if len(engine.files) == 2 else (engine.path, engine.path)
-    files = {"fuel_map": fmap, "full_load_curve": fld, "idle_speed_rpm": engine.path, "axle_loss_map": job.gearbox.path}
-    files |= {"engine_inertia_kgm2": engine.path, "gear_ratios": job.gearbox.path, "axle_ratio": job.gearbox.path}
+    files = {"fuel_map": fmap, "full_load_curve": fld, "idle_speed_rpm": engine.path, "axle_loss_map": gearbox.path}
+    files |= {"engine_inertia_kgm2": engine.path, "gear_ratios": gearbox.path, "axle_ratio": gearbox.path}
     try:
-        return _core.MapTruck(
-            {
-                "idle_speed_rpm": engine.idle_speed_rpm,
-                "inertia_kgm2": engine.inertia_kgm2,
-                "full_load": list(engine.full_load),
-                "fuel_map": list(engine.fuel_map),
-            },
-            driveline,
-            body,
+        core_engine = _core.Engine(
+            engine.idle_speed_rpm, engine.inertia_kgm2, list(engine.full_load), list(engine.fuel_map)
         )
+        driveline = _core.Driveline(
+            list(gearbox.gear_ratios),
+            gearbox.axle_ratio,
+            keys.gear_efficiency,
+            keys.axle_efficiency,
+            keys.loss_torque_nm,
+            radius_m,
+            **loss_maps,
+        )
+        return _core.MapTruck(core_engine, driveline, body, interruption_s)
     except _core.ParamError as e:
         raise VehicleError(f"{_blamed_file(job, e.key, files)}: {e}") from None
 

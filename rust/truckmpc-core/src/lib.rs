@@ -11,7 +11,9 @@
 //! - [`dp`]: the look-ahead controller's search space and backward dynamic program (chapter 5);
 //! - [`control`]: the built-in cruise controllers, PI (section 2.5) and receding-horizon DP-MPC
 //!   (section 5.6);
-//! - [`sim`]: the closed loop driving the plant with a controller over a road, and its trace.
+//! - [`sim`]: the closed loop driving the plant with a controller over a road, and its trace;
+//! - [`scenario`]: the model of one run: settings and truck checked together, the controllers by
+//!   name, and changed copies for the runs a study derives.
 
 pub mod band;
 pub mod control;
@@ -22,6 +24,7 @@ pub mod params;
 pub mod plant;
 pub mod powertrain;
 pub mod road;
+pub mod scenario;
 pub mod sim;
 pub mod stop;
 pub mod vehicle;

@@ -92,7 +92,7 @@ proptest! {
         }
         let road = Arc::new(Road::new(distance, slopes).unwrap());
         let vehicle = Arc::new(Vehicle::new(settings.vehicle.clone()).unwrap());
-        let start = settings.start_speed_kmh(&road);
+        let start = settings.sim.start_speed_kmh.unwrap_or(settings.cruise.v_ref_kmh);
         let mut pi = PiController::new(vehicle.clone(), &settings.pi, &settings.cruise).unwrap();
         let out = run(&vehicle, &road, &altitude, &mut pi, &settings.sim, start).unwrap();
         prop_assert!(out.summary.stalled || (out.summary.distance_m - road.end_m()).abs() < 1e-3 || out.summary.message.is_some());

@@ -1,15 +1,11 @@
-//! The declared parameters as Python sees them: their specs, and `Settings`, a validated set of
-//! every section built from a flat mapping of user values.
-
-use std::sync::Arc;
+//! The declared parameters as Python sees them: their specs, and `Settings`, a run's model
+//! ([`Scenario`]) built from a flat mapping of user values.
 
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
-use truckmpc_core::control::pi::GearLogic;
-use truckmpc_core::dp::{fuel_time, DpSettings};
 use truckmpc_core::params::{Kind, ParamSpec, Value, REPLACED_KEYS};
-use truckmpc_core::powertrain::MapModel;
-use truckmpc_core::{RunSettings, Vehicle};
+use truckmpc_core::scenario::Scenario;
+use truckmpc_core::RunSettings;
 
 use crate::errors::to_py;
 use crate::powertrain::PyMapTruck;
@@ -107,36 +103,33 @@ pub fn replaced_keys() -> Vec<(&'static str, &'static str)> {
     REPLACED_KEYS.to_vec()
 }
 
-/// The end-speed correction prices kinetic energy where the PI settles at v_ref on a flat road;
-/// a map-based truck that cannot hold v_ref there has no price: refused, naming v_ref_kmh.
-fn check_kinetic_price(settings: &RunSettings, vehicle: &Vehicle) -> truckmpc_core::CoreResult<()> {
-    let v_ref_mps = settings.cruise.v_ref_kmh / 3.6;
-    let gear = GearLogic::new(vehicle, &settings.pi)?.steady_gear(v_ref_mps);
-    let price = fuel_time::kinetic_fuel_g(vehicle, v_ref_mps, gear);
-    if price.is_finite() {
-        return Ok(());
-    }
-    let expected = format!(
-        "a set speed the truck holds on a flat road in gear {gear}, where the PI settles (kinetic energy is priced there)"
-    );
-    Err(truckmpc_core::CoreError::invalid("v_ref_kmh", expected).got(settings.cruise.v_ref_kmh))
+/// User values of a Python mapping, as (key, value) pairs.
+fn pairs_of(values: &Bound<'_, PyDict>) -> PyResult<Vec<(String, Value)>> {
+    values.iter().map(|(key, value)| Ok((key.extract::<String>()?, to_value(&value)?))).collect()
 }
 
-/// A validated set of every parameter of a run.
+/// (key, value) pairs as a Python dict, in their order.
+pub fn dict_of<'py>(py: Python<'py>, pairs: &[(&str, Value)]) -> PyResult<Bound<'py, PyDict>> {
+    let out = PyDict::new(py);
+    for (key, value) in pairs {
+        out.set_item(*key, from_value(py, value)?)?;
+    }
+    Ok(out)
+}
+
+/// A run's settings and truck, checked against each other: every parameter of a run.
 ///
 /// Args:
 ///     values: mapping of declared keys to user values (YAML-like: numbers, numeric text, bools,
 ///         None, names, lists); keys not given take their declared defaults.
+///     truck: a truck from component data, replacing the thesis's model of the vehicle keys.
 ///
 /// Raises:
 ///     ParamError: a key is unknown, or a value is of the wrong type, out of its range, or
-///         inconsistent with another (the error's `related` names the others).
+///         inconsistent with another or with the truck (the error's `related` names the others).
 #[pyclass(name = "Settings", module = "truckmpc._core", frozen)]
 pub struct PySettings {
-    pub inner: Arc<RunSettings>,
-    pub vehicle: Arc<Vehicle>,
-    /// The vehicle the controllers model (the truck's unless `controller_mass_kg` is set).
-    pub controller_vehicle: Arc<Vehicle>,
+    pub inner: Scenario,
 }
 
 #[pymethods]
@@ -144,115 +137,75 @@ impl PySettings {
     #[new]
     #[pyo3(signature = (values, truck=None))]
     fn new(values: &Bound<'_, PyDict>, truck: Option<PyRef<'_, PyMapTruck>>) -> PyResult<Self> {
-        let mut pairs = Vec::with_capacity(values.len());
-        for (key, value) in values.iter() {
-            pairs.push((key.extract::<String>()?, to_value(&value)?));
-        }
-        let settings = RunSettings::from_values(pairs.iter().map(|(k, v)| (k.as_str(), v))).map_err(to_py)?;
-        let build = |mass_kg: Option<f64>| match &truck {
-            None => Vehicle::new(match mass_kg {
-                Some(_) => settings.controller_vehicle_params(),
-                None => settings.vehicle.clone(),
-            }),
-            Some(t) => {
-                let brake_nm = settings.vehicle.brake_torque_max_nm;
-                let model = match mass_kg {
-                    None => t.model(brake_nm),
-                    Some(m) => Arc::new(MapModel::new(t.inner.with_mass_kg(m)?, brake_nm, t.traction_interruption_s)),
-                };
-                Vehicle::from_map(model, &settings.vehicle)
-            }
-        };
-        let vehicle = Arc::new(build(None).map_err(to_py)?);
-        settings.check_drivable(&vehicle).map_err(to_py)?;
-        let controller_vehicle = match settings.sim.controller_mass_kg {
-            Some(mass_kg) => Arc::new(build(Some(mass_kg)).map_err(to_py)?),
-            None => vehicle.clone(),
-        };
-        DpSettings::new(&settings.mpc, &settings.cruise)
-            .and_then(|dp| dp.check_vehicle(&controller_vehicle))
-            .map_err(to_py)?;
-        check_kinetic_price(&settings, &vehicle).map_err(to_py)?;
-        Ok(PySettings { inner: Arc::new(settings), vehicle, controller_vehicle })
+        let pairs = pairs_of(values)?;
+        let truck = truck.map(|t| t.inner.clone());
+        let inner = Scenario::from_values(pairs.iter().map(|(k, v)| (k.as_str(), v)), truck).map_err(to_py)?;
+        Ok(PySettings { inner })
+    }
+
+    /// These settings with `changes` (a mapping of keys to user values) made, the same truck.
+    fn with_values(&self, changes: &Bound<'_, PyDict>) -> PyResult<Self> {
+        let pairs = pairs_of(changes)?;
+        let inner = self.inner.with_values(pairs.iter().map(|(k, v)| (k.as_str(), v))).map_err(to_py)?;
+        Ok(PySettings { inner })
     }
 
     /// Every key's value, in declaration order.
     fn values<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let out = PyDict::new(py);
-        for spec in RunSettings::specs() {
-            let value = self.inner.get(spec.name).expect("a declared key has a value");
-            out.set_item(spec.name, from_value(py, &value)?)?;
-        }
-        Ok(out)
+        let settings = self.inner.settings();
+        let pairs: Vec<(&str, Value)> =
+            RunSettings::specs().iter().map(|spec| (spec.name, settings.get(spec.name).expect("declared"))).collect();
+        dict_of(py, &pairs)
     }
 
     /// The value of one key.
     fn get<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
-        match self.inner.get(key) {
+        match self.inner.settings().get(key) {
             Some(value) => from_value(py, &value),
             None => Err(pyo3::exceptions::PyKeyError::new_err(key.to_string())),
         }
     }
 
+    /// The keys whose values the run resolves (`k_lim`, `q_speed_below`, `q_brake`,
+    /// `beta_g_per_s`), with the values it uses.
+    fn resolved<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        dict_of(py, &self.inner.resolved().map_err(to_py)?)
+    }
+
     /// The validated vehicle model.
     #[getter]
     fn vehicle(&self) -> PyVehicle {
-        PyVehicle { inner: self.vehicle.clone() }
+        PyVehicle { inner: self.inner.vehicle().clone() }
     }
 
     /// The set speeds v_ref [km/h] whose band the truck can drive, (lowest, highest): v_ref − v_dec
     /// at or above gear 1 at n_min_rpm, v_ref + v_inc at or below the top gear at n_max_rpm.
     #[getter]
     fn v_ref_range_kmh(&self) -> (f64, f64) {
-        self.inner.v_ref_range_kmh(&self.vehicle)
-    }
-
-    /// k_lim [stages] with its default resolved (round(200 m / S), table 6.1).
-    #[getter]
-    fn k_lim_stages(&self) -> u32 {
-        self.inner.mpc.k_lim_stages()
+        self.inner.v_ref_range_kmh()
     }
 
     /// N, the stages of the MPC's horizon (round(horizon / S), at least 1).
     #[getter]
     fn horizon_stages(&self) -> usize {
-        self.inner.mpc.stages()
+        self.inner.settings().mpc.stages()
     }
 
     /// Stages decided from one horizon solve (round(replan / S), at least 1: a solve every stage).
     #[getter]
     fn replan_stages(&self) -> usize {
-        self.inner.mpc.replan_stages()
-    }
-
-    /// Q2 per stage, resolved (q_speed_below, else q_speed_below_per_km × S, else table 6.2).
-    #[getter]
-    fn q_speed_below_weight(&self) -> f64 {
-        self.inner.mpc.q_speed_below_weight()
-    }
-
-    /// Q5 per stage, resolved (q_brake, else q_brake_per_km × S).
-    #[getter]
-    fn q_brake_weight(&self) -> f64 {
-        self.inner.mpc.q_brake_weight()
-    }
-
-    /// β [g/s] of the fuel_time cost as the MPC uses it (beta_g_per_s, else the β that makes
-    /// steady v_ref optimal on a flat road); None with the speed_penalty cost.
-    #[getter]
-    fn beta_g_per_s_resolved(&self) -> PyResult<Option<f64>> {
-        let dp = DpSettings::new(&self.inner.mpc, &self.inner.cruise).map_err(to_py)?;
-        Ok(dp.beta_for(&self.controller_vehicle))
+        self.inner.settings().mpc.replan_stages()
     }
 
     /// Grams of fuel per unit of ½v² [m²/s²] the engine adds in the gear the PI's gear logic settles
-    /// in at v_ref: kinetic energy priced in fuel, for the end-speed correction (it depends on the
-    /// vehicle, the cruise and the PI settings only, not on the look-ahead controller's).
+    /// in at v_ref: kinetic energy priced in fuel, for the end-speed correction.
     #[getter]
     fn kinetic_fuel_g_per_half_v2(&self) -> PyResult<f64> {
-        let logic = GearLogic::new(&self.vehicle, &self.inner.pi).map_err(to_py)?;
-        let v_ref_mps = self.inner.cruise.v_ref_kmh / 3.6;
-        let gear = logic.steady_gear(v_ref_mps);
-        Ok(fuel_time::kinetic_fuel_g(&self.vehicle, v_ref_mps, gear))
+        self.inner.kinetic_fuel_g_per_half_v2().map_err(to_py)
+    }
+
+    /// The gear the PI gear logic (table A.3) settles in at constant speed `v_mps` [m/s].
+    fn steady_gear(&self, v_mps: f64) -> PyResult<usize> {
+        self.inner.steady_gear(v_mps).map_err(to_py)
     }
 }

@@ -1,198 +1,211 @@
-//! The map-based truck (`truckmpc_core::powertrain`) as Python sees it.
+//! The map-based truck (`truckmpc_core::powertrain`) as Python sees it: its engine, driveline and
+//! body as typed objects, and the truck built from them.
 
-use pyo3::exceptions::PyKeyError;
+use std::sync::Arc;
+
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use std::sync::{Arc, Mutex};
 
-use truckmpc_core::powertrain::{Body, Driveline, Engine, MapModel, MapTruck, RPM_PER_RAD_S};
+use truckmpc_core::powertrain::{Body, Driveline, Engine, MapTruck, RPM_PER_RAD_S};
+use truckmpc_core::scenario::ComponentTruck;
 
 use crate::errors::{bad_argument, to_py};
 
-/// A truck from component data: engine maps, driveline and body.
+/// Rows of (speed, torque, value) points of a map or curve.
+type Rows = Vec<(f64, f64, f64)>;
+
+/// An engine from its data, checked.
 ///
 /// Args:
-///     engine: `idle_speed_rpm`, `inertia_kgm2`, `full_load` (rows of speed [rpm], full-load
-///         torque [Nm], drag torque [Nm]) and `fuel_map` (rows of speed [rpm], torque [Nm], fuel [g/h]).
-///     driveline: `gear_ratios` (first gear first), `axle_ratio`, `gear_efficiency`,
-///         `axle_efficiency`, `loss_torque_nm` (drag at the gearbox input), `wheel_radius_m`, and
-///         optionally `traction_interruption_s` (how long a gear shift interrupts traction; 0),
-///         `gear_loss_maps` (one list of (input speed [rpm], input torque [Nm], torque loss [Nm])
-///         rows per gear, replacing `gear_efficiency` and `loss_torque_nm`) and `axle_loss_map`
-///         (likewise for the axle, replacing `axle_efficiency`).
-///     body: `mass_kg`, `wheels_inertia_kgm2`, `cda_m2`, `air_density_kg_m3`, `rolling_resistance`,
-///         `aux_power_w`, and optionally `cda_curve` (rows of speed [m/s], Cd·A [m²]) replacing
-///         `cda_m2` by a drag area that depends on speed.
+///     idle_speed_rpm: idle speed [rpm].
+///     inertia_kgm2: inertia of the engine [kg m²].
+///     full_load: rows of speed [rpm], full-load torque [Nm], drag torque [Nm].
+///     fuel_map: rows of speed [rpm], torque [Nm], fuel [g/h].
+#[pyclass(name = "Engine", module = "truckmpc._core", frozen)]
+pub struct PyEngine {
+    inner: Engine,
+}
+
+#[pymethods]
+impl PyEngine {
+    #[new]
+    fn new(idle_speed_rpm: f64, inertia_kgm2: f64, full_load: Rows, fuel_map: Rows) -> PyResult<Self> {
+        let inner = Engine::new(idle_speed_rpm, inertia_kgm2, &full_load, &fuel_map).map_err(to_py)?;
+        Ok(PyEngine { inner })
+    }
+}
+
+/// A gearbox and axle with their losses and the tyres' radius, checked.
+///
+/// Args:
+///     gear_ratios: ratio of each gear, first gear first [-].
+///     axle_ratio: the axle's ratio [-].
+///     gear_efficiency, axle_efficiency: efficiencies where no loss map is given [-].
+///     loss_torque_nm: drag at the gearbox input where no loss map is given [Nm].
+///     wheel_radius_m: the driven tyres' dynamic radius [m].
+///     gear_loss_maps: one list of (input speed [rpm], input torque [Nm], torque loss [Nm]) rows
+///         per gear, replacing gear_efficiency and loss_torque_nm.
+///     axle_loss_map: likewise for the axle, replacing axle_efficiency.
+#[pyclass(name = "Driveline", module = "truckmpc._core", frozen)]
+pub struct PyDriveline {
+    inner: Driveline,
+}
+
+#[pymethods]
+impl PyDriveline {
+    #[new]
+    #[pyo3(signature = (gear_ratios, axle_ratio, gear_efficiency, axle_efficiency, loss_torque_nm, wheel_radius_m,
+        gear_loss_maps=None, axle_loss_map=None))]
+    fn new(
+        gear_ratios: Vec<f64>,
+        axle_ratio: f64,
+        gear_efficiency: f64,
+        axle_efficiency: f64,
+        loss_torque_nm: f64,
+        wheel_radius_m: f64,
+        gear_loss_maps: Option<Vec<Rows>>,
+        axle_loss_map: Option<Rows>,
+    ) -> PyResult<Self> {
+        let losses = (gear_efficiency, axle_efficiency, loss_torque_nm);
+        let inner = Driveline::new((&gear_ratios, axle_ratio), losses, wheel_radius_m)
+            .and_then(|d| d.with_loss_maps(gear_loss_maps.as_deref(), axle_loss_map.as_deref()))
+            .map_err(to_py)?;
+        Ok(PyDriveline { inner })
+    }
+}
+
+/// The truck's body and load (checked when the truck is built).
+///
+/// Args:
+///     mass_kg: total mass [kg]; wheels_inertia_kgm2: every wheel's inertia [kg m²];
+///     cda_m2: drag area Cd·A [m²]; air_density_kg_m3: [kg/m³]; rolling_resistance: [-];
+///     aux_power_w: the auxiliaries' power [W];
+///     cda_curve: rows of speed [m/s], Cd·A [m²], replacing cda_m2 by a drag area over speed.
+#[pyclass(name = "Body", module = "truckmpc._core", frozen)]
+pub struct PyBody {
+    inner: Body,
+    cda_curve: Option<Vec<(f64, f64)>>,
+}
+
+#[pymethods]
+impl PyBody {
+    #[new]
+    #[pyo3(signature = (mass_kg, wheels_inertia_kgm2, cda_m2, air_density_kg_m3, rolling_resistance, aux_power_w,
+        cda_curve=None))]
+    fn new(
+        mass_kg: f64,
+        wheels_inertia_kgm2: f64,
+        cda_m2: f64,
+        air_density_kg_m3: f64,
+        rolling_resistance: f64,
+        aux_power_w: f64,
+        cda_curve: Option<Vec<(f64, f64)>>,
+    ) -> Self {
+        let inner = Body { mass_kg, wheels_inertia_kgm2, cda_m2, air_density_kg_m3, rolling_resistance, aux_power_w };
+        PyBody { inner, cda_curve }
+    }
+}
+
+/// A truck from component data: engine, driveline and body, and how long a gear shift interrupts
+/// traction [s].
 #[pyclass(name = "MapTruck", module = "truckmpc._core", frozen)]
 pub struct PyMapTruck {
-    pub inner: MapTruck,
-    /// How long a gear shift interrupts traction [s].
-    pub traction_interruption_s: f64,
-    /// The models built for this truck, by brake torque [Nm] (bits): building one resamples the
-    /// maps (about 0.1 s), which every run's settings would otherwise repeat.
-    models: Mutex<Vec<(u64, Arc<MapModel>)>>,
-}
-
-impl PyMapTruck {
-    /// The model of this truck with `brake_torque_max_nm` at full brake, built once.
-    pub fn model(&self, brake_torque_max_nm: f64) -> Arc<MapModel> {
-        let mut models = self.models.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
-        let key = brake_torque_max_nm.to_bits();
-        if let Some((_, model)) = models.iter().find(|(k, _)| *k == key) {
-            return model.clone();
-        }
-        let model = Arc::new(MapModel::new(self.inner.clone(), brake_torque_max_nm, self.traction_interruption_s));
-        models.push((key, model.clone()));
-        model
-    }
-}
-
-fn item<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<T> {
-    let value = d.get_item(key)?.ok_or_else(|| PyKeyError::new_err(key.to_string()))?;
-    value.extract::<T>().map_err(|_| {
-        bad_argument(key, "a number (or rows of numbers)", value.repr().map_or_else(|_| "?".into(), |r| r.to_string()))
-    })
-}
-
-/// The value of an optional key: None when absent or None.
-fn optional<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<Option<T>> {
-    match d.get_item(key)? {
-        Some(value) if !value.is_none() => item(d, key).map(Some),
-        _ => Ok(None),
-    }
+    pub inner: Arc<ComponentTruck>,
 }
 
 #[pymethods]
 impl PyMapTruck {
     #[new]
-    fn new(engine: &Bound<'_, PyDict>, driveline: &Bound<'_, PyDict>, body: &Bound<'_, PyDict>) -> PyResult<Self> {
-        let body_dict = body;
-        let full_load: Vec<(f64, f64, f64)> = item(engine, "full_load")?;
-        let fuel_map: Vec<(f64, f64, f64)> = item(engine, "fuel_map")?;
-        let engine = Engine::new(item(engine, "idle_speed_rpm")?, item(engine, "inertia_kgm2")?, &full_load, &fuel_map)
-            .map_err(to_py)?;
-        let traction_interruption_s: f64 = if driveline.contains("traction_interruption_s")? {
-            item(driveline, "traction_interruption_s")?
-        } else {
-            0.0
-        };
-        if !(traction_interruption_s.is_finite() && (0.0..=10.0).contains(&traction_interruption_s)) {
-            return Err(to_py(
-                truckmpc_core::CoreError::invalid("traction_interruption_s", "a time in [0, 10] s")
-                    .got(traction_interruption_s),
-            ));
+    #[pyo3(signature = (engine, driveline, body, traction_interruption_s=0.0))]
+    fn new(engine: &PyEngine, driveline: &PyDriveline, body: &PyBody, traction_interruption_s: f64) -> PyResult<Self> {
+        let mut truck = MapTruck::new(engine.inner.clone(), driveline.inner.clone(), body.inner).map_err(to_py)?;
+        if let Some(curve) = &body.cda_curve {
+            truck = truck.with_cda_curve(curve).map_err(to_py)?;
         }
-        let ratios: Vec<f64> = item(driveline, "gear_ratios")?;
-        let gear_maps: Option<Vec<Vec<(f64, f64, f64)>>> = optional(driveline, "gear_loss_maps")?;
-        let axle_map: Option<Vec<(f64, f64, f64)>> = optional(driveline, "axle_loss_map")?;
-        let driveline = Driveline::new(
-            (&ratios, item(driveline, "axle_ratio")?),
-            (
-                item(driveline, "gear_efficiency")?,
-                item(driveline, "axle_efficiency")?,
-                item(driveline, "loss_torque_nm")?,
-            ),
-            item(driveline, "wheel_radius_m")?,
-        )
-        .map_err(to_py)?
-        .with_loss_maps(gear_maps.as_deref(), axle_map.as_deref())
-        .map_err(to_py)?;
-        let body = Body {
-            mass_kg: item(body, "mass_kg")?,
-            wheels_inertia_kgm2: item(body, "wheels_inertia_kgm2")?,
-            cda_m2: item(body, "cda_m2")?,
-            air_density_kg_m3: item(body, "air_density_kg_m3")?,
-            rolling_resistance: item(body, "rolling_resistance")?,
-            aux_power_w: item(body, "aux_power_w")?,
-        };
-        let mut inner = MapTruck::new(engine, driveline, body).map_err(to_py)?;
-        if body_dict.contains("cda_curve")? {
-            let curve: Vec<(f64, f64)> = item(body_dict, "cda_curve")?;
-            inner = inner.with_cda_curve(&curve).map_err(to_py)?;
-        }
-        Ok(PyMapTruck { inner, traction_interruption_s, models: Mutex::new(Vec::new()) })
+        let inner = ComponentTruck::new(truck, traction_interruption_s).map_err(to_py)?;
+        Ok(PyMapTruck { inner: Arc::new(inner) })
     }
 
     /// Number of forward gears.
     #[getter]
     fn gears(&self) -> usize {
-        self.inner.driveline().gears()
+        self.inner.truck().driveline().gears()
     }
 
     /// Rated power [W]: the most the full-load curve gives.
     #[getter]
     fn rated_power_w(&self) -> f64 {
-        self.inner.engine().rated_power().0
+        self.inner.truck().engine().rated_power().0
     }
 
     /// Engine speed [rpm] of the rated power.
     #[getter]
     fn rated_speed_rpm(&self) -> f64 {
-        self.inner.engine().rated_power().1
+        self.inner.truck().engine().rated_power().1
     }
 
     /// Engine speeds [rpm] the full-load curve covers (first, last).
     #[getter]
     fn speed_range_rpm(&self) -> (f64, f64) {
-        self.inner.engine().speed_range_rpm()
+        self.inner.truck().engine().speed_range_rpm()
     }
 
     /// Engine speeds [rpm] the fuel map covers (lowest, highest).
     #[getter]
     fn fuel_map_speed_range_rpm(&self) -> (f64, f64) {
-        self.inner.engine().fuel_map().speed_range_rpm()
+        self.inner.truck().engine().fuel_map().speed_range_rpm()
     }
 
     /// Torques [Nm] the fuel map covers (lowest, highest).
     #[getter]
     fn fuel_map_torque_range_nm(&self) -> (f64, f64) {
-        self.inner.engine().fuel_map().torque_range_nm()
+        self.inner.truck().engine().fuel_map().torque_range_nm()
     }
 
     /// Drag area Cd·A [m²] at `v_mps`.
     fn cda_m2(&self, v_mps: f64) -> f64 {
-        self.inner.cda_m2(v_mps)
+        self.inner.truck().cda_m2(v_mps)
     }
 
     /// Whether VECTO's loss maps give the losses of the gears and of the axle: (gears, axle).
     #[getter]
     fn has_loss_maps(&self) -> (bool, bool) {
-        self.inner.driveline().has_loss_maps()
+        self.inner.truck().driveline().has_loss_maps()
     }
 
     /// Driveline efficiency without loss maps, gearbox times axle.
     #[getter]
     fn efficiency(&self) -> f64 {
-        self.inner.driveline().efficiency()
+        self.inner.truck().driveline().efficiency()
     }
 
     /// Full-load torque [Nm] at `speed_rpm`.
     fn max_torque_nm(&self, speed_rpm: f64) -> f64 {
-        self.inner.engine().max_torque_nm(speed_rpm)
+        self.inner.truck().engine().max_torque_nm(speed_rpm)
     }
 
     /// Drag torque [Nm] (negative) at `speed_rpm`.
     fn drag_torque_nm(&self, speed_rpm: f64) -> f64 {
-        self.inner.engine().drag_torque_nm(speed_rpm)
+        self.inner.truck().engine().drag_torque_nm(speed_rpm)
     }
 
     /// Fuel rate [g/h] at `speed_rpm` and `torque_nm` (0 at or below the drag torque; the nearest
     /// boundary value outside the map).
     fn fuel_rate_g_per_h(&self, speed_rpm: f64, torque_nm: f64) -> PyResult<f64> {
         finite(speed_rpm, torque_nm)?;
-        Ok(self.inner.engine().fuel_rate_g_per_h(speed_rpm, torque_nm))
+        Ok(self.inner.truck().engine().fuel_rate_g_per_h(speed_rpm, torque_nm))
     }
 
     /// Whether (`speed_rpm`, `torque_nm`) lies inside the fuel map's convex hull.
     fn in_fuel_map(&self, speed_rpm: f64, torque_nm: f64) -> PyResult<bool> {
         finite(speed_rpm, torque_nm)?;
-        Ok(self.inner.engine().fuel_map().interpolate(speed_rpm, torque_nm).is_some())
+        Ok(self.inner.truck().engine().fuel_map().interpolate(speed_rpm, torque_nm).is_some())
     }
 
     /// Engine speed [rpm] at `v_mps` in `gear` (1..=gears).
     fn engine_speed_rpm(&self, v_mps: f64, gear: usize) -> PyResult<f64> {
         self.check_gear(gear)?;
-        Ok(self.inner.driveline().engine_speed_rpm(v_mps, gear))
+        Ok(self.inner.truck().driveline().engine_speed_rpm(v_mps, gear))
     }
 
     /// Road loads [W] at `v_mps`, `acc_mps2` and `slope_rad`: dict with `air_w`, `rolling_w`,
@@ -204,7 +217,7 @@ impl PyMapTruck {
         acc_mps2: f64,
         slope_rad: f64,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let l = self.inner.road_loads(v_mps, acc_mps2, slope_rad);
+        let l = self.inner.truck().road_loads(v_mps, acc_mps2, slope_rad);
         let d = PyDict::new(py);
         for (k, v) in [
             ("air_w", l.air_w),
@@ -232,7 +245,7 @@ impl PyMapTruck {
         gear: usize,
     ) -> PyResult<Bound<'py, PyDict>> {
         self.check_gear(gear)?;
-        let op = self.inner.operating_point(v_mps, acc_mps2, slope_rad, gear).ok_or_else(|| {
+        let op = self.inner.truck().operating_point(v_mps, acc_mps2, slope_rad, gear).ok_or_else(|| {
             bad_argument(
                 "v_mps, acc_mps2, slope_rad",
                 "a finite speed > 0 and finite values",
@@ -260,7 +273,7 @@ fn finite(speed_rpm: f64, torque_nm: f64) -> PyResult<()> {
 
 impl PyMapTruck {
     fn check_gear(&self, gear: usize) -> PyResult<()> {
-        let n = self.inner.driveline().gears();
+        let n = self.inner.truck().driveline().gears();
         if gear == 0 || gear > n {
             return Err(bad_argument("gear", &format!("1..={n}"), gear));
         }

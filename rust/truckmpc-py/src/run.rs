@@ -1,20 +1,18 @@
 //! Binding of the Rust closed loop: `run` drives a built-in controller over a road with the GIL
 //! released, `run_python` a controller written in Python; both return a `RunOutput`.
-//! `steady_gear` is the PI gear logic's settled gear.
+//! `controllers` lists the built-in controllers.
 
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use truckmpc_core::control::{
-    Controller, Decision, GearLogic, PccController, PiController, RecedingController, VectoDriver,
-};
-use truckmpc_core::dp::DpSettings;
-use truckmpc_core::sim::{self, shifts::per_100km, RunSummary, Trace};
+use truckmpc_core::control::{Controller, Decision};
+use truckmpc_core::scenario::{self, CONTROLLERS};
+use truckmpc_core::sim::{shifts::per_100km, RunOutput, RunSummary, Trace};
 use truckmpc_core::{Control, PlantState, Road};
 
-use crate::errors::{bad_argument, to_py};
-use crate::params::PySettings;
+use crate::errors::to_py;
+use crate::params::{dict_of, PySettings};
 use crate::road::PyRoad;
 use crate::signals::{self, Interruptible};
 
@@ -96,17 +94,18 @@ fn trace_dict(py: Python<'_>, t: Trace) -> PyResult<Bound<'_, PyDict>> {
     Ok(out)
 }
 
-/// Drive `road` with the built-in controller `controller` ("pi", "mpc" or "optimal") from its start to its end
-/// (or a stall), the closed loop in Rust with the GIL released.
+/// Drive `road` with the built-in controller `controller` from its start to its end (or a stall),
+/// the closed loop in Rust with the GIL released.
 ///
 /// Args:
-///     settings: the run's settings (vehicle, cruise band, PI, MPC, simulation).
+///     settings: the run's settings and truck.
 ///     road: the road; `altitude_m` gives the trace's altitude at each of its profile points [m].
-///     controller: "pi", "vecto_cc" (VECTO's cruise driver), "pcc", "mpc" or "optimal" (the whole-road optimum).
+///     controller: a name of `controllers()`.
 ///     controller_road: the road the controller plans on, if not `road` (the plant drives `road`).
 ///
 /// Returns:
-///     RunOutput.
+///     RunOutput; the summary of a controller that solves the DP also holds its `settings`, with
+///     the resolved values under their declared names.
 #[pyfunction]
 #[pyo3(signature = (settings, road, altitude_m, controller, controller_road=None))]
 fn run(
@@ -117,38 +116,29 @@ fn run(
     controller: &str,
     controller_road: Option<&PyRoad>,
 ) -> PyResult<PyRunOutput> {
-    let s = &settings.inner;
-    // The controllers model the truck they are told of; the plant is the truck.
-    let vehicle = &settings.controller_vehicle;
-    let mut ctrl: Box<dyn Controller + Send> = match controller {
-        "pi" => Box::new(PiController::new(vehicle.clone(), &s.pi, &s.cruise).map_err(to_py)?),
-        "mpc" | "optimal" => {
-            let gears = GearLogic::new(vehicle, &s.pi).map_err(to_py)?;
-            let dp = DpSettings::new(&s.mpc, &s.cruise).map_err(to_py)?;
-            if controller == "optimal" {
-                Box::new(RecedingController::whole_road(vehicle.clone(), dp, gears))
-            } else {
-                Box::new(RecedingController::new(vehicle.clone(), dp, gears))
-            }
-        }
-        "pcc" => {
-            Box::new(PccController::new(vehicle.clone(), &s.pi, &s.cruise, &s.pcc, s.sim.plant_dt_s).map_err(to_py)?)
-        }
-        "vecto_cc" => {
-            Box::new(VectoDriver::new(vehicle.clone(), &s.pi, &s.cruise, &s.pcc, s.sim.plant_dt_s).map_err(to_py)?)
-        }
-        other => {
-            let expected = "'pi', 'vecto_cc', 'pcc', 'mpc' or 'optimal'";
-            return Err(bad_argument("controller", expected, format!("'{other}'")));
-        }
-    };
+    let scenario = &settings.inner;
+    let kind = scenario::controllers::kind(controller).map_err(to_py)?;
+    let mut ctrl = scenario.controller(kind.name).map_err(to_py)?;
     let altitude_m = altitude_m.as_array().to_vec();
-    let (road, start_kmh) = (&road.inner, s.start_speed_kmh(&road.inner));
-    let map = controller_road.map_or(road, |r| &r.inner);
+    let map = controller_road.map(|r| r.inner.as_ref());
     let mut watched = Interruptible::new(ctrl.as_mut());
-    let plant = &settings.vehicle;
-    let run = || sim::run_on_map(plant, road, map, &altitude_m, &mut watched, &s.sim, start_kmh);
-    let output = signals::watching(|| py.detach(run))?.map_err(to_py)?;
+    let drive = || scenario.run(&road.inner, map, &altitude_m, &mut watched);
+    let output = signals::watching(|| py.detach(drive))?.map_err(to_py)?;
+    let out = output_of(py, output)?;
+    if kind.solves_dp {
+        out.summary.bind(py).set_item("settings", dict_of(py, &scenario.dp_settings().map_err(to_py)?)?)?;
+    }
+    Ok(out)
+}
+
+/// The built-in controllers: (name, what it is, whether it solves the DP), in the order outputs
+/// list them.
+#[pyfunction]
+fn controllers() -> Vec<(&'static str, &'static str, bool)> {
+    CONTROLLERS.iter().map(|k| (k.name, k.doc, k.solves_dp)).collect()
+}
+
+fn output_of(py: Python<'_>, output: RunOutput) -> PyResult<PyRunOutput> {
     Ok(PyRunOutput {
         controller: output.controller.to_string(),
         summary: summary_dict(py, &output.summary)?.unbind(),
@@ -156,19 +146,12 @@ fn run(
     })
 }
 
-/// The gear the PI gear logic (table A.3) settles in at constant speed `v_mps` [m/s].
-#[pyfunction]
-fn steady_gear(settings: &PySettings, v_mps: f64) -> PyResult<usize> {
-    let logic = GearLogic::new(&settings.vehicle, &settings.inner.pi).map_err(to_py)?;
-    Ok(logic.steady_gear(v_mps))
-}
-
-/// Add `run`, `run_python`, `steady_gear` and `RunOutput` to the module.
+/// Add `run`, `run_python`, `controllers` and `RunOutput` to the module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyRunOutput>()?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(run_python, m)?)?;
-    m.add_function(wrap_pyfunction!(steady_gear, m)?)?;
+    m.add_function(wrap_pyfunction!(controllers, m)?)?;
     Ok(())
 }
 
@@ -232,7 +215,7 @@ impl Controller for PyController {
 /// written in Python, in the same Rust closed loop as the built-in controllers.
 ///
 /// Args:
-///     settings: the run's settings (vehicle, cruise band, simulation).
+///     settings: the run's settings and truck.
 ///     road: the road; `altitude_m` gives the trace's altitude at each of its profile points [m].
 ///     controller: the Python controller; `start(profile, state)` and `decide(state)` are called.
 ///     profile: the `RoadProfile` passed to `controller.start`.
@@ -248,17 +231,10 @@ fn run_python(
     state_type: Py<PyAny>,
 ) -> PyResult<PyRunOutput> {
     let mut ctrl = PyController { obj: controller, profile, state_type, error: None };
-    let s = &settings.inner;
     let altitude_m = altitude_m.as_array().to_vec();
-    let output =
-        sim::run(&settings.vehicle, &road.inner, &altitude_m, &mut ctrl, &s.sim, s.start_speed_kmh(&road.inner))
-            .map_err(to_py)?;
+    let output = settings.inner.run(&road.inner, None, &altitude_m, &mut ctrl).map_err(to_py)?;
     if let Some(err) = ctrl.error {
         return Err(err);
     }
-    Ok(PyRunOutput {
-        controller: output.controller.to_string(),
-        summary: summary_dict(py, &output.summary)?.unbind(),
-        trace: trace_dict(py, output.trace)?.unbind(),
-    })
+    output_of(py, output)
 }

@@ -7,7 +7,6 @@
 //! Keys are unique across sections, so a run's settings are one flat namespace ([`RunSettings`]).
 
 mod cruise;
-mod drivable;
 mod mpc;
 mod pcc;
 mod pi;
@@ -18,7 +17,6 @@ mod value;
 mod vehicle;
 
 pub use cruise::CruiseParams;
-pub use drivable::SpeedLimits;
 pub use mpc::{stages_in, CostKind, GridAnchor, MpcParams, NeutralRule, OnInfeasible, StageModel, MAX_PEDAL_LEVELS};
 pub use pcc::PccParams;
 pub use pi::PiParams;

@@ -4,9 +4,7 @@ use super::{
     replacement, CruiseParams, MpcParams, ParamSet, ParamSpec, PccParams, PiParams, SimParams, Value, VehicleParams,
     REPLACED_WHY,
 };
-use crate::band::SpeedBand;
 use crate::error::{CoreError, CoreResult};
-use crate::road::Road;
 
 /// The vehicle, the cruise band, both controllers and the simulation.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -106,14 +104,6 @@ impl RunSettings {
             Some(mass_kg) => VehicleParams { mass_kg, ..self.vehicle.clone() },
             None => self.vehicle.clone(),
         }
-    }
-
-    /// The start speed [km/h] on `road`: `start_speed_kmh`, or when it is null the set speed at
-    /// the road's start (v_ref, or the band's on a road with target speeds).
-    pub fn start_speed_kmh(&self, road: &Road) -> f64 {
-        self.sim
-            .start_speed_kmh
-            .unwrap_or_else(|| SpeedBand::new(road, &self.cruise).at(road.start_m(), &mut 0).v_ref_kmh)
     }
 }
 

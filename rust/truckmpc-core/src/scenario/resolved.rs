@@ -1,0 +1,61 @@
+//! The settings a run resolves from its declared keys (a null default made a number, a weight given
+//! per kilometre made one per stage), reported under the keys' declared names.
+
+use super::Scenario;
+use crate::dp::DpSettings;
+use crate::error::CoreResult;
+use crate::params::{CruiseParams, MpcParams, ParamSet, Value};
+
+impl Scenario {
+    /// The keys whose values the run resolves, with the values it uses: `k_lim` [stages] (null:
+    /// round(200 m / S)), `q_speed_below` per stage (from its per-kilometre weight or the thesis's
+    /// δ rule), `q_brake` per stage, and `beta_g_per_s` [g/s] (null with the speed_penalty cost;
+    /// derived from v_ref when not given).
+    pub fn resolved(&self) -> CoreResult<Vec<(&'static str, Value)>> {
+        let mpc = &self.settings().mpc;
+        let dp = DpSettings::new(mpc, &self.settings().cruise)?;
+        let beta = dp.beta_for(self.controller_vehicle()).map_or(Value::Null, Value::Float);
+        Ok(vec![
+            ("k_lim", Value::Int(i64::from(mpc.k_lim_stages()))),
+            ("q_speed_below", Value::Float(mpc.q_speed_below_weight())),
+            ("q_brake", Value::Float(mpc.q_brake_weight())),
+            ("beta_g_per_s", beta),
+        ])
+    }
+
+    /// The look-ahead controller's settings as it runs with them: its keys and the cruise keys,
+    /// with [`Scenario::resolved`]'s values in place of the declared ones.
+    pub fn dp_settings(&self) -> CoreResult<Vec<(&'static str, Value)>> {
+        let settings = self.settings();
+        let resolved = self.resolved()?;
+        let keys = MpcParams::specs().into_iter().chain(CruiseParams::specs()).map(|spec| spec.name);
+        Ok(keys
+            .map(|key| match resolved.iter().find(|(name, _)| *name == key) {
+                Some((_, value)) => (key, value.clone()),
+                None => (key, settings.get(key).expect("a declared key has a value")),
+            })
+            .collect())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::RunSettings;
+
+    #[test]
+    fn resolved_values_follow_their_rules_and_replace_the_declared_ones() {
+        let values = [("stage_m", Value::Float(50.0)), ("q_brake_per_km", Value::Float(2000.0))];
+        let scenario = Scenario::from_values(values.iter().map(|(k, v)| (*k, v)), None).unwrap();
+        let resolved = scenario.resolved().unwrap();
+        // k_lim: 200 m of stages of 50 m; Q5 per stage: 2000 per km over 0.05 km.
+        assert_eq!(resolved[0], ("k_lim", Value::Int(4)));
+        assert_eq!(resolved[2], ("q_brake", Value::Float(100.0)));
+        let Value::Float(beta) = resolved[3].1 else { panic!("β resolved: {:?}", resolved[3]) };
+        assert!(beta > 0.0 && beta.is_finite());
+        let dp = scenario.dp_settings().unwrap();
+        assert_eq!(dp.len(), MpcParams::specs().len() + CruiseParams::specs().len());
+        assert!(dp.contains(&("k_lim", Value::Int(4))) && dp.contains(&("v_ref_kmh", Value::Float(85.0))));
+        assert_eq!(RunSettings::default().mpc.k_lim, None);
+    }
+}
