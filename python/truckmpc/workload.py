@@ -3,7 +3,7 @@ fill the memory are refused before anything runs.
 
 The estimates are rough (within a factor of a few) and only decide whether to refuse:
 
-- plant steps ≈ road length / (v_ref · plant_dt_s), each a few microseconds of RK4 in the core;
+- plant steps ≈ road length / (v_ref · plant_dt_s), each about a tenth of a microsecond of RK4 in the core;
 - the MPC's dynamic program ≈ solves × stages × (speed band / δ)² "units" per run (solves = length /
   replan, stages = (horizon + replan) / S − 1; the one-stage decisions in between are negligible);
   each unit is a fraction of the DP's transitions (the gear choices, the admissible band) at a few
@@ -13,6 +13,9 @@ The estimates are rough (within a factor of a few) and only decide whether to re
 - with ``pedal_levels`` K ≥ 2, road stages × (band / δ) × (K − 1) arcs, each computed once (a few
   tenths of a microsecond), and stages × (band / δ) × (K − 1) arcs held (some 70 bytes each, all gears);
 - trace rows ≈ road length / trace_step_m, each kept in memory and written to the trace CSV.
+
+The constants are measured; the measurements are in docs/validation/benchmark.md ("The work estimate's
+constants").
 """
 
 from __future__ import annotations
@@ -40,46 +43,32 @@ MAX_TRACE_ROWS = 2_000_000
 10 000 km road at the default 25 m spacing needs 400 000."""
 
 PLANT_STEP_S = 1e-7
-"""Seconds per plant step [s] of the Rust closed loop: the PI over the bundled test track (7 228
-steps of 0.05 s) took 8e-8 s a step on one core of the development machine, over the 108 km VECTO
-road 8e-8 s too; rounded up."""
+"""Seconds per plant step [s] of the Rust closed loop, measured with the PI and rounded up."""
 
 DP_UNIT_S = 1.2e-9
-"""Seconds per DP unit (one stage × one grid point²) [s] while a solve's rows fit in the caches: the
-MPC over the bundled test track took 0.75e-9 s a unit at S 25 m, δ 0.2 km/h, 1500 m on the moving
-grid (the defaults then), 0.4e-9 at δ 0.1 km/h and 2000 m, 0.3e-9 at 3000 m on the fixed grid; over the 108 km
-VECTO road 1.3e-9, 0.5e-9 and 0.25e-9. The estimate is meant to be right within a factor of ten,
-enough to refuse hours of work."""
+"""Seconds per DP unit (one stage × one grid point²) [s] while a solve's rows fit in the caches:
+meant to be right within a factor of ten, enough to refuse hours of work."""
 
 DP_UNIT_LARGE_S = 2.6e-9
-"""Seconds per DP unit [s] once a solve's rows outgrow the caches (:data:`DP_CACHED_BYTES`): on a
-flat 100 m road at the defaults, δ 0.0025 km/h (2.1 GB of rows) took 2.6e-9 s a unit and δ 0.005
-km/h (0.57 GB) 1.5e-9."""
+"""Seconds per DP unit [s] once a solve's rows outgrow the caches (:data:`DP_CACHED_BYTES`)."""
 
 DP_CACHED_BYTES = 256e6
 """A solve's rows [bytes] beyond which :data:`DP_UNIT_LARGE_S` applies."""
 
 DP_BYTES_PER_UNIT = 2.5
-"""Memory of the DP [bytes] per stage × grid point²: peak resident memory on a flat 100 m road at
-the defaults less the 55 MB of the process was 2.2 bytes a unit at δ 0.01, 0.005 and 0.0025 km/h."""
+"""Memory of the DP [bytes] per stage × grid point², its cached rows, rounded up from what was measured."""
 
 WHOLE_ROAD_BYTES_PER_POINT = 110.0
 """Memory of a whole-road optimum run [bytes] per road stage × grid point: the plan (its decisions
-for every gear and its stored values) and the process. On the 805 km road (32 184 stages) the run
-peaked at 1.21 GB at δ 0.025 km/h (401 points, 94 bytes a unit) and at 0.66 GB at δ 0.05 km/h
-(201 points, 103 bytes a unit); its relaxed solves keep no rows (no row cache, a grid of at least
-0.1 km/h)."""
+for every gear and its stored values) and the process; its relaxed solves keep no rows."""
 
 LEVEL_UNIT_S = 4e-7
 """Seconds per pedal-level arc unit (one road stage × one grid point × one level arc, ``pedal_levels``)
-[s]: each is computed once per road stage in every usable gear. On VECTO 108 km at δ 0.05 km/h, 16
-and 120 levels added 1.4e-7 and 1.5e-7 s a unit with the thesis's truck, 3.9e-7 and 4.1e-7 with
-VECTO's generic tractor (more gears, fuel from its map)."""
+[s]: each is computed once per road stage in every usable gear; a VECTO truck's are the dearer."""
 
 LEVEL_BYTES_PER_UNIT = 70.0
 """Memory [bytes] per cached stage × grid point × pedal level: the arcs of every gear, kept while the
-stage stays in the horizon. On VECTO 108 km at δ 0.05 km/h, 120 levels added 323 MB of peak memory
-(150 stages, 261 points: 69 bytes a unit) with the thesis's truck."""
+stage stays in the horizon."""
 
 _PLANT_KEYS = ("plant_dt_s", "v_ref_kmh")
 _DP_KEYS = ("delta_kmh", "stage_m", "horizon_m", "replan_m", "v_inc_kmh", "v_dec_kmh", "pedal_levels")

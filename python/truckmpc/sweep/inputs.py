@@ -85,7 +85,7 @@ def check_size(axes: Sequence[Axis], roads: int) -> None:
 
 class Combinations:
     """The configurations of a grid's combinations: the base's resolved values with the axis values
-    put in, validated by the core. Reading the files again per combination took 6.7 ms, most of a
+    put in, validated by the core. Reading the files again per combination would be most of a
     sweep's planning; only a combination the core refuses is loaded again through the files, so
     that its error names where each value came from exactly as ``load_run_config`` does."""
 

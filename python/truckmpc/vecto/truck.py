@@ -259,10 +259,8 @@ def _blamed_file(job: VectoJob, key: str, files: dict[str, Path]) -> Path:
     return job.gearbox.path if index is not None else files.get(key, job.path)
 
 
-# The PI's shift speeds for a VECTO truck, as shares of the engine's rated speed: the thesis's truck
-# shifts down below 1300 rpm and up above 1700-1800 rpm of its 2500 rpm range; VECTO's generic
-# 325 kW engine (rated at 1736 rpm) climbs at 1430 rpm and cruises at 85 km/h at 1209 rpm in its
-# top gear, so these keep it in top gear down to about 77 km/h and up-shift at 1490 rpm.
+# The PI's shift speeds for a VECTO truck, as shares of the engine's rated speed, chosen to keep
+# VECTO's tractor in top gear at cruise (the figures: docs/explanation/controllers.md, the PI).
 DOWNSHIFT_SHARE = 0.63
 UPSHIFT_SHARE = 0.86
 _LANDING_MARGIN = 0.95  # a downshift speed at most this share of where the upshift below lands

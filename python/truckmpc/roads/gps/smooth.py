@@ -16,9 +16,8 @@ The length follows the expected noise of the elevations, σ [m]: ``Smoothing.for
 exponent balances the two errors of a smoother: the road's own curvature flattened (growing as
 length²) against the noise let through (falling as length^(−1/2) to length^(−3/2), depending on how
 rough the noise is); c is the best length at σ = 1 m in the noise study
-(``scripts/gps_noise_study.py --smooth-m``), whose best lengths at σ = 2, 3 and 5 m follow the rule
-within 15 %. The spline is the default because it has the lower grade error wherever there is
-noise: at σ = 2 m, 0.40–0.46 pp against Savitzky–Golay's 0.48–0.55 (README, "Roads from GPS tracks").
+(``scripts/gps_noise_study.py --smooth-m``). The spline is the default because it has the lower
+grade error wherever there is noise (docs/validation/gps.md has the study's figures).
 """
 
 from __future__ import annotations

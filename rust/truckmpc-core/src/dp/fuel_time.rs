@@ -7,9 +7,8 @@
 //! rate ṁ = F·v: β = v·ṁ'(v) − ṁ(v), the fuel rate's marginal increase with speed less its
 //! average). F' is taken by central differences: for the thesis's smooth engine at ±1 mm/s; for a
 //! map-based truck at ±2 km/h ([`MAP_DV_MPS`]), because its map is linear on triangles, so F'
-//! jumps wherever the steady operating point crosses a triangle's edge (on VECTO's generic tractor
-//! at 85 km/h a local difference gives β = 3.32 g/s, one over ±1 km/h 3.66, over ±2 km/h 3.56):
-//! the wider difference prices time by the fuel of the speeds a cruise actually moves through.
+//! jumps wherever the steady operating point crosses a triangle's edge: the wider difference
+//! prices time by the fuel of the speeds a cruise actually moves through.
 //!
 //! **Kinetic energy in fuel.** At a fixed engine speed both the engine torque (2.8) and the fuel
 //! rate (B.2) are affine in the pedal, so every unit of ½v² [m²/s²] the engine adds in gear g

@@ -16,9 +16,7 @@ use crate::vehicle::Vehicle;
 pub const RELAXED_DELTA_MIN_KMH: f64 = 0.2;
 
 /// Longest horizon [m] of the relaxed solve ([`DpSettings::relaxed`]): a longer one of the settings
-/// is cut to it. (On the VECTO cycle with its target speeds a 3 km horizon was infeasible about a
-/// hundred times, and each relaxed solve over 3 km took up to 3 s; what the rescue needs is a way
-/// back into the band, which 1.5 km shows.)
+/// is cut to it: the rescue needs only a way back into the band, which 1.5 km shows.
 pub const RELAXED_HORIZON_MAX_M: f64 = 1500.0;
 
 /// Resolved DP settings; build them with [`DpSettings::new`], which validates.
@@ -207,12 +205,11 @@ impl DpSettings {
     /// The same settings with the lower speed bound at `v_min_kmh`, no shift limit, no neutral
     /// after the first stage and a grid step of at least [`RELAXED_DELTA_MIN_KMH`]: the rescue
     /// solve when these admit no path. (Its band reaches down to `v_min_kmh`, many times the cruise
-    /// band's width: at δ 0.025 km/h one such solve took 0.7 s without the row cache.)
+    /// band's width, hence the coarser grid.)
     ///
     /// Without the shift limit a neutral engagement may last a single stage, and a change of gear
-    /// routed through it is priced q_neutral instead of Q4: with Q4 above q_neutral the rescue
-    /// shifted 12 → 11 → N → 12 in three stages on a climb. A rescue is the way back into the
-    /// band, not a coast: it plans in gear.
+    /// routed through it would be priced q_neutral instead of Q4, cheaper when Q4 is the higher
+    /// price. A rescue is the way back into the band, not a coast: it plans in gear.
     pub fn relaxed(&self, v_min_kmh: f64) -> Self {
         DpSettings {
             v_dec_kmh: (self.v_ref_kmh - v_min_kmh).max(self.v_dec_kmh),

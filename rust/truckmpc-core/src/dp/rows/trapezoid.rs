@@ -132,8 +132,7 @@ pub(super) fn pair_trapezoid(
 /// below zero, clipped to zero, is fuel cut in the plant, whose engine drag brakes much harder
 /// than the map at zero pedal the row assumed), else from −ε as the Euler rows.
 /// On the moving grid, whose top bound is the continuous full-pedal speed, the top would be out of
-/// reach at full pedal (its solves were infeasible, 58 in the first 10 km of VECTO 108 km): there
-/// the band is the Euler rows' [−ε, 1 + ε].
+/// reach at full pedal and its solves infeasible: there the band is the Euler rows' [−ε, 1 + ε].
 #[inline]
 pub(super) fn trapezoid_pedal_band(p: &DpSettings, v_i: f64, gain: f64) -> (f64, f64) {
     let (lo, hi) = p.pedal_band(v_i, gain);

@@ -1,7 +1,7 @@
 //! Lane helpers for the AVX2 passes of the solver (x86-64 only).
 //!
-//! Gathers are replaced by four scalar loads: on the AMD cores this project is measured on (Zen 2
-//! and earlier) a gather is microcoded and several times slower than the loads it stands for.
+//! Gathers are replaced by four scalar loads: on AMD cores up to Zen 2 a gather is microcoded and
+//! slower than the loads it stands for.
 
 use std::arch::x86_64::*;
 
