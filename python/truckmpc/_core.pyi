@@ -15,6 +15,7 @@ __all__ = [
     "Driveline",
     "Engine",
     "MapTruck",
+    "OutputSpec",
     "ParamError",
     "ParamSpec",
     "Road",
@@ -26,6 +27,8 @@ __all__ = [
     "replaced_keys",
     "run",
     "run_python",
+    "summary_specs",
+    "trace_specs",
 ]
 
 class ParamError(ValueError):
@@ -206,6 +209,39 @@ class Road:
         """The band the controllers work to at each of `distance_m` [m] (increasing) for one cruise
         setting [km/h]: the stretch's set speed (without the top falling ahead of a lower one),
         v_min and v_max."""
+
+@final
+class OutputSpec:
+    """One declared output: a figure of a controller's summary or a column of its trace."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def unit(self) -> str: ...
+    @property
+    def label(self) -> str: ...
+    @property
+    def doc(self) -> str: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def runs(self) -> str: ...
+    @property
+    def source(self) -> str: ...
+    @property
+    def merge(self) -> str: ...
+    @property
+    def merge_of(self) -> str | None: ...
+    @property
+    def sweep(self) -> str: ...
+    @property
+    def decimals(self) -> int | None: ...
+
+def summary_specs() -> list[OutputSpec]:
+    """Every figure of a controller's summary, in `summary.json`'s order."""
+
+def trace_specs() -> list[OutputSpec]:
+    """Every column of a run's trace, in the CSV's order."""
 
 @final
 class RunOutput:

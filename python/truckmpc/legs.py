@@ -22,6 +22,7 @@ import numpy as np
 from truckmpc.errors import RoadError
 from truckmpc.roads.profile import RoadProfile
 from truckmpc.roads.stops import MIN_LEG_M, STOPS_NOTE, leg_bounds, leg_road
+from truckmpc.schema import SUMMARY_SPECS, TRACE_SPECS
 from truckmpc.units import KMH_PER_MPS, M_PER_KM
 
 if TYPE_CHECKING:
@@ -30,39 +31,7 @@ if TYPE_CHECKING:
 
 __all__ = ["drive_legs", "merge_legs", "stops_document", "stops_line", "stops_text"]
 
-SUMMED = (
-    "distance_m",
-    "fuel_kg",
-    "time_s",
-    "brake_energy_kj",
-    "neutral_distance_m",
-    "gear_shifts",
-    "neutral_engagements",
-    "pcc_events",
-    "eco_roll_entries",
-    "compute_time_s",
-    "solves",
-    "horizon_solves",
-    "infeasible_solves",
-    "fallback_relaxed",
-    "fallback_rescues",
-    "fallback_rescue_m",
-    "plan_fuel_kg",
-    "plan_time_s",
-    "plan_cost",
-    "plan_solve_s",
-    "plan_stages",
-    "fuel_corrected_kg",
-)
-"""Summary figures that add up over the legs."""
-
-LARGEST = ("solve_ms_max", "plan_table_mb")
-"""Summary figures whose largest leg value is the road's."""
-
-PER_SOLVE = ("solve_ms_mean", "states_per_solve", "transitions_per_solve")
-"""Summary means over solves: the legs' values weighted by their solves."""
-
-CUMULATIVE = ("time_s", "fuel_g", "brake_energy_kj")
+CUMULATIVE = tuple(spec.name for spec in TRACE_SPECS if spec.merge == "continued")
 """Trace columns counted from the start of the run, continued across the legs."""
 
 Drive = Callable[[RoadProfile, "RunConfig"], "RunResult"]
@@ -139,31 +108,85 @@ def merge_legs(road: RoadProfile, results: Sequence[RunResult], bounds: Sequence
 
 
 def _merged_summary(legs: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
-    """The legs' summaries as one: sums, maxima, solve-weighted means, ratios recomputed, the first
-    leg's start speed and settings, the last one's end speed, end and any other entry."""
+    """The legs' summaries as one, each figure joined by its declared rule (:mod:`truckmpc.schema`):
+    sums, maxima, solve-weighted means, the first leg's start speed, the last leg's end speed and
+    any other entry, then the figures recomputed from the joined ones (per 100 km, per trip time)."""
     merged = {**legs[0], **legs[-1]}
-    merged["start_speed_kmh"] = legs[0]["start_speed_kmh"]
-    for key in SUMMED:
-        values = [leg.get(key) for leg in legs]
-        if all(value is not None for value in values):
-            merged[key] = sum(values)
-    for key in LARGEST:
-        if key in merged:
-            merged[key] = max(leg[key] for leg in legs)
-    solves = sum(leg.get("solves") or 0 for leg in legs)
-    for key in PER_SOLVE:
-        if key in merged and solves:
-            merged[key] = sum(leg[key] * leg["solves"] for leg in legs) / solves
     stalled = any(leg["stalled"] for leg in legs)
-    merged["stalled"] = stalled
-    merged["fuel_corrected_kg"] = None if stalled else merged.get("fuel_corrected_kg")
-    distance_m, time_s = merged["distance_m"], merged["time_s"]
-    counts = ("gear_shifts", "neutral_engagements", "eco_roll_entries")
-    for figure in ("fuel_kg", *(f for f in counts if f in merged)):
-        merged[f"{figure}_per_100km"] = merged[figure] / (distance_m / (100.0 * M_PER_KM)) if distance_m > 0 else None
-    merged["mean_speed_kmh"] = distance_m / time_s * KMH_PER_MPS if time_s > 0 else merged["start_speed_kmh"]
-    merged["realtime_ratio"] = merged["compute_time_s"] / time_s if time_s > 0 else None
+    for spec in SUMMARY_SPECS:
+        if spec.merge in _JOINED:
+            _JOINED[spec.merge](merged, spec.name, legs, stalled)
+    for spec in SUMMARY_SPECS:
+        if spec.merge in _RECOMPUTED and spec.merge_of in (None, *merged):
+            _RECOMPUTED[spec.merge](merged, spec.name, spec.merge_of or "")
     return merged
+
+
+Legs = Sequence[Mapping[str, Any]]
+
+
+def _first(merged: dict[str, Any], key: str, legs: Legs, stalled: bool) -> None:
+    if key in legs[0]:
+        merged[key] = legs[0][key]
+
+
+def _sum(merged: dict[str, Any], key: str, legs: Legs, stalled: bool) -> None:
+    """The legs' sum when every leg has a value; else the last leg's stays."""
+    values = [leg.get(key) for leg in legs]
+    if all(value is not None for value in values):
+        merged[key] = sum(values)
+
+
+def _sum_unless_stalled(merged: dict[str, Any], key: str, legs: Legs, stalled: bool) -> None:
+    _sum(merged, key, legs, stalled)
+    merged[key] = None if stalled else merged.get(key)
+
+
+def _max(merged: dict[str, Any], key: str, legs: Legs, stalled: bool) -> None:
+    if key in merged:
+        merged[key] = max(leg[key] for leg in legs)
+
+
+def _any(merged: dict[str, Any], key: str, legs: Legs, stalled: bool) -> None:
+    if key in merged:
+        merged[key] = any(leg[key] for leg in legs)
+
+
+def _mean_per_solve(merged: dict[str, Any], key: str, legs: Legs, stalled: bool) -> None:
+    solves = sum(leg.get("solves") or 0 for leg in legs)
+    if key in merged and solves:
+        merged[key] = sum(leg[key] * leg["solves"] for leg in legs) / solves
+
+
+_JOINED = {
+    "first": _first,
+    "sum": _sum,
+    "sum_unless_stalled": _sum_unless_stalled,
+    "max": _max,
+    "any": _any,
+    "mean_per_solve": _mean_per_solve,
+}
+"""How each rule of :mod:`truckmpc.schema` joins a figure from the legs (``last``: the merged
+dict holds the last leg's already; ``built``: :func:`merge_legs` makes it)."""
+
+
+def _per_100km(merged: dict[str, Any], key: str, of: str) -> None:
+    distance_m = merged["distance_m"]
+    merged[key] = merged[of] / (distance_m / (100.0 * M_PER_KM)) if distance_m > 0 else None
+
+
+def _per_time_s(merged: dict[str, Any], key: str, of: str) -> None:
+    time_s = merged["time_s"]
+    merged[key] = merged[of] / time_s if time_s > 0 else None
+
+
+def _mean_speed(merged: dict[str, Any], key: str, of: str) -> None:
+    distance_m, time_s = merged["distance_m"], merged["time_s"]
+    merged[key] = distance_m / time_s * KMH_PER_MPS if time_s > 0 else merged["start_speed_kmh"]
+
+
+_RECOMPUTED = {"per_100km": _per_100km, "per_time_s": _per_time_s, "mean_speed": _mean_speed}
+"""The rules that recompute a figure from joined ones (after every other is joined)."""
 
 
 def _merged_trace(traces: Sequence[Mapping[str, np.ndarray]]) -> dict[str, np.ndarray]:

@@ -34,25 +34,13 @@ from truckmpc.controller import Controller, PlantState
 from truckmpc.errors import ConfigError
 from truckmpc.fuel import corrected_fuel_kg
 from truckmpc.legs import drive_legs
+from truckmpc.schema import TRACE_COLUMNS
+
+__all__ = ["CONTROLLERS", "DP_CONTROLLERS", "TRACE_COLUMNS", "RunResult", "simulate"]
 
 if TYPE_CHECKING:
     from truckmpc.config import RunConfig
     from truckmpc.roads import RoadProfile
-
-TRACE_COLUMNS = (
-    "distance_m",
-    "time_s",
-    "speed_kmh",
-    "gear",
-    "pedal",
-    "brake",
-    "engine_speed_rpm",
-    "slope",
-    "altitude_m",
-    "fuel_g",
-    "brake_energy_kj",
-)
-"""Trace columns, in CSV order. `fuel_g` and `brake_energy_kj` are cumulative."""
 
 CONTROLLERS: tuple[str, ...] = tuple(name for name, _, _ in _core.controllers())
 """Built-in controllers selectable by name (`truckmpc simulate --controller`), from the core's
@@ -110,22 +98,14 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
     Returns
     -------
     RunResult
-        Summary keys: `fuel_kg`, `fuel_kg_per_100km`, `time_s`, `distance_m`, `mean_speed_kmh`,
-        `start_speed_kmh`, `end_speed_kmh`, `gear_shifts` (changes between forward gears, a stretch
-        in neutral bridged), `neutral_engagements` (entries into neutral), both also
-        `..._per_100km` (None when the truck did not move), `brake_energy_kj`, `neutral_distance_m`,
-        `compute_time_s` (wall time of the run), `realtime_ratio` (compute time / simulated time),
-        `stalled`, `stall_distance_m` (None unless stalled), `message` (None unless stalled),
-        `plant_dt_s`, `fuel_corrected_kg` (the fuel with the end speed brought back to the start
-        speed, :func:`truckmpc.fuel.corrected_fuel_kg`; None if stalled). The MPC adds
-        `solves` (one per decision), `horizon_solves` (those over the whole horizon; between them
-        a stage is decided from the stored cost-to-go), `infeasible_solves`, `solve_ms_mean`,
-        `solve_ms_max`, `states_per_solve`, `transitions_per_solve` and `settings` (its parameters
-        with k_lim, Q2 and Q5 resolved, and the fuel_time cost's β); the whole-road optimum adds
-        the plan's `plan_fuel_kg`, `plan_time_s` (by the DP's own model), `plan_cost`,
-        `plan_solve_s`, `plan_stages` and `plan_table_mb`; a Python controller with a `summary()`
-        method adds its entries. A road with stops adds `legs` and `stops_not_simulated`
-        (:func:`truckmpc.legs.merge_legs` says how the legs' figures are joined).
+        Its summary holds the figures declared for its runs in the core
+        (:data:`truckmpc.schema.SUMMARY_SPECS`: name with unit, meaning, which runs carry it, how
+        legs join it; the outputs reference page lists them): every run's, the PCC's, the DP
+        controllers' (with their `settings`) and the whole-road optimum's plan, `fuel_corrected_kg`
+        (the fuel with the end speed brought back to the start speed,
+        :func:`truckmpc.fuel.corrected_fuel_kg`; None if stalled) and, on a road with stops, `legs`
+        and `stops_not_simulated` (:func:`truckmpc.legs.merge_legs`). A Python controller with a
+        `summary()` method adds its entries. Its trace has the columns :data:`TRACE_COLUMNS`.
     """
     if road.stops:
         return drive_legs(road, config, lambda leg, leg_config: _drive(leg, leg_config, controller))

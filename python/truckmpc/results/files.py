@@ -18,6 +18,7 @@ from truckmpc.atomic import OutputDir
 from truckmpc.equal_time import EqualTime
 from truckmpc.errors import ConfigError
 from truckmpc.results.summary import summary_document
+from truckmpc.schema import TRACE_SPECS
 from truckmpc.sim import TRACE_COLUMNS, RunResult
 
 if TYPE_CHECKING:
@@ -25,19 +26,8 @@ if TYPE_CHECKING:
 
 __all__ = ["RUN_FILES", "check_run_dir", "trace_csv", "write_outputs"]
 
-_CSV_FORMATS = {
-    "distance_m": "%.3f",
-    "time_s": "%.4f",
-    "speed_kmh": "%.5f",
-    "gear": "%d",
-    "pedal": "%.6f",
-    "brake": "%.6f",
-    "engine_speed_rpm": "%.2f",
-    "slope": "%.6f",
-    "altitude_m": "%.4f",
-    "fuel_g": "%.4f",
-    "brake_energy_kj": "%.4f",
-}
+_CSV_FORMATS = {spec.name: "%d" if spec.decimals is None else f"%.{spec.decimals}f" for spec in TRACE_SPECS}
+"""How the trace's CSV writes each declared column (others ``%.6g``)."""
 
 
 def trace_csv(result: RunResult) -> str:

@@ -11,6 +11,7 @@ from typing import Any, NamedTuple
 
 from truckmpc.legs import stops_text
 from truckmpc.results.table_model import Row
+from truckmpc.schema import SUMMARY
 from truckmpc.units import M_PER_KM
 
 __all__ = [
@@ -35,36 +36,46 @@ LEGEND_TARGETS = (LEGEND[0], LEGEND[1].replace("at the set speed", "with its tar
 
 
 class Figure(NamedTuple):
-    """A summary figure: the row reads ``label [unit]``, each cell the run's ``key`` times
-    ``scale``, formatted with ``spec``."""
+    """A summary figure: the row reads its declared label (:mod:`truckmpc.schema`) and ``[unit]``,
+    each cell the run's ``key`` times ``scale``, formatted with ``spec``. The unit is the declared
+    one (none for a count, the per 100 km the label says dropped) unless ``unit`` gives another, as
+    a scaled figure must."""
 
-    label: str
     key: str
-    unit: str
     spec: str
     scale: float = 1.0
+    unit: str | None = None
+
+    @property
+    def label(self) -> str:
+        return SUMMARY[self.key].label
+
+    @property
+    def shown_unit(self) -> str:
+        if self.unit is not None:
+            return self.unit
+        declared = SUMMARY[self.key].unit.removesuffix("/100km")
+        return "" if declared in ("-", "1") else declared
 
 
 _DRIVING = (
-    Figure("fuel per 100 km", "fuel_kg_per_100km", "kg", ".2f"),
-    Figure("mean speed", "mean_speed_kmh", "km/h", ".2f"),
-    Figure("end speed", "end_speed_kmh", "km/h", ".2f"),
-    Figure("gear shifts per 100 km", "gear_shifts_per_100km", "", ".1f"),
-    Figure("neutral coasting: entries per 100 km", "neutral_engagements_per_100km", "", ".1f"),
-    Figure("neutral coasting: distance", "neutral_distance_m", "km", ".1f", 1 / M_PER_KM),
-    Figure("PCC eco-roll entries per 100 km", "eco_roll_entries_per_100km", "", ".1f"),
-    Figure("brake energy", "brake_energy_kj", "MJ", ".1f", 1e-3),
+    Figure("fuel_kg_per_100km", ".2f"),
+    Figure("mean_speed_kmh", ".2f"),
+    Figure("end_speed_kmh", ".2f"),
+    Figure("gear_shifts_per_100km", ".1f"),
+    Figure("neutral_engagements_per_100km", ".1f"),
+    Figure("neutral_distance_m", ".1f", 1 / M_PER_KM, "km"),
+    Figure("eco_roll_entries_per_100km", ".1f"),
+    Figure("brake_energy_kj", ".1f", 1e-3, "MJ"),
 )
 
 
-def figure_rows(figures: Sequence[tuple[Any, ...]], runs: Sequence[Mapping[str, Any]]) -> tuple[Row, ...]:
-    """One row per figure (a :class:`Figure` or its fields), one cell per run ("" where the run
-    has no value)."""
+def figure_rows(figures: Sequence[Figure], runs: Sequence[Mapping[str, Any]]) -> tuple[Row, ...]:
+    """One row per figure, one cell per run ("" where the run has no value)."""
     rows = []
-    for fields in figures:
-        figure = Figure(*fields)
+    for figure in figures:
         cells = tuple(_number(run.get(figure.key), figure.spec, figure.scale) for run in runs)
-        rows.append(Row(figure.label, figure.unit, cells))
+        rows.append(Row(figure.label, figure.shown_unit, cells))
     return tuple(rows)
 
 

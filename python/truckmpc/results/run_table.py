@@ -15,6 +15,7 @@ from typing import Any
 
 from truckmpc.convergence import convergence_lines
 from truckmpc.results.run_rows import (
+    Figure,
     comparison_rows,
     driving_rows,
     equal_time_rows,
@@ -28,25 +29,21 @@ from truckmpc.results.table_model import Row, RunTable, Section
 __all__ = ["Row", "RunTable", "Section", "render_text", "run_table"]
 
 
-_HEADLINE = (("fuel", "fuel_kg", "kg", ".3f"), ("trip time", "time_s", "s", ".1f"))
+_HEADLINE = (Figure("fuel_kg", ".3f"), Figure("time_s", ".1f"))
 _EQUAL_TIME = (("fuel_equal_time", "Δfuel at equal trip time"),)
 _SOLVER = (
-    ("horizon solves", "horizon_solves", "", "d"),
-    ("infeasible solves", "infeasible_solves", "", "d"),
-    ("relaxed solves driven", "fallback_relaxed", "", "d"),
-    ("rescues", "fallback_rescues", "", "d"),
-    ("rescue distance", "fallback_rescue_m", "m", ".0f"),
-    ("solve time mean", "solve_ms_mean", "ms", ".3f"),
-    ("solve time max", "solve_ms_max", "ms", ".3f"),
-    ("PCC coasting starts (use cases 1, 2)", "pcc_events", "", "d"),
-    ("compute time", "compute_time_s", "s", ".2f"),
+    Figure("horizon_solves", "d"),
+    Figure("infeasible_solves", "d"),
+    Figure("fallback_relaxed", "d"),
+    Figure("fallback_rescues", "d"),
+    Figure("fallback_rescue_m", ".0f"),
+    Figure("solve_ms_mean", ".3f"),
+    Figure("solve_ms_max", ".3f"),
+    Figure("pcc_events", "d"),
+    Figure("compute_time_s", ".2f"),
 )
-_PLAN = (
-    ("plan fuel", "plan_fuel_kg", "kg", ".3f"),
-    ("plan trip time", "plan_time_s", "s", ".1f"),
-    ("plan solve time", "plan_solve_s", "s", ".2f"),
-)
-_COMPUTE = (("realtime ratio", "realtime_ratio", "", ".2e"),)
+_PLAN = (Figure("plan_fuel_kg", ".3f"), Figure("plan_time_s", ".1f"), Figure("plan_solve_s", ".2f"))
+_COMPUTE = (Figure("realtime_ratio", ".2e"),)
 
 
 def run_table(summary: Mapping[str, Any], *, verbose: bool = False) -> RunTable:

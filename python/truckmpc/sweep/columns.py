@@ -25,20 +25,22 @@ from dataclasses import dataclass
 from typing import Any
 
 from truckmpc.compare import compare, delta_pct
+from truckmpc.schema import SUMMARY_SPECS
 from truckmpc.sweep.cells import cell, parse_cell
 
-PI_FIELDS = (
-    "fuel_kg",
-    "fuel_corrected_kg",
-    "time_s",
-    "end_speed_kmh",
-    "brake_energy_kj",
-    "gear_shifts",
-    "gear_shifts_per_100km",
-    "neutral_engagements",
-    "neutral_engagements_per_100km",
-    "stalled",
-)
+SWEPT = {"pi": ("all",), "pcc": ("all", "look_ahead"), "mpc": ("all", "look_ahead", "mpc")}
+"""Which of the declared figures (:mod:`truckmpc.schema`, a spec's ``sweep``) go to each
+controller's columns: every controller's, the look-ahead controllers', the MPC's."""
+
+
+def swept_figures(controller: str) -> tuple[str, ...]:
+    """The summary figures of `controller` (``pi``, ``pcc`` or ``mpc``) that go to the CSV, in
+    column order: those declared for every controller's columns, then the look-ahead controllers',
+    then the MPC's, each group in the declaration's order."""
+    return tuple(spec.name for group in SWEPT[controller] for spec in SUMMARY_SPECS if spec.sweep == group)
+
+
+PI_FIELDS = swept_figures("pi")
 """Figures of a run's summary that go to the CSV for every controller (gear shifts between forward
 gears and entries into neutral apart, each also per 100 km)."""
 
@@ -52,19 +54,10 @@ def equal_time_fields(baseline: str) -> tuple[str, ...]:
 EQUAL_TIME_FIELDS = equal_time_fields("pi")
 """The PI re-tuned to a look-ahead run's trip time."""
 
-MPC_FIELDS = (
-    *PI_FIELDS,
-    "neutral_distance_m",
-    "realtime_ratio",
-    "solve_ms_mean",
-    "solve_ms_max",
-    "infeasible_solves",
-    "transitions_per_solve",
-    *EQUAL_TIME_FIELDS,
-)
+MPC_FIELDS = (*swept_figures("mpc"), *EQUAL_TIME_FIELDS)
 """Figures of the MPC run's summary that go to the CSV (with its equal-time baseline's)."""
 
-PCC_FIELDS = (*PI_FIELDS, "neutral_distance_m", *EQUAL_TIME_FIELDS)
+PCC_FIELDS = (*swept_figures("pcc"), *EQUAL_TIME_FIELDS)
 """Figures of the PCC run's summary that go to the CSV (with its equal-time baseline's)."""
 
 

@@ -3,6 +3,7 @@
 //! become `ParamError` (a `ValueError`) with the key as an attribute (`errors.rs`).
 
 mod errors;
+mod outputs;
 mod params;
 mod powertrain;
 mod road;
@@ -27,5 +28,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<powertrain::PyMapTruck>()?;
     m.add("G_MPS2", truckmpc_core::powertrain::G_MPS2)?;
     run::register(m)?;
+    outputs::register(m)?;
     Ok(())
 }

@@ -2,16 +2,17 @@
 //! released, `run_python` a controller written in Python; both return a `RunOutput`.
 //! `controllers` lists the built-in controllers.
 
-use numpy::{IntoPyArray, PyReadonlyArray1};
+use numpy::PyReadonlyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use truckmpc_core::control::{Controller, Decision};
 use truckmpc_core::scenario::{self, CONTROLLERS};
-use truckmpc_core::sim::{shifts::per_100km, RunOutput, RunSummary, Trace};
+use truckmpc_core::sim::RunOutput;
 use truckmpc_core::{Control, PlantState, Road};
 
 use crate::errors::to_py;
+use crate::outputs::{summary_dict, trace_dict};
 use crate::params::{dict_of, PySettings};
 use crate::road::PyRoad;
 use crate::signals::{self, Interruptible};
@@ -27,71 +28,6 @@ struct PyRunOutput {
     summary: Py<PyDict>,
     #[pyo3(get)]
     trace: Py<PyDict>,
-}
-
-fn summary_dict<'py>(py: Python<'py>, s: &RunSummary) -> PyResult<Bound<'py, PyDict>> {
-    let out = PyDict::new(py);
-    out.set_item("distance_m", s.distance_m)?;
-    out.set_item("fuel_kg", s.fuel_kg)?;
-    out.set_item("fuel_kg_per_100km", s.fuel_kg_per_100km)?;
-    out.set_item("time_s", s.time_s)?;
-    out.set_item("mean_speed_kmh", s.mean_speed_kmh)?;
-    out.set_item("start_speed_kmh", s.start_speed_kmh)?;
-    out.set_item("end_speed_kmh", s.end_speed_kmh)?;
-    out.set_item("gear_shifts", s.gear_shifts)?;
-    out.set_item("neutral_engagements", s.neutral_engagements)?;
-    out.set_item("gear_shifts_per_100km", s.gear_shifts_per_100km)?;
-    out.set_item("neutral_engagements_per_100km", s.neutral_engagements_per_100km)?;
-    out.set_item("brake_energy_kj", s.brake_energy_kj)?;
-    out.set_item("neutral_distance_m", s.neutral_distance_m)?;
-    out.set_item("compute_time_s", s.compute_time_s)?;
-    out.set_item("realtime_ratio", s.realtime_ratio)?;
-    out.set_item("stalled", s.stalled)?;
-    out.set_item("stall_distance_m", s.stall_distance_m)?;
-    out.set_item("message", s.message.as_deref())?;
-    out.set_item("plant_dt_s", s.plant_dt_s)?;
-    if let Some(rules) = &s.rules {
-        out.set_item("pcc_events", rules.pcc_events)?;
-        out.set_item("eco_roll_entries", rules.eco_roll_entries)?;
-        out.set_item("eco_roll_entries_per_100km", per_100km(rules.eco_roll_entries, s.distance_m))?;
-    }
-    if let Some(solver) = &s.solver {
-        out.set_item("solves", solver.solves)?;
-        out.set_item("horizon_solves", solver.horizon_solves)?;
-        out.set_item("infeasible_solves", solver.infeasible_solves)?;
-        out.set_item("solve_ms_mean", solver.solve_ms_mean())?;
-        out.set_item("solve_ms_max", solver.solve_ms_max())?;
-        out.set_item("states_per_solve", solver.states_per_solve())?;
-        out.set_item("transitions_per_solve", solver.transitions_per_solve())?;
-        out.set_item("fallback_relaxed", solver.fallback_relaxed)?;
-        out.set_item("fallback_rescues", solver.fallback_rescues)?;
-        out.set_item("fallback_rescue_m", solver.fallback_rescue_m)?;
-        if let Some(plan) = &solver.plan {
-            out.set_item("plan_fuel_kg", plan.fuel_kg)?;
-            out.set_item("plan_time_s", plan.time_s)?;
-            out.set_item("plan_cost", plan.cost)?;
-            out.set_item("plan_solve_s", plan.solve_s)?;
-            out.set_item("plan_stages", plan.stages)?;
-            out.set_item("plan_table_mb", plan.table_bytes as f64 / 1e6)?;
-        }
-    }
-    Ok(out)
-}
-
-fn trace_dict(py: Python<'_>, t: Trace) -> PyResult<Bound<'_, PyDict>> {
-    let out = PyDict::new(py);
-    out.set_item("distance_m", t.distance_m.into_pyarray(py))?;
-    out.set_item("time_s", t.time_s.into_pyarray(py))?;
-    out.set_item("speed_kmh", t.speed_kmh.into_pyarray(py))?;
-    out.set_item("gear", t.gear.into_pyarray(py))?;
-    out.set_item("pedal", t.pedal.into_pyarray(py))?;
-    out.set_item("brake", t.brake.into_pyarray(py))?;
-    out.set_item("engine_speed_rpm", t.engine_speed_rpm.into_pyarray(py))?;
-    out.set_item("slope", t.slope.into_pyarray(py))?;
-    out.set_item("altitude_m", t.altitude_m.into_pyarray(py))?;
-    out.set_item("fuel_g", t.fuel_g.into_pyarray(py))?;
-    out.set_item("brake_energy_kj", t.brake_energy_kj.into_pyarray(py))?;
-    Ok(out)
 }
 
 /// Drive `road` with the built-in controller `controller` from its start to its end (or a stall),

@@ -9,11 +9,13 @@
 //! applied over the step that crosses it.
 
 pub mod run;
+pub mod schema;
 pub mod shifts;
 pub mod summary;
 pub mod trace;
 
 pub use run::{run, run_on_map, RunOutput};
+pub use schema::{OutputSpec, SUMMARY, TRACE};
 pub use summary::RunSummary;
 pub use trace::Trace;
 

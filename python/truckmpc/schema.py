@@ -1,0 +1,90 @@
+"""The outputs of a run, declared once in the core (``truckmpc._core.summary_specs`` and
+``trace_specs``): every figure of a controller's summary and every column of its trace, each with
+its name (unit in the name), unit, label, meaning, which runs carry it, where it is computed, how a
+road driven as legs joins it (:mod:`truckmpc.legs`) and whose ``sweep.csv`` columns carry it
+(:mod:`truckmpc.sweep.columns`). The outputs reference page's tables are made from it
+(:func:`summary_table`, :func:`trace_table`).
+
+A spec's ``runs`` is ``every``, ``pcc`` (VECTO's rule-based predictive cruise control), ``dp`` (the
+controllers that solve the DP: ``mpc``, ``optimal``), ``optimal`` (the whole-road optimum) or
+``legs`` (a road with stops, driven as its legs); its ``source`` is ``core`` or ``python`` (added
+after the core's run).
+"""
+
+from __future__ import annotations
+
+from truckmpc import _core
+
+__all__ = ["SUMMARY", "SUMMARY_SPECS", "TRACE_COLUMNS", "TRACE_SPECS", "summary_table", "trace_table"]
+
+SUMMARY_SPECS: tuple[_core.OutputSpec, ...] = tuple(_core.summary_specs())
+"""Every figure of a controller's summary, in ``summary.json``'s order."""
+
+SUMMARY: dict[str, _core.OutputSpec] = {spec.name: spec for spec in SUMMARY_SPECS}
+"""The summary's figures by name."""
+
+TRACE_SPECS: tuple[_core.OutputSpec, ...] = tuple(_core.trace_specs())
+"""Every column of a run's trace, in the CSV's order."""
+
+TRACE_COLUMNS: tuple[str, ...] = tuple(spec.name for spec in TRACE_SPECS)
+"""The trace's columns, in the CSV's order (``gear`` int64, the others float64)."""
+
+_RUNS = {
+    "every": "every run",
+    "pcc": "`pcc`",
+    "dp": "`mpc`, `optimal`",
+    "optimal": "`optimal`",
+    "legs": "a road with stops",
+}
+"""Which runs carry a figure, in the reference page's words."""
+
+_MERGES = {
+    "sum": "sum",
+    "sum_unless_stalled": "sum (null if a leg stalled)",
+    "max": "largest",
+    "first": "first leg's",
+    "last": "last leg's",
+    "any": "true if any leg's",
+    "mean_per_solve": "mean weighted by solves",
+    "per_100km": "recomputed: `{of}` per 100 km",
+    "per_time_s": "recomputed: `{of}` / `time_s`",
+    "mean_speed": "recomputed: `distance_m` / `time_s`",
+    "built": "made from the legs",
+    "continued": "continued from the previous leg's end",
+    "joined": "one leg after another",
+}
+"""How the legs join a figure, in the reference page's words."""
+
+
+def merge_text(spec: _core.OutputSpec) -> str:
+    """How a road driven as legs joins `spec`, in words."""
+    return _MERGES[spec.merge].format(of=spec.merge_of)
+
+
+def summary_table() -> str:
+    """A Markdown table of the summary's figures: key, unit, which runs carry it, how legs join
+    it, meaning (those added in Python marked so)."""
+    lines = ["| key | unit | runs | legs | meaning |", "|---|---|---|---|---|"]
+    for spec in SUMMARY_SPECS:
+        doc = spec.doc + (" Added in Python." if spec.source == "python" else "")
+        cells = [f"`{spec.name}`", _unit(spec.unit), _RUNS[spec.runs], merge_text(spec), _cell(doc)]
+        lines.append(f"| {' | '.join(cells)} |")
+    return "\n".join(lines)
+
+
+def trace_table() -> str:
+    """A Markdown table of the trace's columns: column, unit, how legs join it, meaning."""
+    lines = ["| column | unit | legs | meaning |", "|---|---|---|---|"]
+    for spec in TRACE_SPECS:
+        cells = [f"`{spec.name}`", _unit(spec.unit), merge_text(spec), _cell(spec.doc)]
+        lines.append(f"| {' | '.join(cells)} |")
+    return "\n".join(lines)
+
+
+def _unit(unit: str) -> str:
+    return "–" if unit == "-" else unit
+
+
+def _cell(text: str) -> str:
+    """Text for a Markdown table cell: a bare `|` would end the cell."""
+    return text.replace("|", "\\|")

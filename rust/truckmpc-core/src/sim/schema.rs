@@ -1,0 +1,466 @@
+//! The outputs of a run, declared once: every figure of a controller's summary and every column of
+//! its trace, each with its name (unit in the name), unit, meaning, which runs carry it, where it is
+//! computed and how a road driven as several legs joins it. The binding converts a run's outputs by
+//! walking [`SUMMARY`] and [`TRACE`]; the Python package reads them for the legs' join, the sweep's
+//! columns, the run table and the outputs reference page.
+//!
+//! The tables' order is the order of `summary.json`'s figures, of the trace's columns and of
+//! `sweep.csv`'s figure columns, which an unfinished sweep resumes by: add entries, never reorder.
+
+use super::shifts::per_100km;
+use super::summary::RunSummary;
+use super::trace::Trace;
+use crate::control::{PlanStats, RuleStats, SolverStats};
+
+use self::{Kind::*, Merge::*, Runs::*, Sweep::*};
+
+/// Which runs carry a figure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Runs {
+    /// Every run.
+    Every,
+    /// Runs of VECTO's rule-based predictive cruise control (`pcc`).
+    Pcc,
+    /// Runs of a controller that solves the DP (`mpc`, `optimal`).
+    Dp,
+    /// Runs of the whole-road optimum (`optimal`).
+    Optimal,
+    /// Runs over a road with stops, driven as its stop-free legs.
+    Legs,
+}
+
+/// Where a figure is computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Source {
+    /// The core's closed loop ([`RunSummary`], [`Trace`]).
+    Core,
+    /// The Python package, after the core's run.
+    Python,
+}
+
+/// What a figure's value is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// A float (null where the figure says so).
+    Number,
+    /// A whole number.
+    Count,
+    /// True or false.
+    Flag,
+    /// A line of text, or null.
+    Text,
+    /// A mapping or a list of them.
+    Record,
+}
+
+/// How a road driven as several legs joins a figure of its legs' summaries (a trace column of
+/// their traces). A recomputed figure follows from the joined figures it names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Merge {
+    /// The legs' sum, when every leg has a value (else the last leg's value).
+    Sum,
+    /// The legs' sum; null when any leg stalled.
+    SumUnlessStalled,
+    /// The largest leg's.
+    Max,
+    /// The first leg's.
+    First,
+    /// The last leg's.
+    Last,
+    /// True when any leg's is.
+    Any,
+    /// The legs' values weighted by their `solves`.
+    MeanPerSolve,
+    /// Recomputed: the joined figure named per 100 km of the joined distance.
+    Per100km(&'static str),
+    /// Recomputed: the joined figure named over the joined trip time.
+    PerTime(&'static str),
+    /// Recomputed: the joined distance over the joined trip time (the start speed when no time).
+    MeanSpeed,
+    /// Made by the join from the legs.
+    Built,
+    /// Trace: the legs' samples one after another, counted on from where the previous leg ended.
+    Continued,
+    /// Trace: the legs' samples one after another.
+    Joined,
+}
+
+impl Merge {
+    /// The rule's name, as Python reads it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Sum => "sum",
+            SumUnlessStalled => "sum_unless_stalled",
+            Max => "max",
+            First => "first",
+            Last => "last",
+            Any => "any",
+            MeanPerSolve => "mean_per_solve",
+            Per100km(_) => "per_100km",
+            PerTime(_) => "per_time_s",
+            MeanSpeed => "mean_speed",
+            Built => "built",
+            Continued => "continued",
+            Joined => "joined",
+        }
+    }
+
+    /// The figure a recomputed figure is recomputed from.
+    pub fn of(self) -> Option<&'static str> {
+        match self {
+            Per100km(name) | PerTime(name) => Some(name),
+            _ => None,
+        }
+    }
+}
+
+/// Which controllers' columns of `sweep.csv` carry a figure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Sweep {
+    /// None.
+    No,
+    /// Every controller's (`pi`, `pcc`, `mpc`).
+    All,
+    /// The look-ahead controllers' (`pcc`, `mpc`).
+    LookAhead,
+    /// The MPC's.
+    Mpc,
+}
+
+impl Sweep {
+    /// The name Python reads ("" for none).
+    pub fn name(self) -> &'static str {
+        match self {
+            No => "",
+            All => "all",
+            LookAhead => "look_ahead",
+            Mpc => "mpc",
+        }
+    }
+}
+
+impl Runs {
+    /// The name Python reads.
+    pub fn name(self) -> &'static str {
+        match self {
+            Every => "every",
+            Pcc => "pcc",
+            Dp => "dp",
+            Optimal => "optimal",
+            Legs => "legs",
+        }
+    }
+}
+
+impl Kind {
+    /// The name Python reads.
+    pub fn name(self) -> &'static str {
+        match self {
+            Number => "number",
+            Count => "count",
+            Flag => "flag",
+            Text => "text",
+            Record => "record",
+        }
+    }
+}
+
+/// One declared output: a summary figure or a trace column.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OutputSpec {
+    /// Key in the summary (column of the trace), its unit in the name.
+    pub name: &'static str,
+    /// Unit ("-" for none).
+    pub unit: &'static str,
+    /// Short label for tables.
+    pub label: &'static str,
+    /// One-line meaning.
+    pub doc: &'static str,
+    pub kind: Kind,
+    pub runs: Runs,
+    pub source: Source,
+    pub merge: Merge,
+    pub sweep: Sweep,
+    /// Decimals the trace's CSV writes (None for summary figures and whole numbers).
+    pub decimals: Option<u8>,
+}
+
+/// A summary figure's value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Figure<'a> {
+    Number(f64),
+    Count(u64),
+    Flag(bool),
+    Text(&'a str),
+    Null,
+}
+
+/// Reads a figure from a run's summary; None when the run does not carry it.
+pub type ReadFigure = for<'a> fn(&'a RunSummary) -> Option<Figure<'a>>;
+
+/// A declared summary figure and how the core reads it (None for those added in Python).
+#[derive(Debug, Clone, Copy)]
+pub struct SummaryFigure {
+    pub spec: OutputSpec,
+    pub read: Option<ReadFigure>,
+}
+
+/// A trace column's samples.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Column {
+    Number(Vec<f64>),
+    Count(Vec<i64>),
+}
+
+/// A declared trace column and how it is taken out of a trace.
+#[derive(Debug, Clone, Copy)]
+pub struct TraceColumn {
+    pub spec: OutputSpec,
+    pub take: fn(&mut Trace) -> Column,
+}
+
+/// A figure the core's summary gives.
+#[allow(clippy::too_many_arguments)]
+const fn core(
+    name: &'static str,
+    unit: &'static str,
+    kind: Kind,
+    runs: Runs,
+    merge: Merge,
+    sweep: Sweep,
+    label: &'static str,
+    doc: &'static str,
+    read: ReadFigure,
+) -> SummaryFigure {
+    let spec = OutputSpec { name, unit, label, doc, kind, runs, source: Source::Core, merge, sweep, decimals: None };
+    SummaryFigure { spec, read: Some(read) }
+}
+
+/// A figure the Python package adds to the core's summary.
+#[allow(clippy::too_many_arguments)]
+const fn python(
+    name: &'static str,
+    unit: &'static str,
+    kind: Kind,
+    runs: Runs,
+    merge: Merge,
+    sweep: Sweep,
+    label: &'static str,
+    doc: &'static str,
+) -> SummaryFigure {
+    let spec = OutputSpec { name, unit, label, doc, kind, runs, source: Source::Python, merge, sweep, decimals: None };
+    SummaryFigure { spec, read: None }
+}
+
+/// A trace column of `decimals` decimals in the CSV (None: a whole number).
+const fn column(
+    name: &'static str,
+    unit: &'static str,
+    decimals: Option<u8>,
+    merge: Merge,
+    label: &'static str,
+    doc: &'static str,
+    take: fn(&mut Trace) -> Column,
+) -> TraceColumn {
+    let kind = if decimals.is_some() { Number } else { Count };
+    let spec =
+        OutputSpec { name, unit, label, doc, kind, runs: Every, source: Source::Core, merge, sweep: No, decimals };
+    TraceColumn { spec, take }
+}
+
+fn num(x: f64) -> Option<Figure<'static>> {
+    Some(Figure::Number(x))
+}
+
+fn count(n: u64) -> Option<Figure<'static>> {
+    Some(Figure::Count(n))
+}
+
+fn maybe(x: Option<f64>) -> Option<Figure<'static>> {
+    Some(x.map_or(Figure::Null, Figure::Number))
+}
+
+fn numbers(column: &mut Vec<f64>) -> Column {
+    Column::Number(std::mem::take(column))
+}
+
+fn rules(s: &RunSummary, read: fn(&RuleStats) -> Figure<'static>) -> Option<Figure<'static>> {
+    s.rules.as_ref().map(read)
+}
+
+fn solver(s: &RunSummary, read: fn(&SolverStats) -> Figure<'static>) -> Option<Figure<'static>> {
+    s.solver.as_ref().map(read)
+}
+
+fn plan(s: &RunSummary, read: fn(&PlanStats) -> Figure<'static>) -> Option<Figure<'static>> {
+    s.solver.as_ref().and_then(|x| x.plan.as_ref()).map(read)
+}
+
+/// Every figure of a controller's summary, in `summary.json`'s order.
+#[rustfmt::skip]
+pub const SUMMARY: &[SummaryFigure] = &[
+    core("distance_m", "m", Number, Every, Sum, No, "distance", "Distance driven.", |s| num(s.distance_m)),
+    core("fuel_kg", "kg", Number, Every, Sum, All, "fuel", "Fuel used.", |s| num(s.fuel_kg)),
+    python("fuel_corrected_kg", "kg", Number, Every, SumUnlessStalled, All, "fuel, end speed corrected",
+        "Fuel plus what would bring the end speed back to the start speed; null if the truck stalled."),
+    core("fuel_kg_per_100km", "kg/100km", Number, Every, Per100km("fuel_kg"), No, "fuel per 100 km",
+        "Fuel per 100 km driven; null when the truck did not move.", |s| maybe(s.fuel_kg_per_100km)),
+    core("time_s", "s", Number, Every, Sum, All, "trip time", "Trip time.", |s| num(s.time_s)),
+    core("mean_speed_kmh", "km/h", Number, Every, MeanSpeed, No, "mean speed",
+        "Distance over trip time (the start speed when no time passed).", |s| num(s.mean_speed_kmh)),
+    core("start_speed_kmh", "km/h", Number, Every, First, No, "start speed", "Speed at the start.",
+        |s| num(s.start_speed_kmh)),
+    core("end_speed_kmh", "km/h", Number, Every, Last, All, "end speed", "Speed at the end.", |s| num(s.end_speed_kmh)),
+    core("brake_energy_kj", "kJ", Number, Every, Sum, All, "brake energy", "Energy taken by the brakes.",
+        |s| num(s.brake_energy_kj)),
+    core("gear_shifts", "-", Count, Every, Sum, All, "gear shifts",
+        "Changes between forward gears (a stretch in neutral bridged: the gear after it against the gear before).",
+        |s| count(s.gear_shifts)),
+    core("gear_shifts_per_100km", "1/100km", Number, Every, Per100km("gear_shifts"), All, "gear shifts per 100 km",
+        "Gear shifts per 100 km; null when the truck did not move.", |s| maybe(s.gear_shifts_per_100km)),
+    core("neutral_engagements", "-", Count, Every, Sum, All, "neutral coasting: entries",
+        "Entries into neutral (coasting episodes, eco-roll's among them).", |s| count(s.neutral_engagements)),
+    core("neutral_engagements_per_100km", "1/100km", Number, Every, Per100km("neutral_engagements"), All,
+        "neutral coasting: entries per 100 km", "Neutral engagements per 100 km; null when the truck did not move.",
+        |s| maybe(s.neutral_engagements_per_100km)),
+    core("neutral_distance_m", "m", Number, Every, Sum, LookAhead, "neutral coasting: distance",
+        "Distance coasted in neutral.", |s| num(s.neutral_distance_m)),
+    core("stalled", "-", Flag, Every, Any, All, "stalled",
+        "Whether the truck stalled (its speed fell below where gear 1 turns the engine at idle).",
+        |s| Some(Figure::Flag(s.stalled))),
+    core("stall_distance_m", "m", Number, Every, Last, No, "stall distance",
+        "Where the truck stalled; null unless it did.",
+        |s| maybe(s.stall_distance_m)),
+    core("message", "-", Text, Every, Last, No, "message",
+        "One-line note on an abnormal end (a stall, inputs that no longer move the truck); null otherwise.",
+        |s| Some(s.message.as_deref().map_or(Figure::Null, Figure::Text))),
+    core("compute_time_s", "s", Number, Every, Sum, No, "compute time", "Wall-clock time of the run.",
+        |s| num(s.compute_time_s)),
+    core("realtime_ratio", "-", Number, Every, PerTime("compute_time_s"), Mpc, "realtime ratio",
+        "Compute time over simulated time; null when no time was simulated.", |s| maybe(s.realtime_ratio)),
+    core("plant_dt_s", "s", Number, Every, Last, No, "plant step", "The simulation's time step.",
+        |s| num(s.plant_dt_s)),
+    core("pcc_events", "-", Count, Pcc, Sum, No, "PCC coasting starts (use cases 1, 2)",
+        "The PCC's use case 1 and 2 starts.", |s| rules(s, |r| Figure::Count(r.pcc_events))),
+    core("eco_roll_entries", "-", Count, Pcc, Sum, No, "PCC eco-roll entries",
+        "The PCC's eco-roll engagements (each also a neutral engagement).",
+        |s| rules(s, |r| Figure::Count(r.eco_roll_entries))),
+    core("eco_roll_entries_per_100km", "1/100km", Number, Pcc, Per100km("eco_roll_entries"), No,
+        "PCC eco-roll entries per 100 km", "Eco-roll entries per 100 km; null when the truck did not move.",
+        |s| s.rules.map(|r| per_100km(r.eco_roll_entries, s.distance_m).map_or(Figure::Null, Figure::Number))),
+    core("solves", "-", Count, Dp, Sum, No, "solves",
+        "Decisions: each a solve over the horizon or, between those, one stage against the stored cost-to-go.",
+        |s| solver(s, |x| Figure::Count(x.solves))),
+    core("horizon_solves", "-", Count, Dp, Sum, No, "horizon solves", "Of the solves, those over the whole horizon.",
+        |s| solver(s, |x| Figure::Count(x.horizon_solves))),
+    core("solve_ms_mean", "ms", Number, Dp, MeanPerSolve, Mpc, "solve time mean", "Mean wall time of a solve.",
+        |s| solver(s, |x| Figure::Number(x.solve_ms_mean()))),
+    core("solve_ms_max", "ms", Number, Dp, Max, Mpc, "solve time max", "Wall time of the longest solve.",
+        |s| solver(s, |x| Figure::Number(x.solve_ms_max()))),
+    core("infeasible_solves", "-", Count, Dp, Sum, Mpc, "infeasible solves", "Solves that found no admissible plan.",
+        |s| solver(s, |x| Figure::Count(x.infeasible_solves))),
+    core("states_per_solve", "-", Number, Dp, MeanPerSolve, No, "states per solve", "Mean states of a solve.",
+        |s| solver(s, |x| Figure::Number(x.states_per_solve()))),
+    core("transitions_per_solve", "-", Number, Dp, MeanPerSolve, Mpc, "transitions per solve",
+        "Mean transitions of a solve.", |s| solver(s, |x| Figure::Number(x.transitions_per_solve()))),
+    core("fallback_relaxed", "-", Count, Dp, Sum, No, "relaxed solves driven",
+        "Relaxed solves (lower speed bound and shift limit relaxed) whose plan was driven.",
+        |s| solver(s, |x| Figure::Count(x.fallback_relaxed))),
+    core("fallback_rescues", "-", Count, Dp, Sum, No, "rescues",
+        "Falls back to the rescue policy (the PI's gear logic, full pedal) where no plan was found.",
+        |s| solver(s, |x| Figure::Count(x.fallback_rescues))),
+    core("fallback_rescue_m", "m", Number, Dp, Sum, No, "rescue distance", "Distance driven on the rescue policy.",
+        |s| solver(s, |x| Figure::Number(x.fallback_rescue_m))),
+    core("plan_fuel_kg", "kg", Number, Optimal, Sum, No, "plan fuel",
+        "Fuel of following the whole-road plan on the DP's own stage model (NaN where it has no path).",
+        |s| plan(s, |p| Figure::Number(p.fuel_kg))),
+    core("plan_time_s", "s", Number, Optimal, Sum, No, "plan trip time",
+        "Trip time of following the whole-road plan on the DP's own stage model.",
+        |s| plan(s, |p| Figure::Number(p.time_s))),
+    core("plan_cost", "-", Number, Optimal, Sum, No, "plan cost", "The plan's optimal cost J_0.",
+        |s| plan(s, |p| Figure::Number(p.cost))),
+    core("plan_solve_s", "s", Number, Optimal, Sum, No, "plan solve time", "Wall time of the whole-road solve.",
+        |s| plan(s, |p| Figure::Number(p.solve_s))),
+    core("plan_stages", "-", Count, Optimal, Sum, No, "plan stages", "Stages of the plan.",
+        |s| plan(s, |p| Figure::Count(p.stages))),
+    core("plan_table_mb", "MB", Number, Optimal, Max, No, "plan table", "Memory of the plan's stored cost-to-go.",
+        |s| plan(s, |p| Figure::Number(p.table_bytes as f64 / 1e6))),
+    python("settings", "-", Record, Dp, Last, No, "settings",
+        "The DP's parameters as it took them (k_lim, Q2 and Q5 per stage resolved, the fuel_time cost's β)."),
+    python("legs", "-", Record, Legs, Built, No, "legs",
+        "Each stop-free leg's start_m, end_m, entry_speed_kmh, exit_speed_kmh, fuel_kg and time_s."),
+    python("stops_not_simulated", "-", Record, Legs, Built, No, "stops not simulated",
+        "The stops left out: their count, total_stop_s, the number of legs and a note on why."),
+];
+
+/// Every column of the trace, in the CSV's order.
+#[rustfmt::skip]
+pub const TRACE: &[TraceColumn] = &[
+    column("distance_m", "m", Some(3), Joined, "distance", "From the road's start.",
+        |t| numbers(&mut t.distance_m)),
+    column("time_s", "s", Some(4), Continued, "time", "Since the run's start.",
+        |t| numbers(&mut t.time_s)),
+    column("speed_kmh", "km/h", Some(5), Joined, "speed", "Speed.", |t| numbers(&mut t.speed_kmh)),
+    column("gear", "-", None, Joined, "gear", "Gear engaged, 0 = neutral.",
+        |t| Column::Count(std::mem::take(&mut t.gear))),
+    column("pedal", "-", Some(6), Joined, "pedal", "Accelerator pedal, 0 … 1.",
+        |t| numbers(&mut t.pedal)),
+    column("brake", "-", Some(6), Joined, "brake", "Brake level, 0 … 1.", |t| numbers(&mut t.brake)),
+    column("engine_speed_rpm", "rpm", Some(2), Joined, "engine speed", "Engine speed.",
+        |t| numbers(&mut t.engine_speed_rpm)),
+    column("slope", "-", Some(6), Joined, "slope",
+        "The road's grade ahead as a fraction, 0.01 = 1 % (the last segment's at the end).",
+        |t| numbers(&mut t.slope)),
+    column("altitude_m", "m", Some(4), Joined, "altitude", "The road's altitude.",
+        |t| numbers(&mut t.altitude_m)),
+    column("fuel_g", "g", Some(4), Continued, "fuel", "Fuel used since the run's start.",
+        |t| numbers(&mut t.fuel_g)),
+    column("brake_energy_kj", "kJ", Some(4), Continued, "brake energy",
+        "Energy taken by the brakes since the run's start.",
+        |t| numbers(&mut t.brake_energy_kj)),
+];
+
+impl RunSummary {
+    /// The figures this run carries, in [`SUMMARY`]'s order, each with its declaration.
+    pub fn figures(&self) -> impl Iterator<Item = (&'static OutputSpec, Figure<'_>)> + '_ {
+        SUMMARY.iter().filter_map(move |f| f.read.and_then(|read| read(self)).map(|value| (&f.spec, value)))
+    }
+}
+
+impl Trace {
+    /// The trace's columns in [`TRACE`]'s order, each with its declaration.
+    pub fn into_columns(mut self) -> impl Iterator<Item = (&'static OutputSpec, Column)> {
+        TRACE.iter().map(move |c| (&c.spec, (c.take)(&mut self)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashSet;
+
+    #[test]
+    fn names_are_unique_and_recomputed_figures_name_declared_ones() {
+        let names: HashSet<_> = SUMMARY.iter().map(|f| f.spec.name).collect();
+        assert_eq!(names.len(), SUMMARY.len());
+        assert_eq!(TRACE.iter().map(|c| c.spec.name).collect::<HashSet<_>>().len(), TRACE.len());
+        for f in SUMMARY {
+            if let Some(of) = f.spec.merge.of() {
+                assert!(names.contains(of), "{} is recomputed from {of}", f.spec.name);
+            }
+            assert_eq!(f.read.is_some(), f.spec.source == Source::Core, "{}", f.spec.name);
+        }
+    }
+
+    #[test]
+    fn a_trace_gives_every_column_once_in_order() {
+        let trace = Trace { gear: vec![3, 0], fuel_g: vec![1.0, 2.0], ..Trace::default() };
+        let columns: Vec<_> = trace.into_columns().collect();
+        let names: Vec<_> = columns.iter().map(|(spec, _)| spec.name).collect();
+        let expected = ["distance_m", "time_s", "speed_kmh", "gear", "pedal", "brake", "engine_speed_rpm", "slope"];
+        assert_eq!(names[..8], expected);
+        assert_eq!(names[8..], ["altitude_m", "fuel_g", "brake_energy_kj"]);
+        assert_eq!(columns[3].1, Column::Count(vec![3, 0]));
+        assert_eq!(columns[9].1, Column::Number(vec![1.0, 2.0]));
+    }
+}
