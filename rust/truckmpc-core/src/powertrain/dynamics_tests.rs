@@ -62,7 +62,7 @@ fn kinetic_energy_costs_the_maps_marginal_fuel_through_the_driveline() {
     let v = vehicle(0.0);
     let t = truck();
     for (speed, gear) in [(22.0, 3), (12.0, 2)] {
-        let c1 = v.map_model().unwrap().c1(gear);
+        let c1 = v.gear(gear).c1;
         let per_wheel_nm = 30.0 / 3600.0 / (t.driveline().ratio(gear) * t.driveline().efficiency());
         let expected = per_wheel_nm / (c1 * speed);
         let got = kinetic_fuel_g(&v, speed, gear);
