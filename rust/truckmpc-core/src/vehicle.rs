@@ -14,6 +14,7 @@ use crate::powertrain::{MapModel, ThesisModel, G_MPS2};
 
 /// The built-in powertrains.
 #[derive(Debug, Clone)]
+#[allow(clippy::large_enum_variant)] // inline, so the thesis's hot path takes no extra pointer
 pub enum Model {
     /// The thesis's model (chapter 2, appendix B.1).
     Thesis(ThesisModel),
