@@ -4,56 +4,23 @@
 //! With the gear and slope fixed, a(v0, u) is affine in the pedal (for P > 0) and in the brake
 //! (at fuel cut), so the level joining two speeds is a closed form: (B.5) and (B.7).
 
+pub use crate::powertrain::AffineAccel;
+use crate::powertrain::Powertrain;
 use crate::vehicle::{Vehicle, NEUTRAL};
 
-/// Acceleration of (B.1) as an affine function of one input at a fixed speed, gear and slope:
-/// a(u) = accel_at_zero + gain·u [m/s²].
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct AffineAccel {
-    /// Acceleration with the input at zero [m/s²].
-    pub accel_at_zero: f64,
-    /// Change of acceleration per unit of input [m/s²].
-    pub gain: f64,
-}
-
-impl AffineAccel {
-    /// Speed after one Euler stage of length `h_m` from `v0_mps` with input `u` [m/s].
-    #[inline]
-    pub fn step(&self, v0_mps: f64, h_m: f64, u: f64) -> f64 {
-        v0_mps + h_m / v0_mps * (self.accel_at_zero + self.gain * u)
-    }
-
-    /// The input that makes one Euler stage of length `h_m` end at `v1_mps` (unclipped).
-    #[inline]
-    pub fn input_for(&self, v0_mps: f64, v1_mps: f64, h_m: f64) -> f64 {
-        (v0_mps * (v1_mps - v0_mps) / h_m - self.accel_at_zero) / self.gain
-    }
-}
-
-/// Acceleration as an affine function of the pedal P > 0 (brake off) in a forward gear, from the
-/// fuelled branch of (2.8). `gain` is zero where δ_max(N) is zero.
+/// Acceleration as an affine function of the pedal P > 0 (brake off) in a forward gear (for the
+/// thesis's truck the fuelled branch of (2.8)). `gain` is zero where no fuel can be injected.
 #[inline]
 pub fn pedal_accel(vehicle: &Vehicle, v0_mps: f64, gear: usize, slope: f64) -> AffineAccel {
     pedal_accel_on(vehicle, v0_mps, gear, vehicle.slope_torque_nm(slope))
 }
 
-/// [`pedal_accel`] with the slope given as its wheel torque c6·sin(α + c7) [Nm], precomputed by
-/// callers that evaluate many speeds on one slope.
+/// [`pedal_accel`] with the slope given as its wheel torque [Nm], precomputed by callers that
+/// evaluate many speeds on one slope.
 #[inline]
 pub fn pedal_accel_on(vehicle: &Vehicle, v0_mps: f64, gear: usize, slope_torque_nm: f64) -> AffineAccel {
     debug_assert!(gear != NEUTRAL);
-    if let Some(m) = vehicle.map_model() {
-        let (accel_at_zero, gain) = m.pedal_affine(v0_mps, gear, slope_torque_nm);
-        return AffineAccel { accel_at_zero, gain };
-    }
-    let g = vehicle.gear(gear);
-    let p = vehicle.params();
-    let n = g.c4 * v0_mps;
-    let load = vehicle.c2() * v0_mps * v0_mps + slope_torque_nm;
-    AffineAccel {
-        accel_at_zero: g.c1 * (g.c3 * (p.torque_map_a_nm_per_rpm * n + p.torque_map_c_nm) - load),
-        gain: g.c1 * g.c3 * p.torque_map_b_nm_stroke_per_mg * vehicle.fueling_max_mg(n),
-    }
+    vehicle.pedal_affine(v0_mps, gear, slope_torque_nm)
 }
 
 /// Acceleration as an affine function of the brake B at fuel cut (drag torque) in a gear, or
@@ -63,17 +30,10 @@ pub fn brake_accel(vehicle: &Vehicle, v0_mps: f64, gear: usize, slope: f64) -> A
     brake_accel_on(vehicle, v0_mps, gear, vehicle.slope_torque_nm(slope))
 }
 
-/// [`brake_accel`] with the slope given as its wheel torque c6·sin(α + c7) [Nm].
+/// [`brake_accel`] with the slope given as its wheel torque [Nm].
 #[inline]
 pub fn brake_accel_on(vehicle: &Vehicle, v0_mps: f64, gear: usize, slope_torque_nm: f64) -> AffineAccel {
-    if let Some(m) = vehicle.map_model() {
-        let (accel_at_zero, gain) = m.brake_affine(v0_mps, gear, slope_torque_nm);
-        return AffineAccel { accel_at_zero, gain };
-    }
-    let g = vehicle.gear(gear);
-    let drag = if gear == NEUTRAL { 0.0 } else { vehicle.drag_torque_nm(g.c4 * v0_mps) };
-    let load = vehicle.c2() * v0_mps * v0_mps + slope_torque_nm;
-    AffineAccel { accel_at_zero: g.c1 * (g.c3 * drag - load), gain: -g.c1 * vehicle.params().brake_torque_max_nm }
+    vehicle.brake_affine(v0_mps, gear, slope_torque_nm)
 }
 
 /// Pedal level (B.5) that joins v0 to v1 in one Euler stage of length h in a forward gear,

@@ -1,13 +1,14 @@
 //! truckmpc-core: the physics and optimisation kernel of truckmpc, free of any Python dependency.
 //!
 //! - [`params`]: every parameter of a run, declared once (name with unit, type, default, range, doc);
-//! - [`vehicle`]: the truck model (thesis chapter 2, appendix B.1), the one source of the equations;
+//! - [`vehicle`]: the built-in trucks behind one type, dispatched statically;
 //! - [`levels`]: pedal and brake levels joining two speeds (B.5, B.7) and stationary points (B.3);
 //! - [`road`]: a road profile with piecewise-constant slope (and target speeds, if it has them);
 //! - [`band`]: the speed band every cruise controller works to along a road;
 //! - [`plant`]: the truck integrated in time at a fine step, for closed-loop simulation;
-//! - [`powertrain`]: a truck from component data (fuel map, full-load curve, driveline), as VECTO
-//!   describes one;
+//! - [`powertrain`]: the interface every truck implements ([`powertrain::Powertrain`]), the thesis's
+//!   model (chapter 2, appendix B.1) and a truck from component data (fuel map, full-load curve,
+//!   driveline), as VECTO describes one;
 //! - [`dp`]: the look-ahead controller's search space and backward dynamic program (chapter 5);
 //! - [`control`]: the built-in cruise controllers, PI (section 2.5) and receding-horizon DP-MPC
 //!   (section 5.6);

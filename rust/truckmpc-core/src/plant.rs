@@ -3,26 +3,19 @@
 //! profile points. Integrating in time (not distance)
 //! keeps dv/dt finite at any speed; a truck that drops below the stall speed stops the run.
 //!
-//! A truck whose gearbox interrupts traction when it shifts (a map-based truck with an automated
-//! manual gearbox) rolls in neutral, with the engine at fuel cut, for that time after each change
-//! from one forward gear to another; engaging a gear from neutral (after coasting) is taken as
-//! instant. The thesis's truck shifts instantly.
+//! The plant drives any [`Powertrain`] (the built-in trucks through [`Vehicle`]). A shift whose
+//! powertrain interrupts traction ([`Powertrain::shift_interruption_s`]; a map-based truck with an
+//! automated manual gearbox) rolls the truck in neutral at the powertrain's interrupted energy
+//! rate for that time; the thesis's truck shifts instantly. The energy rate is integrated as drawn
+//! from the powertrain's store (fuel for a diesel), the friction brakes' share of the braking as
+//! brake energy; once the store is empty the truck no longer moves.
 
 use std::sync::Arc;
 
+pub use crate::powertrain::Control;
+use crate::powertrain::{EnergyStore, Powertrain};
 use crate::road::Road;
 use crate::vehicle::{Vehicle, NEUTRAL};
-
-/// Constant inputs over one integration step.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Control {
-    /// Pedal level P ∈ [0, 1].
-    pub pedal: f64,
-    /// Brake level B ∈ [0, 1].
-    pub brake: f64,
-    /// Gear number, 0 = neutral.
-    pub gear: usize,
-}
 
 /// State of the simulated truck; the integrals are cumulative since the start of the run.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -33,11 +26,13 @@ pub struct PlantState {
     pub v_mps: f64,
     /// Elapsed time [s].
     pub t_s: f64,
-    /// Fuel used [g].
+    /// Fuel used [g]: the energy drawn from the powertrain's store, in its unit (grams of fuel for
+    /// a fuel tank).
     pub fuel_g: f64,
-    /// Energy dissipated in the service brakes [J].
+    /// Energy dissipated in the service (friction) brakes [J].
     pub brake_energy_j: f64,
-    /// Set once the speed fell below the stall speed; the plant then no longer moves.
+    /// Set once the speed fell below the stall speed or the energy store ran empty; the plant then
+    /// no longer moves.
     pub stalled: bool,
 }
 
@@ -46,8 +41,8 @@ type Rates = [f64; 4];
 
 /// The truck on a road, integrated in time.
 #[derive(Debug, Clone)]
-pub struct Plant {
-    vehicle: Arc<Vehicle>,
+pub struct Plant<P = Vehicle> {
+    vehicle: Arc<P>,
     road: Arc<Road>,
     state: PlantState,
     segment_hint: usize,
@@ -56,15 +51,19 @@ pub struct Plant {
     engaged_gear: Option<usize>,
     /// Time left of the traction interruption of the last shift [s].
     interruption_left_s: f64,
+    /// The store the energy is drawn from.
+    store: EnergyStore,
 }
 
-impl Plant {
+impl<P: Powertrain> Plant<P> {
     /// A truck at `s_m` with speed `v_mps`, nothing used yet.
-    pub fn new(vehicle: Arc<Vehicle>, road: Arc<Road>, s_m: f64, v_mps: f64) -> Self {
+    pub fn new(vehicle: Arc<P>, road: Arc<Road>, s_m: f64, v_mps: f64) -> Self {
         let stall_speed_mps = vehicle.stall_speed_mps();
-        let state =
-            PlantState { s_m, v_mps, t_s: 0.0, fuel_g: 0.0, brake_energy_j: 0.0, stalled: v_mps < stall_speed_mps };
-        Plant { vehicle, road, state, segment_hint: 0, stall_speed_mps, engaged_gear: None, interruption_left_s: 0.0 }
+        let store = vehicle.store();
+        let stalled = v_mps < stall_speed_mps || store.is_empty(0.0);
+        let state = PlantState { s_m, v_mps, t_s: 0.0, fuel_g: 0.0, brake_energy_j: 0.0, stalled };
+        let (engaged_gear, interruption_left_s) = (None, 0.0);
+        Plant { vehicle, road, state, segment_hint: 0, stall_speed_mps, engaged_gear, interruption_left_s, store }
     }
 
     /// Current state.
@@ -73,18 +72,26 @@ impl Plant {
     }
 
     /// The vehicle being simulated.
-    pub fn vehicle(&self) -> &Vehicle {
+    pub fn vehicle(&self) -> &P {
         &self.vehicle
+    }
+
+    /// The energy store's state of charge [0–1] now (None for a fuel tank).
+    pub fn state_of_charge(&self) -> Option<f64> {
+        self.store.state_of_charge(self.state.fuel_g)
     }
 
     /// Time derivatives at speed `v_mps` on a slope given by its wheel torque [Nm].
     #[inline]
     fn rates(&self, slope_torque_nm: f64, v_mps: f64, u: Control) -> Rates {
         let accel = self.vehicle.accel_on(v_mps, u.pedal, u.brake, u.gear, slope_torque_nm);
-        let fuel =
-            if self.interruption_left_s > 0.0 { 0.0 } else { self.vehicle.fuel_rate_gps(v_mps, u.pedal, u.gear) };
-        let brake_power = self.vehicle.brake_force_n(u.brake) * v_mps;
-        [v_mps, accel, fuel, brake_power]
+        let energy = if self.interruption_left_s > 0.0 {
+            self.vehicle.interrupted_energy_rate(v_mps)
+        } else {
+            self.vehicle.energy_rate(v_mps, u)
+        };
+        let brake_power = self.vehicle.friction_brake_force_n(v_mps, u) * v_mps;
+        [v_mps, accel, energy, brake_power]
     }
 
     /// Advance by `dt_s` with constant inputs. No-op once stalled. The step is split at the road's
@@ -92,12 +99,9 @@ impl Plant {
     /// the step does not drive on (which would cost accuracy at every slope jump); the time
     /// advanced is `dt_s` all the same.
     pub fn step(&mut self, u: Control, dt_s: f64) {
-        let interruption_s = self.vehicle.traction_interruption_s();
-        if interruption_s <= 0.0 {
-            return self.step_engaged(u, dt_s);
-        }
         if let Some(previous) = self.engaged_gear {
-            if previous != u.gear && previous != NEUTRAL && u.gear != NEUTRAL {
+            let interruption_s = self.vehicle.shift_interruption_s(previous, u.gear);
+            if interruption_s > 0.0 {
                 self.interruption_left_s = interruption_s;
             }
         }
@@ -157,7 +161,7 @@ impl Plant {
         self.state.fuel_g += d(2);
         self.state.brake_energy_j += d(3);
         self.state.t_s += dt_s;
-        if !(self.state.v_mps >= self.stall_speed_mps) {
+        if !(self.state.v_mps >= self.stall_speed_mps) || self.store.is_empty(self.state.fuel_g) {
             self.state.stalled = true;
         }
     }

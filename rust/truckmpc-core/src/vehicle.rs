@@ -1,74 +1,57 @@
-//! The longitudinal truck model of the thesis, chapter 2 and appendix B.1: engine fits (2.3)–(2.8),
-//! stiff driveline with gearbox and final drive, air drag, rolling resistance and gravity, in the
-//! compact form (B.1), fuel mass flow (B.2) and engine speed (2.9).
+//! The truck the plant, the DP and the controllers drive: one of the built-in powertrains behind
+//! the [`Powertrain`] interface, with its gears' constants and the parameters it was built from.
 //!
-//! This is the single implementation of the vehicle equations; the Python package calls it.
-//! Units: speeds in m/s, engine speed in rpm, torque in Nm, fuel in g, fueling in mg/stroke,
-//! slope as a grade (Δh/ΔL, dimensionless) used directly as the angle α.
+//! Dispatch is a `match` over [`Model`], inlined, so the DP's per-transition calls stay static.
 
 use std::sync::Arc;
 
 use crate::error::CoreResult;
-use crate::params::ParamSet;
 pub use crate::params::VehicleParams;
-use crate::powertrain::{MapModel, G_MPS2};
+pub use crate::powertrain::interface::NEUTRAL;
+use crate::powertrain::interface::{AffineAccel, Control, EnergyStore, Powertrain, RateForm};
+pub use crate::powertrain::thesis::GearConstants;
+use crate::powertrain::{MapModel, ThesisModel, G_MPS2};
 
-/// Gear number of neutral. Forward gears are numbered 1..=n.
-pub const NEUTRAL: usize = 0;
-
-/// The gear-dependent constants of (B.1): c1 [m/(kg m²)·...] so that dv/dt = c1·(torque sum) in m/s²,
-/// c3 = η_t i_t η_f i_f [-] and c4 = 30 i_t i_f / (π r_w) [rpm per m/s]. Neutral has c3 = c4 = 0.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GearConstants {
-    /// r_w / (J_w + m r_w² + η_t i_t² η_f i_f² J_e) [1/(kg m)].
-    pub c1: f64,
-    /// Torque gain from engine to wheel η_t i_t η_f i_f [-].
-    pub c3: f64,
-    /// Engine speed per vehicle speed 30 i_t i_f / (π r_w) [rpm/(m/s)].
-    pub c4: f64,
+/// The built-in powertrains.
+#[derive(Debug, Clone)]
+#[allow(clippy::large_enum_variant)] // inline, so the thesis's hot path takes no extra pointer
+pub enum Model {
+    /// The thesis's model (chapter 2, appendix B.1).
+    Thesis(ThesisModel),
+    /// A truck from component data (see [`crate::powertrain::dynamics`] for what its pedal means).
+    Map(Arc<MapModel>),
 }
 
-/// A validated vehicle with the constants of (B.1) precomputed: the thesis's model, or a truck
-/// built from component data ([`Vehicle::from_map`]), which answers the same questions from its
-/// maps (see [`crate::powertrain::dynamics`] for what its pedal means).
+/// Calls `$call` on the model inside `$vehicle`, whichever it is.
+macro_rules! dispatch {
+    ($vehicle:expr, $m:ident => $call:expr) => {
+        match &$vehicle.model {
+            Model::Thesis(model) => {
+                let $m: &ThesisModel = model;
+                $call
+            }
+            Model::Map(model) => {
+                let $m: &MapModel = model;
+                $call
+            }
+        }
+    };
+}
+
+/// A validated vehicle: its powertrain, the (B.1) constants of its gears, and its parameters.
 #[derive(Debug, Clone)]
 pub struct Vehicle {
     params: VehicleParams,
-    /// The map-based model, for a truck built from component data.
-    map: Option<Arc<MapModel>>,
+    model: Model,
     gears: Vec<GearConstants>,
-    /// ½ c_w A_a ρ_a r_w [N m s²/m²].
-    c2: f64,
-    /// n_cyl / (6·10⁴ n_r): fuel flow [g/s] per rpm·mg/stroke.
-    c5: f64,
-    /// m g r_w sqrt(1 + c_r²) [Nm].
-    c6: f64,
-    /// arctan c_r [rad].
-    c7: f64,
 }
 
 impl Vehicle {
-    /// Validate the parameters and precompute the model constants.
+    /// The thesis's truck: validate the parameters and precompute the model constants.
     pub fn new(params: VehicleParams) -> CoreResult<Self> {
-        params.check_ranges()?;
-        params.check_gearbox()?;
-        let p = &params;
-        let base_inertia = p.wheel_inertia_kgm2 + p.mass_kg * p.wheel_radius_m.powi(2);
-        let mut gears = vec![GearConstants { c1: p.wheel_radius_m / base_inertia, c3: 0.0, c4: 0.0 }];
-        for (&i_t, &eta_t) in p.gear_ratios.iter().zip(&p.gear_efficiencies) {
-            let i_f = p.final_drive_ratio;
-            let reflected = eta_t * i_t * i_t * p.final_drive_efficiency * i_f * i_f * p.engine_inertia_kgm2;
-            gears.push(GearConstants {
-                c1: p.wheel_radius_m / (base_inertia + reflected),
-                c3: eta_t * i_t * p.final_drive_efficiency * i_f,
-                c4: 30.0 * i_t * i_f / (std::f64::consts::PI * p.wheel_radius_m),
-            });
-        }
-        let c2 = 0.5 * p.air_drag_coefficient * p.frontal_area_m2 * p.air_density_kgpm3 * p.wheel_radius_m;
-        let c5 = p.cylinders / (6.0e4 * p.revolutions_per_stroke);
-        let c6 = p.mass_kg * p.gravity_mps2 * p.wheel_radius_m * (1.0 + p.rolling_resistance.powi(2)).sqrt();
-        let c7 = p.rolling_resistance.atan();
-        Ok(Vehicle { params, map: None, gears, c2, c5, c6, c7 })
+        let thesis = ThesisModel::new(params.clone())?;
+        let gears = thesis.gears().to_vec();
+        Ok(Vehicle { params, model: Model::Thesis(thesis), gears })
     }
 
     /// A truck from component data. `base` gives what the components do not: the service brakes'
@@ -95,24 +78,25 @@ impl Vehicle {
             gear_efficiencies: vec![driveline.efficiency(); gears],
             ..base.clone()
         };
-        let thesis = Vehicle::new(params)?;
+        // Validates the keys set from the truck as the thesis's truck would be validated.
+        ThesisModel::new(params.clone())?;
         let mut gear_constants = vec![GearConstants { c1: model.c1(0), c3: 0.0, c4: 0.0 }];
         for g in 1..=gears {
             let c3 = driveline.efficiency() * driveline.ratio(g);
             gear_constants.push(GearConstants { c1: model.c1(g), c3, c4: model.rpm_per_mps(g) });
         }
-        Ok(Vehicle { map: Some(model), gears: gear_constants, ..thesis })
+        Ok(Vehicle { params, model: Model::Map(model), gears: gear_constants })
     }
 
-    /// The map-based model, for a truck built from component data (None: the thesis's model).
+    /// The powertrain.
     #[inline]
-    pub fn map_model(&self) -> Option<&MapModel> {
-        self.map.as_deref()
+    pub fn model(&self) -> &Model {
+        &self.model
     }
 
     /// How long a gear shift interrupts traction [s]: 0 for the thesis's truck (instant shifts).
     pub fn traction_interruption_s(&self) -> f64 {
-        self.map.as_ref().map_or(0.0, |m| m.traction_interruption_s())
+        dispatch!(self, m => Powertrain::traction_interruption_s(m))
     }
 
     /// The parameters this vehicle was built from.
@@ -131,28 +115,13 @@ impl Vehicle {
         self.gears[gear]
     }
 
-    /// Air drag constant c2 of (B.1) [N m s²/m²]: air drag torque at the wheel is c2·v².
-    #[inline]
-    pub fn c2(&self) -> f64 {
-        self.c2
-    }
-
-    /// Fuel constant c5 of (B.2): mass flow [g/s] = c5 · N [rpm] · δ [mg/stroke].
-    #[inline]
-    pub fn c5(&self) -> f64 {
-        self.c5
-    }
-
-    /// Gravity and rolling-resistance torque at the wheel on a slope, c6 sin(α + c7) [Nm].
+    /// Gravity and rolling-resistance torque at the wheel on a slope [Nm].
     #[inline]
     pub fn slope_torque_nm(&self, slope: f64) -> f64 {
-        if let Some(m) = &self.map {
-            return m.slope_torque_nm(slope);
-        }
-        self.c6 * (slope + self.c7).sin()
+        dispatch!(self, m => Powertrain::slope_torque_nm(m, slope))
     }
 
-    /// Engine speed (2.9) [rpm]: c4·v in gear, idle speed in neutral.
+    /// Engine speed [rpm]: c4·v in gear, idle speed in neutral.
     #[inline]
     pub fn engine_speed_rpm(&self, v_mps: f64, gear: usize) -> f64 {
         if gear == NEUTRAL {
@@ -162,51 +131,13 @@ impl Vehicle {
         }
     }
 
-    /// Upper fueling bound δ_max(N) (2.6) [mg/stroke], never below zero (the fit turns negative near
-    /// 2500 rpm, where no fuel can be injected).
-    #[inline]
-    pub fn fueling_max_mg(&self, n_rpm: f64) -> f64 {
-        let p = &self.params;
-        (p.fueling_max_a_mg_per_rpm2 * n_rpm * n_rpm + p.fueling_max_b_mg_per_rpm * n_rpm + p.fueling_max_c_mg).max(0.0)
-    }
-
-    /// d δ_max / dN [mg/(stroke·rpm)], zero where the bound is clamped.
-    #[inline]
-    fn fueling_max_slope(&self, n_rpm: f64) -> f64 {
-        let p = &self.params;
-        if self.fueling_max_mg(n_rpm) > 0.0 {
-            2.0 * p.fueling_max_a_mg_per_rpm2 * n_rpm + p.fueling_max_b_mg_per_rpm
-        } else {
-            0.0
-        }
-    }
-
-    /// Drag torque T_drag(N) (2.4) [Nm], the engine torque at fuel cut (negative).
-    #[inline]
-    pub fn drag_torque_nm(&self, n_rpm: f64) -> f64 {
-        if let Some(m) = &self.map {
-            return m.truck().engine().drag_torque_nm(n_rpm);
-        }
-        self.params.drag_torque_a_nm_per_rpm * n_rpm + self.params.drag_torque_b_nm
-    }
-
-    /// Engine torque (2.8) [Nm]: the map at fueling P·δ_max(N) for P > 0, the drag torque for
-    /// P ≤ 0 (the jump between the two at P = 0 is the thesis's), zero in neutral. The upper torque
-    /// bound is the map at δ_max (2.7), so it needs no separate clamp.
+    /// Engine torque [Nm] at engine speed `n_rpm` with `pedal` in `gear`, zero in neutral.
     #[inline]
     pub fn engine_torque_nm(&self, n_rpm: f64, pedal: f64, gear: usize) -> f64 {
-        let p = &self.params;
-        if let (Some(m), true) = (&self.map, gear != NEUTRAL) {
-            return m.engine_torque_nm(n_rpm / self.gears[gear].c4, pedal, gear);
-        }
-        if gear == NEUTRAL {
-            0.0
-        } else if pedal > 0.0 {
-            p.torque_map_a_nm_per_rpm * n_rpm
-                + p.torque_map_b_nm_stroke_per_mg * pedal * self.fueling_max_mg(n_rpm)
-                + p.torque_map_c_nm
-        } else {
-            self.drag_torque_nm(n_rpm)
+        match &self.model {
+            Model::Thesis(t) => t.engine_torque_nm(n_rpm, pedal, gear),
+            Model::Map(_) if gear == NEUTRAL => 0.0,
+            Model::Map(m) => m.engine_torque_nm(n_rpm / self.gears[gear].c4, pedal, gear),
         }
     }
 
@@ -216,32 +147,17 @@ impl Vehicle {
         self.accel_on(v_mps, pedal, brake, gear, self.slope_torque_nm(slope))
     }
 
-    /// [`Vehicle::accel_mps2`] with the slope given as its wheel torque c6·sin(α + c7) [Nm], for
-    /// callers that evaluate one slope many times.
+    /// [`Vehicle::accel_mps2`] with the slope given as its wheel torque [Nm], for callers that
+    /// evaluate one slope many times.
     #[inline]
     pub fn accel_on(&self, v_mps: f64, pedal: f64, brake: f64, gear: usize, slope_torque_nm: f64) -> f64 {
-        if let Some(m) = &self.map {
-            return m.accel_on(v_mps, pedal, brake, gear, slope_torque_nm);
-        }
-        let g = self.gears[gear];
-        let torque = if gear == NEUTRAL { 0.0 } else { self.engine_torque_nm(g.c4 * v_mps, pedal, gear) };
-        g.c1 * (g.c3 * torque - self.params.brake_torque_max_nm * brake - self.c2 * v_mps * v_mps - slope_torque_nm)
+        dispatch!(self, m => Powertrain::accel_on(m, v_mps, pedal, brake, gear, slope_torque_nm))
     }
 
-    /// Fuel mass flow (B.2) [g/s]: c5·N·P·δ_max(N) in gear (zero at fuel cut), idle fueling in neutral.
+    /// Fuel mass flow [g/s]: the energy rate with the brake off.
     #[inline]
     pub fn fuel_rate_gps(&self, v_mps: f64, pedal: f64, gear: usize) -> f64 {
-        if let Some(m) = &self.map {
-            return m.fuel_rate_gps(v_mps, pedal, gear);
-        }
-        if gear == NEUTRAL {
-            self.c5 * self.params.idle_speed_rpm * self.params.idle_fueling_mg_per_stroke
-        } else if pedal > 0.0 {
-            let n = self.gears[gear].c4 * v_mps;
-            self.c5 * n * pedal * self.fueling_max_mg(n)
-        } else {
-            0.0
-        }
+        dispatch!(self, m => Powertrain::energy_rate(m, v_mps, Control { pedal, brake: 0.0, gear }))
     }
 
     /// Brake force at the wheel contact [N] for brake level B.
@@ -250,19 +166,12 @@ impl Vehicle {
         self.params.brake_torque_max_nm * brake / self.params.wheel_radius_m
     }
 
-    /// Highest engine speed [rpm] at which fuel can still be injected: the upper root of the fueling
-    /// bound (2.6) (about 2500 rpm for the thesis's engine); infinite if the bound never closes.
+    /// Highest engine speed [rpm] at which fuel can still be injected (infinite if unbounded).
     pub fn max_engine_speed_rpm(&self) -> f64 {
-        if let Some(m) = &self.map {
-            return m.truck().engine().speed_range_rpm().1;
+        match &self.model {
+            Model::Thesis(t) => t.max_engine_speed_rpm(),
+            Model::Map(m) => m.truck().engine().speed_range_rpm().1,
         }
-        let p = &self.params;
-        let (a, b, c) = (p.fueling_max_a_mg_per_rpm2, p.fueling_max_b_mg_per_rpm, p.fueling_max_c_mg);
-        let discriminant = b * b - 4.0 * a * c;
-        if a >= 0.0 || discriminant < 0.0 {
-            return f64::INFINITY;
-        }
-        (-b - discriminant.sqrt()) / (2.0 * a)
     }
 
     /// Lowest speed [m/s] at which the lowest gear still turns the engine at idle speed. Below it the
@@ -271,22 +180,86 @@ impl Vehicle {
         self.params.idle_speed_rpm / self.gears[1].c4
     }
 
-    /// ∂(dv/dt)/∂v [1/s] at (v, P, B, gear): the derivative of (B.1) in the speed.
+    /// ∂(dv/dt)/∂v [1/s] at (v, P, brake off, gear) on a flat road.
     pub fn accel_derivative_per_s(&self, v_mps: f64, pedal: f64, gear: usize) -> f64 {
-        if let Some(m) = &self.map {
-            const DV_MPS: f64 = 1e-4;
-            let at = |v: f64| m.accel_on(v, pedal, 0.0, gear, 0.0);
-            return (at(v_mps + DV_MPS) - at(v_mps - DV_MPS)) / (2.0 * DV_MPS);
-        }
-        let g = self.gears[gear];
-        let p = &self.params;
-        let dtorque_dn = if gear == NEUTRAL {
-            0.0
-        } else if pedal > 0.0 {
-            p.torque_map_a_nm_per_rpm + p.torque_map_b_nm_stroke_per_mg * pedal * self.fueling_max_slope(g.c4 * v_mps)
-        } else {
-            p.drag_torque_a_nm_per_rpm
-        };
-        g.c1 * (g.c3 * dtorque_dn * g.c4 - 2.0 * self.c2 * v_mps)
+        dispatch!(self, m => Powertrain::accel_derivative_per_s(m, v_mps, pedal, gear))
+    }
+}
+
+impl Powertrain for Vehicle {
+    #[inline]
+    fn forward_gears(&self) -> usize {
+        Vehicle::forward_gears(self)
+    }
+
+    #[inline]
+    fn engine_speed_rpm(&self, v_mps: f64, gear: usize) -> f64 {
+        Vehicle::engine_speed_rpm(self, v_mps, gear)
+    }
+
+    fn stall_speed_mps(&self) -> f64 {
+        Vehicle::stall_speed_mps(self)
+    }
+
+    #[inline]
+    fn traction_interruption_s(&self) -> f64 {
+        Vehicle::traction_interruption_s(self)
+    }
+
+    #[inline]
+    fn interrupted_energy_rate(&self, v_mps: f64) -> f64 {
+        dispatch!(self, m => Powertrain::interrupted_energy_rate(m, v_mps))
+    }
+
+    #[inline]
+    fn slope_torque_nm(&self, grade: f64) -> f64 {
+        Vehicle::slope_torque_nm(self, grade)
+    }
+
+    #[inline]
+    fn pedal_affine(&self, v_mps: f64, gear: usize, slope_torque_nm: f64) -> AffineAccel {
+        dispatch!(self, m => Powertrain::pedal_affine(m, v_mps, gear, slope_torque_nm))
+    }
+
+    #[inline]
+    fn brake_affine(&self, v_mps: f64, gear: usize, slope_torque_nm: f64) -> AffineAccel {
+        dispatch!(self, m => Powertrain::brake_affine(m, v_mps, gear, slope_torque_nm))
+    }
+
+    #[inline]
+    fn accel_on(&self, v_mps: f64, pedal: f64, brake: f64, gear: usize, slope_torque_nm: f64) -> f64 {
+        Vehicle::accel_on(self, v_mps, pedal, brake, gear, slope_torque_nm)
+    }
+
+    fn accel_derivative_per_s(&self, v_mps: f64, pedal: f64, gear: usize) -> f64 {
+        Vehicle::accel_derivative_per_s(self, v_mps, pedal, gear)
+    }
+
+    #[inline]
+    fn energy_rate(&self, v_mps: f64, u: Control) -> f64 {
+        dispatch!(self, m => Powertrain::energy_rate(m, v_mps, u))
+    }
+
+    #[inline]
+    fn friction_brake_force_n(&self, v_mps: f64, u: Control) -> f64 {
+        dispatch!(self, m => Powertrain::friction_brake_force_n(m, v_mps, u))
+    }
+
+    #[inline]
+    fn rate_form(&self) -> RateForm {
+        dispatch!(self, m => Powertrain::rate_form(m))
+    }
+
+    #[inline]
+    fn zero_pedal_is_cut(&self) -> bool {
+        dispatch!(self, m => Powertrain::zero_pedal_is_cut(m))
+    }
+
+    fn kinetic_energy_price(&self, gear: usize) -> Option<f64> {
+        dispatch!(self, m => Powertrain::kinetic_energy_price(m, gear))
+    }
+
+    fn store(&self) -> EnergyStore {
+        dispatch!(self, m => Powertrain::store(m))
     }
 }

@@ -5,6 +5,7 @@
 use std::sync::Arc;
 
 use truckmpc_core::levels::{brake_for_step, euler_step, pedal_for_step, stage_fuel_g};
+use truckmpc_core::powertrain::{Control as U, Powertrain, ThesisModel};
 use truckmpc_core::{Control, Plant, Road, Vehicle, VehicleParams, NEUTRAL};
 
 const V85: f64 = 85.0 / 3.6;
@@ -23,19 +24,26 @@ fn engine_speed_fueling_torque_and_fuel_by_hand() {
     // N = 30 i_t i_f v / (π r_w), δ_max = a N² + b N + c, T = a_e N + b_e P δ_max + c_e.
     let n = v.engine_speed_rpm(V85, 12);
     close(n, 1417.8562959100097);
-    close(v.fueling_max_mg(n), 218.80932462179118);
+    let thesis = ThesisModel::new(VehicleParams::default()).unwrap();
+    close(thesis.fueling_max_mg(n), 218.80932462179118);
     close(v.engine_torque_nm(n, 0.5, 12), 914.9377809913007);
     close(v.engine_torque_nm(n, 0.0, 12), -176.28135404008086); // fuel cut: drag torque (2.4)
     close(v.fuel_rate_gps(V85, 0.5, 12), 7.756004462970594); // (B.2): c5 N P δ_max
     close(v.fuel_rate_gps(V85, 0.0, 12), 0.0);
     close(v.fuel_rate_gps(V85, 0.7, NEUTRAL), 0.3132); // idle: c5 N_idle δ_idle
     close(v.engine_speed_rpm(V85, NEUTRAL), 600.0);
+    // The same through the interface, on the thesis's model alone.
+    close(Powertrain::engine_speed_rpm(&thesis, V85, 12), 1417.8562959100097);
+    close(thesis.energy_rate(V85, U { pedal: 0.5, brake: 0.3, gear: 12 }), 7.756004462970594);
+    close(thesis.energy_rate(V85, U { pedal: 0.7, brake: 0.0, gear: NEUTRAL }), 0.3132);
 }
 
 #[test]
 fn acceleration_matches_the_uncompacted_driveline_model() {
     // Section 2.4 with c_r cos α + sin α, written out, at P = 0.5, B = 0.1, 2 % uphill.
     close(truck().accel_mps2(V85, 0.5, 0.1, 12, 0.02), -0.6572376267327567);
+    let thesis = ThesisModel::new(VehicleParams::default()).unwrap();
+    close(thesis.accel_on(V85, 0.5, 0.1, 12, thesis.slope_torque_nm(0.02)), -0.6572376267327567);
 }
 
 #[test]

@@ -19,6 +19,7 @@
 //! horizon or of a run.
 
 use crate::levels::{pedal_accel, stationary};
+use crate::powertrain::{Powertrain, RateForm};
 use crate::vehicle::{Vehicle, NEUTRAL};
 
 /// Speed step of the central difference for F'(v) [m/s].
@@ -50,7 +51,10 @@ pub fn cruise_gear(vehicle: &Vehicle, v_mps: f64, n_min_rpm: f64, n_max_rpm: f64
 /// β [g/s] for which steady `v_mps` in `gear` is the cheapest steady speed on a flat road under
 /// fuel + β·time: v²·F'(v); NaN where the gear cannot hold the speeds around `v_mps`.
 pub fn steady_beta_g_per_s(vehicle: &Vehicle, v_mps: f64, gear: usize) -> f64 {
-    let dv = if vehicle.map_model().is_some() { MAP_DV_MPS } else { DV_MPS };
+    let dv = match vehicle.rate_form() {
+        RateForm::ProportionalToPedal => DV_MPS,
+        RateForm::Map => MAP_DV_MPS,
+    };
     let slope =
         (steady_fuel_g_per_m(vehicle, v_mps + dv, gear) - steady_fuel_g_per_m(vehicle, v_mps - dv, gear)) / (2.0 * dv);
     let beta = v_mps * v_mps * slope;
@@ -62,26 +66,25 @@ pub fn steady_beta_g_per_s(vehicle: &Vehicle, v_mps: f64, gear: usize) -> f64 {
 }
 
 /// Fuel [g] per unit of ½v² [m²/s²] the engine adds in `gear` at `v_mps`: kinetic energy priced
-/// in fuel. For the thesis's engine, torque and fuel are both affine in fueling at a fixed engine
-/// speed, so the price is c5·c4 / (c1·c3·b_e) whatever the speed and load. For a map-based truck it
-/// is the marginal fuel of the pedal over its marginal acceleration, (∂ṁ/∂P) / (v·∂a/∂P), where the
-/// truck holds `v_mps` on a flat road (a central difference of the map, whose fuel is piecewise
-/// linear); NaN where it cannot hold that speed.
+/// in fuel. Where the powertrain has a closed form (the thesis's engine, whose torque and fuel are
+/// both affine in fueling at a fixed engine speed: c5·c4 / (c1·c3·b_e) whatever the speed and
+/// load), that; otherwise the marginal fuel of the pedal over its marginal acceleration,
+/// (∂ṁ/∂P) / (v·∂a/∂P), where the truck holds `v_mps` on a flat road (a central difference, a
+/// map's fuel being piecewise linear); NaN where it cannot hold that speed.
 pub fn kinetic_fuel_g(vehicle: &Vehicle, v_mps: f64, gear: usize) -> f64 {
     debug_assert!(gear != NEUTRAL);
-    if vehicle.map_model().is_some() {
-        const DP: f64 = 0.02;
-        let point = stationary(vehicle, v_mps, 0.0, gear);
-        let gain = pedal_accel(vehicle, v_mps, gear, 0.0).gain;
-        if !point.feasible || !(gain > 0.0) {
-            return f64::NAN;
-        }
-        let (lo, hi) = ((point.pedal - DP).max(1e-9), (point.pedal + DP).min(1.0));
-        let fuel = |pedal: f64| vehicle.fuel_rate_gps(v_mps, pedal, gear);
-        return (fuel(hi) - fuel(lo)) / (hi - lo) / (v_mps * gain);
+    if let Some(price) = vehicle.kinetic_energy_price(gear) {
+        return price;
     }
-    let g = vehicle.gear(gear);
-    vehicle.c5() * g.c4 / (g.c1 * g.c3 * vehicle.params().torque_map_b_nm_stroke_per_mg)
+    const DP: f64 = 0.02;
+    let point = stationary(vehicle, v_mps, 0.0, gear);
+    let gain = pedal_accel(vehicle, v_mps, gear, 0.0).gain;
+    if !point.feasible || !(gain > 0.0) {
+        return f64::NAN;
+    }
+    let (lo, hi) = ((point.pedal - DP).max(1e-9), (point.pedal + DP).min(1.0));
+    let fuel = |pedal: f64| vehicle.fuel_rate_gps(v_mps, pedal, gear);
+    (fuel(hi) - fuel(lo)) / (hi - lo) / (v_mps * gain)
 }
 
 #[cfg(test)]

@@ -25,6 +25,7 @@ use self::trapezoid::{forward_row_trapezoid, map_stage_fuel_g, pair_trapezoid, t
 use super::params::{DpSettings, StageModel};
 use super::stage;
 use crate::levels::{brake_accel_on, pedal_accel_on, stage_fuel_g, AffineAccel};
+use crate::powertrain::{Powertrain, RateForm};
 use crate::vehicle::Vehicle;
 
 /// Speed of a grid index: v = origin + index·δ [m/s]. A moving grid has its origin at the stage's
@@ -149,7 +150,7 @@ struct EndMaps<'a> {
 fn maps<'a>(vehicle: &'a Vehicle, p: &DpSettings, v_i: f64, gear: usize, slope_torque: f64) -> RowMaps<'a> {
     let trapezoid = p.stage_model == StageModel::Trapezoid;
     let pedal = pedal_accel_on(vehicle, v_i, gear, slope_torque);
-    let map_fuel = vehicle.map_model().map(|_| (vehicle, gear));
+    let map_fuel = (vehicle.rate_form() == RateForm::Map).then_some((vehicle, gear));
     RowMaps {
         pedal,
         brake: (!trapezoid).then(|| brake_accel_on(vehicle, v_i, gear, slope_torque)),

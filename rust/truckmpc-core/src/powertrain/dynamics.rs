@@ -1,6 +1,6 @@
 //! A map-based truck in the form the plant and the controllers drive it: acceleration and fuel rate
 //! over speed, pedal, brake, gear and slope, with the same units and conventions as the thesis's
-//! model ([`crate::vehicle`]).
+//! model ([`super::thesis`]).
 //!
 //! **The pedal.** At a given engine speed the pedal P ∈ [0, 1] sets the torque at the wheels
 //! between what the engine gives at fuel cut (its drag torque, less the auxiliaries, through the
@@ -15,6 +15,7 @@
 //!
 //! **Slope.** The road's grade Δh/ΔL is turned into the angle α = arctan(grade), as VECTO does.
 
+use super::interface::{AffineAccel, Control, EnergyStore, Powertrain, RateForm, NEUTRAL};
 use super::{Curve, FuelGrid, MapTruck, G_MPS2, RPM_PER_RAD_S};
 
 /// Engine speed step of the resampled torque curves [rpm].
@@ -249,6 +250,90 @@ impl MapModel {
     /// Fuel rate [g/h] from the resampled map at `n_rpm` and `torque_nm` (no cut at the drag curve).
     pub fn grid_fuel_g_per_h(&self, n_rpm: f64, torque_nm: f64) -> f64 {
         self.grid.at(n_rpm, torque_nm)
+    }
+}
+
+impl Powertrain for MapModel {
+    fn forward_gears(&self) -> usize {
+        self.rpm_per_mps.len() - 1
+    }
+
+    #[inline]
+    fn engine_speed_rpm(&self, v_mps: f64, gear: usize) -> f64 {
+        if gear == NEUTRAL {
+            self.truck.engine().idle_rpm()
+        } else {
+            self.rpm_per_mps[gear] * v_mps
+        }
+    }
+
+    /// The speed at which the lowest gear turns the engine at idle (no clutch slip is modelled).
+    fn stall_speed_mps(&self) -> f64 {
+        self.truck.engine().idle_rpm() / self.rpm_per_mps[1]
+    }
+
+    #[inline]
+    fn traction_interruption_s(&self) -> f64 {
+        self.traction_interruption_s
+    }
+
+    /// Zero: the engine is at fuel cut while the gearbox shifts.
+    #[inline]
+    fn interrupted_energy_rate(&self, _v_mps: f64) -> f64 {
+        0.0
+    }
+
+    #[inline]
+    fn slope_torque_nm(&self, grade: f64) -> f64 {
+        MapModel::slope_torque_nm(self, grade)
+    }
+
+    #[inline]
+    fn pedal_affine(&self, v_mps: f64, gear: usize, slope_torque_nm: f64) -> AffineAccel {
+        let (accel_at_zero, gain) = MapModel::pedal_affine(self, v_mps, gear, slope_torque_nm);
+        AffineAccel { accel_at_zero, gain }
+    }
+
+    #[inline]
+    fn brake_affine(&self, v_mps: f64, gear: usize, slope_torque_nm: f64) -> AffineAccel {
+        let (accel_at_zero, gain) = MapModel::brake_affine(self, v_mps, gear, slope_torque_nm);
+        AffineAccel { accel_at_zero, gain }
+    }
+
+    #[inline]
+    fn accel_on(&self, v_mps: f64, pedal: f64, brake: f64, gear: usize, slope_torque_nm: f64) -> f64 {
+        MapModel::accel_on(self, v_mps, pedal, brake, gear, slope_torque_nm)
+    }
+
+    /// A central difference over ±0.1 mm/s (the wheel-torque tables are piecewise linear).
+    fn accel_derivative_per_s(&self, v_mps: f64, pedal: f64, gear: usize) -> f64 {
+        const DV_MPS: f64 = 1e-4;
+        let at = |v: f64| MapModel::accel_on(self, v, pedal, 0.0, gear, 0.0);
+        (at(v_mps + DV_MPS) - at(v_mps - DV_MPS)) / (2.0 * DV_MPS)
+    }
+
+    /// Fuel [g/s]; the brakes take nothing back.
+    #[inline]
+    fn energy_rate(&self, v_mps: f64, u: Control) -> f64 {
+        self.fuel_rate_gps(v_mps, u.pedal, u.gear)
+    }
+
+    #[inline]
+    fn friction_brake_force_n(&self, _v_mps: f64, u: Control) -> f64 {
+        self.brake_torque_max_nm * u.brake / self.truck.driveline().wheel_radius_m()
+    }
+
+    fn rate_form(&self) -> RateForm {
+        RateForm::Map
+    }
+
+    /// At zero pedal the engine gives its drag, as at fuel cut.
+    fn zero_pedal_is_cut(&self) -> bool {
+        true
+    }
+
+    fn store(&self) -> EnergyStore {
+        EnergyStore::FuelTank
     }
 }
 

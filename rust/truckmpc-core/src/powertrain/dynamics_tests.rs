@@ -31,6 +31,15 @@ fn holding_a_speed_on_a_grade_takes_the_trucks_own_operating_point() {
         // The map is a plane, which the resampled grid reproduces exactly.
         let fuel_g_per_h = v.fuel_rate_gps(speed, point.pedal, gear) * 3600.0;
         assert!((fuel_g_per_h - op.fuel_g_per_h).abs() < 1e-6 * op.fuel_g_per_h, "{fuel_g_per_h} vs {op:?}");
+        // The model alone, through the interface: the same operating point, all braking by friction.
+        let model = MapModel::new(truck.clone(), 1.0e5, 0.0);
+        let u = Control { pedal: point.pedal, brake: 0.0, gear };
+        let rate_g_per_h = Powertrain::energy_rate(&model, speed, u) * 3600.0;
+        assert!((rate_g_per_h - op.fuel_g_per_h).abs() < 1e-6 * op.fuel_g_per_h, "{rate_g_per_h} vs {op:?}");
+        let held = Powertrain::accel_on(&model, speed, point.pedal, 0.0, gear, model.slope_torque_nm(grade));
+        assert!(held.abs() < 1e-9, "{held}");
+        let braking = Control { brake: 0.5, ..u };
+        assert_eq!(model.friction_brake_force_n(speed, braking), 0.5e5 / truck.driveline().wheel_radius_m());
     }
 }
 
@@ -62,7 +71,7 @@ fn kinetic_energy_costs_the_maps_marginal_fuel_through_the_driveline() {
     let v = vehicle(0.0);
     let t = truck();
     for (speed, gear) in [(22.0, 3), (12.0, 2)] {
-        let c1 = v.map_model().unwrap().c1(gear);
+        let c1 = v.gear(gear).c1;
         let per_wheel_nm = 30.0 / 3600.0 / (t.driveline().ratio(gear) * t.driveline().efficiency());
         let expected = per_wheel_nm / (c1 * speed);
         let got = kinetic_fuel_g(&v, speed, gear);

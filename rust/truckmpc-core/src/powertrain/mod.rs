@@ -1,10 +1,12 @@
-//! A truck described by its component data, as VECTO (the EU's certification tool for heavy trucks)
-//! describes it: an engine with a fuel map and full-load and drag curves, a gearbox and axle with
-//! ratios and efficiencies, tyres, air drag, rolling resistance, mass and auxiliary power.
+//! The trucks: the interface every kind of truck implements for the plant, the DP and the
+//! controllers ([`interface`]), the thesis's model ([`thesis`]), whose torque and fuel are affine
+//! in fueling, and a truck described by its component data, as VECTO (the EU's certification tool
+//! for heavy trucks) describes it: an engine with a fuel map and full-load and drag curves, a
+//! gearbox and axle with ratios and efficiencies, tyres, air drag, rolling resistance, mass and
+//! auxiliary power, whose fuel rate is whatever the engine's map says at its speed and torque.
 //!
-//! This sits beside the thesis's model ([`crate::vehicle`]), whose torque and fuel are affine in
-//! fueling; here the fuel rate is whatever the engine's map says at its speed and torque.
-//!
+//! - [`interface`]: the [`Powertrain`] trait, its control and its energy store;
+//! - [`thesis`]: the thesis's model (chapter 2, appendix B.1);
 //! - [`curve`]: a torque curve over engine speed (full load, drag), linear between its points;
 //! - [`delaunay`]: a Delaunay triangulation built the way VECTO builds its maps;
 //! - [`fuel_map`]: the fuel rate over engine speed and torque, linear on that triangulation;
@@ -22,7 +24,9 @@ pub mod dynamics;
 pub mod engine;
 pub mod fuel_grid;
 pub mod fuel_map;
+pub mod interface;
 pub mod loss_map;
+pub mod thesis;
 pub mod truck;
 
 #[cfg(test)]
@@ -36,7 +40,9 @@ pub use dynamics::MapModel;
 pub use engine::Engine;
 pub use fuel_grid::FuelGrid;
 pub use fuel_map::FuelMap;
+pub use interface::{AffineAccel, Control, EnergyStore, Powertrain, RateForm, NEUTRAL};
 pub use loss_map::LossMap;
+pub use thesis::{GearConstants, ThesisModel};
 pub use truck::{Body, MapTruck, OperatingPoint, RoadLoads, G_MPS2};
 
 /// Engine speed [rpm] per angular speed [rad/s].

@@ -8,6 +8,7 @@ use super::{change_cost, clamp_span, maps, trim, EndMaps, GridIndex, Inputs, Row
 use crate::dp::params::{DpSettings, GridAnchor, StageModel};
 use crate::dp::stage::{self, Branch};
 use crate::levels::{brake_accel_on, pedal_accel_on, AffineAccel};
+use crate::powertrain::{Powertrain, RateForm};
 use crate::vehicle::Vehicle;
 
 /// What a trapezoid pair evaluates at its end speed in the row's gear on the stage's slope: the
@@ -23,7 +24,7 @@ impl AtEnd {
     /// The values at end speed `v_j` [m/s] for the rows of `end` (stages of `h_m`).
     #[inline]
     pub(super) fn at(end: &EndMaps, v_j: f64, h_m: f64) -> Self {
-        let linear_fuel = end.vehicle.map_model().is_none();
+        let linear_fuel = end.vehicle.rate_form() == RateForm::ProportionalToPedal;
         AtEnd {
             accel: pedal_accel_on(end.vehicle, v_j, end.gear, end.slope_torque),
             full_half_fuel_g: match linear_fuel {

@@ -12,6 +12,7 @@ use crate::dp::params::{DpSettings, StageModel};
 use crate::dp::rows::forward_row;
 use crate::dp::simd::{self, LaneMins, LaneOut};
 use crate::dp::stage::Branch;
+use crate::powertrain::Powertrain;
 use crate::vehicle::{Vehicle, NEUTRAL};
 
 impl Solver {
@@ -44,7 +45,7 @@ impl Solver {
         // A row's band ends where the fuel-cut and full-pedal arcs end, when those are its inputs:
         // full pedal on trapezoid stages, and fuel cut for a map truck, whose engine at fuel cut
         // gives the same wheel torque as its map at zero pedal.
-        let reuse = [p.fuel_cut_arcs && vehicle.map_model().is_some(), p.stage_model == StageModel::Trapezoid];
+        let reuse = [p.fuel_cut_arcs && vehicle.zero_pedal_is_cut(), p.stage_model == StageModel::Trapezoid];
         let mut transitions = 0;
         for &g in active_next {
             let (lo, hi) = self.gear_ranges[(k + 1) * gears + g];
