@@ -2,6 +2,7 @@
 //!
 //! - [`params`]: every parameter of a run, declared once (name with unit, type, default, range, doc);
 //! - [`vehicle`]: the built-in trucks behind one type, dispatched statically;
+//! - [`figures`]: a model's answers as named figures, for the tools above the core;
 //! - [`levels`]: pedal and brake levels joining two speeds (B.5, B.7) and stationary points (B.3);
 //! - [`road`]: a road profile with piecewise-constant slope (and target speeds, if it has them);
 //! - [`band`]: the speed band every cruise controller works to along a road;
@@ -20,6 +21,7 @@ pub mod band;
 pub mod control;
 pub mod dp;
 pub mod error;
+pub mod figures;
 pub mod levels;
 pub mod params;
 pub mod plant;

@@ -32,8 +32,3 @@ pub fn to_py(err: CoreError) -> PyErr {
         }
     })
 }
-
-/// A `ValueError` for a bad argument of a binding call (not a parameter).
-pub fn bad_argument(name: &str, expected: &str, got: impl std::fmt::Display) -> PyErr {
-    PyValueError::new_err(format!("{name}: expected {expected}, got {got}"))
-}

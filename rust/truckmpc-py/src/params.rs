@@ -104,7 +104,7 @@ pub fn replaced_keys() -> Vec<(&'static str, &'static str)> {
 }
 
 /// User values of a Python mapping, as (key, value) pairs.
-fn pairs_of(values: &Bound<'_, PyDict>) -> PyResult<Vec<(String, Value)>> {
+pub fn pairs_of(values: &Bound<'_, PyDict>) -> PyResult<Vec<(String, Value)>> {
     values.iter().map(|(key, value)| Ok((key.extract::<String>()?, to_value(&value)?))).collect()
 }
 

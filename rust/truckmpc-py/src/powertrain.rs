@@ -6,10 +6,12 @@ use std::sync::Arc;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use truckmpc_core::powertrain::{Body, Driveline, Engine, MapTruck, RPM_PER_RAD_S};
+use truckmpc_core::figures::{self, check_gear};
+use truckmpc_core::powertrain::{Body, Driveline, Engine, MapTruck};
 use truckmpc_core::scenario::ComponentTruck;
 
-use crate::errors::{bad_argument, to_py};
+use crate::errors::to_py;
+use crate::params::dict_of;
 
 /// Rows of (speed, torque, value) points of a map or curve.
 type Rows = Vec<(f64, f64, f64)>;
@@ -192,20 +194,19 @@ impl PyMapTruck {
     /// Fuel rate [g/h] at `speed_rpm` and `torque_nm` (0 at or below the drag torque; the nearest
     /// boundary value outside the map).
     fn fuel_rate_g_per_h(&self, speed_rpm: f64, torque_nm: f64) -> PyResult<f64> {
-        finite(speed_rpm, torque_nm)?;
-        Ok(self.inner.truck().engine().fuel_rate_g_per_h(speed_rpm, torque_nm))
+        Ok(figures::fuel_rate(self.inner.truck(), speed_rpm, torque_nm).map_err(to_py)?.0)
     }
 
     /// Whether (`speed_rpm`, `torque_nm`) lies inside the fuel map's convex hull.
     fn in_fuel_map(&self, speed_rpm: f64, torque_nm: f64) -> PyResult<bool> {
-        finite(speed_rpm, torque_nm)?;
-        Ok(self.inner.truck().engine().fuel_map().interpolate(speed_rpm, torque_nm).is_some())
+        Ok(figures::fuel_rate(self.inner.truck(), speed_rpm, torque_nm).map_err(to_py)?.1)
     }
 
     /// Engine speed [rpm] at `v_mps` in `gear` (1..=gears).
     fn engine_speed_rpm(&self, v_mps: f64, gear: usize) -> PyResult<f64> {
-        self.check_gear(gear)?;
-        Ok(self.inner.truck().driveline().engine_speed_rpm(v_mps, gear))
+        let driveline = self.inner.truck().driveline();
+        check_gear(gear, 1, driveline.gears()).map_err(to_py)?;
+        Ok(driveline.engine_speed_rpm(v_mps, gear))
     }
 
     /// Road loads [W] at `v_mps`, `acc_mps2` and `slope_rad`: dict with `air_w`, `rolling_w`,
@@ -217,19 +218,7 @@ impl PyMapTruck {
         acc_mps2: f64,
         slope_rad: f64,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let l = self.inner.truck().road_loads(v_mps, acc_mps2, slope_rad);
-        let d = PyDict::new(py);
-        for (k, v) in [
-            ("air_w", l.air_w),
-            ("rolling_w", l.rolling_w),
-            ("slope_w", l.slope_w),
-            ("vehicle_inertia_w", l.vehicle_inertia_w),
-            ("wheels_inertia_w", l.wheels_inertia_w),
-            ("wheel_w", l.wheel_w()),
-        ] {
-            d.set_item(k, v)?;
-        }
-        Ok(d)
+        dict_of(py, &figures::road_loads(self.inner.truck(), v_mps, acc_mps2, slope_rad))
     }
 
     /// The engine's operating point at `v_mps` (> 0), `acc_mps2`, `slope_rad` in `gear`: dict with
@@ -244,39 +233,7 @@ impl PyMapTruck {
         slope_rad: f64,
         gear: usize,
     ) -> PyResult<Bound<'py, PyDict>> {
-        self.check_gear(gear)?;
-        let op = self.inner.truck().operating_point(v_mps, acc_mps2, slope_rad, gear).ok_or_else(|| {
-            bad_argument(
-                "v_mps, acc_mps2, slope_rad",
-                "a finite speed > 0 and finite values",
-                format!("{v_mps}, {acc_mps2}, {slope_rad}"),
-            )
-        })?;
-        let d = PyDict::new(py);
-        d.set_item("engine_speed_rpm", op.engine_speed_rpm)?;
-        d.set_item("engine_torque_nm", op.engine_torque_nm)?;
-        d.set_item("engine_power_w", op.engine_torque_nm * op.engine_speed_rpm / RPM_PER_RAD_S)?;
-        d.set_item("fuel_rate_g_per_h", op.fuel_g_per_h)?;
-        d.set_item("brake_power_w", op.brake_power_w)?;
-        d.set_item("feasible", op.feasible)?;
-        Ok(d)
-    }
-}
-
-fn finite(speed_rpm: f64, torque_nm: f64) -> PyResult<()> {
-    if speed_rpm.is_finite() && torque_nm.is_finite() {
-        Ok(())
-    } else {
-        Err(bad_argument("speed_rpm, torque_nm", "finite numbers", format!("{speed_rpm}, {torque_nm}")))
-    }
-}
-
-impl PyMapTruck {
-    fn check_gear(&self, gear: usize) -> PyResult<()> {
-        let n = self.inner.truck().driveline().gears();
-        if gear == 0 || gear > n {
-            return Err(bad_argument("gear", &format!("1..={n}"), gear));
-        }
-        Ok(())
+        let point = figures::operating_point(self.inner.truck(), v_mps, acc_mps2, slope_rad, gear).map_err(to_py)?;
+        dict_of(py, &point)
     }
 }

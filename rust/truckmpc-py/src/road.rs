@@ -4,8 +4,7 @@ use std::sync::Arc;
 
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
-use truckmpc_core::band::SpeedBand;
-use truckmpc_core::params::ParamSet;
+use truckmpc_core::figures;
 use truckmpc_core::{CruiseParams, Road};
 
 use crate::errors::to_py;
@@ -66,7 +65,6 @@ impl PyRoad {
     /// at each of `distance_m` [m] (in increasing order): the stretch's set speed (without the
     /// top falling ahead of a lower one), v_min and v_max.
     #[pyo3(signature = (distance_m, v_ref_kmh, v_dec_kmh, v_inc_kmh, target_offset_kmh, target_decel_mps2))]
-    #[allow(clippy::too_many_arguments)] // the cruise keys, one argument each
     fn speed_band<'py>(
         &self,
         py: Python<'py>,
@@ -78,17 +76,9 @@ impl PyRoad {
         target_decel_mps2: f64,
     ) -> PyResult<SpeedBandArrays<'py>> {
         let cruise = CruiseParams { v_ref_kmh, v_dec_kmh, v_inc_kmh, target_offset_kmh, target_decel_mps2 };
-        cruise.check_ranges().map_err(to_py)?;
-        let band = SpeedBand::new(&self.inner, &cruise);
-        let mut hint = 0;
-        let (mut set_kmh, mut v_min_kmh, mut v_max_kmh) = (Vec::new(), Vec::new(), Vec::new());
-        for &s_m in distance_m.as_array() {
-            set_kmh.push(band.set_speed_kmh(s_m, &mut hint));
-            let at = band.at(s_m, &mut hint);
-            v_min_kmh.push(at.v_min_kmh);
-            v_max_kmh.push(at.v_max_kmh);
-        }
-        Ok((set_kmh.into_pyarray(py), v_min_kmh.into_pyarray(py), v_max_kmh.into_pyarray(py)))
+        let distance_m = distance_m.as_array().to_vec();
+        let [set, low, high] = figures::speed_band(&self.inner, &cruise, &distance_m).map_err(to_py)?;
+        Ok((set.into_pyarray(py), low.into_pyarray(py), high.into_pyarray(py)))
     }
 }
 

@@ -1,6 +1,6 @@
 //! The truck: tables A.1 (vehicle and engine) and A.2 (gearbox) of the thesis, 40 t.
 
-use super::Range;
+use super::{ParamSet, Range, Value};
 use crate::declare_params;
 use crate::error::{CoreError, CoreResult};
 
@@ -65,6 +65,18 @@ declare_params! {
 }
 
 impl VehicleParams {
+    /// The thesis's 40 t truck with `values` (key, user value) set; an unknown key is an error
+    /// naming it.
+    pub fn from_values<'a>(values: impl IntoIterator<Item = (&'a str, &'a Value)>) -> CoreResult<Self> {
+        let mut params = VehicleParams::default();
+        for (key, value) in values {
+            if !params.set(key, value)? {
+                return Err(CoreError::invalid(key, "a vehicle parameter").got("an unknown key"));
+            }
+        }
+        Ok(params)
+    }
+
     /// Checks between keys: at least one gear, one efficiency per ratio, ratios strictly decreasing.
     pub fn check_gearbox(&self) -> CoreResult<()> {
         if self.gear_ratios.is_empty() {

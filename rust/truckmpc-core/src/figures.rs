@@ -1,0 +1,113 @@
+//! A model's answers as named figures, for the tools above the core (the binding hands them on as
+//! they are): the levels holding a speed and the engine's operating point there, a map-based
+//! truck's road loads and operating points, the speed band along a road. Each checks its arguments
+//! and names the one at fault.
+
+use crate::band::SpeedBand;
+use crate::error::{CoreError, CoreResult};
+use crate::levels;
+use crate::params::{CruiseParams, ParamSet, Value};
+use crate::powertrain::{MapTruck, RPM_PER_RAD_S};
+use crate::road::Road;
+use crate::vehicle::{Vehicle, NEUTRAL};
+
+/// Named figures, in the order a table shows them.
+pub type Figures = Vec<(&'static str, Value)>;
+
+/// Refuse a gear outside `lowest..=forward_gears`, naming `gear`.
+pub fn check_gear(gear: usize, lowest: usize, forward_gears: usize) -> CoreResult<()> {
+    if gear < lowest || gear > forward_gears {
+        let what =
+            if lowest == NEUTRAL { format!("0 (neutral) to {forward_gears}") } else { format!("1..={forward_gears}") };
+        return Err(CoreError::invalid("gear", what).got(gear));
+    }
+    Ok(())
+}
+
+/// The levels holding `v_mps` (> 0) on grade `slope` in `gear` (tables B.1/B.2): `pedal`, `brake`,
+/// `feasible`, `eigenvalue_per_m` [1/m], and the engine there: `engine_speed_rpm`,
+/// `engine_torque_nm`, `fuel_rate_g_per_h`.
+pub fn stationary(vehicle: &Vehicle, v_mps: f64, slope: f64, gear: usize) -> CoreResult<Figures> {
+    check_gear(gear, NEUTRAL, vehicle.forward_gears())?;
+    if !(v_mps > 0.0) {
+        return Err(CoreError::invalid("speed", "> 0").got(v_mps));
+    }
+    let s = levels::stationary(vehicle, v_mps, slope, gear);
+    let n_rpm = vehicle.engine_speed_rpm(v_mps, gear);
+    Ok(vec![
+        ("pedal", Value::Float(s.pedal)),
+        ("brake", Value::Float(s.brake)),
+        ("feasible", Value::Bool(s.feasible)),
+        ("eigenvalue_per_m", Value::Float(s.eigenvalue_per_m)),
+        ("engine_speed_rpm", Value::Float(n_rpm)),
+        ("engine_torque_nm", Value::Float(vehicle.engine_torque_nm(n_rpm, s.pedal, gear))),
+        ("fuel_rate_g_per_h", Value::Float(vehicle.fuel_rate_gps(v_mps, s.pedal, gear) * 3600.0)),
+    ])
+}
+
+/// Road loads [W] of `truck` at `v_mps`, `acc_mps2`, `slope_rad`: `air_w`, `rolling_w`, `slope_w`,
+/// `vehicle_inertia_w`, `wheels_inertia_w` and `wheel_w`, their sum.
+pub fn road_loads(truck: &MapTruck, v_mps: f64, acc_mps2: f64, slope_rad: f64) -> Figures {
+    let l = truck.road_loads(v_mps, acc_mps2, slope_rad);
+    let named = [
+        ("air_w", l.air_w),
+        ("rolling_w", l.rolling_w),
+        ("slope_w", l.slope_w),
+        ("vehicle_inertia_w", l.vehicle_inertia_w),
+        ("wheels_inertia_w", l.wheels_inertia_w),
+        ("wheel_w", l.wheel_w()),
+    ];
+    named.into_iter().map(|(k, x)| (k, Value::Float(x))).collect()
+}
+
+/// The engine's operating point of `truck` at `v_mps` (> 0), `acc_mps2`, `slope_rad` in `gear`:
+/// `engine_speed_rpm`, `engine_torque_nm`, `engine_power_w`, `fuel_rate_g_per_h` (NaN beyond the
+/// full-load curve's speeds), `brake_power_w` (at the wheels, beyond the engine's drag), `feasible`.
+pub fn operating_point(
+    truck: &MapTruck,
+    v_mps: f64,
+    acc_mps2: f64,
+    slope_rad: f64,
+    gear: usize,
+) -> CoreResult<Figures> {
+    check_gear(gear, 1, truck.driveline().gears())?;
+    let op = truck.operating_point(v_mps, acc_mps2, slope_rad, gear).ok_or_else(|| {
+        CoreError::invalid("v_mps, acc_mps2, slope_rad", "a finite speed > 0 and finite values")
+            .got(format!("{v_mps}, {acc_mps2}, {slope_rad}"))
+    })?;
+    Ok(vec![
+        ("engine_speed_rpm", Value::Float(op.engine_speed_rpm)),
+        ("engine_torque_nm", Value::Float(op.engine_torque_nm)),
+        ("engine_power_w", Value::Float(op.engine_torque_nm * op.engine_speed_rpm / RPM_PER_RAD_S)),
+        ("fuel_rate_g_per_h", Value::Float(op.fuel_g_per_h)),
+        ("brake_power_w", Value::Float(op.brake_power_w)),
+        ("feasible", Value::Bool(op.feasible)),
+    ])
+}
+
+/// The fuel rate [g/h] of `truck`'s engine at `speed_rpm` and `torque_nm` (finite), and whether
+/// the point lies inside the fuel map's convex hull.
+pub fn fuel_rate(truck: &MapTruck, speed_rpm: f64, torque_nm: f64) -> CoreResult<(f64, bool)> {
+    if !(speed_rpm.is_finite() && torque_nm.is_finite()) {
+        let got = format!("{speed_rpm}, {torque_nm}");
+        return Err(CoreError::invalid("speed_rpm, torque_nm", "finite numbers").got(got));
+    }
+    let engine = truck.engine();
+    let inside = engine.fuel_map().interpolate(speed_rpm, torque_nm).is_some();
+    Ok((engine.fuel_rate_g_per_h(speed_rpm, torque_nm), inside))
+}
+
+/// The speed band of `cruise` along `road` at each of `distance_m` [m] (increasing) [km/h]: the
+/// stretch's set speed, v_min and v_max.
+pub fn speed_band(road: &Road, cruise: &CruiseParams, distance_m: &[f64]) -> CoreResult<[Vec<f64>; 3]> {
+    cruise.check_ranges()?;
+    let band = SpeedBand::new(road, cruise);
+    let (mut hint, mut out) = (0, [Vec::new(), Vec::new(), Vec::new()]);
+    for &s_m in distance_m {
+        out[0].push(band.set_speed_kmh(s_m, &mut hint));
+        let at = band.at(s_m, &mut hint);
+        out[1].push(at.v_min_kmh);
+        out[2].push(at.v_max_kmh);
+    }
+    Ok(out)
+}
