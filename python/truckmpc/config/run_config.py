@@ -152,8 +152,8 @@ class RunConfig:
     def as_dict(self) -> dict[str, Any]:
         """Plain data (YAML/JSON-ready): every section's values, and the sources."""
         data: dict[str, Any] = {}
-        for name in dict.fromkeys(spec.section for spec in SPEC_BY_KEY.values()):
-            data[name] = {k: list(v) if isinstance(v, tuple) else v for k, v in self.section(name).items()}
+        for key, value in self.settings.values().items():
+            data.setdefault(SPEC_BY_KEY[key].section, {})[key] = value
         data["sources"] = self.sources()
         return data
 
