@@ -63,7 +63,7 @@ fn dp_solve(c: &mut Criterion) {
         let p = params(stage_m, delta_kmh, horizon_m, GridAnchor::Moving);
         let x0 = start(&p);
         let mut slopes = Vec::new();
-        stage_slopes(&road, 0.0, p.stage_m, p.stages(), &mut slopes);
+        stage_slopes(&road, 0.0, p.mpc.stage_m, p.stages(), &mut slopes);
         let probe = Solver::new(p.clone()).solve(&vehicle, x0, &slopes);
         assert!(probe.feasible, "{name}: the benchmark solve must be feasible");
 
@@ -85,7 +85,8 @@ fn dp_solve(c: &mut Criterion) {
             let band = SpeedBand::uniform(&p.cruise());
             let total: usize = (0..ROLLING_STAGES)
                 .map(|k| {
-                    solve_at(&mut solver, &vehicle, (&road, &band), k as f64 * p.stage_m, x0, &mut scratch).transitions
+                    solve_at(&mut solver, &vehicle, (&road, &band), k as f64 * p.mpc.stage_m, x0, &mut scratch)
+                        .transitions
                 })
                 .sum();
             group.throughput(Throughput::Elements((total / ROLLING_STAGES) as u64));
@@ -93,7 +94,7 @@ fn dp_solve(c: &mut Criterion) {
             let mut stage = 0usize;
             group.bench_function(label, |b| {
                 b.iter(|| {
-                    let s_m = (stage % ROLLING_STAGES) as f64 * p.stage_m;
+                    let s_m = (stage % ROLLING_STAGES) as f64 * p.mpc.stage_m;
                     stage += 1;
                     black_box(solve_at(&mut solver, &vehicle, (&road, &band), s_m, x0, &mut scratch))
                 })

@@ -23,14 +23,10 @@ fn main() {
     let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
     let grid = if args.get(2).map(|s| s.as_str()) == Some("fixed") { GridAnchor::Fixed } else { GridAnchor::Moving };
     let num = |i: usize, dflt: f64| args.get(i).map(|s| s.parse().unwrap()).unwrap_or(dflt);
-    let p = DpSettings {
-        grid,
-        delta_kmh: num(3, 0.1),
-        horizon_m: num(4, 3000.0),
-        stage_m: num(5, 25.0),
-        q_speed_below: 5.0,
-        ..DpSettings::thesis()
-    };
+    let mut p = DpSettings::thesis().with_mpc(|m| {
+        (m.grid, m.delta_kmh, m.horizon_m, m.stage_m) = (grid, num(3, 0.1), num(4, 3000.0), num(5, 25.0));
+    });
+    p.q_speed_below = 5.0;
     let mut solver = Solver::new(p.clone());
     let mut scratch = horizon::HorizonScratch::default();
     let band = SpeedBand::uniform(&p.cruise());
@@ -42,7 +38,7 @@ fn main() {
     let t0 = Instant::now();
     let mut s = road.start_m();
     let end_m = road.end_m().min(road.start_m() + num(6, f64::INFINITY));
-    while s + p.stage_m <= end_m {
+    while s + p.mpc.stage_m <= end_m {
         let sol = horizon::solve_at(
             &mut solver,
             &vehicle,
@@ -66,7 +62,7 @@ fn main() {
         } else {
             infeasible += 1;
         }
-        s += p.stage_m;
+        s += p.mpc.stage_m;
     }
     let secs = t0.elapsed().as_secs_f64();
     println!("{grid:?}: {solves} solves, {:.3} ms/solve, {:.0} transitions/solve, {:.2} ns/transition, {infeasible} infeasible, rows computed {}, {:.0} states/solve, trace digest {digest:016x}",

@@ -48,17 +48,17 @@ impl Problem<'_> {
             return g == self.start.gear;
         }
         if g == NEUTRAL {
-            return self.p.allow_neutral;
+            return self.p.mpc.allow_neutral;
         }
-        matches!(usable_gears(self.vehicle, v, self.p.n_min_rpm, self.p.n_max_rpm), Some((lo, hi)) if lo <= g && g <= hi)
+        matches!(usable_gears(self.vehicle, v, self.p.mpc.n_min_rpm, self.p.mpc.n_max_rpm), Some((lo, hi)) if lo <= g && g <= hi)
     }
 
     /// Cost of one transition (without the speed-deviation term), or None if inadmissible.
     fn transition(&self, k: usize, v_i: f64, g_i: usize, j: usize, g_j: usize) -> Option<f64> {
         let p = self.p;
-        let (h, delta) = (p.stage_m, p.delta_mps());
+        let (h, delta) = (p.mpc.stage_m, p.delta_mps());
         let v_j = self.grids[k + 1].speed(j, delta);
-        let shift = if g_i != g_j { p.q_gear_shift } else { 0.0 };
+        let shift = if g_i != g_j { p.mpc.q_gear_shift } else { 0.0 };
         if g_j == NEUTRAL {
             let v_end = brake_accel(self.vehicle, v_i, NEUTRAL, self.slopes[k]).step(v_i, h, 0.0);
             let nearest = ((v_end - self.grids[k + 1].first_mps) / delta).round();
@@ -66,16 +66,16 @@ impl Problem<'_> {
                 return None;
             }
             let fuel = stage_fuel_g(self.vehicle, v_i, 0.0, NEUTRAL, h);
-            return Some(p.q_fuel * fuel + p.q_speed_change * (v_i - v_end).abs() + shift);
+            return Some(p.mpc.q_fuel * fuel + p.mpc.q_speed_change * (v_i - v_end).abs() + shift);
         }
         let by_pedal_or_brake = self.pedal_or_brake(k, v_i, v_j, g_j).map(|cost| cost + shift);
-        if !p.fuel_cut_arcs {
+        if !p.mpc.fuel_cut_arcs {
             return by_pedal_or_brake;
         }
         // Fuel cut in gear g_j, ending where the physics puts it, rounded like a neutral arc.
         let v_end = brake_accel(self.vehicle, v_i, g_j, self.slopes[k]).step(v_i, h, 0.0);
         let nearest = ((v_end - self.grids[k + 1].first_mps) / delta).round();
-        let by_arc = (nearest == j as f64).then(|| p.q_speed_change * (v_i - v_end).abs() + shift);
+        let by_arc = (nearest == j as f64).then(|| p.mpc.q_speed_change * (v_i - v_end).abs() + shift);
         match (by_pedal_or_brake, by_arc) {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
@@ -85,21 +85,21 @@ impl Problem<'_> {
     /// Cost of joining v_i to v_j in forward gear g_j by pedal or brake (no shift cost).
     fn pedal_or_brake(&self, k: usize, v_i: f64, v_j: f64, g_j: usize) -> Option<f64> {
         let p = self.p;
-        let (h, delta, v_max) = (p.stage_m, p.delta_mps(), p.v_max_mps());
+        let (h, delta, v_max) = (p.mpc.stage_m, p.delta_mps(), p.v_max_mps());
         let pedal = pedal_for_step(self.vehicle, v_i, v_j, g_j, self.slopes[k], h);
         // Without a value, ε is the pedal that moves the stage's end speed by half a grid step.
-        let epsilon = p.epsilon.unwrap_or_else(|| {
+        let epsilon = p.mpc.epsilon.unwrap_or_else(|| {
             let at = |v_end: f64| pedal_for_step(self.vehicle, v_i, v_end, g_j, self.slopes[k], h);
             at(v_i + 0.5 * delta) - at(v_i)
         });
         if pedal >= -epsilon && pedal <= 1.0 + epsilon {
             let fuel = stage_fuel_g(self.vehicle, v_i, pedal.clamp(0.0, 1.0), g_j, h);
-            return Some(p.q_fuel * fuel + p.q_speed_change * (v_i - v_j).abs());
+            return Some(p.mpc.q_fuel * fuel + p.mpc.q_speed_change * (v_i - v_j).abs());
         }
         if pedal < -epsilon && (v_j - v_max).abs() < delta * BRAKE_WINDOW {
             let brake = brake_for_step(self.vehicle, v_i, v_j, g_j, self.slopes[k], h);
             if (0.0..=1.0).contains(&brake) {
-                return Some(p.q_brake * brake + p.q_speed_change * (v_i - v_j).abs());
+                return Some(p.q_brake * brake + p.mpc.q_speed_change * (v_i - v_j).abs());
             }
         }
         None
@@ -153,20 +153,14 @@ fn random_case(
     (epsilon, fuel_cut_arcs): (Option<f64>, bool),
 ) -> (DpSettings, InitialState, Vec<f64>) {
     let stages = 3 + (rng.next() * 4.0) as usize;
-    let p = DpSettings {
-        stage_m: 100.0,
-        horizon_m: 100.0 * stages as f64,
-        delta_kmh: 0.5,
-        k_lim,
-        neutral_rule: NeutralRule::Nearest,
-        grid: anchor,
-        epsilon,
-        fuel_cut_arcs,
-        ..DpSettings::thesis()
-    };
+    let mut p = DpSettings::thesis().with_mpc(|m| {
+        (m.stage_m, m.horizon_m, m.delta_kmh) = (100.0, 100.0 * stages as f64, 0.5);
+        (m.neutral_rule, m.grid, m.epsilon, m.fuel_cut_arcs) = (NeutralRule::Nearest, anchor, epsilon, fuel_cut_arcs);
+    });
+    p.k_lim = k_lim;
     let slopes: Vec<f64> = (0..stages).map(|_| rng.range(-0.04, 0.04)).collect();
     let v0 = rng.range(80.0, 90.0) / 3.6;
-    let (lo, hi) = usable_gears(vehicle, v0, p.n_min_rpm, p.n_max_rpm).unwrap();
+    let (lo, hi) = usable_gears(vehicle, v0, p.mpc.n_min_rpm, p.mpc.n_max_rpm).unwrap();
     let gear = if rng.next() < 0.2 { NEUTRAL } else { lo + ((hi - lo + 1) as f64 * rng.next()) as usize };
     let since = (rng.next() * (k_lim as f64 + 1.0)) as u32;
     (p, InitialState { v_mps: v0, gear, stages_since_shift: since }, slopes)

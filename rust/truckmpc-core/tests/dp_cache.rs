@@ -22,7 +22,7 @@ fn run(params: &DpSettings, caching: bool, road: &Road, vehicle: &Vehicle) -> Ve
     let (mut v, mut gear, mut shifts) = (85.0 / 3.6, 12usize, ShiftCounter::new(params.k_lim));
     let mut out = Vec::new();
     for stage in 0..400 {
-        let s = road.start_m() + stage as f64 * params.stage_m;
+        let s = road.start_m() + stage as f64 * params.mpc.stage_m;
         let start = InitialState { v_mps: v, gear, stages_since_shift: shifts.stages() };
         let sol = horizon::solve_at(&mut solver, vehicle, (road, &band), s, start, &mut scratch);
         out.push((
@@ -47,13 +47,9 @@ fn cached_and_uncached_solves_are_bit_identical() {
     let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
     let road = hilly_road();
     for rule in [NeutralRule::Nearest, NeutralRule::Interpolate, NeutralRule::Quadratic] {
-        let params = DpSettings {
-            grid: GridAnchor::Fixed,
-            neutral_rule: rule,
-            horizon_m: 1500.0,
-            delta_kmh: 0.2,
-            ..DpSettings::thesis()
-        };
+        let params = DpSettings::thesis().with_mpc(|m| {
+            (m.grid, m.neutral_rule, m.horizon_m, m.delta_kmh) = (GridAnchor::Fixed, rule, 1500.0, 0.2);
+        });
         let with = run(&params, true, &road, &vehicle);
         let without = run(&params, false, &road, &vehicle);
         let feasible = with.iter().filter(|s| s.0).count();

@@ -12,7 +12,8 @@ fn climb(stages: usize, climb_from: usize, grade: f64) -> Vec<f64> {
 }
 
 fn params(delta_kmh: f64) -> DpSettings {
-    DpSettings { grid: GridAnchor::Fixed, delta_kmh, horizon_m: 3000.0, stage_m: 25.0, ..DpSettings::thesis() }
+    DpSettings::thesis()
+        .with_mpc(|m| (m.grid, m.delta_kmh, m.horizon_m, m.stage_m) = (GridAnchor::Fixed, delta_kmh, 3000.0, 25.0))
 }
 
 #[test]
@@ -69,7 +70,7 @@ fn half_step_tolerance_keeps_the_grid_point_nearest_to_fuel_cut() {
     let mut below = 0;
     for epsilon in [None, Some(0.1)] {
         for delta_kmh in [0.1, 0.4] {
-            let p = DpSettings { epsilon, allow_neutral: false, ..params(delta_kmh) };
+            let p = params(delta_kmh).with_mpc(|m| (m.epsilon, m.allow_neutral) = (epsilon, false));
             let delta = p.delta_mps();
             for step in 0..40 {
                 let v0 = (82.0 + 0.137 * step as f64) / 3.6;
@@ -78,9 +79,10 @@ fn half_step_tolerance_keeps_the_grid_point_nearest_to_fuel_cut() {
                 let mut iv = Intervals::default();
                 intervals(&vehicle, &p, v0, &slopes, &vec![p.band(); slopes.len() + 1], &mut iv);
                 // Fuel cut in the gear with the most engine drag among those usable at v0.
-                let (lo, hi) = truckmpc_core::dp::space::usable_gears(&vehicle, v0, p.n_min_rpm, p.n_max_rpm).unwrap();
+                let (lo, hi) =
+                    truckmpc_core::dp::space::usable_gears(&vehicle, v0, p.mpc.n_min_rpm, p.mpc.n_max_rpm).unwrap();
                 let cut = (lo..=hi)
-                    .map(|g| brake_accel(&vehicle, v0, g, slope).step(v0, p.stage_m, 0.0))
+                    .map(|g| brake_accel(&vehicle, v0, g, slope).step(v0, p.mpc.stage_m, 0.0))
                     .fold(f64::INFINITY, f64::min);
                 let nearest = (cut / delta).round() * delta;
                 if epsilon.is_none() {
@@ -102,8 +104,8 @@ fn half_step_tolerance_keeps_the_grid_point_nearest_to_fuel_cut() {
 fn one_stage_solves_against_the_stored_values_follow_the_whole_road_optimum() {
     use truckmpc_core::dp::ValueTable;
     let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
-    for p in [DpSettings::default(), DpSettings { horizon_m: 3000.0, ..DpSettings::thesis() }] {
-        let p = DpSettings { horizon_m: 3000.0, ..p };
+    for p in [DpSettings::default(), DpSettings::thesis()] {
+        let p = p.with_mpc(|m| m.horizon_m = 3000.0);
         let slopes: Vec<f64> = (0..p.stages()).map(|k| 0.03 * ((k as f64) * 0.09).sin()).collect();
         let start = InitialState { v_mps: 84.3 / 3.6, gear: 12, stages_since_shift: p.k_lim };
         let mut solver = Solver::new(p.clone());

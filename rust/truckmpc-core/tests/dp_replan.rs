@@ -14,7 +14,7 @@ fn rolling(stages: usize) -> Vec<f64> {
 #[test]
 fn a_recording_horizon_solve_decides_as_the_plain_one() {
     let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
-    let p = DpSettings { horizon_m: 1500.0, ..DpSettings::default() };
+    let p = DpSettings::default().with_mpc(|m| m.horizon_m = 1500.0);
     let slopes = rolling(p.stages());
     let start = InitialState { v_mps: 83.7 / 3.6, gear: 12, stages_since_shift: p.k_lim };
     let plain = Solver::new(p.clone()).solve(&vehicle, start, &slopes);
@@ -30,7 +30,7 @@ fn a_recording_horizon_solve_decides_as_the_plain_one() {
 fn stages_decided_from_stored_values_match_fresh_solves_of_the_stages_left() {
     for mass_kg in [40_000.0, 20_000.0] {
         let vehicle = Vehicle::new(VehicleParams { mass_kg, ..VehicleParams::default() }).unwrap();
-        let p = DpSettings { horizon_m: 1000.0, ..DpSettings::default() };
+        let p = DpSettings::default().with_mpc(|m| m.horizon_m = 1000.0);
         let span = 20;
         let slopes = rolling(p.stages() + span - 1);
         let start = InitialState { v_mps: 86.1 / 3.6, gear: 12, stages_since_shift: p.k_lim };

@@ -146,7 +146,7 @@ impl RecedingController {
         if !self.whole_road {
             return;
         }
-        let h = self.solver.params().stage_m;
+        let h = self.solver.params().mpc.stage_m;
         let stages = (((road.end_m() - s0_m) / h) - 1e-9).ceil().max(1.0) as usize;
         let mut plan = Stored::starting(0, usize::MAX);
         horizon::stage_slopes(road, s0_m, h, stages, &mut plan.ahead.slopes);
@@ -174,7 +174,7 @@ impl RecedingController {
     /// time includes this, about one more drive's worth of one-stage solves.
     fn follow_plan(&mut self, road: &Road, s0_m: f64, start: InitialState, stages: usize) -> Option<(f64, f64)> {
         let kept = (self.stats, self.shifts);
-        let (model, h_m) = (self.solver.params().stage_model, self.solver.params().stage_m);
+        let (model, h_m) = (self.solver.params().mpc.stage_model, self.solver.params().mpc.stage_m);
         let (mut v_mps, mut gear) = (start.v_mps, start.gear);
         let mut held = self.holding(v_mps, gear);
         let (mut fuel_g, mut time_s, mut stopped) = (0.0, 0.0, false);
@@ -199,7 +199,7 @@ impl RecedingController {
     /// The one-stage solve at the stage starting at `s_m` against the stored cost-to-go (None
     /// when `s_m` is no stage boundary among the stages decided from it: a horizon solve then).
     fn solve_against_stored(&mut self, s_m: f64, start: InitialState) -> Option<crate::dp::Solution> {
-        let k = horizon::boundary_stage(self.origin_m, s_m, self.solver.params().stage_m)?;
+        let k = horizon::boundary_stage(self.origin_m, s_m, self.solver.params().mpc.stage_m)?;
         self.stored.as_ref()?.decide(&mut self.solver, &self.vehicle, k, start)
     }
 
@@ -208,7 +208,7 @@ impl RecedingController {
     fn solve_horizon(&mut self, road: &Road, s_m: f64, start: InitialState) -> crate::dp::Solution {
         let params = self.solver.params();
         let (span, stages) = (params.replan_stages(), params.stages());
-        let boundary = horizon::boundary_stage(self.origin_m, s_m, params.stage_m);
+        let boundary = horizon::boundary_stage(self.origin_m, s_m, params.mpc.stage_m);
         let (Some(k), false, true) = (boundary, self.whole_road, span > 1) else {
             let context = (road, &self.band);
             return horizon::solve_at(&mut self.solver, &self.vehicle, context, s_m, start, &mut self.scratch);
@@ -225,7 +225,7 @@ impl RecedingController {
     }
 
     fn rescues(&self) -> bool {
-        self.solver.params().on_infeasible == OnInfeasible::Rescue
+        self.solver.params().mpc.on_infeasible == OnInfeasible::Rescue
     }
 
     /// Solve the horizon from `v_mps` [m/s] in `gear` at `s_m` [m]; the first control if feasible.
@@ -294,7 +294,7 @@ impl RecedingController {
 
     /// Index of the stage containing `s_m`, counted from the road's start.
     fn stage_at(&self, s_m: f64) -> i64 {
-        ((s_m - self.origin_m) / self.solver.params().stage_m + 1e-9).floor() as i64
+        ((s_m - self.origin_m) / self.solver.params().mpc.stage_m + 1e-9).floor() as i64
     }
 
     /// Drive `u` until `boundary_m` and solve the stage after it from the speed predicted there
@@ -302,7 +302,7 @@ impl RecedingController {
     fn apply_and_plan(&mut self, road: &Road, state: &PlantState, u: Control, boundary_m: f64, h_m: f64) -> Decision {
         self.shifts.record(self.gear, u.gear);
         self.gear = u.gear;
-        let model = self.solver.params().stage_model;
+        let model = self.solver.params().mpc.stage_model;
         let v_next = horizon::predict_speed((&self.vehicle, model), road, state.s_m, state.v_mps, u, h_m);
         let chosen = if v_next > 0.0 { self.solve(road, boundary_m, v_next, u.gear) } else { None };
         self.rescue_next = chosen.is_none() && self.rescues();
@@ -323,7 +323,7 @@ impl RecedingController {
                 if !self.below_idle(u, state.v_mps) {
                     self.stats.fallback_rescue_m += state.s_m - self.rescue_from_m;
                     self.rescuing = None;
-                    let boundary_m = self.origin_m + (stage + 1) as f64 * self.solver.params().stage_m;
+                    let boundary_m = self.origin_m + (stage + 1) as f64 * self.solver.params().mpc.stage_m;
                     return self.apply_and_plan(road, state, u, boundary_m, boundary_m - state.s_m);
                 }
             }
@@ -391,7 +391,7 @@ impl Controller for RecedingController {
             return self.enter_rescue(road, state);
         }
         let u = self.pending;
-        let stage_m = self.solver.params().stage_m;
+        let stage_m = self.solver.params().mpc.stage_m;
         let stage = ((state.s_m - self.origin_m) / stage_m).round_ties_even();
         let boundary_m = self.origin_m + (stage + 1.0) * stage_m;
         self.apply_and_plan(road, state, u, boundary_m, stage_m)

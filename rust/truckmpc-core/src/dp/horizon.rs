@@ -118,7 +118,7 @@ fn ahead(
     stages: usize,
     scratch: &mut HorizonScratch,
 ) -> Option<u64> {
-    let stage_m = solver.params().stage_m;
+    let stage_m = solver.params().mpc.stage_m;
     stage_slopes(road, s_m, stage_m, stages, &mut scratch.slopes);
     let first_stage = boundary_stage(road.start_m(), s_m, stage_m).map(|k| k as u64);
     scratch.bands.clear();

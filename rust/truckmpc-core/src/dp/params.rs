@@ -1,7 +1,7 @@
-//! The settings the DP works with: the look-ahead controller's declared parameters
-//! ([`MpcParams`]) with their defaults resolved, and the cruise band ([`CruiseParams`]). Units and
-//! meanings are those of the declarations; the solver converts speeds to m/s through the methods
-//! below.
+//! The settings the DP works with: the look-ahead controller's declared section ([`MpcParams`])
+//! and the cruise band ([`CruiseParams`]) as they are, read in place, and beside them the values
+//! they resolve to (k_lim, the per-stage weights, the fuel_time cost's weights). Units and meanings
+//! are those of the declarations; the solver converts speeds to m/s through the methods below.
 
 use crate::params::{stages_in, CruiseParams, MpcParams, ParamSet};
 pub use crate::params::{CostKind, GridAnchor, NeutralRule, OnInfeasible, StageModel};
@@ -19,62 +19,20 @@ pub const RELAXED_DELTA_MIN_KMH: f64 = 0.2;
 /// is cut to it: the rescue needs only a way back into the band, which 1.5 km shows.
 pub const RELAXED_HORIZON_MAX_M: f64 = 1500.0;
 
-/// Resolved DP settings; build them with [`DpSettings::new`], which validates.
+/// The DP's settings: the look-ahead controller's declared keys and the cruise band, as declared,
+/// with the values they resolve to; build them with [`DpSettings::new`], which validates.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DpSettings {
-    /// S [m].
-    pub stage_m: f64,
-    /// Horizon [m].
-    pub horizon_m: f64,
-    /// Distance between two horizon solves [m] (0: every stage).
-    pub replan_m: f64,
-    /// δ [km/h].
-    pub delta_kmh: f64,
-    /// ε [-]; None: half a grid step δ of speed change, per row ([`DpSettings::pedal_band`]).
-    pub epsilon: Option<f64>,
-    /// v_ref [km/h].
-    pub v_ref_kmh: f64,
-    /// v_inc [km/h].
-    pub v_inc_kmh: f64,
-    /// v_dec [km/h].
-    pub v_dec_kmh: f64,
-    /// Offset added to a road's target speeds [km/h].
-    pub target_offset_kmh: f64,
-    /// Deceleration the band's top keeps to ahead of a lower target speed [m/s²].
-    pub target_decel_mps2: f64,
+    /// The look-ahead controller's keys (S, horizon, δ, weights, stage model, grid, ...).
+    pub mpc: MpcParams,
+    /// Set speed and band.
+    pub cruise: CruiseParams,
     /// k_lim [stages], resolved.
     pub k_lim: u32,
-    /// N_min [rpm].
-    pub n_min_rpm: f64,
-    /// N_max [rpm].
-    pub n_max_rpm: f64,
-    /// Neutral allowed.
-    pub allow_neutral: bool,
-    /// Fuel cut in a forward gear as an exact arc, joined like neutral arcs.
-    pub fuel_cut_arcs: bool,
-    /// Q1 [1/g].
-    pub q_fuel: f64,
-    /// Q2 per stage [1/(m/s)²], resolved.
+    /// Q2 per stage [1/(m/s)²], resolved; zero with the fuel_time cost.
     pub q_speed_below: f64,
-    /// Q3 [1/(m/s)].
-    pub q_speed_change: f64,
-    /// Q4 [1/shift].
-    pub q_gear_shift: f64,
     /// Q5 per stage [-], resolved.
     pub q_brake: f64,
-    /// Price per engagement of neutral from a forward gear, on top of Q4 [-].
-    pub q_neutral: f64,
-    /// Whether a neutral state may shift only into the highest gear usable at its speed.
-    pub neutral_exit_top_gear: bool,
-    /// Whether Q4 prices shifts into and out of neutral too (else q_neutral alone prices an
-    /// engagement, and leaving neutral is free).
-    pub shift_price_neutral: bool,
-    /// The stage model of every transition, arc and bound.
-    pub stage_model: StageModel,
-    /// What is minimised; with [`CostKind::FuelTime`] Q2 is zero.
-    pub cost: CostKind,
-    /// β [g/s] as given (None: derived from v_ref by [`DpSettings::for_vehicle`]).
-    pub beta_g_per_s: Option<f64>,
     /// Q1·β [1/s], charged per second of each stage (h / v_i); 0 until [`DpSettings::for_vehicle`]
     /// resolves a fuel_time cost.
     pub q_time_per_s: f64,
@@ -88,14 +46,6 @@ pub struct DpSettings {
     /// marginal fuel cost (the speed_penalty cost leaves it out: its Q3·|Δv| is larger at any Δv a
     /// stage can make).
     pub q_speed_change_sq: f64,
-    /// K of the pedal-level arcs (levels 1/K … (K−1)/K per forward gear); 0: none.
-    pub pedal_levels: u32,
-    /// Neutral arcs' rule.
-    pub neutral_rule: NeutralRule,
-    /// Grid anchoring.
-    pub grid: GridAnchor,
-    /// The controller's answer to a solve without an admissible path (not used by the solver).
-    pub on_infeasible: OnInfeasible,
 }
 
 impl Default for DpSettings {
@@ -122,39 +72,14 @@ impl DpSettings {
     fn resolve(mpc: &MpcParams, cruise: &CruiseParams) -> Self {
         let fuel_time = mpc.cost == CostKind::FuelTime;
         DpSettings {
-            stage_m: mpc.stage_m,
-            horizon_m: mpc.horizon_m,
-            replan_m: mpc.replan_m,
-            delta_kmh: mpc.delta_kmh,
-            epsilon: mpc.epsilon,
-            v_ref_kmh: cruise.v_ref_kmh,
-            v_inc_kmh: cruise.v_inc_kmh,
-            v_dec_kmh: cruise.v_dec_kmh,
-            target_offset_kmh: cruise.target_offset_kmh,
-            target_decel_mps2: cruise.target_decel_mps2,
+            mpc: mpc.clone(),
+            cruise: cruise.clone(),
             k_lim: mpc.k_lim_stages(),
-            n_min_rpm: mpc.n_min_rpm,
-            n_max_rpm: mpc.n_max_rpm,
-            allow_neutral: mpc.allow_neutral,
-            fuel_cut_arcs: mpc.fuel_cut_arcs,
-            q_fuel: mpc.q_fuel,
             q_speed_below: if fuel_time { 0.0 } else { mpc.q_speed_below_weight() },
-            q_speed_change: mpc.q_speed_change,
-            q_gear_shift: mpc.q_gear_shift,
             q_brake: mpc.q_brake_weight(),
-            q_neutral: mpc.q_neutral,
-            neutral_exit_top_gear: mpc.neutral_exit_top_gear,
-            shift_price_neutral: mpc.shift_price_neutral,
-            stage_model: mpc.stage_model,
-            cost: mpc.cost,
-            beta_g_per_s: mpc.beta_g_per_s,
             q_time_per_s: 0.0,
             q_terminal_per_half_v2: 0.0,
             q_speed_change_sq: 0.0,
-            pedal_levels: mpc.pedal_levels,
-            neutral_rule: mpc.neutral_rule,
-            grid: mpc.grid,
-            on_infeasible: mpc.on_infeasible,
         }
     }
 
@@ -162,17 +87,17 @@ impl DpSettings {
     /// that makes steady v_ref optimal on a flat road) and the value of kinetic energy at the
     /// horizon's end, both in the cruise gear at v_ref. The speed_penalty cost is returned as is.
     pub fn for_vehicle(self, vehicle: &Vehicle) -> Self {
-        if self.cost != CostKind::FuelTime {
+        if self.mpc.cost != CostKind::FuelTime {
             return self;
         }
-        let gear = fuel_time::cruise_gear(vehicle, self.v_ref_mps(), self.n_min_rpm, self.n_max_rpm);
+        let gear = fuel_time::cruise_gear(vehicle, self.v_ref_mps(), self.mpc.n_min_rpm, self.mpc.n_max_rpm);
         let beta = self.beta_for(vehicle).unwrap_or(0.0);
-        let kinetic = self.q_fuel * fuel_time::kinetic_fuel_g(vehicle, self.v_ref_mps(), gear);
+        let kinetic = self.mpc.q_fuel * fuel_time::kinetic_fuel_g(vehicle, self.v_ref_mps(), gear);
         DpSettings {
-            q_time_per_s: self.q_fuel * beta,
+            q_time_per_s: self.mpc.q_fuel * beta,
             q_terminal_per_half_v2: kinetic,
             // The trapezoid stage conserves energy: nothing to charge back.
-            q_speed_change_sq: if self.stage_model == StageModel::Euler { 0.5 * kinetic } else { 0.0 },
+            q_speed_change_sq: if self.mpc.stage_model == StageModel::Euler { 0.5 * kinetic } else { 0.0 },
             ..self
         }
     }
@@ -195,10 +120,10 @@ impl DpSettings {
     /// β [g/s] of the fuel_time cost as used with `vehicle` (given or derived; NaN where it cannot
     /// be derived, see [`DpSettings::check_vehicle`]); None for the speed_penalty cost.
     pub fn beta_for(&self, vehicle: &Vehicle) -> Option<f64> {
-        (self.cost == CostKind::FuelTime).then(|| {
+        (self.mpc.cost == CostKind::FuelTime).then(|| {
             let v_ref = self.v_ref_mps();
-            let gear = fuel_time::cruise_gear(vehicle, v_ref, self.n_min_rpm, self.n_max_rpm);
-            self.beta_g_per_s.unwrap_or_else(|| fuel_time::steady_beta_g_per_s(vehicle, v_ref, gear))
+            let gear = fuel_time::cruise_gear(vehicle, v_ref, self.mpc.n_min_rpm, self.mpc.n_max_rpm);
+            self.mpc.beta_g_per_s.unwrap_or_else(|| fuel_time::steady_beta_g_per_s(vehicle, v_ref, gear))
         })
     }
 
@@ -211,29 +136,40 @@ impl DpSettings {
     /// routed through it would be priced q_neutral instead of Q4, cheaper when Q4 is the higher
     /// price. A rescue is the way back into the band, not a coast: it plans in gear.
     pub fn relaxed(&self, v_min_kmh: f64) -> Self {
+        let (mpc, cruise) = (&self.mpc, &self.cruise);
         DpSettings {
-            v_dec_kmh: (self.v_ref_kmh - v_min_kmh).max(self.v_dec_kmh),
+            cruise: CruiseParams { v_dec_kmh: (cruise.v_ref_kmh - v_min_kmh).max(cruise.v_dec_kmh), ..cruise.clone() },
+            mpc: MpcParams {
+                allow_neutral: false,
+                delta_kmh: mpc.delta_kmh.max(RELAXED_DELTA_MIN_KMH),
+                horizon_m: mpc.horizon_m.min(RELAXED_HORIZON_MAX_M).max(mpc.stage_m),
+                ..mpc.clone()
+            },
             k_lim: 1,
-            allow_neutral: false,
-            delta_kmh: self.delta_kmh.max(RELAXED_DELTA_MIN_KMH),
-            horizon_m: self.horizon_m.min(RELAXED_HORIZON_MAX_M).max(self.stage_m),
             ..self.clone()
         }
     }
 
+    /// These settings with the look-ahead controller's keys changed by `change`, the resolved
+    /// values (k_lim, Q2, Q5, the fuel_time weights) kept as they are.
+    pub fn with_mpc(mut self, change: impl FnOnce(&mut MpcParams)) -> Self {
+        change(&mut self.mpc);
+        self
+    }
+
     /// Number of stages N in the horizon.
     pub fn stages(&self) -> usize {
-        stages_in(self.horizon_m, self.stage_m)
+        stages_in(self.mpc.horizon_m, self.mpc.stage_m)
     }
 
     /// Stages decided from one horizon solve (a solve every stage when 1).
     pub fn replan_stages(&self) -> usize {
-        stages_in(self.replan_m, self.stage_m)
+        stages_in(self.mpc.replan_m, self.mpc.stage_m)
     }
 
     /// δ [m/s].
     pub fn delta_mps(&self) -> f64 {
-        self.delta_kmh / 3.6
+        self.mpc.delta_kmh / 3.6
     }
 
     /// The pedal levels accepted (and clipped to [0, 1]) from `v_i_mps` when one unit of pedal
@@ -242,9 +178,9 @@ impl DpSettings {
     /// one grid point and the clipping error vanishes as δ shrinks.
     #[inline]
     pub fn pedal_band(&self, v_i_mps: f64, gain_mps2: f64) -> (f64, f64) {
-        let e = match self.epsilon {
+        let e = match self.mpc.epsilon {
             Some(e) => e,
-            None => 0.5 * self.delta_mps() * v_i_mps / (gain_mps2 * self.stage_m),
+            None => 0.5 * self.delta_mps() * v_i_mps / (gain_mps2 * self.mpc.stage_m),
         };
         (-e, 1.0 + e)
     }
@@ -256,28 +192,22 @@ impl DpSettings {
 
     /// The cruise parameters these settings were resolved from.
     pub fn cruise(&self) -> CruiseParams {
-        CruiseParams {
-            v_ref_kmh: self.v_ref_kmh,
-            v_inc_kmh: self.v_inc_kmh,
-            v_dec_kmh: self.v_dec_kmh,
-            target_offset_kmh: self.target_offset_kmh,
-            target_decel_mps2: self.target_decel_mps2,
-        }
+        self.cruise.clone()
     }
 
     /// v_ref [m/s].
     pub fn v_ref_mps(&self) -> f64 {
-        self.v_ref_kmh / 3.6
+        self.cruise.v_ref_kmh / 3.6
     }
 
     /// v_max = v_ref + v_inc [m/s].
     pub fn v_max_mps(&self) -> f64 {
-        (self.v_ref_kmh + self.v_inc_kmh) / 3.6
+        (self.cruise.v_ref_kmh + self.cruise.v_inc_kmh) / 3.6
     }
 
     /// v_min = v_ref − v_dec [m/s].
     pub fn v_min_mps(&self) -> f64 {
-        (self.v_ref_kmh - self.v_dec_kmh) / 3.6
+        (self.cruise.v_ref_kmh - self.cruise.v_dec_kmh) / 3.6
     }
 }
 
@@ -288,23 +218,15 @@ mod tests {
     #[test]
     fn the_relaxed_solve_lowers_v_min_drops_the_shift_limit_and_neutral_and_keeps_a_grid_of_at_least_0_2_kmh() {
         let fine = DpSettings::default();
-        assert!(fine.delta_kmh < RELAXED_DELTA_MIN_KMH && fine.allow_neutral);
+        assert!(fine.mpc.delta_kmh < RELAXED_DELTA_MIN_KMH && fine.mpc.allow_neutral);
         let relaxed = fine.relaxed(5.0);
-        assert_eq!((relaxed.v_min_mps() * 3.6, relaxed.k_lim, relaxed.allow_neutral), (5.0, 1, false));
-        assert_eq!(relaxed.delta_kmh, RELAXED_DELTA_MIN_KMH);
+        assert_eq!((relaxed.v_min_mps() * 3.6, relaxed.k_lim, relaxed.mpc.allow_neutral), (5.0, 1, false));
+        assert_eq!(relaxed.mpc.delta_kmh, RELAXED_DELTA_MIN_KMH);
         // A coarser grid is kept as it is.
-        let coarse = DpSettings { delta_kmh: 0.4, ..DpSettings::thesis() }.relaxed(5.0);
-        assert_eq!(coarse.delta_kmh, 0.4);
-        assert_eq!(
-            DpSettings { delta_kmh: 0.0, ..relaxed.clone() },
-            DpSettings {
-                delta_kmh: 0.0,
-                v_dec_kmh: relaxed.v_dec_kmh,
-                k_lim: 1,
-                allow_neutral: false,
-                horizon_m: RELAXED_HORIZON_MAX_M,
-                ..fine
-            }
-        );
+        let coarse = DpSettings::thesis().with_mpc(|m| m.delta_kmh = 0.4).relaxed(5.0);
+        assert_eq!(coarse.mpc.delta_kmh, 0.4);
+        let mut expected = fine.with_mpc(|m| (m.allow_neutral, m.horizon_m) = (false, RELAXED_HORIZON_MAX_M));
+        (expected.k_lim, expected.cruise.v_dec_kmh) = (1, relaxed.cruise.v_dec_kmh);
+        assert_eq!(relaxed.with_mpc(|m| m.delta_kmh = 0.0), expected.with_mpc(|m| m.delta_kmh = 0.0));
     }
 }

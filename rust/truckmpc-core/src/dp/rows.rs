@@ -148,7 +148,7 @@ struct EndMaps<'a> {
 }
 
 fn maps<'a>(vehicle: &'a Vehicle, p: &DpSettings, v_i: f64, gear: usize, slope_torque: f64) -> RowMaps<'a> {
-    let trapezoid = p.stage_model == StageModel::Trapezoid;
+    let trapezoid = p.mpc.stage_model == StageModel::Trapezoid;
     let pedal = pedal_accel_on(vehicle, v_i, gear, slope_torque);
     let map_fuel = (vehicle.rate_form() == RateForm::Map).then_some((vehicle, gear));
     RowMaps {
@@ -156,8 +156,8 @@ fn maps<'a>(vehicle: &'a Vehicle, p: &DpSettings, v_i: f64, gear: usize, slope_t
         brake: (!trapezoid).then(|| brake_accel_on(vehicle, v_i, gear, slope_torque)),
         full_fuel_g: match (map_fuel, trapezoid) {
             (Some(_), _) => f64::NAN,
-            (None, true) => stage::half_stage_fuel_g(vehicle, v_i, 1.0, gear, p.stage_m),
-            (None, false) => stage_fuel_g(vehicle, v_i, 1.0, gear, p.stage_m),
+            (None, true) => stage::half_stage_fuel_g(vehicle, v_i, 1.0, gear, p.mpc.stage_m),
+            (None, false) => stage_fuel_g(vehicle, v_i, 1.0, gear, p.mpc.stage_m),
         },
         trapezoid: trapezoid.then(|| {
             let pedal_band = if pedal.gain > 0.0 { trapezoid_pedal_band(p, v_i, pedal.gain) } else { (0.0, 0.0) };
@@ -226,8 +226,8 @@ fn pair(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64, v_max: f64) -> Option<(
         return None;
     }
     if let Some(end) = &m.trapezoid {
-        let fuel = |pedal: f64| map_stage_fuel_g(end, (v_i, v_j), pedal, p.stage_m);
-        return pair_trapezoid(p, (m, end), (v_i, v_j, v_max), || AtEnd::at(end, v_j, p.stage_m), fuel);
+        let fuel = |pedal: f64| map_stage_fuel_g(end, (v_i, v_j), pedal, p.mpc.stage_m);
+        return pair_trapezoid(p, (m, end), (v_i, v_j, v_max), || AtEnd::at(end, v_j, p.mpc.stage_m), fuel);
     }
     pair_euler(p, m, v_i, v_j, v_max)
 }
@@ -252,7 +252,7 @@ pub fn forward_row(
     (out, memo): (&mut Vec<f64>, &mut RowMemo),
 ) -> (RowSpan, usize) {
     let (from, target) = ((v_i, gear, slope_torque), (grid, v_max_mps));
-    match p.stage_model {
+    match p.mpc.stage_model {
         StageModel::Trapezoid => forward_row_trapezoid((vehicle, p), from, known_ends, target, (out, memo)),
         StageModel::Euler => forward_row_euler((vehicle, p), from, target, out),
     }

@@ -27,10 +27,10 @@ pub fn usable_gears(vehicle: &Vehicle, v_mps: f64, n_min_rpm: f64, n_max_rpm: f6
 /// Gears used to bound reachability from `v_mps`: the usable ones, or if none, the forward gear
 /// whose engine speed is closest to the window (so a truck outside the window still has a bound).
 fn reach_gears(vehicle: &Vehicle, params: &DpSettings, v_mps: f64) -> (usize, usize) {
-    usable_gears(vehicle, v_mps, params.n_min_rpm, params.n_max_rpm).unwrap_or_else(|| {
+    usable_gears(vehicle, v_mps, params.mpc.n_min_rpm, params.mpc.n_max_rpm).unwrap_or_else(|| {
         let distance = |g: usize| {
             let n = vehicle.gear(g).c4 * v_mps;
-            (params.n_min_rpm - n).max(n - params.n_max_rpm)
+            (params.mpc.n_min_rpm - n).max(n - params.mpc.n_max_rpm)
         };
         let best = (1..=vehicle.forward_gears()).min_by(|&a, &b| distance(a).total_cmp(&distance(b))).unwrap();
         (best, best)
@@ -49,7 +49,7 @@ fn full_pedal_speeds(vehicle: &Vehicle, params: &DpSettings, v_mps: f64, slope: 
         best = best.max(v1);
         worst = worst.min(v1);
     }
-    if params.allow_neutral {
+    if params.mpc.allow_neutral {
         best = best.max(end_of_stage(vehicle, params, v_mps, NEUTRAL, torque, (Branch::Brake, 0.0)));
     }
     (best, worst)
@@ -63,7 +63,7 @@ fn lowest_speed(vehicle: &Vehicle, params: &DpSettings, v_mps: f64, slope: f64) 
     for g in lo..=hi {
         v_min = v_min.min(end_of_stage(vehicle, params, v_mps, g, torque, (Branch::Brake, 0.0)));
     }
-    if params.allow_neutral {
+    if params.mpc.allow_neutral {
         v_min = v_min.min(end_of_stage(vehicle, params, v_mps, NEUTRAL, torque, (Branch::Brake, 0.0)));
     }
     v_min
@@ -78,7 +78,7 @@ fn end_of_stage(
     torque: f64,
     input: (Branch, f64),
 ) -> f64 {
-    stage::end_speed(params.stage_model, vehicle, (v_mps, params.stage_m), gear, torque, input)
+    stage::end_speed(params.mpc.stage_model, vehicle, (v_mps, params.mpc.stage_m), gear, torque, input)
 }
 
 /// One stage's velocity grid: v(j) = first_mps + j·δ for j in 0..count.
@@ -138,7 +138,7 @@ pub fn intervals_from_stage(
     out: &mut Intervals,
 ) {
     debug_assert_eq!(bands.len(), slopes.len() + 1);
-    let (forward, backward): (StepFn<2>, StepFn<1>) = match params.grid {
+    let (forward, backward): (StepFn<2>, StepFn<1>) = match params.mpc.grid {
         GridAnchor::Moving => (continuous_forward, continuous_backward),
         GridAnchor::Fixed => (grid_forward, grid_backward),
     };
@@ -165,7 +165,7 @@ pub fn intervals_from_stage(
     let n = slopes.len();
     // Without the raise the final stage keeps its reachable speeds: the terminal cost prices them.
     let v_ref_end = if raise_end { bands[n].v_ref_mps() } else { out.lo[n] };
-    out.lo[n] = match params.grid {
+    out.lo[n] = match params.mpc.grid {
         GridAnchor::Moving => v_ref_end.min(out.hi[n]),
         GridAnchor::Fixed => {
             let grid = GridIndex { origin_mps: 0.0, delta_mps: params.delta_mps() };
@@ -246,9 +246,9 @@ impl IntervalMemo {
 /// the pedal tolerance is half a grid step (ε without a value), where a row admits the grid point
 /// within that distance below fuel cut; 0 with a fixed ε, as in the thesis.
 fn band_slack_mps(params: &DpSettings) -> f64 {
-    if params.fuel_cut_arcs {
+    if params.mpc.fuel_cut_arcs {
         params.delta_mps()
-    } else if params.epsilon.is_none() {
+    } else if params.mpc.epsilon.is_none() {
         0.5 * params.delta_mps()
     } else {
         0.0
@@ -369,7 +369,7 @@ pub fn grid(params: &DpSettings, lo: f64, hi: f64) -> Grid {
     let delta = params.delta_mps();
     // Absorbs rounding so that an interval exactly k·δ wide keeps its last point.
     const SLACK: f64 = 1e-9;
-    match params.grid {
+    match params.mpc.grid {
         GridAnchor::Moving => {
             Grid { first_mps: lo, count: super::rows::floor_i64((hi - lo) / delta + SLACK).max(0) as usize + 1 }
         }

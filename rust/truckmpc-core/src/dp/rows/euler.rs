@@ -11,16 +11,16 @@ use crate::vehicle::Vehicle;
 /// the full-pedal fuel of the stage.
 #[inline]
 pub(super) fn pair_euler(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64, v_max: f64) -> Option<(Inputs, f64)> {
-    let h = p.stage_m;
-    let change = change_cost(p.q_speed_change, p.q_speed_change_sq, v_i - v_j);
+    let h = p.mpc.stage_m;
+    let change = change_cost(p.mpc.q_speed_change, p.q_speed_change_sq, v_i - v_j);
     if m.pedal.gain > 0.0 {
         let pedal = m.pedal.input_for(v_i, v_j, h);
         let (pedal_lo, pedal_hi) = p.pedal_band(v_i, m.pedal.gain);
         if pedal >= pedal_lo && pedal <= pedal_hi {
             let clipped = pedal.clamp(0.0, 1.0);
             let fuel = match m.map_fuel {
-                None => p.q_fuel * m.full_fuel_g * clipped,
-                Some(_) => p.q_fuel * m.euler_fuel_g(v_i, clipped, h),
+                None => p.mpc.q_fuel * m.full_fuel_g * clipped,
+                Some(_) => p.mpc.q_fuel * m.euler_fuel_g(v_i, clipped, h),
             };
             return Some((Inputs { pedal: clipped, brake: 0.0 }, fuel + change));
         }
@@ -53,7 +53,7 @@ pub(super) fn forward_row_euler(
 ) -> (RowSpan, usize) {
     let start = out.len();
     let m = maps(vehicle, p, v_i, gear, slope_torque);
-    let h = p.stage_m;
+    let h = p.mpc.stage_m;
     let (mut first, mut last) = (i64::MAX, i64::MIN);
     let pedal_on = m.pedal.gain > 0.0;
     let (pedal_lo, pedal_hi) = p.pedal_band(v_i, m.pedal.gain);
@@ -76,8 +76,8 @@ pub(super) fn forward_row_euler(
         return (RowSpan { first: 0, len: 0 }, start);
     }
     // The terms of `pair`, evaluated in the same order.
-    let (q_change, q_change_sq, q_brake) = (p.q_speed_change, p.q_speed_change_sq, p.q_brake);
-    let fuel_per_pedal = p.q_fuel * m.full_fuel_g;
+    let (q_change, q_change_sq, q_brake) = (p.mpc.q_speed_change, p.q_speed_change_sq, p.q_brake);
+    let fuel_per_pedal = p.mpc.q_fuel * m.full_fuel_g;
     let window = p.delta_mps() * BRAKE_WINDOW;
     let (a_pedal, g_pedal) = (m.pedal.accel_at_zero, m.pedal.gain);
     let brake = m.brake.expect("an Euler row's brake map");
@@ -90,7 +90,7 @@ pub(super) fn forward_row_euler(
             let pedal = (demand - a_pedal) / g_pedal;
             if pedal >= pedal_lo && pedal <= pedal_hi {
                 if m.map_fuel.is_some() {
-                    return p.q_fuel * m.euler_fuel_g(v_i, pedal.clamp(0.0, 1.0), h) + change;
+                    return p.mpc.q_fuel * m.euler_fuel_g(v_i, pedal.clamp(0.0, 1.0), h) + change;
                 }
                 return fuel_per_pedal * pedal.clamp(0.0, 1.0) + change;
             }

@@ -15,7 +15,7 @@ use crate::vehicle::VehicleParams;
 fn rows_hold_the_costs_of_pair() {
     let thesis = DpSettings::thesis();
     rows_hold_the_costs_of_pair_in(&thesis);
-    rows_hold_the_costs_of_pair_in(&DpSettings { stage_model: StageModel::Trapezoid, ..thesis });
+    rows_hold_the_costs_of_pair_in(&thesis.with_mpc(|m| m.stage_model = StageModel::Trapezoid));
     rows_hold_the_costs_of_pair_in(&DpSettings::default());
 }
 
@@ -61,8 +61,8 @@ fn rows_hold_the_costs_of_pair_in(p: &DpSettings) {
 #[test]
 fn a_map_trucks_rows_on_the_fixed_grid_are_pairs_costs_to_within_the_tables_error() {
     let vehicle = curved_map_truck();
-    let p = DpSettings { grid: GridAnchor::Fixed, ..DpSettings::default() };
-    assert_eq!(p.stage_model, StageModel::Trapezoid);
+    let p = DpSettings::default().with_mpc(|m| m.grid = GridAnchor::Fixed);
+    assert_eq!(p.mpc.stage_model, StageModel::Trapezoid);
     let grid = GridIndex { origin_mps: 0.0, delta_mps: p.delta_mps() };
     let mut memo = RowMemo::default();
     let mut out = Vec::new();
@@ -80,10 +80,10 @@ fn a_map_trucks_rows_on_the_fixed_grid_are_pairs_costs_to_within_the_tables_erro
                     let v_j = grid.speed(span.first + t as i64);
                     let exact = pair(&p, &m, v_i, v_j, p.v_max_mps()).map_or(f64::INFINITY, |(_, c)| c);
                     assert_eq!(cost.is_finite(), exact.is_finite(), "v {v_i} gear {gear} slope {slope}");
-                    let full = stage::half_stage_fuel_g(&vehicle, v_i, 1.0, gear, p.stage_m)
-                        + stage::half_stage_fuel_g(&vehicle, v_j, 1.0, gear, p.stage_m);
+                    let full = stage::half_stage_fuel_g(&vehicle, v_i, 1.0, gear, p.mpc.stage_m)
+                        + stage::half_stage_fuel_g(&vehicle, v_j, 1.0, gear, p.mpc.stage_m);
                     if exact.is_finite() {
-                        assert!((cost - exact).abs() <= 1e-3 * p.q_fuel * full + 1e-12, "{cost} vs {exact}");
+                        assert!((cost - exact).abs() <= 1e-3 * p.mpc.q_fuel * full + 1e-12, "{cost} vs {exact}");
                     }
                 }
                 rows += usize::from(span.len > 0);
@@ -100,7 +100,7 @@ fn a_map_trucks_rows_on_the_fixed_grid_are_pairs_costs_to_within_the_tables_erro
 #[test]
 fn a_row_given_its_ends_by_the_arcs_is_the_row_it_finds_itself() {
     let p = DpSettings::default();
-    assert!(p.stage_model == StageModel::Trapezoid && p.grid == GridAnchor::Fixed && p.fuel_cut_arcs);
+    assert!(p.mpc.stage_model == StageModel::Trapezoid && p.mpc.grid == GridAnchor::Fixed && p.mpc.fuel_cut_arcs);
     let grid = GridIndex { origin_mps: 0.0, delta_mps: p.delta_mps() };
     let trucks = [(Vehicle::new(VehicleParams::default()).unwrap(), false), (curved_map_truck(), true)];
     let (mut compared, mut differ, mut out) = (0, 0, Vec::<f64>::new());
@@ -111,8 +111,9 @@ fn a_row_given_its_ends_by_the_arcs_is_the_row_it_finds_itself() {
             for gear in 1..=vehicle.forward_gears() {
                 for slope in [-0.04, -0.01, 0.0, 0.02, 0.05] {
                     let torque = vehicle.slope_torque_nm(slope);
-                    let arc =
-                        |input| stage::end_speed(StageModel::Trapezoid, vehicle, (v_i, p.stage_m), gear, torque, input);
+                    let arc = |input| {
+                        stage::end_speed(StageModel::Trapezoid, vehicle, (v_i, p.mpc.stage_m), gear, torque, input)
+                    };
                     let known = [map.then(|| arc((Branch::Brake, 0.0))), Some(arc((Branch::Pedal, 1.0)))];
                     // The top given a grid step short: the check can fail.
                     let short = [known[0], known[1].map(|v| v - 1.5 * grid.delta_mps)];

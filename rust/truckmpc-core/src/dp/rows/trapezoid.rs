@@ -94,8 +94,8 @@ pub(super) fn pair_trapezoid(
     at_j: impl FnOnce() -> AtEnd,
     map_fuel_g: impl FnOnce(f64) -> f64,
 ) -> Option<(Inputs, f64)> {
-    let h = p.stage_m;
-    let change = change_cost(p.q_speed_change, p.q_speed_change_sq, v_i - v_j);
+    let h = p.mpc.stage_m;
+    let change = change_cost(p.mpc.q_speed_change, p.q_speed_change_sq, v_i - v_j);
     let model = StageModel::Trapezoid;
     if m.pedal.gain > 0.0 {
         let AtEnd { accel: at_j, full_half_fuel_g } = at_j();
@@ -104,10 +104,10 @@ pub(super) fn pair_trapezoid(
         if pedal >= pedal_lo && pedal <= pedal_hi {
             let clipped = pedal.clamp(0.0, 1.0);
             let fuel = if m.map_fuel.is_some() {
-                p.q_fuel * map_fuel_g(clipped)
+                p.mpc.q_fuel * map_fuel_g(clipped)
             } else {
                 let fuel_per_pedal = m.full_fuel_g + full_half_fuel_g;
-                p.q_fuel * fuel_per_pedal * clipped
+                p.mpc.q_fuel * fuel_per_pedal * clipped
             };
             return Some((Inputs { pedal: clipped, brake: 0.0 }, fuel + change));
         }
@@ -137,8 +137,8 @@ pub(super) fn pair_trapezoid(
 #[inline]
 pub(super) fn trapezoid_pedal_band(p: &DpSettings, v_i: f64, gain: f64) -> (f64, f64) {
     let (lo, hi) = p.pedal_band(v_i, gain);
-    match p.grid {
-        GridAnchor::Fixed => (if p.fuel_cut_arcs { 0.0 } else { lo }, 1.0),
+    match p.mpc.grid {
+        GridAnchor::Fixed => (if p.mpc.fuel_cut_arcs { 0.0 } else { lo }, 1.0),
         GridAnchor::Moving => (lo, hi),
     }
 }
@@ -157,7 +157,7 @@ pub(super) fn forward_row_trapezoid(
     let start = out.len();
     let m = maps(vehicle, p, v_i, gear, slope_torque);
     let end = m.trapezoid.expect("a trapezoid row");
-    let h = p.stage_m;
+    let h = p.mpc.stage_m;
     let RowMemo { ends: memo, fuel: table } = memo;
     memo.keyed([gear as u64, slope_torque.to_bits(), grid.origin_mps.to_bits(), grid.delta_mps.to_bits(), h.to_bits()]);
     let (mut first, mut last) = (i64::MAX, i64::MIN);
@@ -195,7 +195,7 @@ pub(super) fn forward_row_trapezoid(
     }
     // One loop per source of fuel (the pedal table, or the maps and closed forms), so that neither
     // branches on it per transition.
-    let tabled = m.map_fuel.is_some() && p.grid == GridAnchor::Fixed && grid.origin_mps == 0.0;
+    let tabled = m.map_fuel.is_some() && p.mpc.grid == GridAnchor::Fixed && grid.origin_mps == 0.0;
     match tabled.then(|| grid_index_of(v_i, grid.delta_mps)).flatten().filter(|&index| index > 0) {
         Some(index_i) => {
             table.fill(vehicle, (index_i.min(first), index_i.max(last)), grid.delta_mps, gear);

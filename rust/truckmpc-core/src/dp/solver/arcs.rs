@@ -33,12 +33,12 @@ pub(super) fn exact_arc(
     slope_torque: f64,
     input: (Branch, f64),
 ) -> CoastArc {
-    let h = p.stage_m;
-    let v_end_mps = stage::end_speed(p.stage_model, vehicle, (v_i_mps, h), gear, slope_torque, input);
+    let h = p.mpc.stage_m;
+    let v_end_mps = stage::end_speed(p.mpc.stage_model, vehicle, (v_i_mps, h), gear, slope_torque, input);
     let pedal = if input.0 == Branch::Pedal { input.1 } else { 0.0 };
-    let fuel = stage::fuel_g(p.stage_model, vehicle, (v_i_mps, v_end_mps), pedal, gear, h);
-    let change = change_cost(p.q_speed_change, p.q_speed_change_sq, v_i_mps - v_end_mps);
-    CoastArc { v_end_mps, cost: p.q_fuel * fuel + change }
+    let fuel = stage::fuel_g(p.mpc.stage_model, vehicle, (v_i_mps, v_end_mps), pedal, gear, h);
+    let change = change_cost(p.mpc.q_speed_change, p.q_speed_change_sq, v_i_mps - v_end_mps);
+    CoastArc { v_end_mps, cost: p.mpc.q_fuel * fuel + change }
 }
 
 /// The first pass into neutral: every source's coasting arc (keys `key_lo..=key_hi` of the stage
@@ -68,7 +68,7 @@ pub(super) fn neutral_choices(
     let counters = &mut ch.neutral_counter[slots];
     let mut done = 0;
     #[cfg(target_arch = "x86_64")]
-    if let (NeutralRule::Nearest, Some(_)) = (p.neutral_rule, avx2) {
+    if let (NeutralRule::Nearest, Some(_)) = (p.mpc.neutral_rule, avx2) {
         let out = NeutralOut { all_cost, all_j, counters, shift_cost, shift_j };
         // SAFETY: the token exists only where the CPU has AVX2.
         done = unsafe { join_nearest_avx2(&join, arcs, (cost_next, counter_next), p.k_lim, out) };
@@ -80,7 +80,7 @@ pub(super) fn neutral_choices(
     }
     // Shifting into neutral from a forward gear is an engagement: its price, in place of
     // Q4 (which the second pass adds to every shift) where Q4 prices forward shifts only.
-    let engagement = p.q_neutral - if p.shift_price_neutral { 0.0 } else { p.q_gear_shift };
+    let engagement = p.mpc.q_neutral - if p.mpc.shift_price_neutral { 0.0 } else { p.mpc.q_gear_shift };
     if engagement != 0.0 {
         shift_cost.iter_mut().for_each(|c| *c += engagement);
     }
@@ -121,7 +121,7 @@ pub(super) struct ArcJoin {
 impl ArcJoin {
     pub(super) fn new(p: &DpSettings, next: StageGrid, (lo, hi): (u32, u32)) -> Self {
         ArcJoin {
-            rule: p.neutral_rule,
+            rule: p.mpc.neutral_rule,
             extrapolate_top: false,
             origin_mps: next.speed(0),
             delta_mps: p.delta_mps(),

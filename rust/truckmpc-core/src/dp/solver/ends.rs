@@ -46,8 +46,8 @@ impl Solver {
                         *cost = weight * 0.5 * (v_ref * v_ref - v * v);
                     }
                 }
-                let q_time = self.params.q_time_per_s * self.params.stage_m;
-                if q_time > 0.0 && self.params.stage_model == StageModel::Trapezoid {
+                let q_time = self.params.q_time_per_s * self.params.mpc.stage_m;
+                if q_time > 0.0 && self.params.mpc.stage_model == StageModel::Trapezoid {
                     // Each state is charged h/v (the stay_or_shift pass); the trapezoid's time along
                     // a path is that sum plus h/(2 v_N) at the end (less a constant h/(2 v_0)).
                     for (cost, j) in terminal.iter_mut().zip(lo as usize..) {

@@ -45,7 +45,7 @@ impl Solver {
         // A row's band ends where the fuel-cut and full-pedal arcs end, when those are its inputs:
         // full pedal on trapezoid stages, and fuel cut for a map truck, whose engine at fuel cut
         // gives the same wheel torque as its map at zero pedal.
-        let reuse = [p.fuel_cut_arcs && vehicle.zero_pedal_is_cut(), p.stage_model == StageModel::Trapezoid];
+        let reuse = [p.mpc.fuel_cut_arcs && vehicle.zero_pedal_is_cut(), p.mpc.stage_model == StageModel::Trapezoid];
         let mut transitions = 0;
         for &g in active_next {
             let (lo, hi) = self.gear_ranges[(k + 1) * gears + g];
@@ -115,10 +115,10 @@ struct ArcTarget {
 fn arc_kinds<'a>(p: &'a DpSettings, to: &ArcTarget) -> impl Iterator<Item = (usize, (Branch, f64), ArcJoin, u32)> + 'a {
     let (g, gears, next, range) = (to.gear, to.gears, to.next, (to.lo, to.hi));
     let [cut_slot, full_slot] = end_slots(gears, g);
-    let fuel_cut = p.fuel_cut_arcs.then(|| (cut_slot, (Branch::Brake, 0.0), ArcJoin::new(p, next, range), ARC));
-    let full = (p.stage_model == StageModel::Trapezoid)
+    let fuel_cut = p.mpc.fuel_cut_arcs.then(|| (cut_slot, (Branch::Brake, 0.0), ArcJoin::new(p, next, range), ARC));
+    let full = (p.mpc.stage_model == StageModel::Trapezoid)
         .then(|| (full_slot, (Branch::Pedal, 1.0), ArcJoin::full_pedal(p, next, range), FULL));
-    let k_levels = p.pedal_levels;
+    let k_levels = p.mpc.pedal_levels;
     let levels = (1..k_levels.max(1)).map(move |l| {
         let input = (Branch::Pedal, l as f64 / k_levels as f64);
         (level_slot(l, gears, g), input, ArcJoin::new(p, next, range), level_flag(l))

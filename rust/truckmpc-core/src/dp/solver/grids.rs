@@ -41,7 +41,7 @@ impl Solver {
         // Absolute stages, when known, let the interval passes reuse steps of earlier solves.
         let p = &self.params;
         let memo = first_stage.filter(|_| self.caching).map(|stage| (stage, &mut self.interval_memo));
-        let raise_end = raise_end || p.cost == CostKind::SpeedPenalty;
+        let raise_end = raise_end || p.mpc.cost == CostKind::SpeedPenalty;
         space::intervals_from_stage(vehicle, p, start.v_mps, slopes, &self.bands, memo, raise_end, &mut self.intervals);
         let delta = p.delta_mps();
         self.grids.clear();
@@ -52,7 +52,7 @@ impl Solver {
         });
         for k in 1..=slopes.len() {
             let Grid { first_mps, count } = space::grid(p, self.intervals.lo[k], self.intervals.hi[k]);
-            self.grids.push(match p.grid {
+            self.grids.push(match p.mpc.grid {
                 GridAnchor::Moving => {
                     StageGrid { index: GridIndex { origin_mps: first_mps, delta_mps: delta }, first: 0, count }
                 }
@@ -88,7 +88,7 @@ impl Solver {
             if rpm_of != Some(grid.index) {
                 for (g, bounds) in rpm_indices.iter_mut().enumerate().filter(|&(g, _)| g != NEUTRAL) {
                     let c4 = vehicle.gear(g).c4;
-                    *bounds = (grid.index.ceil(p.n_min_rpm / c4), grid.index.floor(p.n_max_rpm / c4));
+                    *bounds = (grid.index.ceil(p.mpc.n_min_rpm / c4), grid.index.floor(p.mpc.n_max_rpm / c4));
                 }
                 rpm_of = Some(grid.index);
             }
@@ -101,7 +101,7 @@ impl Solver {
                 } else if k == 0 || k <= forced {
                     full
                 } else if g == NEUTRAL {
-                    if p.allow_neutral {
+                    if p.mpc.allow_neutral {
                         full
                     } else {
                         (1, 0)

@@ -27,14 +27,14 @@ impl Solver {
     ) {
         let (here, next) = (self.grids[k], self.grids[k + 1]);
         let n = here.count;
-        let (q4, k_lim) = (self.params.q_gear_shift, self.params.k_lim);
+        let (q4, k_lim) = (self.params.mpc.q_gear_shift, self.params.k_lim);
         // Slot of source velocity i.
         let s0 = (here.first - self.choices.base_key) as usize;
         let sources = s0 + i_lo..s0 + i_hi + 1;
         self.rank_shifts(sources.clone(), active_next);
         self.source_penalties(k, sources.clone(), i_lo);
         let p = &self.params;
-        let exit_own = active_here.contains(&NEUTRAL) && (p.neutral_exit_top_gear || !p.shift_price_neutral);
+        let exit_own = active_here.contains(&NEUTRAL) && (p.mpc.neutral_exit_top_gear || !p.mpc.shift_price_neutral);
         if exit_own {
             self.neutral_exits(vehicle, here, sources, i_lo, active_next);
         }
@@ -139,7 +139,7 @@ impl Solver {
         }
         // The fuel_time cost's time: h / v_i per stage, exact to second order in S along a path
         // (the left sum differs from the trapezoid by the constant first term and half the last).
-        let q_time = self.params.q_time_per_s * self.params.stage_m;
+        let q_time = self.params.q_time_per_s * self.params.mpc.stage_m;
         if q_time > 0.0 {
             for (slot, i) in ch.penalty[sources].iter_mut().zip(i_lo..) {
                 *slot += q_time / here.speed(i);
@@ -158,14 +158,14 @@ impl Solver {
         active_next: &[usize],
     ) {
         let p = &self.params;
-        let q4 = p.q_gear_shift;
+        let q4 = p.mpc.q_gear_shift;
         let ch = &mut self.choices;
         // Leaving neutral is not charged Q4 where Q4 prices forward shifts only (the second
         // pass adds Q4 to every shift), and goes only into the highest usable gear where so set.
-        let free = if p.shift_price_neutral { 0.0 } else { q4 };
-        let (n_min, n_max) = (p.n_min_rpm, p.n_max_rpm);
+        let free = if p.mpc.shift_price_neutral { 0.0 } else { q4 };
+        let (n_min, n_max) = (p.mpc.n_min_rpm, p.mpc.n_max_rpm);
         for (slot, i) in sources.zip(i_lo..) {
-            let (exit, second) = if p.neutral_exit_top_gear {
+            let (exit, second) = if p.mpc.neutral_exit_top_gear {
                 let top = space::usable_gears(vehicle, here.speed(i), n_min, n_max).map(|(_, hi)| hi);
                 let exit = match top {
                     Some(g) if active_next.contains(&g) => (ch.shift_cost[g * ch.width + slot], g as u32),

@@ -32,7 +32,7 @@ fn receding(params: &DpSettings, caching: bool) -> Vec<(bool, u64, u64, u64, usi
     let (mut v, mut gear, mut since) = (85.0 / 3.6, 12usize, params.k_lim);
     let mut out = Vec::new();
     for stage in 0..300 {
-        let s = road.start_m() + stage as f64 * params.stage_m;
+        let s = road.start_m() + stage as f64 * params.mpc.stage_m;
         let start = InitialState { v_mps: v, gear, stages_since_shift: since };
         let sol = crate::dp::horizon::solve_at(&mut solver, &vehicle, (&road, &band), s, start, &mut scratch);
         let next_v = sol.trajectory.get(1).map_or(0, |p| p.v_mps.to_bits());
@@ -266,13 +266,9 @@ fn shift_ranking_in_avx2_equals_the_scalar_loop() {
 #[test]
 fn moving_grid_rows_from_the_cache_give_the_same_bits() {
     for rule in [NeutralRule::Nearest, NeutralRule::Interpolate, NeutralRule::Quadratic] {
-        let params = DpSettings {
-            grid: GridAnchor::Moving,
-            neutral_rule: rule,
-            horizon_m: 1500.0,
-            delta_kmh: 0.2,
-            ..DpSettings::thesis()
-        };
+        let params = DpSettings::thesis().with_mpc(|m| {
+            (m.grid, m.neutral_rule, m.horizon_m, m.delta_kmh) = (GridAnchor::Moving, rule, 1500.0, 0.2);
+        });
         let with = receding(&params, true);
         let without = receding(&params, false);
         assert!(with.iter().filter(|s| s.0).count() > 200);

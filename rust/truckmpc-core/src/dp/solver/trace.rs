@@ -17,7 +17,7 @@ impl Solver {
         // On trapezoid stages the trajectory follows the speeds the decisions give (an arc ends
         // off the grid, and the next stage's inputs aim at its planned grid speed from there), so
         // the plan's fuel and time are those of driving it; on Euler stages it runs on the grid.
-        let exact = self.params.stage_model == StageModel::Trapezoid;
+        let exact = self.params.mpc.stage_model == StageModel::Trapezoid;
         out.trajectory.clear();
         for k in 0..self.grids.len() - 1 {
             let d = self.decisions[self.offsets[k] + g * self.grids[k].count + i];
@@ -28,8 +28,8 @@ impl Solver {
             } else if d.arc == (FULL >> 24) as u8 {
                 (1.0, 0.0)
             } else if let Some(l) = level_of(d.arc) {
-                debug_assert!(l < self.params.pedal_levels, "level {l} of {} levels", self.params.pedal_levels);
-                (l as f64 / self.params.pedal_levels as f64, 0.0)
+                debug_assert!(l < self.params.mpc.pedal_levels, "level {l} of {} levels", self.params.mpc.pedal_levels);
+                (l as f64 / self.params.mpc.pedal_levels as f64, 0.0)
             } else {
                 let v_max = self.bands[k + 1].v_max_mps();
                 let torque = self.slope_torques[k];
@@ -41,9 +41,9 @@ impl Solver {
             let v_grid_mps = self.grids[k].speed(i);
             out.trajectory.push(TrajectoryPoint { v_mps: v, v_grid_mps, gear: next_g, pedal, brake });
             v = if exact {
-                let h = self.params.stage_m;
+                let h = self.params.mpc.stage_m;
                 let input = (pedal, brake, next_g);
-                stage::end_speed_with(self.params.stage_model, vehicle, (v, h), input, self.slope_torques[k])
+                stage::end_speed_with(self.params.mpc.stage_model, vehicle, (v, h), input, self.slope_torques[k])
             } else {
                 v_next
             };
