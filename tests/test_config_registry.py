@@ -129,3 +129,10 @@ def test_a_sweep_directory_written_before_the_vecto_keys_still_resumes(tmp_path:
     (tmp_path / "sweep.json").write_text(json.dumps({**mine, "base_config": old_config}))
     with pytest.raises(Exception, match="base_config"):
         check_out_dir(tmp_path, mine)
+
+
+def test_the_declared_choices_are_the_names_the_declaration_data_carries() -> None:
+    from truckmpc.vecto import declaration as decl
+
+    assert SPEC_BY_KEY["cross_wind"].choices == list(decl.CROSS_WIND)
+    assert SPEC_BY_KEY["mission"].choices == sorted({mission for _, _, mission in decl.SEGMENTS})
