@@ -137,7 +137,7 @@ def test_run_config_plain_dict_and_sources() -> None:
     assert data["pi"]["gear_up_rpm"][-1] is None
     assert data["vehicle"]["mass_kg"] == 40000.0
     assert data["mpc"]["k_lim"] is None  # resolved to 200 m / S only when the kernel gets it
-    assert set(data) == {"vehicle", "cruise", "pi", "mpc", "pcc", "sim", "sources"}
+    assert set(data) == {"vehicle", "cruise", "pi", "mpc", "pcc", "sim", "vecto", "sources"}
     assert data["sources"][0].endswith("truck-40t.yaml") and data["sources"][-1] == "--set pedal_kp"
 
 

@@ -270,7 +270,7 @@ def test_a_truck_that_cannot_hold_v_ref_on_the_flat_is_one_error_not_a_missing_c
     # Air 5 times as dense: no gear holds 85 km/h, so kinetic energy has no price at v_ref (the
     # end-speed correction would be NaN); β is given so that its own check does not answer first.
     args = ["simulate", "--vehicle", str(job), "--controller", "pi", "--out", "o"]
-    result = runner.invoke(app, [*args, "--set", "air_density_kg_m3=5", "--set", "beta_g_per_s=3"])
+    result = runner.invoke(app, [*args, "--set", "air_density_kgpm3=5", "--set", "beta_g_per_s=3"])
     assert result.exit_code == 2
     assert "v_ref_kmh" in result.output and len(result.output.strip().splitlines()) == 1
 

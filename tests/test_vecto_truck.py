@@ -12,7 +12,7 @@ import pytest
 
 from truckmpc.vecto import load_vecto_truck
 from truckmpc.vecto.declaration import combination_rolling_resistance, cross_wind_cda_curve
-from truckmpc.vecto.truck import TruckKeys
+from truckmpc.vecto.truck import truck_values
 from vecto_files import SHARED_TRACTOR, TRACTOR_JOB, needs_tractor, write_job
 
 KMH_PER_MPS = 3.6
@@ -63,9 +63,9 @@ def test_driveline_losses_fitted_on_the_full_load_rows_give_the_steady_rows_fuel
     drag_nm = my - slope * mx
     keys = {"gear_efficiency": 1 - slope, "axle_efficiency": 1.0, "loss_torque_nm": drag_nm / (1 - slope)}
     # The defaults are this fit (rounded), so a VECTO truck without loss maps gets these losses.
-    defaults = TruckKeys()
-    assert defaults.gear_efficiency == pytest.approx(keys["gear_efficiency"], abs=1e-4)
-    assert defaults.loss_torque_nm == pytest.approx(keys["loss_torque_nm"], rel=1e-3)
+    defaults = truck_values()
+    assert defaults["gear_efficiency"] == pytest.approx(keys["gear_efficiency"], abs=1e-4)
+    assert defaults["loss_torque_nm"] == pytest.approx(keys["loss_torque_nm"], rel=1e-3)
     truck = load_vecto_truck(TRACTOR_JOB, keys).core
     for r in steady:
         op = truck.operating_point(

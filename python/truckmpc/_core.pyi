@@ -14,6 +14,7 @@ __all__ = [
     "Body",
     "Driveline",
     "Engine",
+    "KeyChange",
     "MapTruck",
     "OutputSpec",
     "ParamError",
@@ -23,8 +24,9 @@ __all__ = [
     "Settings",
     "Vehicle",
     "controllers",
+    "key_changes",
     "parameter_specs",
-    "replaced_keys",
+    "parameter_value",
     "run",
     "run_python",
     "summary_specs",
@@ -63,8 +65,34 @@ class ParamSpec:
 def parameter_specs() -> list[ParamSpec]:
     """Every declared parameter, section by section."""
 
-def replaced_keys() -> list[tuple[str, str]]:
-    """The keys that are no longer declared, each with the key that replaced it."""
+def parameter_value(key: str, value: Any) -> Any:
+    """The value of `key` as the core reads `value`: type and range checked (raises ParamError)."""
+
+@final
+class KeyChange:
+    """A key renamed, replaced or added (one entry of the core's registry)."""
+
+    @property
+    def key(self) -> str:
+        """The key as it was (renamed, replaced) or as it is (added)."""
+    @property
+    def kind(self) -> str:
+        """renamed, replaced or added."""
+    @property
+    def new(self) -> str | None:
+        """The key's successor (renamed, replaced); None for an added key."""
+    @property
+    def why(self) -> str | None:
+        """Why it was replaced, in parentheses; None otherwise."""
+    @property
+    def replays_with(self) -> Any:
+        """The value a record made before an added key existed replays with; None otherwise."""
+    @property
+    def version(self) -> str:
+        """The version of truckmpc that changed it."""
+
+def key_changes() -> list[KeyChange]:
+    """Every key renamed, replaced or added, oldest first."""
 
 @final
 class Settings:

@@ -20,11 +20,12 @@ from pathlib import Path
 from typing import Any
 
 from truckmpc.config import RunConfig, config_from_values
+from truckmpc.config.keys import current_values
 from truckmpc.errors import ConfigError, RoadError, read_user_text
 from truckmpc.roads import RoadProfile, default_test_track, load_road
 from truckmpc.sim import CONTROLLERS
 from truckmpc.units import PCT_PER_FRACTION
-from truckmpc.vecto.replay import replay_truck, truck_record
+from truckmpc.vecto.replay import check_read_files, recorded_job, truck_record
 
 MAP_SLACK = 0.02
 """Share of the road's length by which the controllers' map may differ at either end: the core's
@@ -130,11 +131,6 @@ def map_with_targets_of(profile: RoadProfile, told: RoadProfile) -> RoadProfile:
     return dataclasses.replace(told, target_speed_kmh=targets, stops=())
 
 
-LATER_KEYS: dict[str, object] = {"pedal_levels": 0}
-"""Keys declared after some runs were recorded, each with the value that drives those runs as they
-were (a summary.json without the key replays with it)."""
-
-
 def load_replay(path: Path) -> tuple[RunRequest, RoadProfile, RunConfig]:
     """The request, road and configuration recorded in a `summary.json`; the road must still hash
     to the recorded SHA-256, and the controllers be some of :data:`truckmpc.sim.CONTROLLERS`."""
@@ -149,8 +145,12 @@ def load_replay(path: Path) -> tuple[RunRequest, RoadProfile, RunConfig]:
     values = {
         key: value for section in settings.values() if isinstance(section, dict) for key, value in section.items()
     }
-    values = {**LATER_KEYS, **values}
-    config = config_from_values(values, f"{where}: run.settings", replay_truck(run.get("vehicle"), where))
+    recorded = recorded_job(run.get("vehicle"), where)
+    # A record made before the truck's keys were settings holds those set in run.vehicle.keys.
+    job, truck_keys = (None, {}) if recorded is None else recorded
+    config = config_from_values(current_values({**truck_keys, **values}), f"{where}: run.settings", job)
+    if config.truck is not None:
+        check_read_files(config.truck, run["vehicle"], where)
     road_path = _field(road, "path", (str, type(None)), f"{where}: run.road")
     reverse = _field(road, "reverse", bool, f"{where}: run.road")
     profile = default_test_track() if road_path is None else load_road(road_path)

@@ -10,10 +10,10 @@ from typing import Annotated
 
 import typer
 
-from truckmpc.cli.options import ConfigOpt, SetOpt, VehicleOpt, key_values, run_config_from
+from truckmpc.cli.options import ConfigOpt, SetOpt, VehicleOpt, run_config_from
+from truckmpc.config.vecto_truck import truck_from_overrides
 from truckmpc.errors import VehicleError
 from truckmpc.stationary import map_truck_stationary_point, stationary_point
-from truckmpc.vecto import load_vecto_truck
 
 __all__ = ["model_app"]
 
@@ -97,7 +97,7 @@ def _map_truck_point(
 ) -> None:
     if config:
         raise VehicleError(f"--config: expected none with a VECTO truck ({job.name}): its keys are set with --set")
-    truck = load_vecto_truck(job, key_values(set_))
+    truck = truck_from_overrides(job, set_ or ())
     parsed = _parse_gear(gear, truck.core.gears)
     if parsed == 0:
         raise typer.BadParameter(

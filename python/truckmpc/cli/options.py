@@ -10,7 +10,6 @@ import typer
 
 from truckmpc.config import RunConfig, load_run_config
 from truckmpc.config.keys import preset_names
-from truckmpc.errors import VehicleError
 from truckmpc.geo.options import Method
 
 __all__ = [
@@ -32,7 +31,6 @@ __all__ = [
     "StepOpt",
     "TrackArg",
     "VehicleOpt",
-    "key_values",
     "run_config_from",
 ]
 
@@ -133,20 +131,6 @@ GradeLimitOpt = Annotated[
     ),
 ]
 RoadFileArg = Annotated[Path, typer.Argument(metavar="FILE", help="A road CSV or a GPX track.")]
-
-
-def key_values(set_: list[str] | None) -> dict[str, str]:
-    """``--set key=value`` items as a mapping (for keys that are not run-configuration keys, such as a
-    VECTO truck's)."""
-    out = {}
-    for item in set_ or []:
-        key, sep, value = item.partition("=")
-        if not sep:
-            raise VehicleError(f"--set {item}: expected key=value, got no '='")
-        if not key.strip():
-            raise VehicleError(f"--set {item}: expected key=value, got no key before '='")
-        out[key.strip()] = value.strip()
-    return out
 
 
 def run_config_from(vehicle: Path | None, config: list[Path] | None, set_: list[str] | None) -> RunConfig:

@@ -9,10 +9,11 @@ from typing import Annotated, Any
 
 import typer
 
-from truckmpc.cli.options import SetOpt, key_values
+from truckmpc.cli.options import SetOpt
 from truckmpc.config import load_run_config
+from truckmpc.config.keys import RENAMED_KEYS
+from truckmpc.config.vecto_truck import truck_from_overrides
 from truckmpc.errors import VehicleError
-from truckmpc.vecto import load_vecto_truck
 from truckmpc.vecto.info import truck_info
 
 __all__ = ["vehicle_app"]
@@ -38,7 +39,7 @@ def info_cmd(
 ) -> None:
     """Masses, ratios, air drag, rolling resistance, rated power and the maps' ranges, as simulated
     (VECTO's declaration-mode trailer, load and auxiliaries included; --set payload_kg=… and so on)."""
-    doc = truck_info(load_vecto_truck(job, key_values(set_)))
+    doc = truck_info(truck_from_overrides(job, set_ or ()))
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
         return
@@ -93,7 +94,7 @@ def _run_keys(run: Path, job: Path, set_: list[str] | None) -> tuple[str, ...]:
             f"{where}: run.vehicle: expected a run of {job.resolve()}, got a run of {recorded or 'the thesis truck'}"
         )
     keys = record.get("keys", {})
-    return tuple(f"{k}={json.dumps(v)}" for k, v in keys.items() if isinstance(keys, dict))
+    return tuple(f"{RENAMED_KEYS.get(k, k)}={json.dumps(v)}" for k, v in keys.items() if isinstance(keys, dict))
 
 
 def _text(d: dict[str, Any]) -> list[str]:

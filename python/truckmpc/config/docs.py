@@ -24,6 +24,9 @@ SECTION_TITLES = {
     "# (--controller pcc). The PCC's allowed underspeed, and its overspeed with use case 3, are the\n"
     "# cruise band's v_dec_kmh and v_inc_kmh.",
     "sim": "How the closed loop is simulated and recorded.",
+    "vecto": "A truck from VECTO's files (--vehicle JOB.vecto or JOB.xml): declaration mode's mission, load,\n"
+    "# trailer, cross wind and auxiliaries, and the driveline losses where the job gives no loss map.\n"
+    "# null: VECTO's value for this truck, or its files'. With the thesis's truck these keep their defaults.",
 }
 
 

@@ -8,8 +8,9 @@ from __future__ import annotations
 
 import difflib
 import os
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import Any
 
 from truckmpc import _core
 from truckmpc.errors import ConfigError
@@ -20,8 +21,14 @@ SPEC_BY_KEY: dict[str, _core.ParamSpec] = {spec.name: spec for spec in SPECS}
 SECTION_NAMES: tuple[str, ...] = tuple(dict.fromkeys(spec.section for spec in SPECS))
 KEYS: tuple[str, ...] = tuple(SPEC_BY_KEY)
 """Every key, section by section in declaration order."""
-REPLACED_KEYS: dict[str, str] = dict(_core.replaced_keys())
-"""Keys no longer declared, each with the key that replaced it."""
+KEY_CHANGES: tuple[_core.KeyChange, ...] = tuple(_core.key_changes())
+"""Keys renamed, replaced or added, oldest first (the core's registry)."""
+RETIRED_KEYS: dict[str, _core.KeyChange] = {c.key: c for c in KEY_CHANGES if c.kind != "added"}
+"""Keys no longer declared (renamed or replaced), each with its change."""
+RENAMED_KEYS: dict[str, str] = {c.key: c.new for c in KEY_CHANGES if c.kind == "renamed" and c.new is not None}
+"""Old name -> name now, for keys renamed with their meaning kept."""
+ADDED_KEYS: dict[str, Any] = {c.key: c.replays_with for c in KEY_CHANGES if c.kind == "added"}
+"""Keys declared after runs were recorded, each with the value those runs replay with."""
 
 SECTION_FILES: dict[str, str] = {
     "cruise": "cruise.yaml",
@@ -29,6 +36,7 @@ SECTION_FILES: dict[str, str] = {
     "mpc": "mpc.yaml",
     "pcc": "pcc.yaml",
     "sim": "simulation.yaml",
+    "vecto": "vecto.yaml",
 }
 """The packaged file holding each section's defaults (the vehicle's is a truck file)."""
 
@@ -42,6 +50,14 @@ def section_keys(section: str) -> tuple[str, ...]:
 
 
 VEHICLE_KEYS: tuple[str, ...] = section_keys("vehicle")
+VECTO_KEYS: tuple[str, ...] = section_keys("vecto")
+"""The keys of a truck from VECTO's files (refused with the thesis's truck)."""
+
+
+def current_values(values: Mapping[str, Any]) -> dict[str, Any]:
+    """Recorded values as today's keys: renamed keys under their names now, and each added key the
+    record lacks with the value that drove it (:data:`ADDED_KEYS`)."""
+    return {**ADDED_KEYS, **{RENAMED_KEYS.get(key, key): value for key, value in values.items()}}
 
 
 def default_config_path(name: str) -> Path:
@@ -74,14 +90,25 @@ def preset_names() -> list[str]:
 def unknown_key(where: str, key: str, known: Sequence[str]) -> ConfigError:
     """The error for a key that is not declared: the key that replaced it, or the closest known key
     as a hint."""
-    if key in REPLACED_KEYS:
+    change = RETIRED_KEYS.get(key)
+    if change is not None:
         what = "key" if where.startswith("--") else f"key {key!r}"
-        return ConfigError(
-            f"{where}: {what} was replaced by {REPLACED_KEYS[key]!r} "
-            "(one speed band for every controller: v_dec_kmh below v_ref, v_inc_kmh above)"
-        )
+        how = f"was replaced by {change.new!r} {change.why}" if change.kind == "replaced" else f"is now {change.new!r}"
+        return ConfigError(f"{where}: {what} {how}")
     close = difflib.get_close_matches(key, list(known), n=1)
     hint = f" (did you mean {close[0]!r}?)" if close else ""
     if where.startswith("--"):
         return ConfigError(f"{where}: unknown key{hint}")
     return ConfigError(f"{where}: unknown key {key!r}{hint}")
+
+
+def current_sections(doc: Mapping[str, Any]) -> dict[str, Any]:
+    """A recorded configuration by section (as a sweep's ``base_config`` holds it) as today's
+    sections (:func:`current_values`); a document with a key this version does not know is left as it is."""
+    flat = {key: value for section in doc.values() if isinstance(section, dict) for key, value in section.items()}
+    out: dict[str, dict[str, Any]] = {name: {} for name in SECTION_NAMES}
+    for key, value in current_values(flat).items():
+        if key not in SPEC_BY_KEY:
+            return dict(doc)
+        out[SPEC_BY_KEY[key].section][key] = value
+    return out

@@ -1,32 +1,40 @@
-"""A VECTO job as a run's vehicle: the truck's own keys (load, trailer, air drag, losses) split from
-the run's overrides, and the PI shift speeds that suit its engine.
+"""A VECTO job as a run's vehicle: the truck built from its keys' values in the run's layers (each
+checked by the core against its declaration), the vehicle keys and PI shift speeds it gives the run.
 
 The run's other vehicle keys describe the thesis's truck; with a VECTO job only
-``brake_torque_max_nm`` (the service brakes, which VECTO's files do not give) still applies, so
-setting any other is refused rather than ignored.
+``brake_torque_max_nm`` (the service brakes, which VECTO's files do not give) and
+``air_density_kgpm3`` (VECTO's 1.188 unless set) still apply, so setting any other is refused
+rather than ignored.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import fields
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 from truckmpc import _core
-from truckmpc.config.keys import VEHICLE_KEYS
-from truckmpc.config.yamlfile import load_value
+from truckmpc.config.keys import KEYS, VEHICLE_KEYS
+from truckmpc.config.layers import Layers
+from truckmpc.config.yamlfile import parse_assignment
 from truckmpc.errors import ConfigError
-from truckmpc.vecto.truck import TruckKeys, VectoTruck, load_vecto_truck, pi_shift_speeds_rpm
+from truckmpc.vecto import declaration as decl
+from truckmpc.vecto.truck import TRUCK_KEYS, VectoTruck, load_vecto_truck, pi_shift_speeds_rpm
 
-__all__ = ["TRUCK_KEYS", "is_vecto_job", "truck_layer", "vecto_truck"]
+__all__ = [
+    "STILL_APPLIES",
+    "VECTO_VALUES",
+    "build_truck",
+    "is_vecto_job",
+    "refuse_thesis_key",
+    "truck_from_overrides",
+    "truck_layer",
+]
 
-TRUCK_KEYS = tuple(f.name for f in fields(TruckKeys))
-"""Keys of a VECTO truck a user may set with ``--set`` (see :class:`truckmpc.vecto.TruckKeys`)."""
-
-_STILL_APPLIES = ("brake_torque_max_nm",)
+STILL_APPLIES = ("brake_torque_max_nm", "air_density_kgpm3")
+"""The thesis's vehicle keys a VECTO truck still uses."""
+VECTO_VALUES: dict[str, Any] = {"air_density_kgpm3": decl.AIR_DENSITY_KG_M3}
+"""VECTO's values of keys the thesis's truck gives otherwise: the layer under a user's own."""
 
 
 def is_vecto_job(path: object) -> bool:
@@ -34,27 +42,36 @@ def is_vecto_job(path: object) -> bool:
     return str(path).lower().endswith((".vecto", ".xml"))
 
 
-def vecto_truck(path: Path, overrides: Sequence[str]) -> tuple[VectoTruck, tuple[str, ...]]:
-    """The truck of the job at ``path`` with the truck's keys among ``overrides`` applied, and the
-    overrides left for the run's settings."""
-    values: dict[str, Any] = {}
-    rest: list[str] = []
+def refuse_thesis_key(key: str, job: Path) -> None:
+    """A `--set` of a key of the thesis's truck that the VECTO job replaces: refused, not ignored."""
+    if key in VEHICLE_KEYS and key not in STILL_APPLIES:
+        raise ConfigError(
+            f"--set {key}: expected a key of the VECTO truck ({', '.join(TRUCK_KEYS)}) or "
+            f"{', '.join(k for k in STILL_APPLIES if k not in TRUCK_KEYS)}, got a key of the thesis's truck, "
+            f"which {job.name} replaces"
+        )
+
+
+def build_truck(job: Path, layers: Layers) -> VectoTruck:
+    """The truck of `job` from the layers' values of its keys; a bad value is blamed on its origin."""
+    try:
+        return load_vecto_truck(job, {key: layers.values[key] for key in TRUCK_KEYS if key in layers.values})
+    except _core.ParamError as err:
+        raise layers.blame(err) from None
+
+
+def truck_from_overrides(job: Path, overrides: Sequence[str]) -> VectoTruck:
+    """The truck of `job` with `--set key=value` overrides of its keys (``truckmpc vehicle info``)."""
+    layers = Layers()
     for text in overrides:
-        key, sep, raw = text.partition("=")
-        key = key.strip()
-        if sep and key in TRUCK_KEYS:
-            try:
-                values[key] = load_value(raw)
-            except yaml.YAMLError:
-                raise ConfigError(f"--set {key}: expected a YAML value, got {raw.strip()!r}") from None
-            continue
-        if sep and key in VEHICLE_KEYS and key not in _STILL_APPLIES:
+        key, value = parse_assignment(text)
+        refuse_thesis_key(key, job)
+        if key in KEYS and key not in TRUCK_KEYS:
             raise ConfigError(
-                f"--set {key}: expected a key of the VECTO truck ({', '.join(TRUCK_KEYS)}) or "
-                f"{', '.join(_STILL_APPLIES)}, got a key of the thesis's truck, which {path.name} replaces"
+                f"--set {key}: expected a key of the VECTO truck ({', '.join(TRUCK_KEYS)}), got a run's key"
             )
-        rest.append(text)
-    return load_vecto_truck(path, values), tuple(rest)
+        layers.override(key, value, TRUCK_KEYS)
+    return build_truck(job, layers)
 
 
 def truck_layer(truck: VectoTruck) -> dict[str, Any]:
@@ -68,13 +85,12 @@ def truck_layer(truck: VectoTruck) -> dict[str, Any]:
         "engine_inertia_kgm2": job.engine.inertia_kgm2,
         "idle_speed_rpm": job.engine.idle_speed_rpm,
         "final_drive_ratio": job.gearbox.axle_ratio,
-        "final_drive_efficiency": keys.axle_efficiency,
+        "final_drive_efficiency": keys["axle_efficiency"],
         "wheel_radius_m": truck.wheel_radius_m,
         "rolling_resistance": truck.rolling_resistance,
         "gravity_mps2": _core.G_MPS2,
-        "air_density_kgpm3": keys.air_density_kg_m3,
         "gear_ratios": list(job.gearbox.gear_ratios),
-        "gear_efficiencies": [keys.gear_efficiency] * gears,
+        "gear_efficiencies": [keys["gear_efficiency"]] * gears,
         "gear_down_rpm": down,
         "gear_up_rpm": up,
     }

@@ -103,3 +103,16 @@ def load_value(text: str) -> Any:
         return loader.get_single_data()
     finally:
         loader.dispose()
+
+
+def parse_assignment(text: str, flag: str = "--set") -> tuple[str, Any]:
+    """A ``key=value`` option (``--set``) as its key and its YAML value; errors name ``flag key``."""
+    key, sep, raw = text.partition("=")
+    key = key.strip()
+    if not sep or not key:
+        raise ConfigError(f"{flag} {text!r}: expected key=value")
+    try:
+        return key, load_value(raw)
+    except yaml.YAMLError as err:
+        problem = getattr(err, "problem", None) or str(err) or "syntax error"
+        raise ConfigError(f"{flag} {key}: value {show_value(raw.strip())} is not valid YAML ({problem})") from None

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from truckmpc.atomic import atomic_write_text
+from truckmpc.config.keys import current_sections
 from truckmpc.sweep.errors import SweepError
 
 CSV_NAME, PARTIAL_NAME, SETTINGS_NAME = "sweep.csv", "sweep.partial.csv", "sweep.json"
@@ -57,6 +58,7 @@ def check_out_dir(
     except (json.JSONDecodeError, UnicodeDecodeError):
         raise SweepError(f"{path}: not a {stem} settings file; use another --out or remove it") from None
     theirs = _identity(old if isinstance(old, dict) else {})
+    theirs["base_config"] = _current_config(theirs["base_config"])
     if renames and isinstance(theirs["columns"], list):
         theirs["columns"] = _renamed(theirs["columns"], renames)
     mine = _identity(settings)
@@ -65,6 +67,16 @@ def check_out_dir(
         raise SweepError(
             f"{out} holds a different {stem} (not the same: {', '.join(differ)}); use another --out or remove it"
         )
+
+
+def _current_config(doc: Any) -> Any:
+    """A recorded base configuration (one, or a fleet's by name) with its keys as today's, through
+    the registry of renamed and added keys: a sweep written before a key existed still resumes."""
+    if not isinstance(doc, dict):
+        return doc
+    if "vehicle" in doc:
+        return current_sections(doc)
+    return {name: current_sections(one) if isinstance(one, dict) else one for name, one in doc.items()}
 
 
 def write_settings(out: Path, settings: Mapping[str, Any], jobs: int, stem: str = "sweep") -> None:

@@ -14,6 +14,7 @@ import yaml
 
 from truckmpc import _core
 from truckmpc.config import VEHICLE_KEYS, Origin, RunConfig, load_run_config
+from truckmpc.config.vecto_truck import STILL_APPLIES
 from truckmpc.config.yamlfile import load_value
 from truckmpc.errors import ConfigError
 from truckmpc.roads import RoadProfile, load_road
@@ -136,7 +137,7 @@ def _check_truck_axes(config: RunConfig, axes: Sequence[Axis]) -> None:
     """A VECTO truck replaces the thesis's vehicle keys: an axis over one of them would change nothing."""
     if config.truck is None:
         return
-    replaced = [a.key for a in axes if a.key in VEHICLE_KEYS and a.key != "brake_torque_max_nm"]
+    replaced = [a.key for a in axes if a.key in VEHICLE_KEYS and a.key not in STILL_APPLIES]
     if replaced:
         raise SweepError(
             f"--grid {replaced[0]}: expected a key a VECTO truck uses, got a key of the thesis's truck, which "

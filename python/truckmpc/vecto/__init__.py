@@ -10,6 +10,6 @@ Modules, bottom up: :mod:`~truckmpc.vecto.files` (VECTO's JSON and CSV formats),
 """
 
 from truckmpc.vecto.components import VectoJob, read_job
-from truckmpc.vecto.truck import TruckKeys, VectoTruck, load_vecto_truck
+from truckmpc.vecto.truck import TRUCK_KEYS, VectoTruck, load_vecto_truck, truck_values
 
-__all__ = ["TruckKeys", "VectoJob", "VectoTruck", "load_vecto_truck", "read_job"]
+__all__ = ["TRUCK_KEYS", "VectoJob", "VectoTruck", "load_vecto_truck", "read_job", "truck_values"]

@@ -1,20 +1,20 @@
 """A VECTO truck in a run's record (``summary.json``): every component file with its SHA-256 and
-the truck's keys as set, so that ``--replay`` rebuilds the same truck or refuses a file that changed.
+the truck's keys set to other than their defaults, so that ``--replay`` rebuilds the same truck or
+refuses a file that changed.
 """
 
 from __future__ import annotations
 
 import hashlib
-from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
 from truckmpc.errors import ConfigError
-from truckmpc.vecto.truck import TruckKeys, VectoTruck, load_vecto_truck
+from truckmpc.vecto.truck import VectoTruck, truck_values
 
-__all__ = ["replay_truck", "truck_record"]
+__all__ = ["check_read_files", "recorded_job", "truck_record"]
 
-_DEFAULTS = TruckKeys()
+_DEFAULTS = truck_values()
 
 
 def truck_record(truck: VectoTruck) -> dict[str, Any]:
@@ -24,16 +24,16 @@ def truck_record(truck: VectoTruck) -> dict[str, Any]:
     return {
         "vecto_job": str(Path(job.path).resolve()),
         "files": {str(Path(p).resolve()): _sha256(Path(p)) for p in job.files},
-        "keys": {k: v for k, v in asdict(truck.keys).items() if v != getattr(_DEFAULTS, k)},
+        "keys": {k: v for k, v in truck.keys.items() if v != _DEFAULTS[k]},
         "mass_kg": truck.mass_kg,
         "payload_kg": truck.payload_kg,
         "trailer_mass_kg": truck.trailer_mass_kg,
     }
 
 
-def replay_truck(record: Any, where: str) -> VectoTruck | None:
-    """The truck a ``run.vehicle`` record names (None for a run of the thesis's truck); every file
-    must still hash as recorded."""
+def recorded_job(record: Any, where: str) -> tuple[Path, dict[str, Any]] | None:
+    """The job a ``run.vehicle`` record names and the truck's keys it records (None for a run of
+    the thesis's truck); every file must still hash as recorded."""
     if record is None:
         return None
     key = f"{where}: run.vehicle"
@@ -48,12 +48,16 @@ def replay_truck(record: Any, where: str) -> VectoTruck | None:
     job, keys = record.get("vecto_job"), record.get("keys", {})
     if not isinstance(job, str) or not isinstance(keys, dict):
         raise ConfigError(f"{key}: expected 'vecto_job' a path and 'keys' a mapping, got {job!r}, {keys!r}")
-    truck = load_vecto_truck(Path(job), keys)
-    # A file the job names that was missing then (a loss map) and is there now changes the truck.
+    return Path(job), keys
+
+
+def check_read_files(truck: VectoTruck, record: dict[str, Any], where: str) -> None:
+    """A file the job names that was missing then (a loss map) and is there now changes the truck."""
     added = sorted({str(Path(p).resolve()) for p in truck.job.files} - set(record["files"]))
     if added:
-        raise ConfigError(f"{key}.files: expected the files the run read, got {added[0]} too (not there when it ran)")
-    return truck
+        raise ConfigError(
+            f"{where}: run.vehicle.files: expected the files the run read, got {added[0]} too (not there when it ran)"
+        )
 
 
 def _sha256(path: Path) -> str:

@@ -6,8 +6,8 @@ key a user can see and override.
 from __future__ import annotations
 
 import itertools
-import math
-from dataclasses import dataclass, fields, replace
+from collections.abc import Mapping
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -19,11 +19,12 @@ from truckmpc.vecto.xml_job import read_xml_job
 
 __all__ = [
     "DRIVELINE_LOSS_NOTE",
-    "TruckKeys",
+    "TRUCK_KEYS",
     "VectoTruck",
     "driveline_losses",
     "load_vecto_truck",
     "pi_shift_speeds_rpm",
+    "truck_values",
 ]
 
 DRIVELINE_LOSS_NOTE = (
@@ -32,72 +33,26 @@ DRIVELINE_LOSS_NOTE = (
     "tractor's full-load climb in gear 11 and used in every gear"
 )
 _MIN_GROSS_MASS_T = 16.0  # group 5 is a 4x2 tractor above 16 t
-_RANGES = {  # key: (lowest, highest, lowest allowed itself, what)
-    "payload_kg": (0.0, math.inf, True, "a mass >= 0 [kg]"),
-    "trailer_mass_kg": (0.0, math.inf, True, "a mass >= 0 [kg]"),
-    "air_density_kg_m3": (0.0, math.inf, False, "a density > 0 [kg/m³]"),
-    "aux_power_w": (0.0, math.inf, True, "a power >= 0 [W]"),
-    "gear_efficiency": (0.0, 1.0, False, "an efficiency in (0, 1]"),
-    "axle_efficiency": (0.0, 1.0, False, "an efficiency in (0, 1]"),
-    "loss_torque_nm": (0.0, math.inf, True, "a torque >= 0 [Nm]"),
-    "traction_interruption_s": (0.0, 10.0, True, "a time in [0, 10] s"),
+TRUCK_KEYS: tuple[str, ...] = (
+    *(spec.name for spec in _core.parameter_specs() if spec.section == "vecto"),
+    "air_density_kgpm3",
+)
+"""The keys a VECTO truck is built from: the core's ``vecto`` section and the air density."""
+_DEFAULTS: dict[str, Any] = {
+    **{spec.name: spec.default for spec in _core.parameter_specs() if spec.section == "vecto"},
+    "air_density_kgpm3": decl.AIR_DENSITY_KG_M3,
 }
+"""A VECTO truck's keys unset: the declared defaults, and VECTO's air density."""
 
 
-@dataclass(frozen=True)
-class TruckKeys:
-    """What declaration mode adds to a VECTO vehicle, with VECTO's values for its group as defaults;
-    ``None`` means "VECTO's value for this truck"."""
-
-    mission: str = "LongHaul"
-    payload_kg: float | None = None
-    """Load [kg]; default: the group's reference load on the mission."""
-    trailer_mass_kg: float | None = None
-    """Mass of the standard trailer [kg]."""
-    cross_wind: str = "vecto3"
-    """Cross-wind correction of the drag area: vecto3, height_profile or none."""
-    air_density_kg_m3: float = decl.AIR_DENSITY_KG_M3
-    aux_power_w: float | None = None
-    """Auxiliary power [W]; default: VECTO's for the job's technologies."""
-    gear_efficiency: float = 1.0 - 0.04541
-    axle_efficiency: float = 1.0
-    loss_torque_nm: float = 102.33 / (1.0 - 0.04541)
-    """Driveline drag torque at the gearbox input [Nm] (see :data:`DRIVELINE_LOSS_NOTE`)."""
-    use_loss_maps: bool = True
-    """Use the job's loss maps where it gives them (false: the affine losses above everywhere)."""
-    traction_interruption_s: float | None = None
-    """How long a gear shift interrupts traction [s]; default: the gearbox file's ``TracInt``."""
-
-    def with_values(self, values: dict[str, Any], where: str) -> TruckKeys:
-        """These keys with ``values`` set; an unknown key or a bad value is a one-line error."""
-        known = {f.name: f for f in fields(self)}
-        out: dict[str, Any] = {}
-        for key, value in values.items():
-            if key not in known:
-                raise VehicleError(f"{where}: {key}: expected one of {', '.join(known)}, got an unknown key")
-            if key in ("mission", "cross_wind"):
-                out[key] = str(value)
-                continue
-            if key == "use_loss_maps":
-                flag = {"true": True, "false": False}.get(str(value).strip().lower())
-                if flag is None:
-                    raise VehicleError(f"{where}: {key}: expected true or false, got {value!r}")
-                out[key] = flag
-                continue
-            lo, hi, closed, what = _RANGES[key]
-            try:
-                number = float(value)
-            except (TypeError, ValueError):
-                number = math.nan
-            if not (math.isfinite(number) and (number >= lo if closed else number > lo) and number <= hi):
-                raise VehicleError(f"{where}: {key}: expected {what}, got {value!r}")
-            out[key] = number
-        keys = replace(self, **out)
-        if keys.cross_wind not in decl.CROSS_WIND:
-            raise VehicleError(
-                f"{where}: cross_wind: expected one of {', '.join(decl.CROSS_WIND)}, got {keys.cross_wind!r}"
-            )
-        return keys
+def truck_values(values: Mapping[str, Any] | None = None) -> dict[str, Any]:
+    """The truck's keys (:data:`TRUCK_KEYS`) with ``values`` set, each read by the core (type and
+    range as declared); raises ``_core.ParamError`` naming a bad value's key."""
+    given = dict(values or {})
+    unknown = [key for key in given if key not in TRUCK_KEYS]
+    if unknown:
+        raise VehicleError(f"{unknown[0]}: expected a key of the VECTO truck ({', '.join(TRUCK_KEYS)}), got another")
+    return {key: _core.parameter_value(key, given.get(key, _DEFAULTS[key])) for key in TRUCK_KEYS}
 
 
 @dataclass(frozen=True)
@@ -113,41 +68,43 @@ class VectoTruck:
     rolling_resistance: float
     cda_curve: tuple[tuple[float, float], ...]
     aux_power_w: float
-    keys: TruckKeys
+    keys: Mapping[str, Any]
+    """The truck's keys (:data:`TRUCK_KEYS`) as the core read them."""
     core: _core.MapTruck
 
 
-def load_vecto_truck(path: Path, values: dict[str, Any] | None = None) -> VectoTruck:
-    """Read a ``.vecto`` job and build its truck with declaration mode's additions (``values``
-    override :class:`TruckKeys`)."""
+def load_vecto_truck(path: Path, values: Mapping[str, Any] | None = None) -> VectoTruck:
+    """Read a ``.vecto`` job and build its truck with declaration mode's additions (``values`` set
+    among :data:`TRUCK_KEYS`, checked by :func:`truck_values`)."""
+    keys = truck_values(values)
     job = read_xml_job(path) if path.suffix.lower() == ".xml" else read_job(path)
-    keys = TruckKeys().with_values(values or {}, str(path))
     segment = _segment(job, keys)
     vehicle = job.vehicle
-    payload = segment.reference_load_kg if keys.payload_kg is None else keys.payload_kg
-    trailer = segment.trailer_mass_kg if keys.trailer_mass_kg is None else keys.trailer_mass_kg
+    payload = segment.reference_load_kg if keys["payload_kg"] is None else keys["payload_kg"]
+    trailer = segment.trailer_mass_kg if keys["trailer_mass_kg"] is None else keys["trailer_mass_kg"]
     mass = vehicle.curb_mass_kg + trailer + payload
     where = f"{vehicle.path}: AxleConfig.Axles"
     driven = [a for a in vehicle.axles if a.driven] or list(vehicle.axles)
     radius = sum(decl.dynamic_radius_m(a.tyre, where) for a in driven) / len(driven)
     rrc, wheels_inertia = _wheels(job, segment, mass)
     cda0 = vehicle.cda_m2 + segment.trailer_delta_cda_m2
-    curve = decl.cross_wind_cda_curve(cda0, keys.cross_wind, segment.cross_wind_parameters, segment.height_m)
-    aux = decl.auxiliary_power_w(job.auxiliaries, str(job.path)) if keys.aux_power_w is None else keys.aux_power_w
-    body = _core.Body(mass, wheels_inertia, cda0, keys.air_density_kg_m3, rrc, aux, cda_curve=curve)
+    curve = decl.cross_wind_cda_curve(cda0, keys["cross_wind"], segment.cross_wind_parameters, segment.height_m)
+    aux = keys["aux_power_w"]
+    aux = decl.auxiliary_power_w(job.auxiliaries, str(job.path)) if aux is None else aux
+    body = _core.Body(mass, wheels_inertia, cda0, keys["air_density_kgpm3"], rrc, aux, cda_curve=curve)
     loss_maps = _loss_maps(job, keys)
-    _refuse_replaced_loss_keys(path, loss_maps, values or {})
-    interruption_s = job.gearbox.traction_interruption_s
-    interruption_s = interruption_s if keys.traction_interruption_s is None else keys.traction_interruption_s
+    _refuse_replaced_loss_keys(path, loss_maps, keys)
+    interruption_s = keys["traction_interruption_s"]
+    interruption_s = job.gearbox.traction_interruption_s if interruption_s is None else interruption_s
     core = _core_truck(job, keys, radius, loss_maps, body, interruption_s)
     return VectoTruck(job, segment, mass, payload, trailer, radius, rrc, tuple(curve), aux, keys, core)
 
 
-def _loss_maps(job: VectoJob, keys: TruckKeys) -> dict[str, Any]:
+def _loss_maps(job: VectoJob, keys: Mapping[str, Any]) -> dict[str, Any]:
     """VECTO's loss maps where the job gives one for every gear (gears) and for the axle, unless
-    ``use_loss_maps`` is off; the affine losses of :class:`TruckKeys` stand in for the others."""
+    ``use_loss_maps`` is off; the affine losses (``gear_efficiency`` and so on) stand in for the others."""
     gearbox = job.gearbox
-    if not keys.use_loss_maps:
+    if not keys["use_loss_maps"]:
         return {}
     gears = gearbox.gear_loss_maps
     out: dict[str, Any] = {}
@@ -158,11 +115,12 @@ def _loss_maps(job: VectoJob, keys: TruckKeys) -> dict[str, Any]:
     return out
 
 
-def _refuse_replaced_loss_keys(path: Path, loss_maps: dict[str, Any], values: dict[str, Any]) -> None:
-    """The affine losses' keys do nothing where loss maps replace them: refused, not ignored."""
+def _refuse_replaced_loss_keys(path: Path, loss_maps: dict[str, Any], values: Mapping[str, Any]) -> None:
+    """The affine losses' keys do nothing where loss maps replace them: set to other than their
+    defaults, refused, not ignored."""
     replaced = {"gear_loss_maps": ("gear_efficiency", "loss_torque_nm"), "axle_loss_map": ("axle_efficiency",)}
     for maps, keys in replaced.items():
-        given = [k for k in keys if k in values]
+        given = [k for k in keys if values[k] != _DEFAULTS[k]]
         if maps in loss_maps and given:
             raise VehicleError(
                 f"{path}: {given[0]}: expected no value where the job's loss maps give the losses "
@@ -182,7 +140,7 @@ def driveline_losses(truck: VectoTruck) -> str:
     return (f"{used}; otherwise: " if used else "") + DRIVELINE_LOSS_NOTE + named
 
 
-def _segment(job: VectoJob, keys: TruckKeys) -> decl.Segment:
+def _segment(job: VectoJob, keys: Mapping[str, Any]) -> decl.Segment:
     """VECTO's group of a declaration-mode job's vehicle on the mission."""
     vehicle = job.vehicle
     if not job.declaration_mode:
@@ -190,12 +148,13 @@ def _segment(job: VectoJob, keys: TruckKeys) -> decl.Segment:
             f"{job.path}: SavedInDeclMode: expected a declaration-mode job (truckmpc adds declaration mode's "
             "trailer, load and air drag; an engineering-mode job's own are not read yet), got false"
         )
-    segment = decl.SEGMENTS.get((vehicle.category, vehicle.axle_config, keys.mission))
+    mission = keys["mission"]
+    segment = decl.SEGMENTS.get((vehicle.category, vehicle.axle_config, mission))
     if segment is None or vehicle.gross_mass_t <= _MIN_GROSS_MASS_T:
         carried = "; ".join(s.name for s in decl.SEGMENTS.values())
         raise VehicleError(
             f"{vehicle.path}: VehCat/AxleConfig/MassMax: expected a group truckmpc carries ({carried}), "
-            f"got {vehicle.category} {vehicle.axle_config} of {vehicle.gross_mass_t:g} t on {keys.mission}"
+            f"got {vehicle.category} {vehicle.axle_config} of {vehicle.gross_mass_t:g} t on {mission}"
         )
     if len(segment.vehicle_axle_shares) != len(vehicle.axles):
         raise VehicleError(
@@ -221,7 +180,12 @@ def _wheels(job: VectoJob, segment: decl.Segment, mass_kg: float) -> tuple[float
 
 
 def _core_truck(
-    job: VectoJob, keys: TruckKeys, radius_m: float, loss_maps: dict[str, Any], body: _core.Body, interruption_s: float
+    job: VectoJob,
+    keys: Mapping[str, Any],
+    radius_m: float,
+    loss_maps: dict[str, Any],
+    body: _core.Body,
+    interruption_s: float,
 ) -> _core.MapTruck:
     """The core's truck; its checks' errors name the file the offending data came from."""
     engine, gearbox = job.engine, job.gearbox
@@ -235,9 +199,9 @@ def _core_truck(
         driveline = _core.Driveline(
             list(gearbox.gear_ratios),
             gearbox.axle_ratio,
-            keys.gear_efficiency,
-            keys.axle_efficiency,
-            keys.loss_torque_nm,
+            keys["gear_efficiency"],
+            keys["axle_efficiency"],
+            keys["loss_torque_nm"],
             radius_m,
             **loss_maps,
         )

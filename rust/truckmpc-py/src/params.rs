@@ -3,7 +3,7 @@
 
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
-use truckmpc_core::params::{Kind, ParamSpec, Value, REPLACED_KEYS};
+use truckmpc_core::params::{key_changes, Change, Kind, ParamSpec, Value};
 use truckmpc_core::scenario::Scenario;
 use truckmpc_core::RunSettings;
 
@@ -97,10 +97,52 @@ pub fn parameter_specs(py: Python<'_>) -> PyResult<Vec<PyParamSpec>> {
     RunSettings::specs().iter().map(|spec| PyParamSpec::new(py, spec)).collect()
 }
 
-/// The keys that are no longer declared, each with the key that replaced it.
+/// A key renamed, replaced or added: the core's registry of key changes, one entry.
+#[pyclass(name = "KeyChange", module = "truckmpc._core", frozen, get_all)]
+pub struct PyKeyChange {
+    /// The key as it was (renamed, replaced) or as it is (added).
+    key: String,
+    /// renamed, replaced or added.
+    kind: String,
+    /// The key's successor (renamed, replaced); None for an added key.
+    new: Option<String>,
+    /// Why it was replaced, in parentheses; None otherwise.
+    why: Option<String>,
+    /// The value a record made before an added key existed replays with; None otherwise.
+    replays_with: Py<PyAny>,
+    /// The version of truckmpc that changed it.
+    version: String,
+}
+
+/// Every key renamed, replaced or added, oldest first.
+#[pyfunction(name = "key_changes")]
+pub fn key_changes_py(py: Python<'_>) -> PyResult<Vec<PyKeyChange>> {
+    key_changes()
+        .into_iter()
+        .map(|c| {
+            let (kind, new, why, replays_with) = match c.change {
+                Change::Renamed { new } => ("renamed", Some(new), None, Value::Null),
+                Change::Replaced { new, why } => ("replaced", Some(new), Some(why), Value::Null),
+                Change::Added { replays_with } => ("added", None, None, replays_with),
+            };
+            Ok(PyKeyChange {
+                key: c.key.to_string(),
+                kind: kind.to_string(),
+                new: new.map(str::to_string),
+                why: why.map(str::to_string),
+                replays_with: from_value(py, &replays_with)?.unbind(),
+                version: c.version.to_string(),
+            })
+        })
+        .collect()
+}
+
+/// The value of `key` as the core reads `value`: type and range checked against its declaration.
 #[pyfunction]
-pub fn replaced_keys() -> Vec<(&'static str, &'static str)> {
-    REPLACED_KEYS.to_vec()
+pub fn parameter_value<'py>(py: Python<'py>, key: &str, value: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    let mut settings = RunSettings::default();
+    settings.set(key, &to_value(value)?).map_err(to_py)?;
+    from_value(py, &settings.get(key).expect("set"))
 }
 
 /// User values of a Python mapping, as (key, value) pairs.

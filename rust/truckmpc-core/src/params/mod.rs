@@ -6,6 +6,7 @@
 //!
 //! Keys are unique across sections, so a run's settings are one flat namespace ([`RunSettings`]).
 
+mod changes;
 mod cruise;
 mod mpc;
 mod pcc;
@@ -14,8 +15,10 @@ mod settings;
 mod sim;
 mod spec;
 mod value;
+mod vecto;
 mod vehicle;
 
+pub use changes::{key_changes, retired, Change, KeyChange};
 pub use cruise::CruiseParams;
 pub use mpc::{stages_in, CostKind, GridAnchor, MpcParams, NeutralRule, OnInfeasible, StageModel, MAX_PEDAL_LEVELS};
 pub use pcc::PccParams;
@@ -24,22 +27,10 @@ pub use settings::RunSettings;
 pub use sim::SimParams;
 pub use spec::{expected_text, join_doc, Bound, Kind, ParamSpec, Range};
 pub use value::{ParamValue, Value};
+pub use vecto::{CrossWind, Mission, VectoParams, TRACTION_INTERRUPTION_RANGE_S};
 pub use vehicle::VehicleParams;
 
 use crate::error::CoreResult;
-
-/// Keys that are no longer declared, each with the key that replaced it: a file or an override
-/// naming one is refused with the replacement named (not as an unknown key).
-pub const REPLACED_KEYS: [(&str, &str); 2] = [("pcc_underspeed_kmh", "v_dec_kmh"), ("pcc_overspeed_kmh", "v_inc_kmh")];
-
-/// The key that replaced `key`, if `key` is one of [`REPLACED_KEYS`].
-pub fn replacement(key: &str) -> Option<&'static str> {
-    REPLACED_KEYS.iter().find(|(old, _)| *old == key).map(|(_, new)| *new)
-}
-
-/// Why a replaced key is refused, after "`key` was replaced by `new`": the one band of every
-/// controller.
-pub const REPLACED_WHY: &str = "(one speed band for every controller: v_dec_kmh below v_ref, v_inc_kmh above)";
 
 /// A group of declared parameters (a section of the settings).
 pub trait ParamSet: Default + Clone {

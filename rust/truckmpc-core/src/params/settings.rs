@@ -1,12 +1,12 @@
 //! All the settings of a run, as one flat namespace of declared keys.
 
 use super::{
-    replacement, CruiseParams, MpcParams, ParamSet, ParamSpec, PccParams, PiParams, SimParams, Value, VehicleParams,
-    REPLACED_WHY,
+    retired, Change, CruiseParams, MpcParams, ParamSet, ParamSpec, PccParams, PiParams, SimParams, Value, VectoParams,
+    VehicleParams,
 };
 use crate::error::{CoreError, CoreResult};
 
-/// The vehicle, the cruise band, both controllers and the simulation.
+/// The vehicle, the cruise band, the controllers, the simulation and a VECTO truck's keys.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct RunSettings {
     /// The truck.
@@ -21,17 +21,20 @@ pub struct RunSettings {
     pub pcc: PccParams,
     /// The closed-loop simulation.
     pub sim: SimParams,
+    /// A truck from VECTO's files (defaults with the thesis's truck).
+    pub vecto: VectoParams,
 }
 
 impl RunSettings {
     /// The names of the sections, in order.
-    pub const SECTIONS: [&'static str; 6] = [
+    pub const SECTIONS: [&'static str; 7] = [
         VehicleParams::SECTION,
         CruiseParams::SECTION,
         PiParams::SECTION,
         MpcParams::SECTION,
         PccParams::SECTION,
         SimParams::SECTION,
+        VectoParams::SECTION,
     ];
 
     /// Every declared parameter, section by section.
@@ -42,6 +45,7 @@ impl RunSettings {
         specs.extend(MpcParams::specs());
         specs.extend(PccParams::specs());
         specs.extend(SimParams::specs());
+        specs.extend(VectoParams::specs());
         specs
     }
 
@@ -52,13 +56,19 @@ impl RunSettings {
             || self.pi.set(key, value)?
             || self.mpc.set(key, value)?
             || self.pcc.set(key, value)?
-            || self.sim.set(key, value)?;
+            || self.sim.set(key, value)?
+            || self.vecto.set(key, value)?;
         if known {
-            Ok(())
-        } else if let Some(new) = replacement(key) {
-            Err(CoreError::invalid(key, format!("{new} instead {REPLACED_WHY}")).got("a replaced key"))
-        } else {
-            Err(CoreError::invalid(key, "a known parameter").got("an unknown key"))
+            return Ok(());
+        }
+        match retired(key).map(|c| c.change) {
+            Some(Change::Replaced { new, why }) => {
+                Err(CoreError::invalid(key, format!("{new} instead {why}")).got("a replaced key"))
+            }
+            Some(Change::Renamed { new }) => {
+                Err(CoreError::invalid(key, format!("{new} (its name now)")).got("a renamed key"))
+            }
+            _ => Err(CoreError::invalid(key, "a known parameter").got("an unknown key")),
         }
     }
 
@@ -71,6 +81,7 @@ impl RunSettings {
             .or_else(|| self.mpc.get(key))
             .or_else(|| self.pcc.get(key))
             .or_else(|| self.sim.get(key))
+            .or_else(|| self.vecto.get(key))
     }
 
     /// Defaults overridden by `values`, validated.
@@ -91,6 +102,7 @@ impl RunSettings {
         self.mpc.check_ranges()?;
         self.pcc.check_ranges()?;
         self.sim.check_ranges()?;
+        self.vecto.check_ranges()?;
         self.vehicle.check_gearbox()?;
         self.pi.check_thresholds()?;
         self.pi.check_gearbox(&self.vehicle.gear_ratios)?;
@@ -110,7 +122,7 @@ impl RunSettings {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::params::REPLACED_KEYS;
+    use crate::params::key_changes;
     use std::collections::HashSet;
 
     #[test]
@@ -149,10 +161,14 @@ mod tests {
 
     #[test]
     fn a_replaced_key_names_its_replacement() {
-        for (old, new) in REPLACED_KEYS {
+        let replaced = key_changes().into_iter().filter_map(|c| match c.change {
+            Change::Replaced { new, .. } | Change::Renamed { new } => Some((c.key, new)),
+            Change::Added { .. } => None,
+        });
+        for (old, new) in replaced {
             let err = RunSettings::from_values([(old, &Value::Float(5.0))]).unwrap_err();
             assert_eq!(err.key(), old);
-            assert!(err.to_string().starts_with(&format!("{old}: expected {new} instead")), "{err}");
+            assert!(err.to_string().starts_with(&format!("{old}: expected {new} ")), "{err}");
             assert!(RunSettings::specs().iter().all(|spec| spec.name != old));
         }
     }

@@ -12,7 +12,7 @@ use std::sync::Arc;
 
 pub use controllers::{ControllerKind, CONTROLLERS};
 pub use drivable::{check_drivable, speed_limits, v_ref_range_kmh, SpeedLimits};
-pub use truck::{ComponentTruck, TRACTION_INTERRUPTION_MAX_S};
+pub use truck::ComponentTruck;
 
 use crate::band::SpeedBand;
 use crate::control::{Controller, GearLogic};
@@ -36,10 +36,13 @@ pub struct Scenario {
 
 impl Scenario {
     /// The run of `settings` (validated here) with `truck`, or the thesis's truck of the settings'
-    /// vehicle keys when None. Refuses, naming the key: a set speed the truck cannot drive, a
+    /// vehicle keys when None. Refuses, naming the key: a VECTO truck's key set without one, a set speed the truck cannot drive, a
     /// fuel_time cost whose β cannot be derived, a set speed where kinetic energy has no price.
     pub fn new(settings: RunSettings, truck: Option<Arc<ComponentTruck>>) -> CoreResult<Self> {
         settings.validate()?;
+        if truck.is_none() {
+            truck::check_no_truck_keys(&settings)?;
+        }
         let vehicle = Arc::new(vehicle_of(&settings, truck.as_deref(), None)?);
         check_drivable(&settings, &vehicle)?;
         let controller_vehicle = match settings.sim.controller_mass_kg {
@@ -64,6 +67,9 @@ impl Scenario {
         let mut settings = (*self.settings).clone();
         for (key, value) in changes {
             settings.set(key, value)?;
+        }
+        if self.truck.is_some() {
+            truck::check_same_truck_keys(&self.settings, &settings)?;
         }
         Scenario::new(settings, self.truck.clone())
     }

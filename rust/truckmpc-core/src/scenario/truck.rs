@@ -5,10 +5,8 @@
 use std::sync::{Arc, Mutex};
 
 use crate::error::{CoreError, CoreResult};
+use crate::params::{ParamSet, ParamValue, RunSettings, Value, VectoParams, TRACTION_INTERRUPTION_RANGE_S};
 use crate::powertrain::{MapModel, MapTruck};
-
-/// Longest traction interruption a gearbox may have [s].
-pub const TRACTION_INTERRUPTION_MAX_S: f64 = 10.0;
 
 /// A truck from component data and the models built from it, by brake torque.
 #[derive(Debug)]
@@ -22,14 +20,10 @@ pub struct ComponentTruck {
 
 impl ComponentTruck {
     /// `truck`, whose gearbox interrupts traction for `traction_interruption_s` [s] at a shift;
-    /// the error names `traction_interruption_s` outside [0, 10] s.
+    /// the error names `traction_interruption_s` outside its declared range.
     pub fn new(truck: MapTruck, traction_interruption_s: f64) -> CoreResult<Self> {
-        if !(traction_interruption_s.is_finite()
-            && (0.0..=TRACTION_INTERRUPTION_MAX_S).contains(&traction_interruption_s))
-        {
-            let expected = format!("a time in [0, {TRACTION_INTERRUPTION_MAX_S}] s");
-            return Err(CoreError::invalid("traction_interruption_s", expected).got(traction_interruption_s));
-        }
+        let value = Value::Float(traction_interruption_s);
+        f64::from_value("traction_interruption_s", &value, &TRACTION_INTERRUPTION_RANGE_S)?;
         Ok(ComponentTruck { truck, traction_interruption_s, models: Mutex::new(Vec::new()) })
     }
 
@@ -61,4 +55,35 @@ impl ComponentTruck {
         let truck = self.truck.with_mass_kg(mass_kg)?;
         Ok(Arc::new(MapModel::new(truck, brake_torque_max_nm, self.traction_interruption_s)))
     }
+}
+
+/// The keys a truck from VECTO's files is built from: its own section and the air density.
+fn truck_keys(settings: &RunSettings) -> impl Iterator<Item = (&'static str, Value)> + '_ {
+    let names = VectoParams::specs().into_iter().map(|spec| spec.name).chain(["air_density_kgpm3"]);
+    names.map(|name| (name, settings.get(name).expect("declared")))
+}
+
+/// Without a truck from VECTO's files, its keys keep their defaults (set, they would be ignored).
+pub(super) fn check_no_truck_keys(settings: &RunSettings) -> CoreResult<()> {
+    let defaults = VectoParams::default();
+    for spec in VectoParams::specs() {
+        let value = settings.vecto.get(spec.name).expect("declared");
+        if defaults.get(spec.name).as_ref() != Some(&value) {
+            let expected = "no value with the thesis's truck (a key of a truck from VECTO's files)";
+            return Err(CoreError::invalid(spec.name, expected).got(value));
+        }
+    }
+    Ok(())
+}
+
+/// A run derived from one with a truck keeps the keys the truck was built from (another value is
+/// another truck, built anew).
+pub(super) fn check_same_truck_keys(built: &RunSettings, changed: &RunSettings) -> CoreResult<()> {
+    for ((key, was), (_, now)) in truck_keys(built).zip(truck_keys(changed)) {
+        if was != now {
+            let expected = format!("{was}, the value the truck was built with (another value builds another truck)");
+            return Err(CoreError::invalid(key, expected).got(now));
+        }
+    }
+    Ok(())
 }
