@@ -2,6 +2,7 @@
 //! `python/truckmpc/_core.pyi`. No physics lives here: each call forwards to the core; core errors
 //! become `ParamError` (a `ValueError`) with the key as an attribute (`errors.rs`).
 
+mod convert;
 mod errors;
 mod outputs;
 mod params;

@@ -10,8 +10,8 @@ use truckmpc_core::figures::{self, check_gear};
 use truckmpc_core::powertrain::{Body, Driveline, Engine, MapTruck};
 use truckmpc_core::scenario::ComponentTruck;
 
+use crate::convert::dict_of;
 use crate::errors::to_py;
-use crate::params::dict_of;
 
 /// Rows of (speed, torque, value) points of a map or curve.
 type Rows = Vec<(f64, f64, f64)>;

@@ -11,9 +11,10 @@ use truckmpc_core::scenario::{self, CONTROLLERS};
 use truckmpc_core::sim::RunOutput;
 use truckmpc_core::{Control, PlantState, Road};
 
+use crate::convert::dict_of;
 use crate::errors::to_py;
 use crate::outputs::{summary_dict, trace_dict};
-use crate::params::{dict_of, PySettings};
+use crate::params::PySettings;
 use crate::road::PyRoad;
 use crate::signals::{self, Interruptible};
 

@@ -7,8 +7,8 @@ use pyo3::types::PyDict;
 use truckmpc_core::figures::{self, check_gear};
 use truckmpc_core::{Vehicle, VehicleParams, NEUTRAL};
 
+use crate::convert::{dict_of, pairs_of};
 use crate::errors::to_py;
-use crate::params::{dict_of, pairs_of};
 
 /// A validated truck model (thesis chapter 2, appendix B.1).
 ///

@@ -2,8 +2,7 @@
 //! override naming an old key is refused with its successor named, and a record made before a key
 //! existed (a `summary.json`, a sweep directory) is read with the value that drove it.
 
-use super::ParamSet;
-use super::{RunSettings, Value, VectoParams};
+use super::{ParamSet, Value, VectoParams};
 
 /// How a key changed.
 #[derive(Debug, Clone, PartialEq)]
@@ -51,7 +50,7 @@ pub fn key_changes() -> Vec<KeyChange> {
         KeyChange { key: "air_density_kg_m3", change: Change::Renamed { new: "air_density_kgpm3" }, version: "0.1.0" },
     ];
     // The VECTO truck's keys entered the declaration with the defaults every earlier run used.
-    let defaults = RunSettings::default();
+    let defaults = VectoParams::default();
     changes.extend(VectoParams::specs().into_iter().map(|spec| KeyChange {
         key: spec.name,
         change: Change::Added { replays_with: defaults.get(spec.name).expect("declared") },
@@ -68,6 +67,7 @@ pub fn retired(key: &str) -> Option<KeyChange> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::params::RunSettings;
 
     #[test]
     fn retired_keys_are_not_declared_and_their_successors_are() {

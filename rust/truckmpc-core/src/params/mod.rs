@@ -8,6 +8,7 @@
 
 mod changes;
 mod cruise;
+mod declaration;
 mod mpc;
 mod pcc;
 mod pi;
@@ -20,12 +21,13 @@ mod vehicle;
 
 pub use changes::{key_changes, retired, Change, KeyChange};
 pub use cruise::CruiseParams;
+pub use declaration::ParamSpec;
 pub use mpc::{stages_in, CostKind, GridAnchor, MpcParams, NeutralRule, OnInfeasible, StageModel, MAX_PEDAL_LEVELS};
 pub use pcc::PccParams;
 pub use pi::PiParams;
 pub use settings::RunSettings;
 pub use sim::SimParams;
-pub use spec::{expected_text, join_doc, Bound, Kind, ParamSpec, Range};
+pub use spec::{expected_text, join_doc, Bound, Kind, Range};
 pub use value::{ParamValue, Value};
 pub use vecto::{CrossWind, Mission, VectoParams, TRACTION_INTERRUPTION_RANGE_S};
 pub use vehicle::VehicleParams;

@@ -1,6 +1,4 @@
-//! What a declared parameter is: its kind, admissible range, unit, default and doc.
-
-use super::value::Value;
+//! The kinds of a parameter's value and their admissible ranges, and how both read in words.
 
 /// The type of a parameter's value, as a user writes it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -119,32 +117,6 @@ impl Range {
                 format!(" in {open}{lo}, {hi}{close}")
             }
         }
-    }
-}
-
-/// One declared parameter.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ParamSpec {
-    /// Key as typed in YAML, `--set` and `--grid`, unit in the name (`horizon_m`).
-    pub name: &'static str,
-    /// Group it belongs to: `vehicle`, `cruise`, `pi`, `mpc` or `sim`.
-    pub section: &'static str,
-    /// Type of its value.
-    pub kind: Kind,
-    /// Unit in words (`"m"`, `"km/h"`, `"-"`).
-    pub unit: &'static str,
-    /// One-line description.
-    pub doc: String,
-    /// Admissible numbers (each number, for lists).
-    pub range: Range,
-    /// Default value.
-    pub default: Value,
-}
-
-impl ParamSpec {
-    /// What the value must be, in words: `"a number > 0"`, `"'moving' or 'fixed'"`, ...
-    pub fn expected(&self) -> String {
-        expected_text(self.kind, &self.range)
     }
 }
 
