@@ -33,6 +33,7 @@ from truckmpc.config.keys import (
     VEHICLE_KEYS,
     default_config_path,
     overlay_path,
+    section_keys,
     unknown_key,
 )
 from truckmpc.config.layers import Layers, Origin, problem
@@ -89,8 +90,7 @@ class RunConfig:
 
     def section(self, name: str) -> Section:
         """The values of one section (`vehicle`, `cruise`, `pi`, `mpc`, `sim`)."""
-        values = self.settings.values()
-        return Section(name, {k: v for k, v in values.items() if SPEC_BY_KEY[k].section == name})
+        return Section(name, {key: self.settings.get(key) for key in section_keys(name)})
 
     @property
     def vehicle(self) -> Section:
