@@ -62,7 +62,9 @@ def ledger(road_path: Path, controller: str) -> tuple[dict[str, float], dict[str
     v_mid = 0.5 * (v[1:] + v[:-1])
     alpha = np.arctan(np.asarray(t["slope"])[:-1])
     mass, core = truck.mass_kg, truck.core
-    air = sum(0.5 * truck.keys.air_density_kg_m3 * core.cda_m2(u) * u * u * d for u, d in zip(v_mid, ds, strict=True))
+    air = sum(
+        0.5 * truck.keys["air_density_kgpm3"] * core.cda_m2(u) * u * u * d for u, d in zip(v_mid, ds, strict=True)
+    )
     vehicle = config.core_vehicle
     work_pos = work_neg = 0.0
     for u, pedal, gear, step in zip(v_mid, t["pedal"][:-1], t["gear"][:-1], dt, strict=True):

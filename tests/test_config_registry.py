@@ -15,7 +15,9 @@ from truckmpc.config import ConfigError, load_run_config
 from truckmpc.config.docs import yaml_value
 from truckmpc.config.keys import KEY_CHANGES, SPEC_BY_KEY, VECTO_KEYS, current_values
 from truckmpc.config.vecto_truck import STILL_APPLIES
+from truckmpc.roads import default_test_track
 from truckmpc.sweep.files import check_out_dir
+from truckmpc.sweep.plan import plan_sweep
 from vecto_files import write_job
 
 runner = CliRunner()
@@ -131,8 +133,31 @@ def test_a_sweep_directory_written_before_the_vecto_keys_still_resumes(tmp_path:
         check_out_dir(tmp_path, mine)
 
 
+def test_an_old_vecto_sweep_that_set_a_truck_key_resumes_with_the_value_it_set(tmp_path: Path) -> None:
+    """Before the VECTO keys were declared a sweep recorded a truck key only among its overrides."""
+    job = write_job(tmp_path)
+    config = load_run_config(job, overrides=["payload_kg=10000"]).as_dict()
+    config.pop("sources")
+    mine = {"version": 1, "roads": [], "grid": {}, "base_config": config, "columns": ["a"]}
+    mine["overrides"] = ["payload_kg=10000"]
+    old_config = {section: dict(values) for section, values in config.items() if section != "vecto"}
+    (tmp_path / "sweep.json").write_text(json.dumps({**mine, "base_config": old_config}))
+    check_out_dir(tmp_path, mine)  # the same sweep: no error
+    (tmp_path / "sweep.json").write_text(json.dumps({**mine, "base_config": old_config, "overrides": []}))
+    with pytest.raises(Exception, match="base_config"):
+        check_out_dir(tmp_path, mine)
+
+
 def test_the_declared_choices_are_the_names_the_declaration_data_carries() -> None:
     from truckmpc.vecto import declaration as decl
 
     assert SPEC_BY_KEY["cross_wind"].choices == list(decl.CROSS_WIND)
     assert SPEC_BY_KEY["mission"].choices == sorted({mission for _, _, mission in decl.SEGMENTS})
+
+
+def test_sweep_rows_differing_only_in_a_vecto_key_do_not_share_their_baselines(tmp_path: Path) -> None:
+    """The auxiliaries' power changes what the PI and the PCC burn: rows that differ in it alone must
+    each drive their own baselines (a shared PI would compare the 20 kW row with a 0 kW PI)."""
+    plan = plan_sweep([default_test_track()], ["aux_power_w=0,20000"], vehicle_path=write_job(tmp_path))
+    pi_keys = {row.keys["pi"] for row in plan.rows}
+    assert len(plan.rows) == 2 and len(pi_keys) == 2

@@ -116,7 +116,7 @@ def test_a_bad_file_is_one_line_naming_it_and_exit_2(tmp_path: Path, case: str) 
         ("payload_kg=-5", "--set payload_kg: expected a number in [0, 1000000] or null, got -5"),
         ("payload_kg=nan", "--set payload_kg: expected a finite number in [0, 1000000] or null, got 'nan'"),
         ("gear_efficiency=2", "--set gear_efficiency: expected a number in (0, 1], got 2"),
-        ("air_density_kgpm3=-1", "--set air_density_kgpm3: expected a number in [0, 100], got -1"),
+        ("air_density_kgpm3=0", "--set air_density_kgpm3: expected a number in (0, 100], got 0"),
         ("air_density_kg_m3=1", "--set air_density_kg_m3: key is now 'air_density_kgpm3'"),
         ("cross_wind=foo", "--set cross_wind: expected 'vecto3' or 'height_profile' or 'none', got 'foo'"),
         ("traction_interruption_s=11", "--set traction_interruption_s: expected a number in [0, 10] or null, got 11"),

@@ -169,7 +169,7 @@ class Body:
         mass_kg: float,
         wheels_inertia_kgm2: float,
         cda_m2: float,
-        air_density_kg_m3: float,
+        air_density_kgpm3: float,
         rolling_resistance: float,
         aux_power_w: float,
         cda_curve: Sequence[tuple[float, float]] | None = None,

@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from truckmpc.compare import compare
-from truckmpc.config import RunConfig, config_from_values
+from truckmpc.config import RunConfig
 from truckmpc.equal_time import equal_time_baselines
 from truckmpc.errors import ConfigError
 from truckmpc.gauss_markov import gauss_markov
@@ -93,9 +93,8 @@ def cases(mass_kg: float, seeds: Sequence[int]) -> list[Case]:
 
 def run_case(road: RoadProfile, config: RunConfig, case: Case, controller: str = "mpc") -> dict[str, Any]:
     """Drive the PI and `controller` in `case`'s world; Δfuel, Δtime and Δfuel at equal time [%]."""
-    truck = {**config.settings.values(), "mass_kg": case.mass_kg, "controller_mass_kg": None}
-    truth = config_from_values(truck, case.label)
-    world = config_from_values({**truck, "controller_mass_kg": case.controller_mass_kg}, case.label)
+    truth = config.with_values({"mass_kg": case.mass_kg, "controller_mass_kg": None}, case.label)
+    world = truth.with_values({"controller_mass_kg": case.controller_mass_kg}, case.label)
     told = noisy_map(road, case.sigma_pct, case.seed) if case.sigma_pct > 0 else None
     # The PI (and its re-tuned runs) know the true truck: only the studied controller is wrong.
     results = {"pi": simulate(road, truth, "pi"), controller: simulate(_with_map(road, told), world, controller)}
@@ -142,7 +141,7 @@ def study(
             f"{config.truck.job.path}: expected the thesis's truck (--vehicle a YAML file): the robustness study "
             "varies the truck's mass_kg, which a VECTO job sets from its load (payload_kg)"
         )
-    rows = [run_case(road, config, case, controller) for case in cases(config.settings.values()["mass_kg"], seeds)]
+    rows = [run_case(road, config, case, controller) for case in cases(config.settings.get("mass_kg"), seeds)]
     return kept_shares(rows)
 
 

@@ -18,7 +18,9 @@ from pathlib import Path
 from typing import Any
 
 from truckmpc.atomic import atomic_write_text
-from truckmpc.config.keys import current_sections
+from truckmpc.config.keys import SPEC_BY_KEY, current_sections
+from truckmpc.config.yamlfile import parse_assignment
+from truckmpc.errors import ConfigError
 from truckmpc.sweep.errors import SweepError
 
 CSV_NAME, PARTIAL_NAME, SETTINGS_NAME = "sweep.csv", "sweep.partial.csv", "sweep.json"
@@ -58,7 +60,7 @@ def check_out_dir(
     except (json.JSONDecodeError, UnicodeDecodeError):
         raise SweepError(f"{path}: not a {stem} settings file; use another --out or remove it") from None
     theirs = _identity(old if isinstance(old, dict) else {})
-    theirs["base_config"] = _current_config(theirs["base_config"])
+    theirs["base_config"] = _current_config(theirs["base_config"], _set_keys(old))
     if renames and isinstance(theirs["columns"], list):
         theirs["columns"] = _renamed(theirs["columns"], renames)
     mine = _identity(settings)
@@ -69,14 +71,37 @@ def check_out_dir(
         )
 
 
-def _current_config(doc: Any) -> Any:
+def _current_config(doc: Any, set_keys: Mapping[str, Any]) -> Any:
     """A recorded base configuration (one, or a fleet's by name) with its keys as today's, through
-    the registry of renamed and added keys: a sweep written before a key existed still resumes."""
+    the registry of renamed and added keys: a sweep written before a key existed still resumes.
+    A key added since that the sweep's own ``--set`` gave (a VECTO truck's, which its configuration
+    did not record then) takes the value set, not the registry's."""
+
+    def current(one: Any) -> Any:
+        if not isinstance(one, dict):
+            return one
+        out = current_sections(one)
+        for key, value in set_keys.items():
+            section = SPEC_BY_KEY[key].section
+            if section not in one and isinstance(out.get(section), dict):
+                out[section][key] = value
+        return out
+
     if not isinstance(doc, dict):
         return doc
-    if "vehicle" in doc:
-        return current_sections(doc)
-    return {name: current_sections(one) if isinstance(one, dict) else one for name, one in doc.items()}
+    return current(doc) if "vehicle" in doc else {name: current(one) for name, one in doc.items()}
+
+
+def _set_keys(doc: Any) -> dict[str, Any]:
+    """The declared keys a recorded sweep's ``--set`` overrides gave, with their values."""
+    overrides = doc.get("overrides") if isinstance(doc, dict) else None
+    out: dict[str, Any] = {}
+    for text in overrides if isinstance(overrides, list) else ():
+        with contextlib.suppress(ConfigError, TypeError):
+            key, value = parse_assignment(str(text))
+            if key in SPEC_BY_KEY:
+                out[key] = value
+    return out
 
 
 def write_settings(out: Path, settings: Mapping[str, Any], jobs: int, stem: str = "sweep") -> None:

@@ -210,7 +210,10 @@ def _look_ahead_work(profile: RoadProfile, config: RunConfig, layout: Layout) ->
     return Work(sum(w.plant_s for w in works), sum(w.dp_s for w in works), max(w.dp_bytes for w in works))
 
 
-SHARED_SECTIONS = {"pi": ("vehicle", "cruise", "pi", "sim"), "pcc": ("vehicle", "cruise", "pi", "pcc", "sim")}
+SHARED_SECTIONS = {
+    "pi": ("vehicle", "vecto", "cruise", "pi", "sim"),
+    "pcc": ("vehicle", "vecto", "cruise", "pi", "pcc", "sim"),
+}
 """The controllers whose runs rows share, and the config sections such a run depends on (the PCC is
 VECTO's rules on VECTO's driver, which shifts by the PI's gear logic: the PI's sections and its own)."""
 

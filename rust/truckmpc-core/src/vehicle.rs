@@ -71,7 +71,7 @@ impl Vehicle {
             wheel_inertia_kgm2: body.wheels_inertia_kgm2,
             rolling_resistance: body.rolling_resistance,
             gravity_mps2: G_MPS2,
-            air_density_kgpm3: body.air_density_kg_m3,
+            air_density_kgpm3: body.air_density_kgpm3,
             wheel_radius_m: driveline.wheel_radius_m(),
             brake_torque_max_nm: base.brake_torque_max_nm,
             gear_ratios: driveline.gear_ratios().to_vec(),

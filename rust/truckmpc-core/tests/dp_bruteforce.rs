@@ -300,7 +300,7 @@ fn map_vehicle() -> Vehicle {
         mass_kg: 40_000.0,
         wheels_inertia_kgm2: 32.9,
         cda_m2: 5.5,
-        air_density_kg_m3: 1.2,
+        air_density_kgpm3: 1.2,
         rolling_resistance: 0.006,
         aux_power_w: 4000.0,
     };

@@ -80,7 +80,7 @@ impl PyDriveline {
 ///
 /// Args:
 ///     mass_kg: total mass [kg]; wheels_inertia_kgm2: every wheel's inertia [kg m²];
-///     cda_m2: drag area Cd·A [m²]; air_density_kg_m3: [kg/m³]; rolling_resistance: [-];
+///     cda_m2: drag area Cd·A [m²]; air_density_kgpm3: [kg/m³]; rolling_resistance: [-];
 ///     aux_power_w: the auxiliaries' power [W];
 ///     cda_curve: rows of speed [m/s], Cd·A [m²], replacing cda_m2 by a drag area over speed.
 #[pyclass(name = "Body", module = "truckmpc._core", frozen)]
@@ -92,18 +92,18 @@ pub struct PyBody {
 #[pymethods]
 impl PyBody {
     #[new]
-    #[pyo3(signature = (mass_kg, wheels_inertia_kgm2, cda_m2, air_density_kg_m3, rolling_resistance, aux_power_w,
+    #[pyo3(signature = (mass_kg, wheels_inertia_kgm2, cda_m2, air_density_kgpm3, rolling_resistance, aux_power_w,
         cda_curve=None))]
     fn new(
         mass_kg: f64,
         wheels_inertia_kgm2: f64,
         cda_m2: f64,
-        air_density_kg_m3: f64,
+        air_density_kgpm3: f64,
         rolling_resistance: f64,
         aux_power_w: f64,
         cda_curve: Option<Vec<(f64, f64)>>,
     ) -> Self {
-        let inner = Body { mass_kg, wheels_inertia_kgm2, cda_m2, air_density_kg_m3, rolling_resistance, aux_power_w };
+        let inner = Body { mass_kg, wheels_inertia_kgm2, cda_m2, air_density_kgpm3, rolling_resistance, aux_power_w };
         PyBody { inner, cda_curve }
     }
 }

@@ -50,7 +50,7 @@ declare_params! {
         /// A_a, maximum cross-section area.
         frontal_area_m2: f64 = 10.0, unit "m^2", range Range::between(0.0, 100.0);
         /// ρ_a, air density; a truck from VECTO's files takes VECTO's 1.188 unless it is set.
-        air_density_kgpm3: f64 = 1.29, unit "kg/m^3", range Range::between(0.0, 100.0);
+        air_density_kgpm3: f64 = 1.29, unit "kg/m^3", range Range::positive_up_to(100.0);
         /// r_w, wheel radius.
         wheel_radius_m: f64 = 0.52, unit "m", range Range::positive_up_to(10.0);
         /// k_b, brake torque at full brake; table A.1 prints 20e3, a misprint: tables B.1/B.2 need 1e5.

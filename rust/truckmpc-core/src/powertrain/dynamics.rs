@@ -146,7 +146,7 @@ impl MapModel {
     #[inline]
     pub fn air_torque_nm(&self, v_mps: f64) -> f64 {
         let body = self.truck.body();
-        0.5 * body.air_density_kg_m3
+        0.5 * body.air_density_kgpm3
             * self.truck.cda_m2(v_mps)
             * v_mps
             * v_mps

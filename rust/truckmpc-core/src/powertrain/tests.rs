@@ -136,7 +136,7 @@ pub(crate) fn body() -> Body {
         mass_kg: 40_000.0,
         wheels_inertia_kgm2: 60.0,
         cda_m2: 6.0,
-        air_density_kg_m3: 1.2,
+        air_density_kgpm3: 1.2,
         rolling_resistance: 0.006,
         aux_power_w: 4_000.0,
     }

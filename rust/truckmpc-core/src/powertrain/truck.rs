@@ -17,7 +17,7 @@ pub struct Body {
     /// Air drag area Cd·A [m²] (when no speed-dependent curve is given, see [`MapTruck::with_cda_curve`]).
     pub cda_m2: f64,
     /// Air density [kg/m³].
-    pub air_density_kg_m3: f64,
+    pub air_density_kgpm3: f64,
     /// Rolling resistance coefficient of the combination [-].
     pub rolling_resistance: f64,
     /// Power of the auxiliaries (fan, steering pump, compressor, electrics, air conditioning) [W],
@@ -83,7 +83,7 @@ impl MapTruck {
             ("mass_kg", body.mass_kg, body.mass_kg > 0.0, "a number > 0"),
             ("wheels_inertia_kgm2", body.wheels_inertia_kgm2, body.wheels_inertia_kgm2 >= 0.0, "a number >= 0"),
             ("cda_m2", body.cda_m2, body.cda_m2 >= 0.0, "a number >= 0"),
-            ("air_density_kg_m3", body.air_density_kg_m3, body.air_density_kg_m3 > 0.0, "a number > 0"),
+            ("air_density_kgpm3", body.air_density_kgpm3, body.air_density_kgpm3 > 0.0, "a number > 0"),
             ("rolling_resistance", body.rolling_resistance, body.rolling_resistance >= 0.0, "a number >= 0"),
             ("aux_power_w", body.aux_power_w, body.aux_power_w >= 0.0, "a number >= 0"),
         ];
@@ -137,7 +137,7 @@ impl MapTruck {
         let b = &self.body;
         let r = self.driveline.wheel_radius_m();
         RoadLoads {
-            air_w: 0.5 * b.air_density_kg_m3 * self.cda_m2(v_mps) * v_mps.powi(3),
+            air_w: 0.5 * b.air_density_kgpm3 * self.cda_m2(v_mps) * v_mps.powi(3),
             rolling_w: b.mass_kg * G_MPS2 * slope_rad.cos() * b.rolling_resistance * v_mps,
             slope_w: b.mass_kg * G_MPS2 * slope_rad.sin() * v_mps,
             vehicle_inertia_w: b.mass_kg * acc_mps2 * v_mps,

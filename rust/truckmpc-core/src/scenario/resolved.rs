@@ -7,10 +7,11 @@ use crate::error::CoreResult;
 use crate::params::{CruiseParams, MpcParams, ParamSet, Value};
 
 impl Scenario {
-    /// The keys whose values the run resolves, with the values it uses: `k_lim` [stages] (null:
+    /// The keys whose values the run resolves, with what they resolve to: `k_lim` [stages] (null:
     /// round(200 m / S)), `q_speed_below` per stage (from its per-kilometre weight or the thesis's
-    /// δ rule), `q_brake` per stage, and `beta_g_per_s` [g/s] (null with the speed_penalty cost;
-    /// derived from v_ref when not given).
+    /// δ rule; the fuel_time cost, whose speed band is a hard bound, does not charge it),
+    /// `q_brake` per stage, and `beta_g_per_s` [g/s] (null with the speed_penalty cost; derived
+    /// from v_ref when not given).
     pub fn resolved(&self) -> CoreResult<Vec<(&'static str, Value)>> {
         let mpc = &self.settings().mpc;
         let dp = DpSettings::new(mpc, &self.settings().cruise)?;
