@@ -79,11 +79,6 @@ impl Scenario {
         &self.settings
     }
 
-    /// The truck from component data, if the run drives one.
-    pub fn component_truck(&self) -> Option<&Arc<ComponentTruck>> {
-        self.truck.as_ref()
-    }
-
     /// The truck the plant drives.
     pub fn vehicle(&self) -> &Arc<Vehicle> {
         &self.vehicle
