@@ -49,7 +49,7 @@ def main() -> None:
             note(name, loads[key] / 1e3, r[column])
         note(
             "fuel map at VECTO's speed and torque",
-            truck.fuel_rate_g_per_h(r["n_eng_avg [1/min]"], r["T_eng_fcmap [Nm]"]),
+            truck.engine_point(r["n_eng_avg [1/min]"], r["T_eng_fcmap [Nm]"])["fuel_rate_g_per_h"],
             r["FC-Map [g/h]"],
         )
         if r["acc [m/s^2]"] == 0.0:

@@ -257,7 +257,7 @@ def test_the_drivable_set_speeds_follow_the_gearbox() -> None:
     r_w, i_f = config.vehicle.wheel_radius_m, config.vehicle.final_drive_ratio
     ratios = config.vehicle.gear_ratios
     speed_kmh = lambda n_rpm, i_t: n_rpm * math.pi * r_w / (30 * i_t * i_f) * 3.6  # noqa: E731
-    lowest, highest = config.settings.v_ref_range_kmh
+    lowest, highest = config.settings.derived()["v_ref_range_kmh"]
     assert lowest == pytest.approx(speed_kmh(1000, ratios[0]) + 8.0, rel=1e-12)
     assert highest == pytest.approx(speed_kmh(2000, ratios[-1]) - 5.0, rel=1e-12)
     load_run_config(overrides=[f"v_ref_kmh={highest - 1e-6}"])

@@ -95,7 +95,7 @@ def test_end_speed_correction_prices_the_kinetic_energy_of_a_speed_up() -> None:
     road = make_section("flat", 6000.0, None)
     slow = simulate(road, load_run_config(overrides=["start_speed_kmh=75"]), "pi")
     steady = simulate(road, load_run_config(), "pi")
-    c = load_run_config().settings.kinetic_fuel_g_per_half_v2
+    c = load_run_config().settings.derived()["kinetic_fuel_g_per_half_v2"]
     extra_kg = slow.summary["fuel_kg"] - steady.summary["fuel_kg"]
     priced_kg = kinetic_correction_kg(slow.summary, c)
     assert priced_kg == pytest.approx(c * 0.5 * ((85 / 3.6) ** 2 - (75 / 3.6) ** 2) / 1000, rel=1e-3)
@@ -161,7 +161,7 @@ def test_on_a_road_with_target_speeds_the_search_moves_the_target_offset() -> No
     assert base.summary["mean_speed_kmh"] == pytest.approx(70.0, abs=0.5)
     assert run_at(87.0).summary["mean_speed_kmh"] == pytest.approx(72.0, abs=0.5)
     target_s = run_at(86.3).summary["time_s"]
-    c = config.settings.kinetic_fuel_g_per_half_v2
+    c = config.settings.derived()["kinetic_fuel_g_per_half_v2"]
     found = equal_time(run_at, 85.0, 35.0, base, target_s, c, offset_from_kmh=85.0)
     assert found.reached, found.reason
     doc = found.document()
@@ -208,7 +208,7 @@ def test_equal_time_near_the_top_speed_clips_the_search_instead_of_failing() -> 
     pi = simulate(road, config, "pi")
     faster = SimpleNamespace(stalled=False, summary={**pi.summary, "time_s": pi.summary["time_s"] * 0.95})
     found = equal_time_baselines(road, config, {"pi": pi, "pcc": faster})["pcc"]
-    highest = config.settings.v_ref_range_kmh[1]
+    highest = config.settings.derived()["v_ref_range_kmh"][1]
     assert not found.reached and "cannot reach the trip time" in found.reason
     assert f"{highest:.1f} km/h" in found.reason
     assert max(v for v, _ in found.tried) <= highest

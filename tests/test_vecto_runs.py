@@ -96,12 +96,12 @@ def test_beta_of_vectos_tractor_is_the_exact_maps_marginal_price_of_time() -> No
     config = load_run_config(TRACTOR_JOB)
     settings, truck = config.settings, config.truck.core
     beta = settings.resolved()["beta_g_per_s"]
-    assert beta is not None and settings.kinetic_fuel_g_per_half_v2 > 0.0
+    assert beta is not None and settings.derived()["kinetic_fuel_g_per_half_v2"] > 0.0
     v_ref = config.cruise.v_ref_kmh
 
     def fuel_per_m(v_kmh: float) -> float:
         v_mps = v_kmh / KMH_PER_MPS
-        return truck.operating_point(v_mps, 0.0, 0.0, truck.gears)["fuel_rate_g_per_h"] / 3600.0 / v_mps
+        return truck.operating_point(v_mps, 0.0, 0.0, truck.facts["gears"])["fuel_rate_g_per_h"] / 3600.0 / v_mps
 
     exact = (v_ref / KMH_PER_MPS) ** 2 * (fuel_per_m(v_ref + 2.0) - fuel_per_m(v_ref - 2.0)) / (4.0 / KMH_PER_MPS)
     assert beta == pytest.approx(exact, rel=0.01)
@@ -178,7 +178,7 @@ def test_loss_maps_from_vtlm_files_and_from_the_xml_give_the_hand_computed_engin
     v_mps, grade, gear = 80.0 / KMH_PER_MPS, 0.01, 3
     for truck in trucks:
         core = truck.core
-        assert core.has_loss_maps == (True, True)
+        assert (core.facts["gear_loss_maps"], core.facts["axle_loss_map"]) == (True, True)
         loads = core.road_loads(v_mps, 0.0, float(np.arctan(grade)))
         wheel_nm = loads["wheel_w"] / v_mps * truck.wheel_radius_m
         axle_in = (wheel_nm / 2.5 + 30.0) / 0.98

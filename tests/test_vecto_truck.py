@@ -42,7 +42,7 @@ def test_engine_speed_road_loads_and_fuel_map_match_vecto_at_every_row_in_gear()
         loads = truck.road_loads(v_mps, r["acc [m/s^2]"], math.atan(r["grad [%]"] / 100))
         for key, column in (("air_w", "P_air [kW]"), ("rolling_w", "P_roll [kW]"), ("slope_w", "P_slope [kW]")):
             assert loads[key] / 1e3 == pytest.approx(r[column], rel=2e-4), column
-        fuel = truck.fuel_rate_g_per_h(r["n_eng_avg [1/min]"], r["T_eng_fcmap [Nm]"])
+        fuel = truck.engine_point(r["n_eng_avg [1/min]"], r["T_eng_fcmap [Nm]"])["fuel_rate_g_per_h"]
         assert fuel == pytest.approx(r["FC-Map [g/h]"], rel=1e-5)
 
 
@@ -114,8 +114,8 @@ def test_a_written_job_reads_back_its_plane_fuel_map_and_its_masses(tmp_path) ->
     truck = load_vecto_truck(write_job(tmp_path), {"payload_kg": 10_000})
     assert truck.mass_kg == 8000 + 7500 + 10_000
     for n, t in [(700.0, 100.0), (1234.0, 1555.0), (1999.0, -150.0)]:
-        assert truck.core.fuel_rate_g_per_h(n, t) == pytest.approx(2 * n + 10 * t + 5000, rel=1e-9)
-    assert truck.core.gears == 3
+        assert truck.core.engine_point(n, t)["fuel_rate_g_per_h"] == pytest.approx(2 * n + 10 * t + 5000, rel=1e-9)
+    assert truck.core.facts["gears"] == 3
 
 
 @needs_tractor
@@ -140,7 +140,8 @@ def test_on_a_steep_descent_the_written_truck_cuts_fuel_and_brakes(tmp_path) -> 
     truck = load_vecto_truck(write_job(tmp_path))
     down = map_truck_stationary_point(truck, 80.0, -6.0)
     assert down["fuel_rate_g_per_h"] == 0.0 and down["brake_power_w"] > 0.0
-    assert down["engine_torque_nm"] == pytest.approx(truck.core.drag_torque_nm(down["engine_speed_rpm"]))
+    drag_nm = truck.core.engine_point(down["engine_speed_rpm"], 0.0)["drag_torque_nm"]
+    assert down["engine_torque_nm"] == pytest.approx(drag_nm)
     up = map_truck_stationary_point(truck, 80.0, 1.0)
     assert up["feasible"] and up["brake_power_w"] == 0.0 and up["gear"] == 3
     # Its fuel is the plane's at its operating point (the map is that plane).

@@ -4,7 +4,7 @@ Checked against the compiled module by `python -m mypy.stubtest truckmpc._core` 
 """
 
 from collections.abc import Mapping, Sequence
-from typing import Any, final
+from typing import Any, TypedDict, final
 
 import numpy as np
 import numpy.typing as npt
@@ -94,6 +94,17 @@ class KeyChange:
 def key_changes() -> list[KeyChange]:
     """Every key renamed, replaced or added, oldest first."""
 
+class _Derived(TypedDict):
+    horizon_stages: int
+    """N, the stages of the look-ahead's horizon: round(horizon_m / S), at least 1."""
+    replan_stages: int
+    """Stages decided from one horizon solve: round(replan_m / S), at least 1."""
+    v_ref_range_kmh: list[float]
+    """The set speeds [km/h] whose band the truck can drive, [lowest, highest]."""
+    kinetic_fuel_g_per_half_v2: float
+    """Grams of fuel per unit of ½v² [m²/s²] in the gear the PI settles in at v_ref: the end-speed
+    correction's price of kinetic energy."""
+
 @final
 class Settings:
     """A run's settings and truck, checked against each other (keys not given take their defaults)."""
@@ -107,14 +118,8 @@ class Settings:
         """The resolved keys (`k_lim`, `q_speed_below`, `q_brake`, `beta_g_per_s`) with the values the run uses."""
     @property
     def vehicle(self) -> Vehicle: ...
-    @property
-    def v_ref_range_kmh(self) -> tuple[float, float]: ...
-    @property
-    def horizon_stages(self) -> int: ...
-    @property
-    def replan_stages(self) -> int: ...
-    @property
-    def kinetic_fuel_g_per_half_v2(self) -> float: ...
+    def derived(self) -> _Derived:
+        """Figures derived from the settings and the truck."""
     def steady_gear(self, v_mps: float) -> int:
         """The gear the PI gear logic settles in at constant speed `v_mps` [m/s]."""
 
@@ -175,6 +180,31 @@ class Body:
         cda_curve: Sequence[tuple[float, float]] | None = None,
     ) -> Body: ...
 
+class _TruckFacts(TypedDict):
+    gears: int
+    rated_power_w: float
+    """The most the full-load curve gives [W], at `rated_speed_rpm`."""
+    rated_speed_rpm: float
+    full_load_speed_range_rpm: list[float]
+    """[lowest, highest] speed of the full-load curve [rpm]."""
+    fuel_map_speed_range_rpm: list[float]
+    fuel_map_torque_range_nm: list[float]
+    gear_loss_maps: bool
+    """Whether VECTO's loss maps give the gears' losses (else gear_efficiency and loss_torque_nm)."""
+    axle_loss_map: bool
+    efficiency: float
+    """Driveline efficiency without loss maps, gearbox times axle [-]."""
+
+class _EnginePoint(TypedDict):
+    max_torque_nm: float
+    """Full-load torque at the speed [Nm]."""
+    drag_torque_nm: float
+    """Drag torque at the speed [Nm] (negative)."""
+    fuel_rate_g_per_h: float
+    """Fuel rate [g/h]: 0 at or below the drag torque, the nearest boundary value outside the map."""
+    in_fuel_map: bool
+    """Whether the point lies inside the fuel map's convex hull."""
+
 @final
 class MapTruck:
     """A truck from component data: engine, driveline, body, and its gearbox's traction interruption [s]."""
@@ -183,26 +213,11 @@ class MapTruck:
         cls, engine: Engine, driveline: Driveline, body: Body, traction_interruption_s: float = 0.0
     ) -> MapTruck: ...
     @property
-    def gears(self) -> int: ...
-    @property
-    def rated_power_w(self) -> float: ...
-    @property
-    def rated_speed_rpm(self) -> float: ...
-    @property
-    def speed_range_rpm(self) -> tuple[float, float]: ...
-    @property
-    def fuel_map_speed_range_rpm(self) -> tuple[float, float]: ...
-    @property
-    def fuel_map_torque_range_nm(self) -> tuple[float, float]: ...
-    @property
-    def has_loss_maps(self) -> tuple[bool, bool]: ...
-    @property
-    def efficiency(self) -> float: ...
+    def facts(self) -> _TruckFacts:
+        """What the truck is: gears, rated power, what its maps cover, which losses loss maps give."""
     def cda_m2(self, v_mps: float) -> float: ...
-    def max_torque_nm(self, speed_rpm: float) -> float: ...
-    def drag_torque_nm(self, speed_rpm: float) -> float: ...
-    def fuel_rate_g_per_h(self, speed_rpm: float, torque_nm: float) -> float: ...
-    def in_fuel_map(self, speed_rpm: float, torque_nm: float) -> bool: ...
+    def engine_point(self, speed_rpm: float, torque_nm: float) -> _EnginePoint:
+        """The engine at `speed_rpm` and `torque_nm`."""
     def engine_speed_rpm(self, v_mps: float, gear: int) -> float: ...
     def road_loads(self, v_mps: float, acc_mps2: float, slope_rad: float) -> dict[str, float]: ...
     def operating_point(self, v_mps: float, acc_mps2: float, slope_rad: float, gear: int) -> dict[str, Any]: ...

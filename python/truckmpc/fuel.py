@@ -3,7 +3,7 @@
 **End-speed correction.** Two runs that end at different speeds leave different kinetic energy in
 the truck. At a fixed engine speed, engine torque and fuel rate are both affine in the pedal, so
 each unit of ½v² [m²/s²] the engine adds costs the same fuel whatever the speed and load (the core's
-``Settings.kinetic_fuel_g_per_half_v2``, in the gear the PI's gear logic settles in at v_ref; about
+``Settings.derived()["kinetic_fuel_g_per_half_v2"]``, in the gear the PI's gear logic settles in at v_ref; about
 2.2 g per m²/s² for the 40 t truck, some 610 g for the whole of 85 km/h). A run's
 end-speed-corrected fuel is its fuel less the fuel worth the kinetic energy it gained from its
 start to its end speed (so it grows when the run ends slower than it started)::

@@ -135,7 +135,6 @@ def _drive(road: RoadProfile, config: RunConfig, controller: str | Controller) -
         summary_of = getattr(controller, "summary", None)
         name, extra = controller.name, dict(summary_of()) if callable(summary_of) else {}
     summary = {**out.summary, **extra}
-    summary["fuel_corrected_kg"] = (
-        None if summary["stalled"] else corrected_fuel_kg(summary, config.settings.kinetic_fuel_g_per_half_v2)
-    )
+    g_per_half_v2 = config.settings.derived()["kinetic_fuel_g_per_half_v2"]
+    summary["fuel_corrected_kg"] = None if summary["stalled"] else corrected_fuel_kg(summary, g_per_half_v2)
     return RunResult(name=name, road=road.name, summary=summary, trace=dict(out.trace))

@@ -55,8 +55,8 @@ def map_truck_stationary_point(
     """
     core = truck.core
     v_mps, slope_rad = speed_kmh / KMH_PER_MPS, math.atan(slope_pct / PCT_PER_FRACTION)
-    lo, hi = core.speed_range_rpm
-    gears = range(1, core.gears + 1) if gear is None else [gear]
+    lo, hi = core.facts["full_load_speed_range_rpm"]
+    gears = range(1, core.facts["gears"] + 1) if gear is None else [gear]
     points = {g: core.operating_point(v_mps, 0.0, slope_rad, g) for g in gears}
     if gear is None:
         feasible = [g for g, p in points.items() if p["feasible"]]
@@ -68,15 +68,14 @@ def map_truck_stationary_point(
     if not lo <= n_rpm <= hi:
         reason = f"gear {gear} turns the engine at {n_rpm:.0f} rpm, outside its full-load curve ({lo:.0f}-{hi:.0f} rpm)"
     elif not op["feasible"]:
-        reason = (
-            f"the engine gives at most {core.max_torque_nm(n_rpm):.0f} Nm at {n_rpm:.0f} rpm, {torque_nm:.0f} Nm needed"
-        )
+        most_nm = core.engine_point(n_rpm, 0.0)["max_torque_nm"]
+        reason = f"the engine gives at most {most_nm:.0f} Nm at {n_rpm:.0f} rpm, {torque_nm:.0f} Nm needed"
     return {
         "speed_kmh": speed_kmh,
         "slope_pct": slope_pct,
         "gear": gear,
         "engine_speed_rpm": n_rpm,
-        "engine_torque_nm": max(torque_nm, core.drag_torque_nm(n_rpm)),
+        "engine_torque_nm": max(torque_nm, core.engine_point(n_rpm, 0.0)["drag_torque_nm"]),
         "fuel_rate_g_per_h": op["fuel_rate_g_per_h"] if reason is None else None,
         "brake_power_w": op["brake_power_w"] if reason is None else None,
         "feasible": bool(op["feasible"]),

@@ -111,8 +111,8 @@ def grid_points(config: RunConfig) -> float:
 def solve_units(config: RunConfig) -> float:
     """DP units of one horizon solve: its stages (the horizon, and the stages decided from it until
     the next) × speed-grid points² per stage."""
-    settings = config.settings
-    return (settings.horizon_stages + settings.replan_stages - 1) * grid_points(config) ** 2
+    derived = config.settings.derived()
+    return (derived["horizon_stages"] + derived["replan_stages"] - 1) * grid_points(config) ** 2
 
 
 def road_stages(profile: RoadProfile, config: RunConfig) -> float:
@@ -122,7 +122,7 @@ def road_stages(profile: RoadProfile, config: RunConfig) -> float:
 
 def dp_units(profile: RoadProfile, config: RunConfig) -> float:
     """DP units of an MPC run: horizon solves (one per `replan_m`) × :func:`solve_units`."""
-    return road_stages(profile, config) / config.settings.replan_stages * solve_units(config)
+    return road_stages(profile, config) / config.settings.derived()["replan_stages"] * solve_units(config)
 
 
 def run_work(profile: RoadProfile, config: RunConfig, controller: str) -> Work:
@@ -142,7 +142,8 @@ def run_work(profile: RoadProfile, config: RunConfig, controller: str) -> Work:
         return Work(plant_s, 0.0)
     rows_bytes = solve_units(config) * DP_BYTES_PER_UNIT
     unit_s = DP_UNIT_S if rows_bytes <= DP_CACHED_BYTES else DP_UNIT_LARGE_S
-    cached_stages = config.settings.horizon_stages + config.settings.replan_stages
+    derived = config.settings.derived()
+    cached_stages = derived["horizon_stages"] + derived["replan_stages"]
     dp_bytes = rows_bytes + cached_stages * points * level_arcs * LEVEL_BYTES_PER_UNIT
     return Work(plant_s, dp_units(profile, config) * unit_s + levels_s, dp_bytes)
 

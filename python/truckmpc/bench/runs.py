@@ -139,7 +139,7 @@ def run_one(
         "delta_kmh": mpc.delta_kmh,
         "horizon_m": mpc.horizon_m,
         "replan_m": mpc.replan_m,
-        "replan_stages": config.settings.replan_stages,
+        "replan_stages": config.settings.derived()["replan_stages"],
         "allow_neutral": mpc.allow_neutral,
         "grid": mpc.grid,
         "neutral_rule": config.mpc.neutral_rule,

@@ -98,11 +98,10 @@ def _map_truck_point(
     if config:
         raise VehicleError(f"--config: expected none with a VECTO truck ({job.name}): its keys are set with --set")
     truck = truck_from_overrides(job, set_ or ())
-    parsed = _parse_gear(gear, truck.core.gears)
+    gears = truck.core.facts["gears"]
+    parsed = _parse_gear(gear, gears)
     if parsed == 0:
-        raise typer.BadParameter(
-            f"expected 1..{truck.core.gears} for a VECTO truck, got {gear!r}", param_hint="'--gear'"
-        )
+        raise typer.BadParameter(f"expected 1..{gears} for a VECTO truck, got {gear!r}", param_hint="'--gear'")
     doc = map_truck_stationary_point(truck, speed_kmh, slope_pct, parsed)
     if as_json:
         typer.echo(json.dumps(doc))

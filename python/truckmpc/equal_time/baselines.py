@@ -68,7 +68,7 @@ def equal_time_baselines(
     cruise = config.cruise
     # The band needs v_ref > v_dec (its lower end above zero): keep 1 km/h clear of it, and inside
     # the set speeds whose band the truck can drive.
-    lowest_kmh, ceiling_kmh = config.settings.v_ref_range_kmh
+    lowest_kmh, ceiling_kmh = config.settings.derived()["v_ref_range_kmh"]
     floor_kmh, start_kmh, offset_from_kmh = max(cruise.v_dec_kmh + 1.0, lowest_kmh), cruise.v_ref_kmh, None
     if road.target_speed_kmh is not None:
         # x = v_ref + target offset; the core keeps every stretch's set speed at 1 km/h or more.
@@ -84,7 +84,7 @@ def equal_time_baselines(
             out[name] = EqualTime(float(result.summary["time_s"]), reason=f"not comparable: {base.message}")
             continue
         target_s = float(result.summary["time_s"])
-        g_per_half_v2 = config.settings.kinetic_fuel_g_per_half_v2
+        g_per_half_v2 = config.settings.derived()["kinetic_fuel_g_per_half_v2"]
         out[name] = equal_time(
             run_at, start_kmh, floor_kmh, base, target_s, g_per_half_v2, offset_from_kmh, v_ceiling_kmh=ceiling_kmh
         )

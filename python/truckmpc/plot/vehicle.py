@@ -39,13 +39,15 @@ def plot_fuel_map(
     """Draw `truck`'s fuel map to `out` (.png or .svg), with each run's operating points (engine
     speed [rpm], torque [Nm] per controller, :func:`operating_points`); returns the files written."""
     core, engine = truck.core, truck.job.engine
-    n_lo, n_hi = core.speed_range_rpm
+    facts = core.facts
+    n_lo, n_hi = facts["full_load_speed_range_rpm"]
     speeds = np.linspace(n_lo, n_hi, 161)
-    full = np.array([core.max_torque_nm(n) for n in speeds])
-    drag = np.array([core.drag_torque_nm(n) for n in speeds])
+    at_speeds = [core.engine_point(n, 0.0) for n in speeds]
+    full = np.array([p["max_torque_nm"] for p in at_speeds])
+    drag = np.array([p["drag_torque_nm"] for p in at_speeds])
     torques = np.linspace(1.0, float(full.max()), 141)
     n_grid, t_grid = np.meshgrid(speeds, torques)
-    fuel = np.vectorize(core.fuel_rate_g_per_h)(n_grid, t_grid)
+    fuel = np.vectorize(lambda n, t: core.engine_point(n, t)["fuel_rate_g_per_h"])(n_grid, t_grid)
     power_kw = t_grid * n_grid / RPM_PER_RAD_S / W_PER_KW
     bsfc = np.where(t_grid <= np.interp(n_grid, speeds, full), fuel / power_kw, np.nan)
     fig = figure_class()(figsize=(9, 6), layout="constrained")
@@ -61,8 +63,8 @@ def plot_fuel_map(
     for name, (speed_rpm, torque_nm) in (runs or {}).items():
         label, colour = CONTROLLER_STYLE.get(name, (name, "tab:gray"))
         ax.plot(speed_rpm, torque_nm, "o", color=colour, ms=3, alpha=0.35, mec="none", label=f"{label} (trace samples)")
-    power_kw_rated = core.rated_power_w / 1e3
-    ax.set_title(f"{engine.model or engine.path.stem}: {power_kw_rated:.0f} kW at {core.rated_speed_rpm:.0f} rpm")
+    power_kw_rated = facts["rated_power_w"] / 1e3
+    ax.set_title(f"{engine.model or engine.path.stem}: {power_kw_rated:.0f} kW at {facts['rated_speed_rpm']:.0f} rpm")
     ax.set_xlabel("engine speed [rpm]")
     ax.set_ylabel("engine torque [Nm]")
     ax.axhline(0.0, color="black", lw=0.4)

@@ -17,8 +17,8 @@ _REFERENCE_KMH = 80.0
 def truck_info(truck: VectoTruck) -> dict[str, Any]:
     """The truck's resolved values with their units in the key names, and the files with SHA-256."""
     job, core = truck.job, truck.core
-    map_speeds = core.fuel_map_speed_range_rpm
-    curve_speeds = core.speed_range_rpm
+    facts = core.facts
+    map_speeds, curve_speeds = facts["fuel_map_speed_range_rpm"], facts["full_load_speed_range_rpm"]
     return {
         "job": str(job.path),
         "group": truck.segment.name,
@@ -36,12 +36,12 @@ def truck_info(truck: VectoTruck) -> dict[str, Any]:
         "cross_wind": truck.keys["cross_wind"],
         "rolling_resistance": truck.rolling_resistance,
         "aux_power_w": truck.aux_power_w,
-        "rated_power_w": core.rated_power_w,
-        "rated_speed_rpm": core.rated_speed_rpm,
+        "rated_power_w": facts["rated_power_w"],
+        "rated_speed_rpm": facts["rated_speed_rpm"],
         "idle_speed_rpm": job.engine.idle_speed_rpm,
         "full_load_speed_range_rpm": list(curve_speeds),
         "fuel_map_speed_range_rpm": list(map_speeds),
-        "fuel_map_torque_range_nm": list(core.fuel_map_torque_range_nm),
+        "fuel_map_torque_range_nm": facts["fuel_map_torque_range_nm"],
         "fuel_map_covers_full_load_curve": map_speeds[0] <= curve_speeds[0] and map_speeds[1] >= curve_speeds[1],
         "traction_interruption_s": job.gearbox.traction_interruption_s,
         "driveline_losses": driveline_losses(truck),

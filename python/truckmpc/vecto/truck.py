@@ -130,7 +130,8 @@ def _refuse_replaced_loss_keys(path: Path, loss_maps: dict[str, Any], values: Ma
 
 def driveline_losses(truck: VectoTruck) -> str:
     """How the truck's driveline losses are modelled, in a sentence."""
-    gears, axle = truck.core.has_loss_maps
+    facts = truck.core.facts
+    gears, axle = facts["gear_loss_maps"], facts["axle_loss_map"]
     missing = truck.job.gearbox.missing_loss_maps
     named = f"; loss maps named but not found: {', '.join(missing)}" if missing else ""
     if gears and axle:
@@ -235,7 +236,7 @@ def pi_shift_speeds_rpm(truck: VectoTruck) -> tuple[list[float | None], list[flo
     :data:`UPSHIFT_SHARE` of the rated speed up, :data:`DOWNSHIFT_SHARE` down, lowered where a
     gearbox's wide steps would land an up-shift below it (the gearbox would hunt); none below gear 1
     or above the top gear."""
-    rated = truck.core.rated_speed_rpm
+    rated = truck.core.facts["rated_speed_rpm"]
     ratios = truck.job.gearbox.gear_ratios
     up_rpm = round(UPSHIFT_SHARE * rated)
     down: list[float | None] = [None]

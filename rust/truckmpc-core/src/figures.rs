@@ -85,16 +85,46 @@ pub fn operating_point(
     ])
 }
 
-/// The fuel rate [g/h] of `truck`'s engine at `speed_rpm` and `torque_nm` (finite), and whether
-/// the point lies inside the fuel map's convex hull.
-pub fn fuel_rate(truck: &MapTruck, speed_rpm: f64, torque_nm: f64) -> CoreResult<(f64, bool)> {
+/// `truck`'s engine at `speed_rpm` and `torque_nm` (finite): `max_torque_nm` and `drag_torque_nm`
+/// (negative) at that speed, `fuel_rate_g_per_h` (0 at or below the drag torque; the nearest
+/// boundary value outside the map) and `in_fuel_map` (inside the fuel map's convex hull).
+pub fn engine_point(truck: &MapTruck, speed_rpm: f64, torque_nm: f64) -> CoreResult<Figures> {
     if !(speed_rpm.is_finite() && torque_nm.is_finite()) {
         let got = format!("{speed_rpm}, {torque_nm}");
         return Err(CoreError::invalid("speed_rpm, torque_nm", "finite numbers").got(got));
     }
     let engine = truck.engine();
     let inside = engine.fuel_map().interpolate(speed_rpm, torque_nm).is_some();
-    Ok((engine.fuel_rate_g_per_h(speed_rpm, torque_nm), inside))
+    Ok(vec![
+        ("max_torque_nm", Value::Float(engine.max_torque_nm(speed_rpm))),
+        ("drag_torque_nm", Value::Float(engine.drag_torque_nm(speed_rpm))),
+        ("fuel_rate_g_per_h", Value::Float(engine.fuel_rate_g_per_h(speed_rpm, torque_nm))),
+        ("in_fuel_map", Value::Bool(inside)),
+    ])
+}
+
+/// What a map-based truck is, as a table of `truck info` shows it: `gears`, `rated_power_w` (the
+/// most the full-load curve gives) at `rated_speed_rpm`, the speeds the full-load curve covers
+/// (`full_load_speed_range_rpm`), the speeds and torques the fuel map covers
+/// (`fuel_map_speed_range_rpm`, `fuel_map_torque_range_nm`), each as [lowest, highest], whether
+/// loss maps give the gears' and the axle's losses (`gear_loss_maps`, `axle_loss_map`), and the
+/// driveline's efficiency where none does (`efficiency`, gearbox times axle).
+pub fn truck_facts(truck: &MapTruck) -> Figures {
+    let (engine, driveline) = (truck.engine(), truck.driveline());
+    let (rated_power_w, rated_speed_rpm) = engine.rated_power();
+    let range = |(lo, hi): (f64, f64)| Value::List(vec![Value::Float(lo), Value::Float(hi)]);
+    let (gear_maps, axle_map) = driveline.has_loss_maps();
+    vec![
+        ("gears", Value::Int(driveline.gears() as i64)),
+        ("rated_power_w", Value::Float(rated_power_w)),
+        ("rated_speed_rpm", Value::Float(rated_speed_rpm)),
+        ("full_load_speed_range_rpm", range(engine.speed_range_rpm())),
+        ("fuel_map_speed_range_rpm", range(engine.fuel_map().speed_range_rpm())),
+        ("fuel_map_torque_range_nm", range(engine.fuel_map().torque_range_nm())),
+        ("gear_loss_maps", Value::Bool(gear_maps)),
+        ("axle_loss_map", Value::Bool(axle_map)),
+        ("efficiency", Value::Float(driveline.efficiency())),
+    ]
 }
 
 /// The speed band of `cruise` along `road` at each of `distance_m` [m] (increasing) [km/h]: the

@@ -174,30 +174,10 @@ impl PySettings {
         PyVehicle { inner: self.inner.vehicle().clone() }
     }
 
-    /// The set speeds v_ref [km/h] whose band the truck can drive, (lowest, highest): v_ref − v_dec
-    /// at or above gear 1 at n_min_rpm, v_ref + v_inc at or below the top gear at n_max_rpm.
-    #[getter]
-    fn v_ref_range_kmh(&self) -> (f64, f64) {
-        self.inner.v_ref_range_kmh()
-    }
-
-    /// N, the stages of the MPC's horizon (round(horizon / S), at least 1).
-    #[getter]
-    fn horizon_stages(&self) -> usize {
-        self.inner.settings().mpc.stages()
-    }
-
-    /// Stages decided from one horizon solve (round(replan / S), at least 1: a solve every stage).
-    #[getter]
-    fn replan_stages(&self) -> usize {
-        self.inner.settings().mpc.replan_stages()
-    }
-
-    /// Grams of fuel per unit of ½v² [m²/s²] the engine adds in the gear the PI's gear logic settles
-    /// in at v_ref: kinetic energy priced in fuel, for the end-speed correction.
-    #[getter]
-    fn kinetic_fuel_g_per_half_v2(&self) -> PyResult<f64> {
-        self.inner.kinetic_fuel_g_per_half_v2().map_err(to_py)
+    /// Figures derived from the settings and the truck: `horizon_stages`, `replan_stages`,
+    /// `v_ref_range_kmh` (lowest, highest) and `kinetic_fuel_g_per_half_v2`.
+    fn derived<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        dict_of(py, &self.inner.derived().map_err(to_py)?)
     }
 
     /// The gear the PI gear logic (table A.3) settles in at constant speed `v_mps` [m/s].

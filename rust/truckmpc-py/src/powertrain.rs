@@ -128,40 +128,11 @@ impl PyMapTruck {
         Ok(PyMapTruck { inner: Arc::new(inner) })
     }
 
-    /// Number of forward gears.
+    /// What the truck is (`truckmpc_core::figures::truck_facts`): gears, rated power and speed,
+    /// the speeds and torques its maps cover, which losses loss maps give, the efficiency.
     #[getter]
-    fn gears(&self) -> usize {
-        self.inner.truck().driveline().gears()
-    }
-
-    /// Rated power [W]: the most the full-load curve gives.
-    #[getter]
-    fn rated_power_w(&self) -> f64 {
-        self.inner.truck().engine().rated_power().0
-    }
-
-    /// Engine speed [rpm] of the rated power.
-    #[getter]
-    fn rated_speed_rpm(&self) -> f64 {
-        self.inner.truck().engine().rated_power().1
-    }
-
-    /// Engine speeds [rpm] the full-load curve covers (first, last).
-    #[getter]
-    fn speed_range_rpm(&self) -> (f64, f64) {
-        self.inner.truck().engine().speed_range_rpm()
-    }
-
-    /// Engine speeds [rpm] the fuel map covers (lowest, highest).
-    #[getter]
-    fn fuel_map_speed_range_rpm(&self) -> (f64, f64) {
-        self.inner.truck().engine().fuel_map().speed_range_rpm()
-    }
-
-    /// Torques [Nm] the fuel map covers (lowest, highest).
-    #[getter]
-    fn fuel_map_torque_range_nm(&self) -> (f64, f64) {
-        self.inner.truck().engine().fuel_map().torque_range_nm()
+    fn facts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        dict_of(py, &figures::truck_facts(self.inner.truck()))
     }
 
     /// Drag area Cd·A [m²] at `v_mps`.
@@ -169,37 +140,11 @@ impl PyMapTruck {
         self.inner.truck().cda_m2(v_mps)
     }
 
-    /// Whether VECTO's loss maps give the losses of the gears and of the axle: (gears, axle).
-    #[getter]
-    fn has_loss_maps(&self) -> (bool, bool) {
-        self.inner.truck().driveline().has_loss_maps()
-    }
-
-    /// Driveline efficiency without loss maps, gearbox times axle.
-    #[getter]
-    fn efficiency(&self) -> f64 {
-        self.inner.truck().driveline().efficiency()
-    }
-
-    /// Full-load torque [Nm] at `speed_rpm`.
-    fn max_torque_nm(&self, speed_rpm: f64) -> f64 {
-        self.inner.truck().engine().max_torque_nm(speed_rpm)
-    }
-
-    /// Drag torque [Nm] (negative) at `speed_rpm`.
-    fn drag_torque_nm(&self, speed_rpm: f64) -> f64 {
-        self.inner.truck().engine().drag_torque_nm(speed_rpm)
-    }
-
-    /// Fuel rate [g/h] at `speed_rpm` and `torque_nm` (0 at or below the drag torque; the nearest
-    /// boundary value outside the map).
-    fn fuel_rate_g_per_h(&self, speed_rpm: f64, torque_nm: f64) -> PyResult<f64> {
-        Ok(figures::fuel_rate(self.inner.truck(), speed_rpm, torque_nm).map_err(to_py)?.0)
-    }
-
-    /// Whether (`speed_rpm`, `torque_nm`) lies inside the fuel map's convex hull.
-    fn in_fuel_map(&self, speed_rpm: f64, torque_nm: f64) -> PyResult<bool> {
-        Ok(figures::fuel_rate(self.inner.truck(), speed_rpm, torque_nm).map_err(to_py)?.1)
+    /// The engine at `speed_rpm` and `torque_nm`: dict with `max_torque_nm`, `drag_torque_nm`,
+    /// `fuel_rate_g_per_h` (0 at or below the drag torque; the nearest boundary value outside the
+    /// map) and `in_fuel_map`.
+    fn engine_point<'py>(&self, py: Python<'py>, speed_rpm: f64, torque_nm: f64) -> PyResult<Bound<'py, PyDict>> {
+        dict_of(py, &figures::engine_point(self.inner.truck(), speed_rpm, torque_nm).map_err(to_py)?)
     }
 
     /// Engine speed [rpm] at `v_mps` in `gear` (1..=gears).

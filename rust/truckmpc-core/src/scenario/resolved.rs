@@ -4,6 +4,7 @@
 use super::Scenario;
 use crate::dp::DpSettings;
 use crate::error::CoreResult;
+use crate::figures::Figures;
 use crate::params::{CruiseParams, MpcParams, ParamSet, Value};
 
 impl Scenario {
@@ -21,6 +22,23 @@ impl Scenario {
             ("q_speed_below", Value::Float(mpc.q_speed_below_weight())),
             ("q_brake", Value::Float(mpc.q_brake_weight())),
             ("beta_g_per_s", beta),
+        ])
+    }
+
+    /// Figures derived from the settings and the truck: `horizon_stages` (N, round(horizon / S), at
+    /// least 1), `replan_stages` (stages decided from one solve, round(replan / S), at least 1),
+    /// `v_ref_range_kmh` ([lowest, highest] set speed whose band the truck can drive: v_ref − v_dec
+    /// at or above gear 1 at n_min_rpm, v_ref + v_inc at or below the top gear at n_max_rpm) and
+    /// `kinetic_fuel_g_per_half_v2` (grams of fuel per unit of ½v² [m²/s²] the engine adds in the
+    /// gear the PI settles in at v_ref: kinetic energy's price for the end-speed correction).
+    pub fn derived(&self) -> CoreResult<Figures> {
+        let mpc = &self.settings().mpc;
+        let (lowest_kmh, highest_kmh) = self.v_ref_range_kmh();
+        Ok(vec![
+            ("horizon_stages", Value::Int(mpc.stages() as i64)),
+            ("replan_stages", Value::Int(mpc.replan_stages() as i64)),
+            ("v_ref_range_kmh", Value::List(vec![Value::Float(lowest_kmh), Value::Float(highest_kmh)])),
+            ("kinetic_fuel_g_per_half_v2", Value::Float(self.kinetic_fuel_g_per_half_v2()?)),
         ])
     }
 
@@ -58,5 +76,22 @@ mod tests {
         assert_eq!(dp.len(), MpcParams::specs().len() + CruiseParams::specs().len());
         assert!(dp.contains(&("k_lim", Value::Int(4))) && dp.contains(&("v_ref_kmh", Value::Float(85.0))));
         assert_eq!(RunSettings::default().mpc.k_lim, None);
+    }
+
+    /// Stage counts from the horizon and replan distances; the set-speed range around the default.
+    #[test]
+    fn derived_figures_follow_the_settings() {
+        let values =
+            [("stage_m", Value::Float(50.0)), ("horizon_m", Value::Float(2600.0)), ("replan_m", Value::Float(120.0))];
+        let scenario = Scenario::from_values(values.iter().map(|(k, v)| (*k, v)), None).unwrap();
+        let derived = scenario.derived().unwrap();
+        // 2600 m / 50 m = 52 stages; 120 m / 50 m = 2.4, rounded to 2.
+        assert_eq!(derived[0], ("horizon_stages", Value::Int(52)));
+        assert_eq!(derived[1], ("replan_stages", Value::Int(2)));
+        let Value::List(range) = &derived[2].1 else { panic!("{:?}", derived[2]) };
+        let [Value::Float(lo), Value::Float(hi)] = range.as_slice() else { panic!("{range:?}") };
+        assert!(*lo < 85.0 && 85.0 < *hi, "the default 85 km/h lies inside [{lo}, {hi}]");
+        let Value::Float(price) = derived[3].1 else { panic!("{:?}", derived[3]) };
+        assert!(price > 0.0 && price.is_finite());
     }
 }
