@@ -33,34 +33,6 @@ impl PyRoad {
         Ok(PyRoad { inner: Arc::new(road) })
     }
 
-    /// Whether the road carries target speeds.
-    #[getter]
-    fn has_target_speeds(&self) -> bool {
-        self.inner.target_speeds_kmh().is_some()
-    }
-
-    /// Distance of the first point [m].
-    #[getter]
-    fn start_m(&self) -> f64 {
-        self.inner.start_m()
-    }
-
-    /// Distance of the last point [m].
-    #[getter]
-    fn end_m(&self) -> f64 {
-        self.inner.end_m()
-    }
-
-    /// Altitude at `s_m` relative to the first point [m].
-    fn altitude_at(&self, s_m: f64) -> f64 {
-        self.inner.altitude_at(s_m)
-    }
-
-    /// Mean grade over [s0_m, s1_m] [-].
-    fn mean_slope(&self, s0_m: f64, s1_m: f64) -> f64 {
-        self.inner.mean_slope(s0_m, s1_m)
-    }
-
     /// The speed band every controller works to on this road for one cruise setting [km/h],
     /// at each of `distance_m` [m] (in increasing order): the stretch's set speed (without the
     /// top falling ahead of a lower one), v_min and v_max.

@@ -35,12 +35,6 @@ impl PyVehicle {
         self.inner.forward_gears()
     }
 
-    /// Speed [m/s] below which the lowest gear turns the engine slower than idle: a stall.
-    #[getter]
-    fn stall_speed_mps(&self) -> f64 {
-        self.inner.stall_speed_mps()
-    }
-
     /// Engine speed (2.9) [rpm] at speed `v_mps` in `gear` (idle speed in neutral).
     fn engine_speed_rpm(&self, v_mps: f64, gear: usize) -> PyResult<f64> {
         check_gear(gear, NEUTRAL, self.inner.forward_gears()).map_err(to_py)?;
