@@ -125,9 +125,8 @@ class Settings:
 
 @final
 class Vehicle:
-    """A validated truck model."""
+    """A validated truck model, as `Settings.vehicle` gives it."""
 
-    def __new__(cls, params: Mapping[str, Any]) -> Vehicle: ...
     @property
     def forward_gears(self) -> int: ...
     def engine_speed_rpm(self, v_mps: float, gear: int) -> float: ...

@@ -5,16 +5,13 @@ use std::sync::Arc;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use truckmpc_core::figures::{self, check_gear};
-use truckmpc_core::{Vehicle, VehicleParams, NEUTRAL};
+use truckmpc_core::{Vehicle, NEUTRAL};
 
-use crate::convert::{dict_of, pairs_of};
+use crate::convert::dict_of;
 use crate::errors::to_py;
 
-/// A validated truck model (thesis chapter 2, appendix B.1).
-///
-/// Args:
-///     params: mapping of vehicle keys (see `parameter_specs()`, section "vehicle") to values;
-///         keys not given take the thesis's 40 t values.
+/// A validated truck model (thesis chapter 2, appendix B.1, or one from component data), as a run's
+/// `Settings.vehicle` gives it.
 #[pyclass(name = "Vehicle", module = "truckmpc._core", frozen)]
 pub struct PyVehicle {
     pub inner: Arc<Vehicle>,
@@ -22,13 +19,6 @@ pub struct PyVehicle {
 
 #[pymethods]
 impl PyVehicle {
-    #[new]
-    fn new(params: &Bound<'_, PyDict>) -> PyResult<Self> {
-        let pairs = pairs_of(params)?;
-        let values = VehicleParams::from_values(pairs.iter().map(|(k, v)| (k.as_str(), v))).map_err(to_py)?;
-        Ok(PyVehicle { inner: Arc::new(Vehicle::new(values).map_err(to_py)?) })
-    }
-
     /// Number of forward gears (1..=n; 0 is neutral).
     #[getter]
     fn forward_gears(&self) -> usize {
