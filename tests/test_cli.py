@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import importlib.metadata
 import json
 import re
 import subprocess
@@ -341,6 +342,13 @@ def test_help_exits_zero():
     result = run("--help")
     assert result.exit_code == 0
     assert "simulate" in result.stdout
+
+
+def test_version_prints_the_installed_packages_version():
+    """`truckmpc --version` names the version pip installed (the one summary.json records)."""
+    result = run("--version")
+    assert result.exit_code == 0, result.stderr
+    assert result.stdout.strip() == f"truckmpc {importlib.metadata.version('truckmpc')}"
 
 
 def test_ci_runs_exactly_the_readme_test_command():

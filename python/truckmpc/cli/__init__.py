@@ -2,6 +2,7 @@
 
 Commands::
 
+    truckmpc --version
     truckmpc simulate [--road FILE] [--controller pi] [--vehicle FILE] [--config FILE ...]
                       [--set key=value ...] [--out DIR] [--reverse] [--controller-road FILE]
                       [--check-convergence] [--force] | --replay SUMMARY [--out DIR]
@@ -46,6 +47,8 @@ traceback and no output files.
 
 from __future__ import annotations
 
+from typing import Annotated
+
 import typer
 
 from truckmpc.cli.bench import BENCH_HELP, bench_cmd
@@ -60,6 +63,7 @@ from truckmpc.cli.robustness import robustness_cmd
 from truckmpc.cli.simulate import simulate_cmd
 from truckmpc.cli.sweep import sweep_cmd
 from truckmpc.cli.vehicle import vehicle_app
+from truckmpc.record import program_version
 
 __all__ = ["app", "main"]
 
@@ -73,6 +77,24 @@ app = typer.Typer(
     # Plain help: rich markup would take the units in brackets ([km/h], [m]) for style tags and drop them.
     rich_markup_mode=None,
 )
+
+
+def _print_version(asked: bool) -> None:
+    if asked:
+        typer.echo(f"truckmpc {program_version()}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _options(
+    version: Annotated[
+        bool,
+        typer.Option("--version", is_eager=True, callback=_print_version, help="Print the version and exit."),
+    ] = False,
+) -> None:
+    """The options of ``truckmpc`` itself, before a command (the app's help is the text above)."""
+
+
 # The order here is the order of `truckmpc --help`; each summary fits on its line there.
 app.command("bench", help=BENCH_HELP, short_help="Time the MPC's closed-loop runs on long roads.")(bench_cmd)
 app.command("simulate", short_help="Run controllers over a road; compare fuel and trip time.")(simulate_cmd)

@@ -27,9 +27,10 @@ __all__ = ["BOTH", "GROUPS", "controller_names", "simulate_cmd"]
 BOTH = "both"
 """``--controller both``: PI and MPC on the same road and vehicle, with Δfuel and Δtime."""
 
-GROUPS = {BOTH: ("pi", "mpc"), "all": ("pi", "mpc", "optimal")}
-"""``--controller`` values that run several controllers: ``both`` (PI and MPC) and ``all`` (PI, MPC
-and the whole-road optimum, with the MPC's gap to it)."""
+GROUPS = {BOTH: ("pi", "mpc"), "all": tuple(CONTROLLERS)}
+"""``--controller`` values that run several controllers: ``both`` (PI and MPC) and ``all`` (every
+controller of :data:`truckmpc.sim.CONTROLLERS`: each look-ahead controller against each baseline,
+and the MPC's gap to the whole-road optimum)."""
 
 
 def controller_names(text: str) -> tuple[str, ...]:
