@@ -3,6 +3,8 @@ record of its smoothing and its raw elevation."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from typer.testing import CliRunner
@@ -89,7 +91,10 @@ def test_road_plot_writes_a_png(in_tmp, source):
     assert png.startswith(b"\x89PNG") and len(png) > 10_000
 
 
-def test_road_plot_writes_beside_the_road_by_default(in_tmp):
-    write_road(legs_road(), in_tmp / "plain.csv")
-    run("road", "plot", "plain.csv", "--svg")
-    assert (in_tmp / "plain.png").stat().st_size > 0 and (in_tmp / "plain.svg").stat().st_size > 0
+def test_road_plot_writes_into_out_by_default_never_beside_the_road(in_tmp):
+    (in_tmp / "roads").mkdir()
+    write_road(legs_road(), in_tmp / "roads" / "plain.csv")
+    printed = run("road", "plot", "roads/plain.csv", "--svg")
+    assert printed.strip() == f"wrote {Path('out/plain.png')}, {Path('out/plain.svg')}"
+    assert (in_tmp / "out" / "plain.png").stat().st_size > 0 and (in_tmp / "out" / "plain.svg").stat().st_size > 0
+    assert sorted(p.name for p in (in_tmp / "roads").iterdir()) == ["plain.csv"]

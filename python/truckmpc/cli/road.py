@@ -157,7 +157,14 @@ def road_info_cmd(file: RoadFileArg) -> None:
 def road_plot_cmd(
     file: RoadFileArg,
     out: Annotated[
-        Path | None, typer.Option("-o", "--out", metavar="FILE", help="Picture to write (default: FILE.png).")
+        Path | None,
+        typer.Option(
+            "-o",
+            "--out",
+            metavar="FILE",
+            help="Picture to write (default: out/<FILE's name>.png in the current directory, never beside the "
+            "road, which may be read-only or shared).",
+        ),
     ] = None,
     svg: Annotated[bool, typer.Option("--svg", help="Also write an SVG beside the PNG.")] = False,
 ) -> None:
@@ -165,5 +172,8 @@ def road_plot_cmd(
     the smoothed one. Needs matplotlib."""
     from truckmpc.geo.commands import plot_road_file  # lazy: scipy, pyproj and gpxpy (see above)
 
+    if out is None:
+        out = Path("out") / f"{file.stem}.png"
+        out.parent.mkdir(parents=True, exist_ok=True)
     written = plot_road_file(file, out, svg)
     typer.echo("wrote " + ", ".join(str(p) for p in written))

@@ -78,7 +78,7 @@ def info_lines(file: Path) -> list[str]:
     return format_info(road_info(road.profile, road.notes))
 
 
-def plot_road_file(file: Path, out: Path | None, svg: bool) -> list[Path]:
-    """Draw road `file` to `out` (default: FILE with the suffix .png); returns the files written."""
+def plot_road_file(file: Path, out: Path, svg: bool) -> list[Path]:
+    """Draw road `file` to `out` (a .png; with `svg` an .svg beside it); returns the files written."""
     road = read_road_with_notes(file)
-    return plot_road(road.profile, file.with_suffix(".png") if out is None else out, road.raw_altitude_m, svg=svg)
+    return plot_road(road.profile, out, road.raw_altitude_m, svg=svg)
