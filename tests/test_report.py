@@ -196,8 +196,29 @@ def test_a_new_run_replaces_the_report_of_the_old(tmp_path: Path) -> None:
     out = tmp_path / "run"
     assert cli("simulate", "--road", str(ROAD), "--controller", "pi", "--out", str(out))[0] == 0
     assert cli("report", str(out), "--out", str(out / "report.html"))[0] == 0
-    assert cli("simulate", "--road", str(ROAD), "--controller", "pi", "--out", str(out))[0] == 0
+    code, _, err = cli("simulate", "--road", str(ROAD), "--controller", "pi", "--out", str(out))
+    assert (
+        code == 2
+        and err.strip() == f"error: {out}: holds an earlier run; add --replace to replace it, or choose another --out"
+    )
+    assert cli("simulate", "--road", str(ROAD), "--controller", "pi", "--out", str(out), "--replace")[0] == 0
     assert sorted(p.name for p in out.iterdir()) == ["summary.json", "trace-pi.csv"]
+
+
+def test_a_second_run_to_the_default_directory_goes_to_a_new_one_and_says_where(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    for _ in range(2):
+        code, printed, err = cli("simulate", "--road", str(ROAD), "--controller", "pi")
+        assert code == 0, err
+    first, second = tmp_path / "out" / ROAD.stem, tmp_path / "out" / f"{ROAD.stem}-2"
+    assert (
+        f"{Path('out') / ROAD.stem} holds an earlier run: this one goes to {Path('out') / (ROAD.stem + '-2')}"
+        in printed
+    )
+    first_doc, second_doc = (json.loads((d / "summary.json").read_text()) for d in (first, second))
+    assert first_doc["pi"]["fuel_kg"] == second_doc["pi"]["fuel_kg"]
 
 
 @pytest.fixture(scope="module")

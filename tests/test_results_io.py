@@ -89,7 +89,8 @@ def test_an_output_directory_holds_one_run(tmp_path: Path) -> None:
     out = tmp_path / "run"
     assert simulate("--controller", "mpc", "--out", str(out))[0] == 0
     (out / "run.png").write_bytes(b"an old plot")
-    assert simulate("--controller", "pi", "--out", str(out))[0] == 0
+    assert simulate("--controller", "pi", "--out", str(out))[0] == 2  # not without --replace
+    assert simulate("--controller", "pi", "--out", str(out), "--replace")[0] == 0
     assert sorted(p.name for p in out.iterdir()) == ["summary.json", "trace-pi.csv"]
 
 

@@ -14,7 +14,7 @@ from truckmpc.cli.options import ConfigOpt, ForceOpt, SetOpt, VehicleOpt, run_co
 from truckmpc.config import RunConfig
 from truckmpc.convergence import halved_configs
 from truckmpc.record import RunRequest, load_replay, run_record, with_controller_road
-from truckmpc.results import check_run_dir, write_outputs
+from truckmpc.results import check_run_dir, free_run_dir, write_outputs
 from truckmpc.results.run_table import render_text, run_table
 from truckmpc.roads import RoadProfile, default_test_track, load_road
 from truckmpc.run import check_work, run_controllers
@@ -70,7 +70,16 @@ CONTROLLER_HELP = (
 :data:`GROUPS`."""
 ControllerOpt = Annotated[str | None, typer.Option("--controller", metavar="LIST", help=CONTROLLER_HELP)]
 OutOpt = Annotated[
-    Path | None, typer.Option("--out", metavar="DIR", help="Output directory (default: out/<road name>).")
+    Path | None,
+    typer.Option(
+        "--out",
+        metavar="DIR",
+        help="Output directory (default: out/<road name>, or out/<road name>-2, -3, ... when it holds an earlier "
+        "run). A DIR holding an earlier run is refused unless --replace is given.",
+    ),
+]
+ReplaceOpt = Annotated[
+    bool, typer.Option("--replace", help="Replace the earlier run the --out directory holds (refused otherwise).")
 ]
 ReverseOpt = Annotated[bool, typer.Option("--reverse", help="Drive the road in the opposite direction.")]
 ReplayOpt = Annotated[
@@ -118,14 +127,15 @@ def simulate_cmd(
     controller_road: ControllerRoadOpt = None,
     check_convergence: CheckConvergenceOpt = False,
     verbose: VerboseOpt = False,
+    replace: ReplaceOpt = False,
 ) -> None:
     """Run controllers over a road; print a short table, write DIR/summary.json and DIR/trace-<controller>.csv.
 
     By default (--controller both) the PI and the MPC run. The table has a column per controller: its
     fuel and trip time, then its delta fuel against each baseline, (controller - baseline) /
     baseline in % (negative: fuel saved), at equal trip time (the baseline re-run at the set speed
-    that matches the controller's trip time) and as driven. A directory holding an earlier run is
-    replaced whole.
+    that matches the controller's trip time) and as driven. A run never replaces another unless
+    asked (--replace).
     """
     options = (road, controller, vehicle, config, set_, reverse, check_convergence, controller_road)
     if replay is not None:
@@ -139,8 +149,7 @@ def simulate_cmd(
         request, profile, run_config = _requested(*options)
     halves = _halved_configs(request, run_config)
     estimate_s = check_work(profile, run_config, request.controllers, force=force, halves=halves)
-    out_dir = Path("out") / profile.name if out is None else out
-    check_run_dir(out_dir)
+    out_dir = _out_dir(out, profile.name, replace)
     with stopping_on_signals():
         try:
             runs = run_controllers(
@@ -154,6 +163,21 @@ def simulate_cmd(
     summary = json.loads(written[0].read_text(encoding="utf-8"))
     typer.echo(render_text(run_table(summary, verbose=verbose)))
     typer.echo("wrote " + ", ".join(str(p) for p in written))
+
+
+def _out_dir(out: Path | None, road_name: str, replace: bool) -> Path:
+    """The directory the run writes: `out` (refused if it holds an earlier run, unless `replace`), or
+    by default out/<road name>, the next free out/<road name>-N when that holds one (said)."""
+    if out is not None or replace:
+        out_dir = Path("out") / road_name if out is None else out
+        check_run_dir(out_dir, replace=replace)
+        return out_dir
+    default = Path("out") / road_name
+    out_dir = free_run_dir(default)
+    check_run_dir(out_dir, replace=False)
+    if out_dir != default:
+        typer.echo(f"{default} holds an earlier run: this one goes to {out_dir} (--replace replaces it)")
+    return out_dir
 
 
 def _requested(

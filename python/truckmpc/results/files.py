@@ -5,6 +5,7 @@
 from __future__ import annotations
 
 import io
+import itertools
 import json
 import math
 import os
@@ -24,7 +25,7 @@ from truckmpc.sim import TRACE_COLUMNS, RunResult
 if TYPE_CHECKING:
     from truckmpc.roads import RoadProfile
 
-__all__ = ["RUN_FILES", "check_run_dir", "trace_csv", "write_outputs"]
+__all__ = ["RUN_FILES", "check_run_dir", "free_run_dir", "holds_run", "trace_csv", "write_outputs"]
 
 _CSV_FORMATS = {spec.name: "%d" if spec.decimals is None else f"%.{spec.decimals}f" for spec in TRACE_SPECS}
 """How the trace's CSV writes each declared column (others ``%.6g``)."""
@@ -65,9 +66,23 @@ RUN_FILES = ("summary.json", "trace-*.csv", "run.png", "run.svg", "report.html")
 """What a run directory holds (its outputs, its plots and its report); a new run replaces them all."""
 
 
-def check_run_dir(out_dir: str | os.PathLike[str]) -> None:
-    """Refuse an output directory that holds anything but an earlier run's files (which the new run
-    replaces whole): it is someone's other data."""
+def holds_run(out_dir: str | os.PathLike[str]) -> bool:
+    """Whether `out_dir` holds any of an earlier run's files (:data:`RUN_FILES`)."""
+    out = Path(out_dir)
+    return out.is_dir() and any(p.match(pattern) for p in out.iterdir() for pattern in RUN_FILES)
+
+
+def free_run_dir(out_dir: str | os.PathLike[str]) -> Path:
+    """`out_dir` if it holds no run, else the first of `out_dir`-2, -3, ... that holds none."""
+    out = Path(out_dir)
+    candidates = itertools.chain([out], (out.with_name(f"{out.name}-{n}") for n in itertools.count(2)))
+    return next(c for c in candidates if not holds_run(c))
+
+
+def check_run_dir(out_dir: str | os.PathLike[str], replace: bool = True) -> None:
+    """Refuse an output directory that holds anything but an earlier run's files: it is someone's
+    other data. Without `replace`, refuse one that holds an earlier run too (the new run would
+    replace it whole)."""
     out = Path(out_dir)
     if out.exists() and not out.is_dir():
         raise ConfigError(f"{out}: expected a directory for the run's outputs, got a file")
@@ -77,6 +92,8 @@ def check_run_dir(out_dir: str | os.PathLike[str]) -> None:
     if foreign:
         shown = ", ".join(foreign[:3]) + (", ..." if len(foreign) > 3 else "")
         raise ConfigError(f"{out}: holds files that are not a truckmpc run's ({shown}); choose another --out")
+    if not replace and holds_run(out):
+        raise ConfigError(f"{out}: holds an earlier run; add --replace to replace it, or choose another --out")
 
 
 def write_outputs(
