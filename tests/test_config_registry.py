@@ -4,6 +4,7 @@ of renamed, replaced and added keys drives the unknown-key errors, `--replay` an
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 
@@ -13,7 +14,7 @@ from typer.testing import CliRunner
 from truckmpc.cli import app
 from truckmpc.config import ConfigError, load_run_config
 from truckmpc.config.docs import yaml_value
-from truckmpc.config.keys import KEY_CHANGES, SPEC_BY_KEY, VECTO_KEYS, current_values
+from truckmpc.config.keys import KEY_CHANGES, SPEC_BY_KEY, VECTO_KEYS, KeyChange, ParamSpec, current_values
 from truckmpc.config.vecto_truck import STILL_APPLIES
 from truckmpc.roads import default_test_track
 from truckmpc.sweep.files import check_out_dir
@@ -76,6 +77,21 @@ def test_a_vecto_key_set_reaches_the_truck_and_the_settings(tmp_path: Path) -> N
     assert config.settings.get("air_density_kgpm3") == 1.2
     # Without the override the VECTO truck takes VECTO's air density, not the thesis's.
     assert load_run_config(write_job(tmp_path)).settings.get("air_density_kgpm3") == 1.188
+
+
+def test_the_cores_records_read_as_the_declarations_give_them() -> None:
+    """delta_kmh and grid as params/mpc.rs declares them, the air density's rename as
+    params/changes.rs registers it; each typed and frozen."""
+    doc = "δ, step of the DP's speed grid."
+    delta = ParamSpec("delta_kmh", "mpc", "number", "km/h", doc, 0.05, None, "a number in (0, 100]")
+    assert SPEC_BY_KEY["delta_kmh"] == delta
+    grid = SPEC_BY_KEY["grid"]
+    assert grid.kind == "choice" and grid.default == "fixed" and grid.choices == ["moving", "fixed"]
+    assert grid.expected == "'moving' or 'fixed'"
+    renamed = next(c for c in KEY_CHANGES if c.key == "air_density_kg_m3")
+    assert renamed == KeyChange("air_density_kg_m3", "renamed", "air_density_kgpm3", None, None, "0.1.0")
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        renamed.new = "air_density"  # type: ignore[misc]
 
 
 def test_the_registry_drives_the_unknown_key_errors() -> None:

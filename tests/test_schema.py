@@ -16,7 +16,7 @@ from truckmpc.legs import merge_legs
 from truckmpc.results.files import trace_csv
 from truckmpc.roads import RoadProfile, Stop, make_section
 from truckmpc.roads.stops import leg_bounds
-from truckmpc.schema import SUMMARY_SPECS, TRACE_COLUMNS, TRACE_SPECS
+from truckmpc.schema import SUMMARY, SUMMARY_SPECS, TRACE_COLUMNS, TRACE_SPECS, OutputSpec
 from truckmpc.sim import RunResult, simulate
 from truckmpc.sweep.columns import MPC_FIELDS, PCC_FIELDS, PI_FIELDS
 
@@ -52,6 +52,28 @@ def test_a_run_gives_exactly_the_declared_figures_and_columns(config, controller
 def test_a_road_with_a_stop_gives_the_legs_figures_too(config) -> None:
     road = RoadProfile("stop", [0, 1000, 2000], [0, 5, 5], target_speed_kmh=[70] * 3, stops=(Stop(1000.0, 30.0),))
     assert set(simulate(road, config, "pcc").summary) == declared("pcc", legs=True)
+
+
+def test_a_spec_reads_as_the_core_declares_it() -> None:
+    """Two entries of sim/schema.rs, every field: a recomputed summary figure and a trace column."""
+    figure = OutputSpec(
+        name="fuel_kg_per_100km",
+        unit="kg/100km",
+        label="fuel per 100 km",
+        doc="Fuel per 100 km driven; null when the truck did not move.",
+        kind="number",
+        runs="every",
+        source="core",
+        merge="per_100km",
+        merge_of="fuel_kg",
+        sweep="",
+        decimals=None,
+    )
+    assert SUMMARY["fuel_kg_per_100km"] == figure
+    doc = "Gear engaged, 0 = neutral."
+    gear = OutputSpec("gear", "-", "gear", doc, "count", "every", "core", "joined", None, "", None)
+    assert TRACE_SPECS[TRACE_COLUMNS.index("gear")] == gear
+    assert SUMMARY["fuel_corrected_kg"].source == "python" and TRACE_SPECS[2].decimals == 5
 
 
 def test_the_trace_columns_are_the_csv_files_columns_in_order() -> None:

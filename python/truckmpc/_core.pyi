@@ -14,11 +14,8 @@ __all__ = [
     "Body",
     "Driveline",
     "Engine",
-    "KeyChange",
     "MapTruck",
-    "OutputSpec",
     "ParamError",
-    "ParamSpec",
     "Road",
     "RunOutput",
     "Settings",
@@ -41,58 +38,16 @@ class ParamError(ValueError):
     got: str | None
     related: list[str]
 
-@final
-class ParamSpec:
-    """One declared parameter."""
-
-    @property
-    def name(self) -> str: ...
-    @property
-    def section(self) -> str: ...
-    @property
-    def kind(self) -> str: ...
-    @property
-    def unit(self) -> str: ...
-    @property
-    def doc(self) -> str: ...
-    @property
-    def default(self) -> Any: ...
-    @property
-    def choices(self) -> list[str] | None: ...
-    @property
-    def expected(self) -> str: ...
-
-def parameter_specs() -> list[ParamSpec]:
-    """Every declared parameter, section by section."""
+def parameter_specs() -> list[dict[str, Any]]:
+    """Every declared parameter, section by section: a record each (name, section, kind, unit,
+    doc, default, choices, expected), typed by `truckmpc.config.keys.ParamSpec`."""
 
 def parameter_value(key: str, value: Any) -> Any:
     """The value of `key` as the core reads `value`: type and range checked (raises ParamError)."""
 
-@final
-class KeyChange:
-    """A key renamed, replaced or added (one entry of the core's registry)."""
-
-    @property
-    def key(self) -> str:
-        """The key as it was (renamed, replaced) or as it is (added)."""
-    @property
-    def kind(self) -> str:
-        """renamed, replaced or added."""
-    @property
-    def new(self) -> str | None:
-        """The key's successor (renamed, replaced); None for an added key."""
-    @property
-    def why(self) -> str | None:
-        """Why it was replaced, in parentheses; None otherwise."""
-    @property
-    def replays_with(self) -> Any:
-        """The value a record made before an added key existed replays with; None otherwise."""
-    @property
-    def version(self) -> str:
-        """The version of truckmpc that changed it."""
-
-def key_changes() -> list[KeyChange]:
-    """Every key renamed, replaced or added, oldest first."""
+def key_changes() -> list[dict[str, Any]]:
+    """Every key renamed, replaced or added, oldest first: a record each (key, kind, new, why,
+    replays_with, version), typed by `truckmpc.config.keys.KeyChange`."""
 
 class _Derived(TypedDict):
     horizon_stages: int
@@ -242,38 +197,13 @@ class Road:
         setting [km/h]: the stretch's set speed (without the top falling ahead of a lower one),
         v_min and v_max."""
 
-@final
-class OutputSpec:
-    """One declared output: a figure of a controller's summary or a column of its trace."""
+def summary_specs() -> list[dict[str, Any]]:
+    """Every figure of a controller's summary, in `summary.json`'s order: a record each (name,
+    unit, label, doc, kind, runs, source, merge, merge_of, sweep, decimals), typed by
+    `truckmpc.schema.OutputSpec`."""
 
-    @property
-    def name(self) -> str: ...
-    @property
-    def unit(self) -> str: ...
-    @property
-    def label(self) -> str: ...
-    @property
-    def doc(self) -> str: ...
-    @property
-    def kind(self) -> str: ...
-    @property
-    def runs(self) -> str: ...
-    @property
-    def source(self) -> str: ...
-    @property
-    def merge(self) -> str: ...
-    @property
-    def merge_of(self) -> str | None: ...
-    @property
-    def sweep(self) -> str: ...
-    @property
-    def decimals(self) -> int | None: ...
-
-def summary_specs() -> list[OutputSpec]:
-    """Every figure of a controller's summary, in `summary.json`'s order."""
-
-def trace_specs() -> list[OutputSpec]:
-    """Every column of a run's trace, in the CSV's order."""
+def trace_specs() -> list[dict[str, Any]]:
+    """Every column of a run's trace, in the CSV's order: a record each, as `summary_specs`."""
 
 @final
 class RunOutput:

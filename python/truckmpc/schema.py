@@ -13,17 +13,57 @@ after the core's run).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from truckmpc import _core
 
-__all__ = ["SUMMARY", "SUMMARY_SPECS", "TRACE_COLUMNS", "TRACE_SPECS", "summary_table", "trace_table"]
+__all__ = [
+    "SUMMARY",
+    "SUMMARY_SPECS",
+    "TRACE_COLUMNS",
+    "TRACE_SPECS",
+    "OutputSpec",
+    "summary_table",
+    "trace_table",
+]
 
-SUMMARY_SPECS: tuple[_core.OutputSpec, ...] = tuple(_core.summary_specs())
+
+@dataclass(frozen=True)
+class OutputSpec:
+    """One declared output: a figure of a controller's summary or a column of its trace."""
+
+    name: str
+    """Key in the summary (column of the trace), its unit in the name."""
+    unit: str
+    """Unit (``"-"`` for none)."""
+    label: str
+    """Short label for tables."""
+    doc: str
+    """One-line meaning."""
+    kind: str
+    """number, count, flag, text or record."""
+    runs: str
+    """Which runs carry it: every, pcc, dp (mpc, optimal), optimal, or legs (a road with stops)."""
+    source: str
+    """Where it is computed: core, or python (after the core's run)."""
+    merge: str
+    """How a road driven as legs joins it: sum, sum_unless_stalled, max, first, last, any,
+    mean_per_solve, per_100km, per_time_s, mean_speed, built; trace columns continued or joined."""
+    merge_of: str | None
+    """The figure a recomputed one (per_100km, per_time_s) follows from; None otherwise."""
+    sweep: str
+    """Whose columns of sweep.csv carry it: all, look_ahead, mpc, or ``""`` for none."""
+    decimals: int | None
+    """Decimals the trace's CSV writes; None for summary figures and whole numbers."""
+
+
+SUMMARY_SPECS: tuple[OutputSpec, ...] = tuple(OutputSpec(**record) for record in _core.summary_specs())
 """Every figure of a controller's summary, in ``summary.json``'s order."""
 
-SUMMARY: dict[str, _core.OutputSpec] = {spec.name: spec for spec in SUMMARY_SPECS}
+SUMMARY: dict[str, OutputSpec] = {spec.name: spec for spec in SUMMARY_SPECS}
 """The summary's figures by name."""
 
-TRACE_SPECS: tuple[_core.OutputSpec, ...] = tuple(_core.trace_specs())
+TRACE_SPECS: tuple[OutputSpec, ...] = tuple(OutputSpec(**record) for record in _core.trace_specs())
 """Every column of a run's trace, in the CSV's order."""
 
 TRACE_COLUMNS: tuple[str, ...] = tuple(spec.name for spec in TRACE_SPECS)
@@ -56,7 +96,7 @@ _MERGES = {
 """How the legs join a figure, in the reference page's words."""
 
 
-def merge_text(spec: _core.OutputSpec) -> str:
+def merge_text(spec: OutputSpec) -> str:
     """How a road driven as legs joins `spec`, in words."""
     return _MERGES[spec.merge].format(of=spec.merge_of)
 

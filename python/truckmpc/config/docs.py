@@ -8,8 +8,7 @@ import re
 from pathlib import Path
 from typing import Any
 
-from truckmpc import _core
-from truckmpc.config.keys import CONFIG_DIR, SECTION_FILES, SPECS, VEHICLE_FILES
+from truckmpc.config.keys import CONFIG_DIR, SECTION_FILES, SPECS, VEHICLE_FILES, ParamSpec
 
 SECTION_TITLES = {
     "vehicle": "The truck: tables A.1 (vehicle, engine) and A.2 (gearbox) of Hellström's thesis.",
@@ -48,7 +47,7 @@ def yaml_value(value: Any) -> str:
     return str(value)
 
 
-def _specs_of(section: str) -> list[_core.ParamSpec]:
+def _specs_of(section: str) -> list[ParamSpec]:
     return [spec for spec in SPECS if spec.section == section]
 
 

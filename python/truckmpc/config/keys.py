@@ -9,21 +9,64 @@ from __future__ import annotations
 import difflib
 import os
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from truckmpc import _core
 from truckmpc.errors import ConfigError
 
+
+@dataclass(frozen=True)
+class ParamSpec:
+    """One declared parameter: name (unit in the name), section, kind, unit, doc, default, range."""
+
+    name: str
+    """Key as typed in YAML, ``--set`` and ``--grid``."""
+    section: str
+    """Section: vehicle, cruise, pi, mpc, pcc, sim or vecto."""
+    kind: str
+    """number, number_or_null, count, count_or_null, flag, choice, numbers or numbers_or_nulls."""
+    unit: str
+    """Unit in words."""
+    doc: str
+    """One-line description."""
+    default: Any
+    """Default value."""
+    choices: list[str] | None
+    """Names a choice accepts; None for other kinds."""
+    expected: str
+    """What a value must be, in words (``"a number > 0"``)."""
+
+
+@dataclass(frozen=True)
+class KeyChange:
+    """A key renamed, replaced or added: the core's registry of key changes, one entry."""
+
+    key: str
+    """The key as it was (renamed, replaced) or as it is (added)."""
+    kind: str
+    """renamed, replaced or added."""
+    new: str | None
+    """The key's successor (renamed, replaced); None for an added key."""
+    why: str | None
+    """Why it was replaced, in parentheses; None otherwise."""
+    replays_with: Any
+    """The value a record made before an added key existed replays with; None otherwise."""
+    version: str
+    """The version of truckmpc that changed it."""
+
+
 CONFIG_DIR = Path(__file__).resolve().parent.parent / "configs"
-SPECS: tuple[_core.ParamSpec, ...] = tuple(_core.parameter_specs())
-SPEC_BY_KEY: dict[str, _core.ParamSpec] = {spec.name: spec for spec in SPECS}
+SPECS: tuple[ParamSpec, ...] = tuple(ParamSpec(**record) for record in _core.parameter_specs())
+"""Every declared parameter, section by section in declaration order."""
+SPEC_BY_KEY: dict[str, ParamSpec] = {spec.name: spec for spec in SPECS}
 SECTION_NAMES: tuple[str, ...] = tuple(dict.fromkeys(spec.section for spec in SPECS))
 KEYS: tuple[str, ...] = tuple(SPEC_BY_KEY)
 """Every key, section by section in declaration order."""
-KEY_CHANGES: tuple[_core.KeyChange, ...] = tuple(_core.key_changes())
+KEY_CHANGES: tuple[KeyChange, ...] = tuple(KeyChange(**record) for record in _core.key_changes())
 """Keys renamed, replaced or added, oldest first (the core's registry)."""
-RETIRED_KEYS: dict[str, _core.KeyChange] = {c.key: c for c in KEY_CHANGES if c.kind != "added"}
+RETIRED_KEYS: dict[str, KeyChange] = {c.key: c for c in KEY_CHANGES if c.kind != "added"}
 """Keys no longer declared (renamed or replaced), each with its change."""
 RENAMED_KEYS: dict[str, str] = {c.key: c.new for c in KEY_CHANGES if c.kind == "renamed" and c.new is not None}
 """Old name -> name now, for keys renamed with their meaning kept."""

@@ -33,13 +33,13 @@ DRIVELINE_LOSS_NOTE = (
     "tractor's full-load climb in gear 11 and used in every gear"
 )
 _MIN_GROSS_MASS_T = 16.0  # group 5 is a 4x2 tractor above 16 t
-TRUCK_KEYS: tuple[str, ...] = (
-    *(spec.name for spec in _core.parameter_specs() if spec.section == "vecto"),
-    "air_density_kgpm3",
-)
+_VECTO_SPECS = [record for record in _core.parameter_specs() if record["section"] == "vecto"]
+"""The core's records of its ``vecto`` section (``truckmpc.config.keys.ParamSpec`` types them, a
+layer above)."""
+TRUCK_KEYS: tuple[str, ...] = (*(record["name"] for record in _VECTO_SPECS), "air_density_kgpm3")
 """The keys a VECTO truck is built from: the core's ``vecto`` section and the air density."""
 _DEFAULTS: dict[str, Any] = {
-    **{spec.name: spec.default for spec in _core.parameter_specs() if spec.section == "vecto"},
+    **{record["name"]: record["default"] for record in _VECTO_SPECS},
     "air_density_kgpm3": decl.AIR_DENSITY_KG_M3,
 }
 """A VECTO truck's keys unset: the declared defaults, and VECTO's air density."""

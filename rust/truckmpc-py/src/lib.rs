@@ -20,9 +20,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(params::parameter_specs, m)?)?;
     m.add_function(wrap_pyfunction!(params::key_changes_py, m)?)?;
     m.add_function(wrap_pyfunction!(params::parameter_value, m)?)?;
-    m.add_class::<params::PyParamSpec>()?;
     m.add_class::<params::PySettings>()?;
-    m.add_class::<params::PyKeyChange>()?;
     m.add_class::<vehicle::PyVehicle>()?;
     m.add_class::<road::PyRoad>()?;
     m.add_class::<powertrain::PyEngine>()?;

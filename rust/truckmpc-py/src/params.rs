@@ -3,7 +3,7 @@
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use truckmpc_core::params::{key_changes, Change, Kind, ParamSpec, Value};
+use truckmpc_core::params::{key_changes, Value};
 use truckmpc_core::scenario::Scenario;
 use truckmpc_core::RunSettings;
 
@@ -12,97 +12,18 @@ use crate::errors::to_py;
 use crate::powertrain::PyMapTruck;
 use crate::vehicle::PyVehicle;
 
-/// One declared parameter: name (unit in the name), section, kind, unit, doc, default, range.
-#[pyclass(name = "ParamSpec", module = "truckmpc._core", frozen, get_all)]
-pub struct PyParamSpec {
-    /// Key as typed in YAML, `--set` and `--grid`.
-    name: String,
-    /// Section: vehicle, cruise, pi, mpc or sim.
-    section: String,
-    /// number, number_or_null, count, count_or_null, flag, choice, numbers or numbers_or_nulls.
-    kind: String,
-    /// Unit in words.
-    unit: String,
-    /// One-line description.
-    doc: String,
-    /// Default value.
-    default: Py<PyAny>,
-    /// Names a choice accepts; None for other kinds.
-    choices: Option<Vec<String>>,
-    /// What a value must be, in words (`"a number > 0"`).
-    expected: String,
-}
-
-impl PyParamSpec {
-    fn new(py: Python<'_>, spec: &ParamSpec) -> PyResult<Self> {
-        let choices = match spec.kind {
-            Kind::Choice(names) => Some(names.iter().map(|n| n.to_string()).collect()),
-            _ => None,
-        };
-        Ok(PyParamSpec {
-            name: spec.name.to_string(),
-            section: spec.section.to_string(),
-            kind: spec.kind.name().to_string(),
-            unit: spec.unit.to_string(),
-            doc: spec.doc.clone(),
-            default: from_value(py, &spec.default)?.unbind(),
-            choices,
-            expected: spec.expected(),
-        })
-    }
-}
-
-#[pymethods]
-impl PyParamSpec {
-    fn __repr__(&self) -> String {
-        format!("ParamSpec({} [{}], {})", self.name, self.unit, self.section)
-    }
-}
-
-/// Every declared parameter, section by section (vehicle, cruise, pi, mpc, sim).
+/// Every declared parameter, section by section in declaration order, each a dict of its record
+/// (`ParamSpec::record`).
 #[pyfunction]
-pub fn parameter_specs(py: Python<'_>) -> PyResult<Vec<PyParamSpec>> {
-    RunSettings::specs().iter().map(|spec| PyParamSpec::new(py, spec)).collect()
+pub fn parameter_specs(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
+    RunSettings::specs().iter().map(|spec| dict_of(py, &spec.record())).collect()
 }
 
-/// A key renamed, replaced or added: the core's registry of key changes, one entry.
-#[pyclass(name = "KeyChange", module = "truckmpc._core", frozen, get_all)]
-pub struct PyKeyChange {
-    /// The key as it was (renamed, replaced) or as it is (added).
-    key: String,
-    /// renamed, replaced or added.
-    kind: String,
-    /// The key's successor (renamed, replaced); None for an added key.
-    new: Option<String>,
-    /// Why it was replaced, in parentheses; None otherwise.
-    why: Option<String>,
-    /// The value a record made before an added key existed replays with; None otherwise.
-    replays_with: Py<PyAny>,
-    /// The version of truckmpc that changed it.
-    version: String,
-}
-
-/// Every key renamed, replaced or added, oldest first.
+/// Every key renamed, replaced or added, oldest first, each a dict of its record
+/// (`KeyChange::record`).
 #[pyfunction(name = "key_changes")]
-pub fn key_changes_py(py: Python<'_>) -> PyResult<Vec<PyKeyChange>> {
-    key_changes()
-        .into_iter()
-        .map(|c| {
-            let (kind, new, why, replays_with) = match c.change {
-                Change::Renamed { new } => ("renamed", Some(new), None, Value::Null),
-                Change::Replaced { new, why } => ("replaced", Some(new), Some(why), Value::Null),
-                Change::Added { replays_with } => ("added", None, None, replays_with),
-            };
-            Ok(PyKeyChange {
-                key: c.key.to_string(),
-                kind: kind.to_string(),
-                new: new.map(str::to_string),
-                why: why.map(str::to_string),
-                replays_with: from_value(py, &replays_with)?.unbind(),
-                version: c.version.to_string(),
-            })
-        })
-        .collect()
+pub fn key_changes_py(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
+    key_changes().iter().map(|change| dict_of(py, &change.record())).collect()
 }
 
 /// The value of `key` as the core reads `value`: type and range checked against its declaration.

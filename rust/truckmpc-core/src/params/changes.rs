@@ -37,6 +37,30 @@ pub struct KeyChange {
     pub version: &'static str,
 }
 
+impl KeyChange {
+    /// The change as named values, as the binding hands it on: key, kind (renamed, replaced or
+    /// added), new (the successor; null for an added key), why (null unless replaced),
+    /// replays_with (null unless added) and version.
+    pub fn record(&self) -> Vec<(&'static str, Value)> {
+        let text = |s: &str| Value::Text(s.to_string());
+        // Every field named, so that a field added to the struct is a compile error here.
+        let KeyChange { key, change, version } = self;
+        let (kind, new, why, replays_with) = match change {
+            Change::Renamed { new } => ("renamed", text(new), Value::Null, Value::Null),
+            Change::Replaced { new, why } => ("replaced", text(new), text(why), Value::Null),
+            Change::Added { replays_with } => ("added", Value::Null, Value::Null, replays_with.clone()),
+        };
+        vec![
+            ("key", text(key)),
+            ("kind", text(kind)),
+            ("new", new),
+            ("why", why),
+            ("replays_with", replays_with),
+            ("version", text(version)),
+        ]
+    }
+}
+
 /// Why the PCC's own under- and overspeed were replaced.
 const ONE_BAND: &str = "(one speed band for every controller: v_dec_kmh below v_ref, v_inc_kmh above)";
 
@@ -85,5 +109,25 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn a_record_has_every_field_of_the_change() {
+        let text = |s: &str| Value::Text(s.to_string());
+        let replaced = key_changes().into_iter().find(|c| c.key == "pcc_underspeed_kmh").expect("registered");
+        let expected = vec![
+            ("key", text("pcc_underspeed_kmh")),
+            ("kind", text("replaced")),
+            ("new", text("v_dec_kmh")),
+            ("why", text(ONE_BAND)),
+            ("replays_with", Value::Null),
+            ("version", text("0.1.0")),
+        ];
+        assert_eq!(replaced.record(), expected);
+        let added = key_changes().into_iter().find(|c| c.key == "pedal_levels").expect("registered").record();
+        assert_eq!(
+            added[1..5],
+            [("kind", text("added")), ("new", Value::Null), ("why", Value::Null), ("replays_with", Value::Int(0))]
+        );
     }
 }

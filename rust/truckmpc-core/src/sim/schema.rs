@@ -11,6 +11,7 @@ use super::shifts::per_100km;
 use super::summary::RunSummary;
 use super::trace::Trace;
 use crate::control::{PlanStats, RuleStats, SolverStats};
+use crate::params::Value;
 
 use self::{Kind::*, Merge::*, Runs::*, Sweep::*};
 
@@ -152,6 +153,16 @@ impl Runs {
     }
 }
 
+impl Source {
+    /// The name Python reads.
+    pub fn name(self) -> &'static str {
+        match self {
+            Source::Core => "core",
+            Source::Python => "python",
+        }
+    }
+}
+
 impl Kind {
     /// The name Python reads.
     pub fn name(self) -> &'static str {
@@ -183,6 +194,30 @@ pub struct OutputSpec {
     pub sweep: Sweep,
     /// Decimals the trace's CSV writes (None for summary figures and whole numbers).
     pub decimals: Option<u8>,
+}
+
+impl OutputSpec {
+    /// The spec as named values, as the binding hands it on: name, unit, label, doc, kind, runs,
+    /// source, merge (each by its name), merge_of (null unless recomputed), sweep ("" for none)
+    /// and decimals (null for summary figures and whole numbers).
+    pub fn record(&self) -> Vec<(&'static str, Value)> {
+        let text = |s: &str| Value::Text(s.to_string());
+        // Every field named, so that a field added to the struct is a compile error here.
+        let OutputSpec { name, unit, label, doc, kind, runs, source, merge, sweep, decimals } = *self;
+        vec![
+            ("name", text(name)),
+            ("unit", text(unit)),
+            ("label", text(label)),
+            ("doc", text(doc)),
+            ("kind", text(kind.name())),
+            ("runs", text(runs.name())),
+            ("source", text(source.name())),
+            ("merge", text(merge.name())),
+            ("merge_of", merge.of().map_or(Value::Null, text)),
+            ("sweep", text(sweep.name())),
+            ("decimals", decimals.map_or(Value::Null, |d| Value::Int(i64::from(d)))),
+        ]
+    }
 }
 
 /// A summary figure's value.
@@ -435,32 +470,4 @@ impl Trace {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use std::collections::HashSet;
-
-    #[test]
-    fn names_are_unique_and_recomputed_figures_name_declared_ones() {
-        let names: HashSet<_> = SUMMARY.iter().map(|f| f.spec.name).collect();
-        assert_eq!(names.len(), SUMMARY.len());
-        assert_eq!(TRACE.iter().map(|c| c.spec.name).collect::<HashSet<_>>().len(), TRACE.len());
-        for f in SUMMARY {
-            if let Some(of) = f.spec.merge.of() {
-                assert!(names.contains(of), "{} is recomputed from {of}", f.spec.name);
-            }
-            assert_eq!(f.read.is_some(), f.spec.source == Source::Core, "{}", f.spec.name);
-        }
-    }
-
-    #[test]
-    fn a_trace_gives_every_column_once_in_order() {
-        let trace = Trace { gear: vec![3, 0], fuel_g: vec![1.0, 2.0], ..Trace::default() };
-        let columns: Vec<_> = trace.into_columns().collect();
-        let names: Vec<_> = columns.iter().map(|(spec, _)| spec.name).collect();
-        let expected = ["distance_m", "time_s", "speed_kmh", "gear", "pedal", "brake", "engine_speed_rpm", "slope"];
-        assert_eq!(names[..8], expected);
-        assert_eq!(names[8..], ["altitude_m", "fuel_g", "brake_energy_kj"]);
-        assert_eq!(columns[3].1, Column::Count(vec![3, 0]));
-        assert_eq!(columns[9].1, Column::Number(vec![1.0, 2.0]));
-    }
-}
+mod tests;
