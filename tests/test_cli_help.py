@@ -148,7 +148,7 @@ def test_the_pcc_is_among_simulates_controllers():
 
 
 def test_config_keys_names_every_section_it_prints():
-    printed = re.findall(r"<!-- keys:(\w+) -->", runner.invoke(app, ["config", "keys"]).stdout)
+    printed = re.findall(r"<!-- keys:(\w+) -->", runner.invoke(app, ["config", "keys", "--markdown"]).stdout)
     entry = option_entry(help_text(("config", "keys")), "--section")
     assert printed and all(re.search(rf"\b{name}\b", entry) for name in printed), (printed, entry)
 

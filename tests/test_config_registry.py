@@ -50,9 +50,22 @@ def test_a_thesis_vehicle_key_with_a_vecto_truck_stays_refused(tmp_path: Path) -
 
 
 def _listed_keys() -> list[str]:
-    result = runner.invoke(app, ["config", "keys"])
+    result = runner.invoke(app, ["config", "keys", "--markdown"])
     assert result.exit_code == 0, result.output
     return [line.split("`")[1] for line in result.stdout.splitlines() if line.startswith("| `")]
+
+
+def test_config_keys_prints_a_terminal_table_of_every_key_within_the_width() -> None:
+    """No Markdown in a terminal: boxed tables wrapped to the terminal's width, every key whole."""
+    result = runner.invoke(app, ["config", "keys"], env={"COLUMNS": "100"})
+    assert result.exit_code == 0, result.output
+    lines = result.stdout.splitlines()
+    assert "<!--" not in result.stdout and not any(line.startswith("| `") for line in lines)
+    assert max(len(line) for line in lines) <= 100
+    cells = {cell.strip() for line in lines for cell in line.split("│")}
+    assert set(SPEC_BY_KEY) <= cells  # each key whole in its cell, never wrapped
+    (row,) = [line.split("│") for line in lines if "│ payload_kg " in line]
+    assert [cell.strip() for cell in row[2:4]] == ["kg", "null"]  # its unit and default beside it
 
 
 def test_config_keys_lists_the_vecto_trucks_keys_with_units() -> None:

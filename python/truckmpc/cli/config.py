@@ -7,8 +7,19 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
+from rich.console import Console
+from rich.table import Table
+from rich.text import Text
 
-from truckmpc.config import SECTION_NAMES, key_table, rewrite_key_tables, write_packaged_defaults
+from truckmpc.config import (
+    KEY_COLUMNS,
+    SECTION_NAMES,
+    key_rows,
+    key_table,
+    rewrite_key_tables,
+    write_packaged_defaults,
+)
+from truckmpc.config.docs import SECTION_TITLES
 from truckmpc.config.keys import CONFIG_DIR, SECTION_FILES, VEHICLE_FILES
 
 __all__ = ["config_app"]
@@ -36,8 +47,11 @@ def config_keys_cmd(
             "--write", metavar="FILE", help="Rewrite the tables between <!-- keys:SECTION --> markers in FILE."
         ),
     ] = None,
+    markdown: Annotated[
+        bool, typer.Option("--markdown", help="Print Markdown tables between <!-- keys:SECTION --> markers.")
+    ] = False,
 ) -> None:
-    """Print the Markdown table of every key (unit, default, allowed values, meaning), per section."""
+    """Print a table of every key (unit, default, allowed values, meaning), per section."""
     if section is not None and section not in SECTION_NAMES:
         raise typer.BadParameter(
             f"expected one of {', '.join(SECTION_NAMES)}, got {section!r}", param_hint="'--section'"
@@ -46,8 +60,29 @@ def config_keys_cmd(
         rewritten = rewrite_key_tables(write)
         typer.echo(f"rewrote {len(rewritten)} key tables in {write}: {', '.join(rewritten)}")
         return
-    for name in SECTION_NAMES if section is None else (section,):
-        typer.echo(f"<!-- keys:{name} -->\n{key_table(name)}\n<!-- /keys:{name} -->")
+    sections = SECTION_NAMES if section is None else (section,)
+    if markdown:
+        for name in sections:
+            typer.echo(f"<!-- keys:{name} -->\n{key_table(name)}\n<!-- /keys:{name} -->")
+        return
+    console = Console(highlight=False)
+    for name in sections:
+        console.print(_terminal_table(name))
+
+
+_RATIOS = {"allowed": 1, "meaning": 2}
+"""How the columns that wrap share the width the others leave."""
+
+
+def _terminal_table(section: str) -> Table:
+    """One section's keys as a table for the terminal, wrapped to its width (key names never)."""
+    title = SECTION_TITLES[section].replace("\n# ", " ")  # the YAML files' comment lines, joined
+    table = Table(title=f"{section}: {title}", title_justify="left", show_lines=True, expand=True)
+    for column in KEY_COLUMNS:
+        table.add_column(column, no_wrap=column == "key", ratio=_RATIOS.get(column))
+    for row in key_rows(section):
+        table.add_row(*(Text(cell) for cell in row))  # Text: a unit like [km/h] is not rich markup
+    return table
 
 
 @config_app.command(

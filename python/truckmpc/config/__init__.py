@@ -5,7 +5,9 @@ See :mod:`truckmpc.config.run_config` for the layers and :mod:`truckmpc.config.k
 """
 
 from truckmpc.config.docs import (
+    KEY_COLUMNS,
     defaults_yaml,
+    key_rows,
     key_table,
     packaged_defaults,
     rewrite_key_tables,
@@ -25,6 +27,7 @@ from truckmpc.errors import ConfigError
 
 __all__ = [
     "KEYS",
+    "KEY_COLUMNS",
     "SECTION_NAMES",
     "SPECS",
     "SPEC_BY_KEY",
@@ -36,6 +39,7 @@ __all__ = [
     "config_from_values",
     "default_config_path",
     "defaults_yaml",
+    "key_rows",
     "key_table",
     "load_run_config",
     "packaged_defaults",

@@ -86,12 +86,21 @@ def write_packaged_defaults(directory: Path = CONFIG_DIR) -> list[Path]:
     return written
 
 
+KEY_COLUMNS = ("key", "unit", "default", "allowed", "meaning")
+"""The columns of a section's key table."""
+
+
+def key_rows(section: str) -> list[tuple[str, str, str, str, str]]:
+    """One section's keys as rows of :data:`KEY_COLUMNS`: key, unit, default (as YAML writes it),
+    the values allowed, meaning."""
+    return [(s.name, s.unit, yaml_value(s.default), s.expected, s.doc) for s in _specs_of(section)]
+
+
 def key_table(section: str) -> str:
-    """A Markdown table of one section's keys: key, unit, default, allowed values, meaning."""
-    lines = ["| key | unit | default | allowed | meaning |", "|---|---|---|---|---|"]
-    for spec in _specs_of(section):
-        default = yaml_value(spec.default)
-        cells = [f"`{spec.name}`", _cell(spec.unit), f"`{default}`", _cell(spec.expected), _cell(spec.doc)]
+    """A Markdown table of one section's keys (:func:`key_rows`)."""
+    lines = [f"| {' | '.join(KEY_COLUMNS)} |", "|---|---|---|---|---|"]
+    for key, unit, default, allowed, meaning in key_rows(section):
+        cells = [f"`{key}`", _cell(unit), f"`{default}`", _cell(allowed), _cell(meaning)]
         lines.append(f"| {' | '.join(cells)} |")
     return "\n".join(lines)
 
