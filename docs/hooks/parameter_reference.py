@@ -2,7 +2,7 @@
 Rust core's, read through :mod:`truckmpc.config`): every key of every section with its unit,
 default, allowed values and meaning. The page reference/parameters.md holds a hand-written
 introduction per section and, where the section's table goes, the line ``<!-- keys:SECTION -->``;
-this MkDocs hook puts the table (:func:`truckmpc.config.key_table`, which ``truckmpc config keys``
+this MkDocs hook puts the table (:func:`truckmpc.config.key_table`, which ``truckmpc config keys --markdown``
 prints too) under that line.
 """
 
