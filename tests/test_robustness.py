@@ -103,12 +103,17 @@ def test_controller_road_is_recorded_and_replayed(tmp_path, monkeypatch):
     assert first.exit_code == 0, first.output
     doc = json.loads((tmp_path / "a" / "summary.json").read_text())
     assert doc["run"]["controller_road"]["path"].endswith("map.csv")
+    assert (
+        first.stdout.splitlines()[0].startswith("road road: ")
+        and "(the controllers planned on map.csv)" in (first.stdout.splitlines()[0])
+    )
     again = runner.invoke(app, ["simulate", "--replay", "a/summary.json", "--out", "b"])
     assert again.exit_code == 0, again.output
     replayed = json.loads((tmp_path / "b" / "summary.json").read_text())
     assert replayed["mpc"]["fuel_kg"] == doc["mpc"]["fuel_kg"]
     plain = runner.invoke(app, ["simulate", "--road", "road.csv", "--out", "c", *_sets()])
     assert plain.exit_code == 0, plain.output
+    assert "planned on" not in plain.stdout.splitlines()[0]
     assert json.loads((tmp_path / "c" / "summary.json").read_text())["mpc"]["fuel_kg"] != doc["mpc"]["fuel_kg"]
 
 

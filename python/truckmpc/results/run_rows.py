@@ -142,9 +142,13 @@ def equal_time_rows(summary: Mapping[str, Any], columns: Sequence[str]) -> tuple
 
 def heading(summary: Mapping[str, Any]) -> str:
     """``road <name>: 108.17 km; truck 40000 kg; v_ref 85 km/h, band 77-90 km/h`` (on a road with
-    target speeds, the band around them); the truck and band from the run record when present."""
+    target speeds, the band around them; with ``--controller-road``, the file the controllers
+    planned on after the length); the truck and band from the run record when present."""
     text = f"road {summary.get('road', '?')}: {float(summary.get('length_m', math.nan)) / M_PER_KM:.2f} km"
     run = summary.get("run") or {}
+    told = run.get("controller_road")
+    if isinstance(told, Mapping) and told.get("path"):
+        text += f" (the controllers planned on {Path(str(told['path'])).name})"
     settings = run.get("settings") or {}
     truck = run.get("vehicle")
     if isinstance(truck, Mapping) and truck.get("mass_kg") is not None:
