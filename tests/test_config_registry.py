@@ -190,3 +190,16 @@ def test_sweep_rows_differing_only_in_a_vecto_key_do_not_share_their_baselines(t
     plan = plan_sweep([default_test_track()], ["aux_power_w=0,20000"], vehicle_path=write_job(tmp_path))
     pi_keys = {row.keys["pi"] for row in plan.rows}
     assert len(plan.rows) == 2 and len(pi_keys) == 2
+
+
+@pytest.mark.parametrize(
+    "overrides",
+    [["mass_kg=999999"], ["v_ref_kmh=60", "mass_kg=999999"], ["mass_kg=999999", "v_ref_kmh=60", "delta_kmh=0.1"]],
+)
+def test_an_error_on_a_derived_value_names_the_users_key_never_a_packaged_file(overrides: list[str]) -> None:
+    """β is derived from the truck: a 1000 t truck holds v_ref in no gear, so β has no value. The
+    fault is the mass the user set (with its packaged default, 40 t, every other value passes), not
+    the packaged file that leaves β to be derived, nor another key set beside it."""
+    message = _error(overrides=overrides)
+    assert message.startswith("--set mass_kg: beta_g_per_s: expected a value"), message
+    assert "configs" not in message and ".yaml" not in message

@@ -5,12 +5,13 @@ one shape of a message about a value (``file:line: key 'k': expected ..., got ..
 from __future__ import annotations
 
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 from truckmpc import _core
-from truckmpc.config.keys import VEHICLE_KEYS, unknown_key
+from truckmpc.config.keys import CONFIG_DIR, SPEC_BY_KEY, VEHICLE_KEYS, unknown_key
 from truckmpc.config.yamlfile import read_mapping
 from truckmpc.errors import ConfigError
 
@@ -28,6 +29,14 @@ class Origin:
     def where(self, key: str) -> str:
         """Prefix of a message about `key` from here: `file:line: key 'k'`, or `--set k`."""
         return self.text if self.text.startswith("--set ") else f"{self.text}: key {key!r}"
+
+    @property
+    def packaged(self) -> bool:
+        """Whether the value is one of truckmpc's packaged defaults (a file of its configs folder)."""
+        if self.text.startswith("--set "):
+            return False
+        path, _, line = self.text.rpartition(":")
+        return Path(path if line.isdigit() else self.text).resolve().parent == CONFIG_DIR
 
 
 def problem(err: _core.ParamError) -> str:
@@ -84,13 +93,21 @@ class Layers:
         self.next_layer()
         self.put(key, raw, origin)
 
-    def blame(self, err: _core.ParamError) -> ConfigError:
+    def blame(self, err: _core.ParamError, fails: Callable[[dict[str, Any]], bool] | None = None) -> ConfigError:
         """The error against the origin of the key the user set last among those the check involved
-        (the key itself when several were set in the same layer)."""
+        (the key itself when several were set in the same layer). An error on a packaged default
+        (a derived quantity such as β, or a key checked against the user's) is the user's doing:
+        with `fails` (whether values still fail), the user's key whose declared default clears it;
+        else, when every key involved is packaged, the user's key set last."""
         involved = [k for k in (err.key, *err.related) if k in self.origins]
         if not involved:
             return ConfigError(str(err))
         culprit = max(involved, key=lambda k: self.origins[k].rank)
+        if self.origins[err.key].packaged:
+            users = sorted((k for k, o in self.origins.items() if not o.packaged), key=lambda k: -self.origins[k].rank)
+            clears = [k for k in users if fails is not None and not fails({**self.values, k: SPEC_BY_KEY[k].default})]
+            if clears or (users and self.origins[culprit].packaged):
+                culprit = (clears or users)[0]
         if culprit == err.key:
             return ConfigError(f"{self.origins[err.key].where(err.key)}: {problem(err)}")
         return ConfigError(f"{self.origins[culprit].where(culprit)}: {err.key}: {problem(err)}")

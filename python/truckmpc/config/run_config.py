@@ -200,8 +200,17 @@ def config_from_values(values: Mapping[str, Any], where: str, job: Path | None =
 
 def _build(layers: Layers, truck: VectoTruck | None) -> RunConfig:
     """The run's settings, built once by the core with `truck`; an error names the value's origin."""
+    core_truck = None if truck is None else truck.core
+
+    def fails(values: dict[str, Any]) -> bool:
+        try:
+            _core.Settings(values, core_truck)
+        except _core.ParamError:
+            return True
+        return False
+
     try:
-        settings = _core.Settings(layers.values, None if truck is None else truck.core)
+        settings = _core.Settings(layers.values, core_truck)
     except _core.ParamError as err:
-        raise layers.blame(err) from None
+        raise layers.blame(err, fails) from None
     return RunConfig(settings=settings, origins=dict(layers.origins), truck=truck)
