@@ -17,6 +17,7 @@ from typer.testing import CliRunner
 from table_text import PrintedTable, parse_table
 from truckmpc import TRACE_COLUMNS, RunResult, format_table, make_section
 from truckmpc.cli import app
+from truckmpc.results.run_rows import LEGEND_PCC
 from truckmpc.results.run_table import render_text, run_table
 
 runner = CliRunner()
@@ -192,3 +193,14 @@ def test_a_stalled_run_leaves_its_delta_cells_blank_and_says_why_once():
     assert "Δfuel vs PCC [%]" not in table.labels()  # the only one against the PCC stalled
     assert table.after.count("mpc vs pi, pcc: not comparable: mpc stalled at km 0.98") == 1
     assert "mpc: stalled at km 0.98" in table.after
+
+
+def test_the_pccs_neutral_entries_beside_its_eco_roll_entries_are_explained(three, tmp_path):
+    """On the test track the PCC declutches about 35 times per 100 km and never by eco-roll: the
+    line under the table says its coasting use cases make the difference. Without the PCC no line."""
+    _, summary, printed = three
+    pcc = summary["pcc"]
+    assert pcc["neutral_engagements_per_100km"] > pcc["eco_roll_entries_per_100km"]
+    assert LEGEND_PCC in printed.splitlines()
+    _, _, without = simulate(tmp_path / "pi-mpc", "--controller", "pi,mpc")
+    assert LEGEND_PCC not in without

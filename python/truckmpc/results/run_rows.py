@@ -33,6 +33,11 @@ LEGEND = (
     "At equal trip time: the baseline re-run at the set speed that matches the column's trip time.",
 )
 LEGEND_TARGETS = (LEGEND[0], LEGEND[1].replace("at the set speed", "with its target speeds offset to the speed"))
+LEGEND_PCC = (
+    "pcc: its neutral coasting entries are the starts of its use cases 1 (coasting ahead of a descent) and 2 "
+    "(rolling down one) plus its eco-roll entries, which the eco-roll row counts alone."
+)
+"""Why the PCC's neutral entries exceed its eco-roll entries (said when the PCC ran)."""
 
 
 class Figure(NamedTuple):
@@ -177,6 +182,8 @@ def notes(summary: Mapping[str, Any], columns: Sequence[str], legend: bool) -> I
         yield stops_text(stops["count"], stops["total_stop_s"], legs)
     if legend:
         yield from LEGEND_TARGETS if _has_targets(summary) else LEGEND
+    if "pcc" in columns:
+        yield LEGEND_PCC
     against: dict[tuple[str, str], list[str]] = {}  # (controller, reason): the baselines
     for (name, baseline), entry in _comparisons(summary).items():
         if entry.get("not_comparable"):
