@@ -9,7 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from truckmpc.config import load_run_config
+from truckmpc import default_test_track, simulate
+from truckmpc.config import SPEC_BY_KEY, load_run_config
 from truckmpc.stationary import stationary_point
 
 DOCS = Path(__file__).resolve().parent.parent / "docs"
@@ -50,3 +51,22 @@ def test_every_image_the_pages_show_is_made_by_the_figure_script() -> None:
     script = (SCRIPTS / "docs_figures.py").read_text(encoding="utf-8")
     assert shown, "the validation pages show no image"
     assert all(f'"{name}"' in script for name in shown), shown
+
+
+def test_the_pareto_tutorials_pcc_step_is_what_the_pcc_does_at_79_and_81_kmh() -> None:
+    """The tutorial explains the step of the PCC's Pareto curve by its enabling speed and quotes the
+    test track at 79 and 81 km/h: no use case below the enabling speed, some above, and the savings
+    against VECTO's cruise driver it names."""
+    text = (DOCS / "tutorials" / "against-pcc.md").read_text(encoding="utf-8")
+    enabling = SPEC_BY_KEY["pcc_enabling_speed_kmh"].default
+    assert f"at least {enabling:g} km/h (`pcc_enabling_speed_kmh`" in text
+    quoted = re.search(r"saves (\d+\.\d) % against the cruise driver instead of (\d+\.\d) %", text)
+    assert quoted is not None
+    road = default_test_track()
+    saving = {}
+    for v_ref in (79, 81):
+        config = load_run_config(overrides=[f"v_ref_kmh={v_ref}"])
+        pcc, cruise = (simulate(road, config, name).summary for name in ("pcc", "vecto_cc"))
+        assert (pcc["pcc_events"] > 0) == (v_ref >= enabling)
+        saving[v_ref] = f"{(1 - pcc['fuel_kg'] / cruise['fuel_kg']) * 100:.1f}"
+    assert (saving[81], saving[79]) == quoted.groups()
