@@ -17,7 +17,9 @@ With several look-ahead controllers (``--controller all``) each delta and ``equa
 look-ahead controller against VECTO's cruise driver (``vecto_cc``) and each optimising one against
 the PCC, when they ran (their ``equal_time_<controller>_vs_<baseline>`` objects beside):
 ``[{"controller", "baseline", "delta_fuel_pct", "delta_time_pct", "delta_fuel_corrected_pct",
-"delta_fuel_equal_time_pct", "delta_fuel_equal_time_corrected_pct", "not_comparable"?}, ...]``.
+"delta_fuel_equal_time_pct", "delta_fuel_equal_time_corrected_pct", "headline_pct", "saved_kg",
+"not_comparable"?}, ...]``: ``headline_pct`` (:data:`HEADLINE`) is the figure to quote, ``saved_kg``
+(:data:`SAVED`) the same in kilograms.
 The end-speed correction is :mod:`truckmpc.fuel`'s, the equal-time search :mod:`truckmpc.equal_time`'s.
 
 The deltas follow the thesis (section 6.1): (x_mpc − x_pi) / x_pi in percent; they are null when a
@@ -36,10 +38,20 @@ from truckmpc.sim import RunResult
 if TYPE_CHECKING:
     from truckmpc.roads import RoadProfile
 
-__all__ = ["BASELINE", "summary_document"]
+__all__ = ["BASELINE", "HEADLINE", "SAVED", "summary_document"]
 
 BASELINE = "pi"
 """The controller every other one is compared against."""
+
+HEADLINE = "headline_pct"
+"""The comparison to quote: Δfuel [%] against the baseline at equal trip time and equal end speed
+(the baseline re-run to the controller's trip time, both runs' end speeds brought back to their
+start speeds); negative is fuel saved. Null where not comparable."""
+
+SAVED = "saved_kg"
+"""The same comparison in kilograms: the baseline's fuel minus the controller's [kg], at equal trip
+time and end speed (positive is fuel saved); unlike a percentage it does not shrink when flat road
+is added."""
 
 
 def summary_document(
@@ -115,6 +127,9 @@ def _time_fair_deltas(
     doc["delta_fuel_equal_time_corrected_pct"] = (
         delta_pct(own, corrected) if reached and corrected and own is not None else None
     )
+    fair = reached and own is not None and corrected is not None
+    doc[HEADLINE] = doc["delta_fuel_equal_time_corrected_pct"]
+    doc[SAVED] = corrected - own if fair else None
     doc["equal_time"] = equal.document(baseline)
     return doc
 
