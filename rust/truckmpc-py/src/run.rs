@@ -16,7 +16,7 @@ use crate::errors::to_py;
 use crate::outputs::{summary_dict, trace_dict};
 use crate::params::PySettings;
 use crate::road::PyRoad;
-use crate::signals::{self, Interruptible};
+use crate::signals;
 
 /// The outcome of `run`: the controller's name, the summary figures (dict, keys as
 /// `truckmpc.sim.simulate` documents, plus the solver's for the MPC) and the trace (dict of 1-D
@@ -58,8 +58,7 @@ fn run(
     let mut ctrl = scenario.controller(kind.name).map_err(to_py)?;
     let altitude_m = altitude_m.as_array().to_vec();
     let map = controller_road.map(|r| r.inner.as_ref());
-    let mut watched = Interruptible::new(ctrl.as_mut());
-    let drive = || scenario.run(&road.inner, map, &altitude_m, &mut watched);
+    let drive = || scenario.run(&road.inner, map, &altitude_m, ctrl.as_mut());
     let output = signals::watching(|| py.detach(drive))?.map_err(to_py)?;
     let out = output_of(py, output)?;
     if kind.solves_dp {
