@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use truckmpc_core::control::{Controller, Decision};
-use truckmpc_core::scenario::{self, CONTROLLERS};
+use truckmpc_core::scenario::CONTROLLERS;
 use truckmpc_core::sim::RunOutput;
 use truckmpc_core::{Control, PlantState, Road};
 
@@ -54,17 +54,12 @@ fn run(
     controller_road: Option<&PyRoad>,
 ) -> PyResult<PyRunOutput> {
     let scenario = &settings.inner;
-    let kind = scenario::controllers::kind(controller).map_err(to_py)?;
-    let mut ctrl = scenario.controller(kind.name).map_err(to_py)?;
+    let mut ctrl = scenario.controller(controller).map_err(to_py)?;
     let altitude_m = altitude_m.as_array().to_vec();
     let map = controller_road.map(|r| r.inner.as_ref());
     let drive = || scenario.run(&road.inner, map, &altitude_m, ctrl.as_mut());
     let output = signals::watching(|| py.detach(drive))?.map_err(to_py)?;
-    let out = output_of(py, output)?;
-    if kind.solves_dp {
-        out.summary.bind(py).set_item("settings", dict_of(py, &scenario.dp_settings().map_err(to_py)?)?)?;
-    }
-    Ok(out)
+    output_of(py, output)
 }
 
 /// The built-in controllers: (name, what it is, whether it solves the DP), in the order outputs
@@ -75,9 +70,13 @@ fn controllers() -> Vec<(&'static str, &'static str, bool)> {
 }
 
 fn output_of(py: Python<'_>, output: RunOutput) -> PyResult<PyRunOutput> {
+    let summary = summary_dict(py, &output.summary)?;
+    if let Some(settings) = &output.settings {
+        summary.set_item("settings", dict_of(py, settings)?)?;
+    }
     Ok(PyRunOutput {
         controller: output.controller.to_string(),
-        summary: summary_dict(py, &output.summary)?.unbind(),
+        summary: summary.unbind(),
         trace: trace_dict(py, output.trace)?.unbind(),
     })
 }

@@ -9,7 +9,7 @@ use super::trace::{Trace, TraceRecorder};
 use super::{ARRIVAL_TOLERANCE_M, KMH_PER_MPS};
 use crate::control::{Controller, Decision};
 use crate::error::{CoreError, CoreResult};
-use crate::params::{ParamSet, SimParams};
+use crate::params::{ParamSet, SimParams, Value};
 use crate::plant::{Control, Plant, PlantState};
 use crate::road::Road;
 use crate::stop::DecisionWatch;
@@ -25,6 +25,10 @@ pub struct RunOutput {
     /// The host's stop hook ([`crate::stop`]) ended the run before the road's end: the figures
     /// cover the distance driven.
     pub stopped: bool,
+    /// The settings a controller that solves the DP ran with, as
+    /// [`crate::scenario::Scenario::dp_settings`] gives them; None for other controllers and for
+    /// runs outside a scenario.
+    pub settings: Option<Vec<(&'static str, Value)>>,
 }
 
 /// Drive `road` with `controller` from its start at `start_speed_kmh` to its end, a stall, or
@@ -70,7 +74,7 @@ pub fn run_on_map(
     );
     let trace = closed.recorder.into_trace(road, altitude_m, vehicle);
     let stopped = closed.outcome.stopped;
-    Ok(RunOutput { controller: controller.name(), summary, trace, stopped })
+    Ok(RunOutput { controller: controller.name(), summary, trace, stopped, settings: None })
 }
 
 /// Share of the road's length by which the controller's map may differ at either end.
