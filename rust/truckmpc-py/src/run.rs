@@ -91,8 +91,8 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 }
 
 /// A controller written in Python (the `truckmpc.controller.Controller` protocol) driven by the
-/// Rust closed loop: each decision calls its `decide(state)` with the GIL held. The first exception
-/// it raises stops the loop and is re-raised by `run_python`.
+/// Rust closed loop, each call with the GIL held. The first exception it raises stops the loop and
+/// is re-raised by `run_python`.
 struct PyController {
     obj: Py<PyAny>,
     profile: Py<PyAny>,
@@ -101,16 +101,8 @@ struct PyController {
 }
 
 impl PyController {
-    fn state(&self, py: Python<'_>, s: &PlantState) -> PyResult<Py<PyAny>> {
-        let args = (s.s_m, s.v_mps, s.t_s, s.fuel_g, s.brake_energy_j, s.stalled);
-        Ok(self.state_type.bind(py).call1(args)?.unbind())
-    }
-
-    fn call_decide(&self, py: Python<'_>, s: &PlantState) -> PyResult<Decision> {
-        let answer = self.obj.bind(py).call_method1("decide", (self.state(py, s)?,))?;
-        let (control, until_m): (Bound<'_, PyAny>, Option<f64>) = answer.extract()?;
-        let (pedal, brake, gear): (f64, f64, usize) = control.extract()?;
-        Ok(Decision { control: Control { pedal, brake, gear }, until_m })
+    fn state<'py>(&self, py: Python<'py>, s: &PlantState) -> PyResult<Bound<'py, PyAny>> {
+        self.state_type.bind(py).call1((s.s_m, s.v_mps, s.t_s, s.fuel_g, s.brake_energy_j, s.stalled))
     }
 }
 
@@ -120,25 +112,21 @@ impl Controller for PyController {
     }
 
     fn start(&mut self, _road: &Road, s: &PlantState) {
-        let result = Python::attach(|py| -> PyResult<()> {
-            self.obj.bind(py).call_method1("start", (self.profile.bind(py), self.state(py, s)?))?;
-            Ok(())
-        });
-        self.error = result.err();
+        let started = Python::attach(|py| self.obj.call_method1(py, "start", (&self.profile, self.state(py, s)?)));
+        self.error = started.err();
     }
 
     fn decide(&mut self, _road: &Road, s: &PlantState) -> Decision {
-        let hold = Decision { control: Control { pedal: 0.0, brake: 0.0, gear: 1 }, until_m: None };
-        if self.error.is_some() {
-            return hold;
-        }
-        match Python::attach(|py| self.call_decide(py, s)) {
-            Ok(decision) => decision,
-            Err(err) => {
-                self.error = Some(err);
-                hold
-            }
-        }
+        let decided = Python::attach(|py| -> PyResult<Decision> {
+            let answer = self.obj.call_method1(py, "decide", (self.state(py, s)?,))?;
+            let ((pedal, brake, gear), until_m) = answer.extract(py)?;
+            Ok(Decision { control: Control { pedal, brake, gear }, until_m })
+        });
+        decided.unwrap_or_else(|err| {
+            self.error = Some(err);
+            // Never applied: the loop stops on `aborted` before applying a decision.
+            Decision { control: Control { pedal: 0.0, brake: 0.0, gear: 1 }, until_m: None }
+        })
     }
 
     fn aborted(&self) -> bool {
@@ -168,8 +156,5 @@ fn run_python(
     let mut ctrl = PyController { obj: controller, profile, state_type, error: None };
     let altitude_m = altitude_m.as_array().to_vec();
     let output = settings.inner.run(&road.inner, None, &altitude_m, &mut ctrl).map_err(to_py)?;
-    if let Some(err) = ctrl.error {
-        return Err(err);
-    }
-    output_of(py, output)
+    ctrl.error.map_or_else(|| output_of(py, output), Err)
 }

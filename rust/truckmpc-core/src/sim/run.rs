@@ -142,9 +142,13 @@ impl ClosedLoop {
     }
 
     /// Ask the controller and apply its decisions until the run ends (a failed controller or the
-    /// host's stop ends it before a decision is applied); the last inputs applied (gear 1 and no
-    /// pedal when nothing was decided: stalled at the start).
+    /// host's stop ends it before a decision is applied; one that failed to start is not asked);
+    /// the last inputs applied (gear 1 and no pedal when nothing was decided).
     fn drive(&mut self, road: &Road, controller: &mut dyn Controller) -> Control {
+        let nothing_decided = Control { pedal: 0.0, brake: 0.0, gear: 1 };
+        if controller.aborted() {
+            return nothing_decided;
+        }
         let end_m = self.outcome.end_m;
         let mut last: Option<Control> = None;
         while !self.outcome.stuck && !self.state.stalled && end_m - self.state.s_m > ARRIVAL_TOLERANCE_M {
@@ -164,7 +168,7 @@ impl ClosedLoop {
                 self.outcome.neutral_distance_m += self.state.s_m - begin_m;
             }
         }
-        last.unwrap_or(Control { pedal: 0.0, brake: 0.0, gear: 1 })
+        last.unwrap_or(nothing_decided)
     }
 
     /// Apply one decision: one plant step, or steps up to `until_m` (capped at the road's end)
