@@ -206,6 +206,27 @@ def test_an_error_in_a_python_controller_stops_the_loop_and_surfaces(config):
         simulate(make_section("flat", 1000), config, Failing())
 
 
+class FailingToStart(Failing):
+    """A Python controller whose start raises; it counts the decisions asked of it."""
+
+    def __init__(self) -> None:
+        self.decisions = 0
+
+    def start(self, road: object, state: PlantState) -> None:
+        raise RuntimeError("no start")
+
+    def decide(self, state: PlantState) -> tuple[Control, None]:
+        self.decisions += 1
+        return super().decide(state)
+
+
+def test_a_python_controller_that_fails_to_start_is_asked_for_no_decision(config):
+    controller = FailingToStart()
+    with pytest.raises(RuntimeError, match="no start"):
+        simulate(make_section("flat", 1000), config, controller)
+    assert controller.decisions == 0
+
+
 def test_the_rust_loop_returns_the_trace_columns_as_arrays(config):
     result = simulate(make_section("flat", 1000), config, "mpc")
     assert list(result.trace) == list(TRACE_COLUMNS)

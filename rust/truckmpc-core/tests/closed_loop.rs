@@ -127,3 +127,37 @@ fn the_controller_plans_on_its_map_while_the_plant_drives_the_road() {
     let err = run_on_map(&vehicle, &flat, &short, &altitude, &mut controller(), &SIM, 85.0).unwrap_err();
     assert!(err.to_string().contains("controller_road"), "{err}");
 }
+
+/// A controller that failed in `start` is never asked to decide; one that fails in `decide` stops
+/// the loop before that decision is applied.
+#[test]
+fn a_failed_controller_ends_the_run_before_its_failed_decision() {
+    use truckmpc_core::control::{Controller, Decision};
+    use truckmpc_core::{Control, PlantState};
+    struct Failing {
+        fails_in_start: bool,
+        decisions: u32,
+    }
+    impl Controller for Failing {
+        fn name(&self) -> &'static str {
+            "failing"
+        }
+        fn start(&mut self, _road: &Road, _state: &PlantState) {}
+        fn decide(&mut self, _road: &Road, _state: &PlantState) -> Decision {
+            self.decisions += 1;
+            Decision { control: Control { pedal: 0.5, brake: 0.0, gear: 12 }, until_m: None }
+        }
+        fn aborted(&self) -> bool {
+            self.fails_in_start || self.decisions >= 3
+        }
+    }
+    let vehicle = Arc::new(Vehicle::new(VehicleParams::default()).unwrap());
+    let (road, altitude) = hill(0.0);
+    for (fails_in_start, decisions, steps) in [(true, 0, 0.0), (false, 3, 2.0)] {
+        let mut failing = Failing { fails_in_start, decisions: 0 };
+        let out = run(&vehicle, &road, &altitude, &mut failing, &SIM, 85.0).unwrap();
+        assert_eq!(failing.decisions, decisions);
+        assert!((out.summary.time_s - steps * SIM.plant_dt_s).abs() < 1e-12, "{}", out.summary.time_s);
+        assert!(!out.stopped, "a failure is the controller's, not a stop the host asked");
+    }
+}

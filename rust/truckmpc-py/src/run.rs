@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use truckmpc_core::control::{Controller, Decision};
-use truckmpc_core::scenario::{self, CONTROLLERS};
+use truckmpc_core::scenario::CONTROLLERS;
 use truckmpc_core::sim::RunOutput;
 use truckmpc_core::{Control, PlantState, Road};
 
@@ -16,7 +16,7 @@ use crate::errors::to_py;
 use crate::outputs::{summary_dict, trace_dict};
 use crate::params::PySettings;
 use crate::road::PyRoad;
-use crate::signals::{self, Interruptible};
+use crate::signals;
 
 /// The outcome of `run`: the controller's name, the summary figures (dict, keys as
 /// `truckmpc.sim.simulate` documents, plus the solver's for the MPC) and the trace (dict of 1-D
@@ -54,18 +54,12 @@ fn run(
     controller_road: Option<&PyRoad>,
 ) -> PyResult<PyRunOutput> {
     let scenario = &settings.inner;
-    let kind = scenario::controllers::kind(controller).map_err(to_py)?;
-    let mut ctrl = scenario.controller(kind.name).map_err(to_py)?;
+    let mut ctrl = scenario.controller(controller).map_err(to_py)?;
     let altitude_m = altitude_m.as_array().to_vec();
     let map = controller_road.map(|r| r.inner.as_ref());
-    let mut watched = Interruptible::new(ctrl.as_mut());
-    let drive = || scenario.run(&road.inner, map, &altitude_m, &mut watched);
+    let drive = || scenario.run(&road.inner, map, &altitude_m, ctrl.as_mut());
     let output = signals::watching(|| py.detach(drive))?.map_err(to_py)?;
-    let out = output_of(py, output)?;
-    if kind.solves_dp {
-        out.summary.bind(py).set_item("settings", dict_of(py, &scenario.dp_settings().map_err(to_py)?)?)?;
-    }
-    Ok(out)
+    output_of(py, output)
 }
 
 /// The built-in controllers: (name, what it is, whether it solves the DP), in the order outputs
@@ -76,9 +70,13 @@ fn controllers() -> Vec<(&'static str, &'static str, bool)> {
 }
 
 fn output_of(py: Python<'_>, output: RunOutput) -> PyResult<PyRunOutput> {
+    let summary = summary_dict(py, &output.summary)?;
+    if let Some(settings) = &output.settings {
+        summary.set_item("settings", dict_of(py, settings)?)?;
+    }
     Ok(PyRunOutput {
         controller: output.controller.to_string(),
-        summary: summary_dict(py, &output.summary)?.unbind(),
+        summary: summary.unbind(),
         trace: trace_dict(py, output.trace)?.unbind(),
     })
 }
@@ -93,8 +91,8 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 }
 
 /// A controller written in Python (the `truckmpc.controller.Controller` protocol) driven by the
-/// Rust closed loop: each decision calls its `decide(state)` with the GIL held. The first exception
-/// it raises stops the loop and is re-raised by `run_python`.
+/// Rust closed loop, each call with the GIL held. The first exception it raises stops the loop and
+/// is re-raised by `run_python`.
 struct PyController {
     obj: Py<PyAny>,
     profile: Py<PyAny>,
@@ -103,16 +101,8 @@ struct PyController {
 }
 
 impl PyController {
-    fn state(&self, py: Python<'_>, s: &PlantState) -> PyResult<Py<PyAny>> {
-        let args = (s.s_m, s.v_mps, s.t_s, s.fuel_g, s.brake_energy_j, s.stalled);
-        Ok(self.state_type.bind(py).call1(args)?.unbind())
-    }
-
-    fn call_decide(&self, py: Python<'_>, s: &PlantState) -> PyResult<Decision> {
-        let answer = self.obj.bind(py).call_method1("decide", (self.state(py, s)?,))?;
-        let (control, until_m): (Bound<'_, PyAny>, Option<f64>) = answer.extract()?;
-        let (pedal, brake, gear): (f64, f64, usize) = control.extract()?;
-        Ok(Decision { control: Control { pedal, brake, gear }, until_m })
+    fn state<'py>(&self, py: Python<'py>, s: &PlantState) -> PyResult<Bound<'py, PyAny>> {
+        self.state_type.bind(py).call1((s.s_m, s.v_mps, s.t_s, s.fuel_g, s.brake_energy_j, s.stalled))
     }
 }
 
@@ -122,25 +112,21 @@ impl Controller for PyController {
     }
 
     fn start(&mut self, _road: &Road, s: &PlantState) {
-        let result = Python::attach(|py| -> PyResult<()> {
-            self.obj.bind(py).call_method1("start", (self.profile.bind(py), self.state(py, s)?))?;
-            Ok(())
-        });
-        self.error = result.err();
+        let started = Python::attach(|py| self.obj.call_method1(py, "start", (&self.profile, self.state(py, s)?)));
+        self.error = started.err();
     }
 
     fn decide(&mut self, _road: &Road, s: &PlantState) -> Decision {
-        let hold = Decision { control: Control { pedal: 0.0, brake: 0.0, gear: 1 }, until_m: None };
-        if self.error.is_some() {
-            return hold;
-        }
-        match Python::attach(|py| self.call_decide(py, s)) {
-            Ok(decision) => decision,
-            Err(err) => {
-                self.error = Some(err);
-                hold
-            }
-        }
+        let decided = Python::attach(|py| -> PyResult<Decision> {
+            let answer = self.obj.call_method1(py, "decide", (self.state(py, s)?,))?;
+            let ((pedal, brake, gear), until_m) = answer.extract(py)?;
+            Ok(Decision { control: Control { pedal, brake, gear }, until_m })
+        });
+        decided.unwrap_or_else(|err| {
+            self.error = Some(err);
+            // Never applied: the loop stops on `aborted` before applying a decision.
+            Decision { control: Control { pedal: 0.0, brake: 0.0, gear: 1 }, until_m: None }
+        })
     }
 
     fn aborted(&self) -> bool {
@@ -170,8 +156,5 @@ fn run_python(
     let mut ctrl = PyController { obj: controller, profile, state_type, error: None };
     let altitude_m = altitude_m.as_array().to_vec();
     let output = settings.inner.run(&road.inner, None, &altitude_m, &mut ctrl).map_err(to_py)?;
-    if let Some(err) = ctrl.error {
-        return Err(err);
-    }
-    output_of(py, output)
+    ctrl.error.map_or_else(|| output_of(py, output), Err)
 }

@@ -57,7 +57,8 @@ pub trait Controller {
     fn decide(&mut self, road: &Road, state: &PlantState) -> Decision;
 
     /// Whether the controller has failed (a controller written in another language whose code
-    /// raised an error, say): the loop then stops and the caller reports the failure.
+    /// raised an error, say): the loop then stops without applying the decision just made, or
+    /// asks for none after a failed `start`, and the caller reports the failure.
     fn aborted(&self) -> bool {
         false
     }

@@ -105,7 +105,8 @@ impl Scenario {
     }
 
     /// Drive `road` with `controller`, planning on `map` (the road itself when None), from the
-    /// start speed to the road's end or a stall.
+    /// start speed to the road's end or a stall. The output of a built-in controller that solves
+    /// the DP carries [`Scenario::dp_settings`].
     pub fn run(
         &self,
         road: &Arc<Road>,
@@ -115,7 +116,12 @@ impl Scenario {
     ) -> CoreResult<RunOutput> {
         let start_kmh = self.start_speed_kmh(road);
         let map = map.unwrap_or(road);
-        sim::run_on_map(&self.vehicle, road, map, altitude_m, controller, &self.settings.sim, start_kmh)
+        let mut output =
+            sim::run_on_map(&self.vehicle, road, map, altitude_m, controller, &self.settings.sim, start_kmh)?;
+        if CONTROLLERS.iter().any(|kind| kind.name == output.controller && kind.solves_dp) {
+            output.settings = Some(self.dp_settings()?);
+        }
+        Ok(output)
     }
 
     /// The set speeds v_ref [km/h] whose band the truck can drive, (lowest, highest).

@@ -94,4 +94,23 @@ mod tests {
         let Value::Float(price) = derived[3].1 else { panic!("{:?}", derived[3]) };
         assert!(price > 0.0 && price.is_finite());
     }
+
+    /// The output of a run whose controller solves the DP carries the settings it ran with; a
+    /// rule-based controller's carries none.
+    #[test]
+    fn a_dp_run_returns_its_settings_with_its_output() {
+        use crate::road::Road;
+        use std::sync::Arc;
+        let values = [("horizon_m", Value::Float(500.0)), ("delta_kmh", Value::Float(0.5))];
+        let scenario = Scenario::from_values(values.iter().map(|(k, v)| (*k, v)), None).unwrap();
+        let road = Arc::new(Road::new(vec![0.0, 300.0], vec![0.01]).unwrap());
+        let drive = |name| scenario.run(&road, None, &[0.0, 3.0], scenario.controller(name).unwrap().as_mut()).unwrap();
+        for kind in crate::scenario::CONTROLLERS {
+            let out = drive(kind.name);
+            let expected = kind.solves_dp.then(|| scenario.dp_settings().unwrap());
+            assert_eq!(out.settings, expected, "{}", kind.name);
+        }
+        let mpc = drive("mpc").settings.unwrap();
+        assert!(mpc.contains(&("horizon_m", Value::Float(500.0))) && mpc.contains(&("k_lim", Value::Int(8))));
+    }
 }

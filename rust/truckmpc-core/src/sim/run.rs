@@ -9,9 +9,10 @@ use super::trace::{Trace, TraceRecorder};
 use super::{ARRIVAL_TOLERANCE_M, KMH_PER_MPS};
 use crate::control::{Controller, Decision};
 use crate::error::{CoreError, CoreResult};
-use crate::params::{ParamSet, SimParams};
+use crate::params::{ParamSet, SimParams, Value};
 use crate::plant::{Control, Plant, PlantState};
 use crate::road::Road;
+use crate::stop::DecisionWatch;
 use crate::vehicle::Vehicle;
 
 /// What a run returns.
@@ -21,6 +22,13 @@ pub struct RunOutput {
     pub controller: &'static str,
     pub summary: RunSummary,
     pub trace: Trace,
+    /// The host's stop hook ([`crate::stop`]) ended the run before the road's end: the figures
+    /// cover the distance driven.
+    pub stopped: bool,
+    /// The settings a controller that solves the DP ran with, as
+    /// [`crate::scenario::Scenario::dp_settings`] gives them; None for other controllers and for
+    /// runs outside a scenario.
+    pub settings: Option<Vec<(&'static str, Value)>>,
 }
 
 /// Drive `road` with `controller` from its start at `start_speed_kmh` to its end, a stall, or
@@ -65,7 +73,8 @@ pub fn run_on_map(
         controller.rule_stats(),
     );
     let trace = closed.recorder.into_trace(road, altitude_m, vehicle);
-    Ok(RunOutput { controller: controller.name(), summary, trace })
+    let stopped = closed.outcome.stopped;
+    Ok(RunOutput { controller: controller.name(), summary, trace, stopped, settings: None })
 }
 
 /// Share of the road's length by which the controller's map may differ at either end.
@@ -104,6 +113,7 @@ struct ClosedLoop {
     outcome: LoopOutcome,
     /// Consecutive plant passes that did not move the truck.
     idle_passes: u32,
+    watch: DecisionWatch,
 }
 
 impl ClosedLoop {
@@ -117,6 +127,7 @@ impl ClosedLoop {
             gears: GearCounts::default(),
             neutral_distance_m: 0.0,
             stuck: false,
+            stopped: false,
             stall_speed_mps: vehicle.stall_speed_mps(),
             plant_dt_s: sim.plant_dt_s,
         };
@@ -126,17 +137,27 @@ impl ClosedLoop {
             recorder: TraceRecorder::new(start_m, end_m, sim.trace_step_m),
             outcome,
             idle_passes: 0,
+            watch: DecisionWatch::default(),
         }
     }
 
-    /// Ask the controller and apply its decisions until the run ends; the last inputs applied
-    /// (gear 1 and no pedal when nothing was decided: stalled at the start).
+    /// Ask the controller and apply its decisions until the run ends (a failed controller or the
+    /// host's stop ends it before a decision is applied; one that failed to start is not asked);
+    /// the last inputs applied (gear 1 and no pedal when nothing was decided).
     fn drive(&mut self, road: &Road, controller: &mut dyn Controller) -> Control {
+        let nothing_decided = Control { pedal: 0.0, brake: 0.0, gear: 1 };
+        if controller.aborted() {
+            return nothing_decided;
+        }
         let end_m = self.outcome.end_m;
         let mut last: Option<Control> = None;
         while !self.outcome.stuck && !self.state.stalled && end_m - self.state.s_m > ARRIVAL_TOLERANCE_M {
             let decision = controller.decide(road, &self.state);
             if controller.aborted() {
+                break;
+            }
+            if self.watch.requested_after(decision.until_m.is_some()) {
+                self.outcome.stopped = true;
                 break;
             }
             self.outcome.gears.apply(decision.control.gear);
@@ -147,7 +168,7 @@ impl ClosedLoop {
                 self.outcome.neutral_distance_m += self.state.s_m - begin_m;
             }
         }
-        last.unwrap_or(Control { pedal: 0.0, brake: 0.0, gear: 1 })
+        last.unwrap_or(nothing_decided)
     }
 
     /// Apply one decision: one plant step, or steps up to `until_m` (capped at the road's end)

@@ -55,6 +55,8 @@ pub struct LoopOutcome {
     pub neutral_distance_m: f64,
     /// The controller's inputs stopped moving the truck.
     pub stuck: bool,
+    /// The host asked the run to stop ([`crate::stop`]).
+    pub stopped: bool,
     pub stall_speed_mps: f64,
     pub plant_dt_s: f64,
 }
