@@ -4,16 +4,13 @@ Checked against the compiled module by `python -m mypy.stubtest truckmpc._core` 
 """
 
 from collections.abc import Mapping, Sequence
-from typing import Any, TypedDict, final
+from typing import Any, Protocol, TypedDict, final
 
 import numpy as np
 import numpy.typing as npt
 
 __all__ = [
     "G_MPS2",
-    "Body",
-    "Driveline",
-    "Engine",
     "MapTruck",
     "ParamError",
     "Road",
@@ -93,44 +90,58 @@ G_MPS2: float
 
 _Rows = Sequence[tuple[float, float, float]]
 
-@final
-class Engine:
-    """An engine: idle speed [rpm], inertia [kg m²], full-load rows (speed [rpm], full-load and drag
-    torque [Nm]) and fuel map rows (speed [rpm], torque [Nm], fuel [g/h]), checked."""
+class _EngineData(Protocol):
+    """What a MapTruck reads of its engine (a VECTO `EngineData`): idle speed [rpm], inertia
+    [kg m²], full-load rows (speed [rpm], full-load and drag torque [Nm]) and fuel map rows
+    (speed [rpm], torque [Nm], fuel [g/h])."""
 
-    def __new__(cls, idle_speed_rpm: float, inertia_kgm2: float, full_load: _Rows, fuel_map: _Rows) -> Engine: ...
+    @property
+    def idle_speed_rpm(self) -> float: ...
+    @property
+    def inertia_kgm2(self) -> float: ...
+    @property
+    def full_load(self) -> _Rows: ...
+    @property
+    def fuel_map(self) -> _Rows: ...
 
-@final
-class Driveline:
-    """Gearbox and axle ratios, their losses (affine, or loss maps replacing them) and the tyres' radius, checked."""
+class _DrivelineData(Protocol):
+    """Gearbox and axle ratios, their losses (affine, or loss maps replacing them) and the tyres' radius."""
 
-    def __new__(
-        cls,
-        gear_ratios: Sequence[float],
-        axle_ratio: float,
-        gear_efficiency: float,
-        axle_efficiency: float,
-        loss_torque_nm: float,
-        wheel_radius_m: float,
-        gear_loss_maps: Sequence[_Rows] | None = None,
-        axle_loss_map: _Rows | None = None,
-    ) -> Driveline: ...
+    @property
+    def gear_ratios(self) -> Sequence[float]: ...
+    @property
+    def axle_ratio(self) -> float: ...
+    @property
+    def gear_efficiency(self) -> float: ...
+    @property
+    def axle_efficiency(self) -> float: ...
+    @property
+    def loss_torque_nm(self) -> float: ...
+    @property
+    def wheel_radius_m(self) -> float: ...
+    @property
+    def gear_loss_maps(self) -> Sequence[_Rows] | None: ...
+    @property
+    def axle_loss_map(self) -> _Rows | None: ...
 
-@final
-class Body:
+class _BodyData(Protocol):
     """Mass [kg], wheels' inertia [kg m²], Cd·A [m²] (or a curve over speed [m/s]), air density
     [kg/m³], rolling resistance [-] and auxiliary power [W]."""
 
-    def __new__(
-        cls,
-        mass_kg: float,
-        wheels_inertia_kgm2: float,
-        cda_m2: float,
-        air_density_kgpm3: float,
-        rolling_resistance: float,
-        aux_power_w: float,
-        cda_curve: Sequence[tuple[float, float]] | None = None,
-    ) -> Body: ...
+    @property
+    def mass_kg(self) -> float: ...
+    @property
+    def wheels_inertia_kgm2(self) -> float: ...
+    @property
+    def cda_m2(self) -> float: ...
+    @property
+    def air_density_kgpm3(self) -> float: ...
+    @property
+    def rolling_resistance(self) -> float: ...
+    @property
+    def aux_power_w(self) -> float: ...
+    @property
+    def cda_curve(self) -> Sequence[tuple[float, float]] | None: ...
 
 class _TruckFacts(TypedDict):
     gears: int
@@ -162,7 +173,7 @@ class MapTruck:
     """A truck from component data: engine, driveline, body, and its gearbox's traction interruption [s]."""
 
     def __new__(
-        cls, engine: Engine, driveline: Driveline, body: Body, traction_interruption_s: float = 0.0
+        cls, engine: _EngineData, driveline: _DrivelineData, body: _BodyData, traction_interruption_s: float = 0.0
     ) -> MapTruck: ...
     @property
     def facts(self) -> _TruckFacts:

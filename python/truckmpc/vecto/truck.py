@@ -15,6 +15,7 @@ from truckmpc import _core
 from truckmpc.errors import VehicleError
 from truckmpc.vecto import declaration as decl
 from truckmpc.vecto.components import VectoJob, read_job
+from truckmpc.vecto.parts import Body, Driveline
 from truckmpc.vecto.xml_job import read_xml_job
 
 __all__ = [
@@ -91,7 +92,7 @@ def load_vecto_truck(path: Path, values: Mapping[str, Any] | None = None) -> Vec
     curve = decl.cross_wind_cda_curve(cda0, keys["cross_wind"], segment.cross_wind_parameters, segment.height_m)
     aux = keys["aux_power_w"]
     aux = decl.auxiliary_power_w(job.auxiliaries, str(job.path)) if aux is None else aux
-    body = _core.Body(mass, wheels_inertia, cda0, keys["air_density_kgpm3"], rrc, aux, cda_curve=curve)
+    body = Body(mass, wheels_inertia, cda0, keys["air_density_kgpm3"], rrc, aux, cda_curve=tuple(curve))
     loss_maps = _loss_maps(job, keys)
     _refuse_replaced_loss_keys(path, loss_maps, keys)
     interruption_s = keys["traction_interruption_s"]
@@ -109,9 +110,9 @@ def _loss_maps(job: VectoJob, keys: Mapping[str, Any]) -> dict[str, Any]:
     gears = gearbox.gear_loss_maps
     out: dict[str, Any] = {}
     if gears and all(m is not None for m in gears):
-        out["gear_loss_maps"] = [list(m) for m in gears if m is not None]
+        out["gear_loss_maps"] = tuple(m for m in gears if m is not None)
     if gearbox.axle_loss_map is not None:
-        out["axle_loss_map"] = list(gearbox.axle_loss_map)
+        out["axle_loss_map"] = gearbox.axle_loss_map
     return out
 
 
@@ -185,7 +186,7 @@ def _core_truck(
     keys: Mapping[str, Any],
     radius_m: float,
     loss_maps: dict[str, Any],
-    body: _core.Body,
+    body: Body,
     interruption_s: float,
 ) -> _core.MapTruck:
     """The core's truck; its checks' errors name the file the offending data came from."""
@@ -194,11 +195,8 @@ def _core_truck(
     files = {"fuel_map": fmap, "full_load_curve": fld, "idle_speed_rpm": engine.path, "axle_loss_map": gearbox.path}
     files |= {"engine_inertia_kgm2": engine.path, "gear_ratios": gearbox.path, "axle_ratio": gearbox.path}
     try:
-        core_engine = _core.Engine(
-            engine.idle_speed_rpm, engine.inertia_kgm2, list(engine.full_load), list(engine.fuel_map)
-        )
-        driveline = _core.Driveline(
-            list(gearbox.gear_ratios),
+        driveline = Driveline(
+            tuple(gearbox.gear_ratios),
             gearbox.axle_ratio,
             keys["gear_efficiency"],
             keys["axle_efficiency"],
@@ -206,7 +204,7 @@ def _core_truck(
             radius_m,
             **loss_maps,
         )
-        return _core.MapTruck(core_engine, driveline, body, interruption_s)
+        return _core.MapTruck(engine, driveline, body, interruption_s)
     except _core.ParamError as e:
         raise VehicleError(f"{_blamed_file(job, e.key, files)}: {e}") from None
 

@@ -23,9 +23,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<params::PySettings>()?;
     m.add_class::<vehicle::PyVehicle>()?;
     m.add_class::<road::PyRoad>()?;
-    m.add_class::<powertrain::PyEngine>()?;
-    m.add_class::<powertrain::PyDriveline>()?;
-    m.add_class::<powertrain::PyBody>()?;
     m.add_class::<powertrain::PyMapTruck>()?;
     m.add("G_MPS2", truckmpc_core::powertrain::G_MPS2)?;
     run::register(m)?;

@@ -1,5 +1,5 @@
-//! The map-based truck (`truckmpc_core::powertrain`) as Python sees it: its engine, driveline and
-//! body as typed objects, and the truck built from them.
+//! The map-based truck (`truckmpc_core::powertrain`) as Python sees it: built from an engine, a
+//! driveline and a body read off typed Python objects, and asked for its figures.
 
 use std::sync::Arc;
 
@@ -16,100 +16,42 @@ use crate::errors::to_py;
 /// Rows of (speed, torque, value) points of a map or curve.
 type Rows = Vec<(f64, f64, f64)>;
 
-/// An engine from its data, checked.
-///
-/// Args:
-///     idle_speed_rpm: idle speed [rpm].
-///     inertia_kgm2: inertia of the engine [kg m²].
-///     full_load: rows of speed [rpm], full-load torque [Nm], drag torque [Nm].
-///     fuel_map: rows of speed [rpm], torque [Nm], fuel [g/h].
-#[pyclass(name = "Engine", module = "truckmpc._core", frozen)]
-pub struct PyEngine {
-    inner: Engine,
+/// An engine's data, read off the attributes of any object that has them (a VECTO `EngineData`).
+#[derive(FromPyObject)]
+struct EngineData {
+    idle_speed_rpm: f64,
+    inertia_kgm2: f64,
+    full_load: Rows,
+    fuel_map: Rows,
 }
 
-#[pymethods]
-impl PyEngine {
-    #[new]
-    fn new(idle_speed_rpm: f64, inertia_kgm2: f64, full_load: Rows, fuel_map: Rows) -> PyResult<Self> {
-        let inner = Engine::new(idle_speed_rpm, inertia_kgm2, &full_load, &fuel_map).map_err(to_py)?;
-        Ok(PyEngine { inner })
-    }
+/// A gearbox and axle with their losses and the tyres' radius, read off an object's attributes.
+#[derive(FromPyObject)]
+struct DrivelineData {
+    gear_ratios: Vec<f64>,
+    axle_ratio: f64,
+    gear_efficiency: f64,
+    axle_efficiency: f64,
+    loss_torque_nm: f64,
+    wheel_radius_m: f64,
+    gear_loss_maps: Option<Vec<Rows>>,
+    axle_loss_map: Option<Rows>,
 }
 
-/// A gearbox and axle with their losses and the tyres' radius, checked.
-///
-/// Args:
-///     gear_ratios: ratio of each gear, first gear first [-].
-///     axle_ratio: the axle's ratio [-].
-///     gear_efficiency, axle_efficiency: efficiencies where no loss map is given [-].
-///     loss_torque_nm: drag at the gearbox input where no loss map is given [Nm].
-///     wheel_radius_m: the driven tyres' dynamic radius [m].
-///     gear_loss_maps: one list of (input speed [rpm], input torque [Nm], torque loss [Nm]) rows
-///         per gear, replacing gear_efficiency and loss_torque_nm.
-///     axle_loss_map: likewise for the axle, replacing axle_efficiency.
-#[pyclass(name = "Driveline", module = "truckmpc._core", frozen)]
-pub struct PyDriveline {
-    inner: Driveline,
-}
-
-#[pymethods]
-impl PyDriveline {
-    #[new]
-    #[pyo3(signature = (gear_ratios, axle_ratio, gear_efficiency, axle_efficiency, loss_torque_nm, wheel_radius_m,
-        gear_loss_maps=None, axle_loss_map=None))]
-    fn new(
-        gear_ratios: Vec<f64>,
-        axle_ratio: f64,
-        gear_efficiency: f64,
-        axle_efficiency: f64,
-        loss_torque_nm: f64,
-        wheel_radius_m: f64,
-        gear_loss_maps: Option<Vec<Rows>>,
-        axle_loss_map: Option<Rows>,
-    ) -> PyResult<Self> {
-        let losses = (gear_efficiency, axle_efficiency, loss_torque_nm);
-        let inner = Driveline::new((&gear_ratios, axle_ratio), losses, wheel_radius_m)
-            .and_then(|d| d.with_loss_maps(gear_loss_maps.as_deref(), axle_loss_map.as_deref()))
-            .map_err(to_py)?;
-        Ok(PyDriveline { inner })
-    }
-}
-
-/// The truck's body and load (checked when the truck is built).
-///
-/// Args:
-///     mass_kg: total mass [kg]; wheels_inertia_kgm2: every wheel's inertia [kg m²];
-///     cda_m2: drag area Cd·A [m²]; air_density_kgpm3: [kg/m³]; rolling_resistance: [-];
-///     aux_power_w: the auxiliaries' power [W];
-///     cda_curve: rows of speed [m/s], Cd·A [m²], replacing cda_m2 by a drag area over speed.
-#[pyclass(name = "Body", module = "truckmpc._core", frozen)]
-pub struct PyBody {
-    inner: Body,
+/// The body and load, read off an object's attributes.
+#[derive(FromPyObject)]
+struct BodyData {
+    mass_kg: f64,
+    wheels_inertia_kgm2: f64,
+    cda_m2: f64,
+    air_density_kgpm3: f64,
+    rolling_resistance: f64,
+    aux_power_w: f64,
     cda_curve: Option<Vec<(f64, f64)>>,
 }
 
-#[pymethods]
-impl PyBody {
-    #[new]
-    #[pyo3(signature = (mass_kg, wheels_inertia_kgm2, cda_m2, air_density_kgpm3, rolling_resistance, aux_power_w,
-        cda_curve=None))]
-    fn new(
-        mass_kg: f64,
-        wheels_inertia_kgm2: f64,
-        cda_m2: f64,
-        air_density_kgpm3: f64,
-        rolling_resistance: f64,
-        aux_power_w: f64,
-        cda_curve: Option<Vec<(f64, f64)>>,
-    ) -> Self {
-        let inner = Body { mass_kg, wheels_inertia_kgm2, cda_m2, air_density_kgpm3, rolling_resistance, aux_power_w };
-        PyBody { inner, cda_curve }
-    }
-}
-
-/// A truck from component data: engine, driveline and body, and how long a gear shift interrupts
-/// traction [s].
+/// A truck from component data (engine, driveline, body), checked by the core, and how long a gear
+/// shift interrupts traction [s].
 #[pyclass(name = "MapTruck", module = "truckmpc._core", frozen)]
 pub struct PyMapTruck {
     pub inner: Arc<ComponentTruck>,
@@ -119,9 +61,26 @@ pub struct PyMapTruck {
 impl PyMapTruck {
     #[new]
     #[pyo3(signature = (engine, driveline, body, traction_interruption_s=0.0))]
-    fn new(engine: &PyEngine, driveline: &PyDriveline, body: &PyBody, traction_interruption_s: f64) -> PyResult<Self> {
-        let mut truck = MapTruck::new(engine.inner.clone(), driveline.inner.clone(), body.inner).map_err(to_py)?;
-        if let Some(curve) = &body.cda_curve {
+    fn new(
+        engine: EngineData,
+        driveline: DrivelineData,
+        body: BodyData,
+        traction_interruption_s: f64,
+    ) -> PyResult<Self> {
+        let e = engine;
+        let engine = Engine::new(e.idle_speed_rpm, e.inertia_kgm2, &e.full_load, &e.fuel_map).map_err(to_py)?;
+        let d = driveline;
+        let losses = (d.gear_efficiency, d.axle_efficiency, d.loss_torque_nm);
+        let driveline = Driveline::new((&d.gear_ratios, d.axle_ratio), losses, d.wheel_radius_m)
+            .and_then(|built| built.with_loss_maps(d.gear_loss_maps.as_deref(), d.axle_loss_map.as_deref()))
+            .map_err(to_py)?;
+        let b = body;
+        let (mass_kg, wheels_inertia_kgm2, cda_m2) = (b.mass_kg, b.wheels_inertia_kgm2, b.cda_m2);
+        let (air_density_kgpm3, rolling_resistance, aux_power_w) =
+            (b.air_density_kgpm3, b.rolling_resistance, b.aux_power_w);
+        let body = Body { mass_kg, wheels_inertia_kgm2, cda_m2, air_density_kgpm3, rolling_resistance, aux_power_w };
+        let mut truck = MapTruck::new(engine, driveline, body).map_err(to_py)?;
+        if let Some(curve) = &b.cda_curve {
             truck = truck.with_cda_curve(curve).map_err(to_py)?;
         }
         let inner = ComponentTruck::new(truck, traction_interruption_s).map_err(to_py)?;
