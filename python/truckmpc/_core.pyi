@@ -59,7 +59,17 @@ class _Derived(TypedDict):
 
 @final
 class Settings:
-    """A run's settings and truck, checked against each other (keys not given take their defaults)."""
+    """A run's settings and truck, checked against each other: every parameter of a run.
+
+    Args:
+        values: mapping of declared keys to user values (YAML-like: numbers, numeric text, bools,
+            None, names, lists); keys not given take their declared defaults.
+        truck: a truck from component data, replacing the thesis's model of the vehicle keys.
+
+    Raises:
+        ParamError: a key is unknown, or a value is of the wrong type, out of its range, or
+            inconsistent with another or with the truck (the error's `related` names the others).
+    """
 
     def __new__(cls, values: Mapping[str, Any], truck: MapTruck | None = None) -> Settings: ...
     def with_values(self, changes: Mapping[str, Any]) -> Settings:
@@ -185,6 +195,21 @@ class MapTruck:
     def road_loads(self, v_mps: float, acc_mps2: float, slope_rad: float) -> dict[str, float]: ...
     def operating_point(self, v_mps: float, acc_mps2: float, slope_rad: float, gear: int) -> dict[str, Any]: ...
 
+class _CruiseData(Protocol):
+    """The cruise keys that shape the band: v_ref, v_dec, v_inc and the target offset [km/h], the
+    deceleration the top falls at [m/s²]."""
+
+    @property
+    def v_ref_kmh(self) -> float: ...
+    @property
+    def v_dec_kmh(self) -> float: ...
+    @property
+    def v_inc_kmh(self) -> float: ...
+    @property
+    def target_offset_kmh(self) -> float: ...
+    @property
+    def target_decel_mps2(self) -> float: ...
+
 @final
 class Road:
     """A road: points, the grade and (optionally) the target speed [km/h] of each segment; flat beyond the end."""
@@ -196,13 +221,7 @@ class Road:
         target_speed_kmh: npt.NDArray[np.float64] | None = None,
     ) -> Road: ...
     def speed_band(
-        self,
-        distance_m: npt.NDArray[np.float64],
-        v_ref_kmh: float,
-        v_dec_kmh: float,
-        v_inc_kmh: float,
-        target_offset_kmh: float,
-        target_decel_mps2: float,
+        self, distance_m: npt.NDArray[np.float64], cruise: _CruiseData
     ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]:
         """The band the controllers work to at each of `distance_m` [m] (increasing) for one cruise
         setting [km/h]: the stretch's set speed (without the top falling ahead of a lower one),
@@ -234,8 +253,19 @@ def run(
     controller: str,
     controller_road: Road | None = None,
 ) -> RunOutput:
-    """Drive `road` with the built-in controller "pi", "vecto_cc", "pcc", "mpc" or "optimal" (the GIL
-    released), the controller planning on `controller_road` if given."""
+    """Drive `road` with a built-in controller from its start to its end (or a stall), the closed
+    loop in Rust with the GIL released.
+
+    Args:
+        settings: the run's settings and truck.
+        road: the road; `altitude_m` gives the trace's altitude at each of its profile points [m].
+        controller: a name of `controllers()`: "pi", "vecto_cc", "pcc", "mpc" or "optimal".
+        controller_road: the road the controller plans on, if not `road` (the plant drives `road`).
+
+    Returns:
+        RunOutput; the summary of a controller that solves the DP also holds its `settings`, with
+        the resolved values under their declared names.
+    """
 
 def run_python(
     settings: Settings,
@@ -245,7 +275,17 @@ def run_python(
     profile: Any,
     state_type: Any,
 ) -> RunOutput:
-    """Drive `road` with a controller written in Python, in the same closed loop."""
+    """Drive `road` with a controller written in Python, in the same closed loop as the built-in ones.
+
+    Args:
+        settings: the run's settings and truck.
+        road: the road; `altitude_m` gives the trace's altitude at each of its profile points [m].
+        controller: an object of the `truckmpc.controller.Controller` protocol: `start(profile,
+            state)` and `decide(state)` are called, the GIL held; the first exception ends the run
+            and is re-raised.
+        profile: the `RoadProfile` passed to `controller.start`.
+        state_type: the class of the states passed (`truckmpc.controller.PlantState`).
+    """
 
 def controllers() -> list[tuple[str, str, bool]]:
     """The built-in controllers: (name, what it is, whether it solves the DP)."""

@@ -107,12 +107,5 @@ def band_along(road: RoadProfile | None, cruise: Cruise, end_m: float) -> Band:
     if road is None or road.target_speed_kmh is None:
         v_ref = np.full_like(x_m, cruise.v_ref_kmh)
         return Band(x_m, v_ref, v_ref - cruise.v_dec_kmh, v_ref + cruise.v_inc_kmh, from_targets=False)
-    set_kmh, low_kmh, high_kmh = road.core().speed_band(
-        np.ascontiguousarray(x_m),
-        cruise.v_ref_kmh,
-        cruise.v_dec_kmh,
-        cruise.v_inc_kmh,
-        cruise.target_offset_kmh,
-        cruise.target_decel_mps2,
-    )
+    set_kmh, low_kmh, high_kmh = road.core().speed_band(np.ascontiguousarray(x_m), cruise)
     return Band(x_m, set_kmh, low_kmh, high_kmh, from_targets=True)

@@ -45,6 +45,27 @@ pub fn stationary(vehicle: &Vehicle, v_mps: f64, slope: f64, gear: usize) -> Cor
     ])
 }
 
+/// Engine speed (2.9) [rpm] of `vehicle` at `v_mps` in `gear` (0, neutral: the idle speed);
+/// refuses a gear the truck does not have, naming `gear`.
+pub fn engine_speed_rpm(vehicle: &Vehicle, v_mps: f64, gear: usize) -> CoreResult<f64> {
+    check_gear(gear, NEUTRAL, vehicle.forward_gears())?;
+    Ok(vehicle.engine_speed_rpm(v_mps, gear))
+}
+
+/// Engine torque [Nm] of `vehicle` at `v_mps` with `pedal` ∈ [0, 1] in `gear` (1..=n): the thesis
+/// model's torque map, or the torque giving the pedal's share of the wheel torque between fuel cut
+/// and full load (a map-based truck).
+pub fn engine_torque_nm(vehicle: &Vehicle, v_mps: f64, pedal: f64, gear: usize) -> CoreResult<f64> {
+    check_gear(gear, 1, vehicle.forward_gears())?;
+    Ok(vehicle.engine_torque_nm(vehicle.engine_speed_rpm(v_mps, gear), pedal, gear))
+}
+
+/// Engine speed [rpm] of a map-based `truck` at `v_mps` in `gear` (1..=gears).
+pub fn map_engine_speed_rpm(truck: &MapTruck, v_mps: f64, gear: usize) -> CoreResult<f64> {
+    check_gear(gear, 1, truck.driveline().gears())?;
+    Ok(truck.driveline().engine_speed_rpm(v_mps, gear))
+}
+
 /// Road loads [W] of `truck` at `v_mps`, `acc_mps2`, `slope_rad`: `air_w`, `rolling_w`, `slope_w`,
 /// `vehicle_inertia_w`, `wheels_inertia_w` and `wheel_w`, their sum.
 pub fn road_loads(truck: &MapTruck, v_mps: f64, acc_mps2: f64, slope_rad: f64) -> Figures {
@@ -140,4 +161,26 @@ pub fn speed_band(road: &Road, cruise: &CruiseParams, distance_m: &[f64]) -> Cor
         out[2].push(at.v_max_kmh);
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::VehicleParams;
+
+    /// The thesis's truck has 12 gears: neutral idles, gear 13 and (for a torque) neutral are
+    /// refused naming `gear`; in gear the engine speed grows in proportion to the road speed.
+    #[test]
+    fn gear_queries_refuse_a_gear_the_truck_lacks() {
+        let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
+        let idle = engine_speed_rpm(&vehicle, 20.0, NEUTRAL).unwrap();
+        assert_eq!(idle, VehicleParams::default().idle_speed_rpm);
+        let (at_10, at_20) =
+            (engine_speed_rpm(&vehicle, 10.0, 12).unwrap(), engine_speed_rpm(&vehicle, 20.0, 12).unwrap());
+        assert!((at_20 - 2.0 * at_10).abs() < 1e-9 && at_10 > 0.0);
+        for refused in [engine_speed_rpm(&vehicle, 20.0, 13), engine_torque_nm(&vehicle, 20.0, 0.5, NEUTRAL)] {
+            let CoreError::Invalid { key, .. } = refused.unwrap_err();
+            assert_eq!(key, "gear");
+        }
+    }
 }

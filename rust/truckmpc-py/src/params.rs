@@ -34,16 +34,7 @@ pub fn parameter_value<'py>(py: Python<'py>, key: &str, value: &Bound<'py, PyAny
     from_value(py, &settings.get(key).expect("set"))
 }
 
-/// A run's settings and truck, checked against each other: every parameter of a run.
-///
-/// Args:
-///     values: mapping of declared keys to user values (YAML-like: numbers, numeric text, bools,
-///         None, names, lists); keys not given take their declared defaults.
-///     truck: a truck from component data, replacing the thesis's model of the vehicle keys.
-///
-/// Raises:
-///     ParamError: a key is unknown, or a value is of the wrong type, out of its range, or
-///         inconsistent with another or with the truck (the error's `related` names the others).
+/// A run's settings and truck, checked against each other (arguments: `_core.pyi`).
 #[pyclass(name = "Settings", module = "truckmpc._core", frozen)]
 pub struct PySettings {
     pub inner: Scenario,

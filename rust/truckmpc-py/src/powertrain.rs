@@ -6,7 +6,7 @@ use std::sync::Arc;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use truckmpc_core::figures::{self, check_gear};
+use truckmpc_core::figures;
 use truckmpc_core::powertrain::{Body, Driveline, Engine, MapTruck};
 use truckmpc_core::scenario::ComponentTruck;
 
@@ -108,9 +108,7 @@ impl PyMapTruck {
 
     /// Engine speed [rpm] at `v_mps` in `gear` (1..=gears).
     fn engine_speed_rpm(&self, v_mps: f64, gear: usize) -> PyResult<f64> {
-        let driveline = self.inner.truck().driveline();
-        check_gear(gear, 1, driveline.gears()).map_err(to_py)?;
-        Ok(driveline.engine_speed_rpm(v_mps, gear))
+        figures::map_engine_speed_rpm(self.inner.truck(), v_mps, gear).map_err(to_py)
     }
 
     /// Road loads [W] at `v_mps`, `acc_mps2` and `slope_rad`: dict with `air_w`, `rolling_w`,

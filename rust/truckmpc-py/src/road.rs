@@ -33,25 +33,30 @@ impl PyRoad {
         Ok(PyRoad { inner: Arc::new(road) })
     }
 
-    /// The speed band every controller works to on this road for one cruise setting [km/h],
-    /// at each of `distance_m` [m] (in increasing order): the stretch's set speed (without the
-    /// top falling ahead of a lower one), v_min and v_max.
-    #[pyo3(signature = (distance_m, v_ref_kmh, v_dec_kmh, v_inc_kmh, target_offset_kmh, target_decel_mps2))]
+    /// The speed band every controller works to on this road for one `cruise` setting [km/h], at
+    /// each of `distance_m` [m] (increasing): the stretch's set speed, v_min and v_max.
     fn speed_band<'py>(
         &self,
         py: Python<'py>,
         distance_m: PyReadonlyArray1<'_, f64>,
-        v_ref_kmh: f64,
-        v_dec_kmh: f64,
-        v_inc_kmh: f64,
-        target_offset_kmh: f64,
-        target_decel_mps2: f64,
+        cruise: CruiseData,
     ) -> PyResult<SpeedBandArrays<'py>> {
+        let CruiseData { v_ref_kmh, v_dec_kmh, v_inc_kmh, target_offset_kmh, target_decel_mps2 } = cruise;
         let cruise = CruiseParams { v_ref_kmh, v_dec_kmh, v_inc_kmh, target_offset_kmh, target_decel_mps2 };
         let distance_m = distance_m.as_array().to_vec();
         let [set, low, high] = figures::speed_band(&self.inner, &cruise, &distance_m).map_err(to_py)?;
         Ok((set.into_pyarray(py), low.into_pyarray(py), high.into_pyarray(py)))
     }
+}
+
+/// The cruise keys of the band [km/h, m/s²], read off an object's attributes.
+#[derive(FromPyObject)]
+struct CruiseData {
+    v_ref_kmh: f64,
+    v_dec_kmh: f64,
+    v_inc_kmh: f64,
+    target_offset_kmh: f64,
+    target_decel_mps2: f64,
 }
 
 /// The set speed, v_min and v_max along a road [km/h], as numpy arrays.

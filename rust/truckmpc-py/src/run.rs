@@ -31,18 +31,7 @@ struct PyRunOutput {
     trace: Py<PyDict>,
 }
 
-/// Drive `road` with the built-in controller `controller` from its start to its end (or a stall),
-/// the closed loop in Rust with the GIL released.
-///
-/// Args:
-///     settings: the run's settings and truck.
-///     road: the road; `altitude_m` gives the trace's altitude at each of its profile points [m].
-///     controller: a name of `controllers()`.
-///     controller_road: the road the controller plans on, if not `road` (the plant drives `road`).
-///
-/// Returns:
-///     RunOutput; the summary of a controller that solves the DP also holds its `settings`, with
-///     the resolved values under their declared names.
+/// Drive `road` with the built-in `controller`, the GIL released (arguments: `_core.pyi`).
 #[pyfunction]
 #[pyo3(signature = (settings, road, altitude_m, controller, controller_road=None))]
 fn run(
@@ -134,15 +123,7 @@ impl Controller for PyController {
     }
 }
 
-/// Drive `road` with `controller`, an object of the `truckmpc.controller.Controller` protocol
-/// written in Python, in the same Rust closed loop as the built-in controllers.
-///
-/// Args:
-///     settings: the run's settings and truck.
-///     road: the road; `altitude_m` gives the trace's altitude at each of its profile points [m].
-///     controller: the Python controller; `start(profile, state)` and `decide(state)` are called.
-///     profile: the `RoadProfile` passed to `controller.start`.
-///     state_type: the class of the states passed (`truckmpc.controller.PlantState`).
+/// Drive `road` with a controller written in Python, in the same closed loop (arguments: `_core.pyi`).
 #[pyfunction]
 fn run_python(
     py: Python<'_>,

@@ -4,8 +4,8 @@ use std::sync::Arc;
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use truckmpc_core::figures::{self, check_gear};
-use truckmpc_core::{Vehicle, NEUTRAL};
+use truckmpc_core::figures;
+use truckmpc_core::Vehicle;
 
 use crate::convert::dict_of;
 use crate::errors::to_py;
@@ -27,16 +27,14 @@ impl PyVehicle {
 
     /// Engine speed (2.9) [rpm] at speed `v_mps` in `gear` (idle speed in neutral).
     fn engine_speed_rpm(&self, v_mps: f64, gear: usize) -> PyResult<f64> {
-        check_gear(gear, NEUTRAL, self.inner.forward_gears()).map_err(to_py)?;
-        Ok(self.inner.engine_speed_rpm(v_mps, gear))
+        figures::engine_speed_rpm(&self.inner, v_mps, gear).map_err(to_py)
     }
 
     /// Engine torque [Nm] at road speed `v_mps` with `pedal` ∈ [0, 1] in `gear` (1..n): the
     /// model's torque map (thesis) or the torque giving the pedal's share of the wheel torque
     /// between fuel cut and full load (a truck from component data).
     fn engine_torque_nm(&self, v_mps: f64, pedal: f64, gear: usize) -> PyResult<f64> {
-        check_gear(gear, 1, self.inner.forward_gears()).map_err(to_py)?;
-        Ok(self.inner.engine_torque_nm(self.inner.engine_speed_rpm(v_mps, gear), pedal, gear))
+        figures::engine_torque_nm(&self.inner, v_mps, pedal, gear).map_err(to_py)
     }
 
     /// Levels holding `v_mps` on grade `slope` in `gear`: dict with `pedal`, `brake`, `feasible`,
