@@ -85,6 +85,16 @@ class Settings:
     def steady_gear(self, v_mps: float) -> int:
         """The gear the PI gear logic settles in at constant speed `v_mps` [m/s]."""
 
+class _Stationary(TypedDict):
+    pedal: float
+    brake: float
+    feasible: bool
+    eigenvalue_per_m: float
+    """∂(dv/ds)/∂v [1/m] (tables B.1/B.2)."""
+    engine_speed_rpm: float
+    engine_torque_nm: float
+    fuel_rate_g_per_h: float
+
 @final
 class Vehicle:
     """A validated truck model, as `Settings.vehicle` gives it."""
@@ -93,7 +103,8 @@ class Vehicle:
     def forward_gears(self) -> int: ...
     def engine_speed_rpm(self, v_mps: float, gear: int) -> float: ...
     def engine_torque_nm(self, v_mps: float, pedal: float, gear: int) -> float: ...
-    def stationary(self, v_mps: float, slope: float, gear: int) -> dict[str, Any]: ...
+    def stationary(self, v_mps: float, slope: float, gear: int) -> _Stationary:
+        """The levels holding `v_mps` (> 0) on grade `slope` in `gear`, and the engine there."""
 
 G_MPS2: float
 """Gravitational acceleration [m/s²] of the map-based truck (VECTO 3's)."""
@@ -153,6 +164,25 @@ class _BodyData(Protocol):
     @property
     def cda_curve(self) -> Sequence[tuple[float, float]] | None: ...
 
+class _RoadLoads(TypedDict):
+    air_w: float
+    rolling_w: float
+    slope_w: float
+    vehicle_inertia_w: float
+    wheels_inertia_w: float
+    wheel_w: float
+    """Their sum: the power at the wheels [W]."""
+
+class _OperatingPoint(TypedDict):
+    engine_speed_rpm: float
+    engine_torque_nm: float
+    engine_power_w: float
+    fuel_rate_g_per_h: float
+    """NaN beyond the full-load curve's speeds."""
+    brake_power_w: float
+    """At the wheels, beyond what the engine's drag takes [W]."""
+    feasible: bool
+
 class _TruckFacts(TypedDict):
     gears: int
     rated_power_w: float
@@ -192,8 +222,10 @@ class MapTruck:
     def engine_point(self, speed_rpm: float, torque_nm: float) -> _EnginePoint:
         """The engine at `speed_rpm` and `torque_nm`."""
     def engine_speed_rpm(self, v_mps: float, gear: int) -> float: ...
-    def road_loads(self, v_mps: float, acc_mps2: float, slope_rad: float) -> dict[str, float]: ...
-    def operating_point(self, v_mps: float, acc_mps2: float, slope_rad: float, gear: int) -> dict[str, Any]: ...
+    def road_loads(self, v_mps: float, acc_mps2: float, slope_rad: float) -> _RoadLoads:
+        """Road loads [W] at `v_mps`, `acc_mps2` and `slope_rad`."""
+    def operating_point(self, v_mps: float, acc_mps2: float, slope_rad: float, gear: int) -> _OperatingPoint:
+        """The engine's operating point at `v_mps` (> 0), `acc_mps2` and `slope_rad` in `gear`."""
 
 class _CruiseData(Protocol):
     """The cruise keys that shape the band: v_ref, v_dec, v_inc and the target offset [km/h], the

@@ -87,8 +87,7 @@ impl PyMapTruck {
         Ok(PyMapTruck { inner: Arc::new(inner) })
     }
 
-    /// What the truck is (`truckmpc_core::figures::truck_facts`): gears, rated power and speed,
-    /// the speeds and torques its maps cover, which losses loss maps give, the efficiency.
+    /// What the truck is (`figures::truck_facts`).
     #[getter]
     fn facts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         dict_of(py, &figures::truck_facts(self.inner.truck()))
@@ -99,9 +98,7 @@ impl PyMapTruck {
         self.inner.truck().cda_m2(v_mps)
     }
 
-    /// The engine at `speed_rpm` and `torque_nm`: dict with `max_torque_nm`, `drag_torque_nm`,
-    /// `fuel_rate_g_per_h` (0 at or below the drag torque; the nearest boundary value outside the
-    /// map) and `in_fuel_map`.
+    /// The engine at `speed_rpm` and `torque_nm` (`figures::engine_point`).
     fn engine_point<'py>(&self, py: Python<'py>, speed_rpm: f64, torque_nm: f64) -> PyResult<Bound<'py, PyDict>> {
         dict_of(py, &figures::engine_point(self.inner.truck(), speed_rpm, torque_nm).map_err(to_py)?)
     }
@@ -111,8 +108,7 @@ impl PyMapTruck {
         figures::map_engine_speed_rpm(self.inner.truck(), v_mps, gear).map_err(to_py)
     }
 
-    /// Road loads [W] at `v_mps`, `acc_mps2` and `slope_rad`: dict with `air_w`, `rolling_w`,
-    /// `slope_w`, `vehicle_inertia_w`, `wheels_inertia_w`, `wheel_w` (their sum).
+    /// Road loads [W] at `v_mps`, `acc_mps2` and `slope_rad` (`figures::road_loads`).
     fn road_loads<'py>(
         &self,
         py: Python<'py>,
@@ -123,10 +119,7 @@ impl PyMapTruck {
         dict_of(py, &figures::road_loads(self.inner.truck(), v_mps, acc_mps2, slope_rad))
     }
 
-    /// The engine's operating point at `v_mps` (> 0), `acc_mps2`, `slope_rad` in `gear`: dict with
-    /// `engine_speed_rpm`, `engine_torque_nm`, `engine_power_w`, `fuel_rate_g_per_h` (NaN beyond the
-    /// full-load curve's speeds), `brake_power_w` (at the wheels, beyond the engine's drag),
-    /// `feasible`.
+    /// The engine's operating point at `v_mps`, `acc_mps2`, `slope_rad` in `gear` (`figures::operating_point`).
     fn operating_point<'py>(
         &self,
         py: Python<'py>,

@@ -30,16 +30,12 @@ impl PyVehicle {
         figures::engine_speed_rpm(&self.inner, v_mps, gear).map_err(to_py)
     }
 
-    /// Engine torque [Nm] at road speed `v_mps` with `pedal` ∈ [0, 1] in `gear` (1..n): the
-    /// model's torque map (thesis) or the torque giving the pedal's share of the wheel torque
-    /// between fuel cut and full load (a truck from component data).
+    /// Engine torque [Nm] at road speed `v_mps` with `pedal` in `gear` (`figures::engine_torque_nm`).
     fn engine_torque_nm(&self, v_mps: f64, pedal: f64, gear: usize) -> PyResult<f64> {
         figures::engine_torque_nm(&self.inner, v_mps, pedal, gear).map_err(to_py)
     }
 
-    /// Levels holding `v_mps` on grade `slope` in `gear`: dict with `pedal`, `brake`, `feasible`,
-    /// `eigenvalue_per_m` (∂(dv/ds)/∂v [1/m], tables B.1/B.2), and the engine's operating point
-    /// there: `engine_speed_rpm`, `engine_torque_nm`, `fuel_rate_g_per_h`.
+    /// Levels holding `v_mps` on grade `slope` in `gear` (`figures::stationary`).
     fn stationary<'py>(&self, py: Python<'py>, v_mps: f64, slope: f64, gear: usize) -> PyResult<Bound<'py, PyDict>> {
         dict_of(py, &figures::stationary(&self.inner, v_mps, slope, gear).map_err(to_py)?)
     }
