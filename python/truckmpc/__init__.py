@@ -7,6 +7,7 @@ Public API::
     result.summary["fuel_kg"], result.trace["speed_kmh"]
 """
 
+from truckmpc.comparison import Comparison, compare_controllers
 from truckmpc.config import RunConfig, load_run_config
 from truckmpc.controller import Control, Controller, PlantState
 from truckmpc.errors import ConfigError, RoadError, TruckmpcError
@@ -18,6 +19,7 @@ from truckmpc.sweep import SweepError, SweepResult, run_sweep
 __all__ = [
     "CONTROLLERS",
     "TRACE_COLUMNS",
+    "Comparison",
     "ConfigError",
     "Control",
     "Controller",
@@ -30,6 +32,7 @@ __all__ = [
     "SweepError",
     "SweepResult",
     "TruckmpcError",
+    "compare_controllers",
     "default_test_track",
     "format_table",
     "load_road",

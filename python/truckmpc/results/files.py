@@ -25,7 +25,7 @@ from truckmpc.sim import TRACE_COLUMNS, RunResult
 if TYPE_CHECKING:
     from truckmpc.roads import RoadProfile
 
-__all__ = ["RUN_FILES", "check_run_dir", "free_run_dir", "holds_run", "trace_csv", "write_outputs"]
+__all__ = ["RUN_FILES", "check_run_dir", "free_run_dir", "holds_run", "summary_json", "trace_csv", "write_outputs"]
 
 _CSV_FORMATS = {spec.name: "%d" if spec.decimals is None else f"%.{spec.decimals}f" for spec in TRACE_SPECS}
 """How the trace's CSV writes each declared column (others ``%.6g``)."""
@@ -96,6 +96,11 @@ def check_run_dir(out_dir: str | os.PathLike[str], replace: bool = True) -> None
         raise ConfigError(f"{out}: holds an earlier run; add --replace to replace it, or choose another --out")
 
 
+def summary_json(doc: Mapping[str, Any]) -> str:
+    """A summary document as ``summary.json`` holds it (JSON text; non-finite numbers as null)."""
+    return json.dumps(_clean(doc), indent=2, default=_json_default)
+
+
 def write_outputs(
     out_dir: str | os.PathLike[str],
     road: RoadProfile,
@@ -115,8 +120,7 @@ def write_outputs(
     names = ["summary.json"] + [f"trace-{name}.csv" for name in results]
     with OutputDir(out, replace=True) as staging:
         doc = {**summary_document(road, results, run, equal_times), **(extra or {})}
-        text = json.dumps(_clean(doc), indent=2, default=_json_default)
-        (staging / "summary.json").write_text(text + "\n", encoding="utf-8")
+        (staging / "summary.json").write_text(summary_json(doc) + "\n", encoding="utf-8")
         for name, result in results.items():
             (staging / f"trace-{name}.csv").write_text(trace_csv(result), encoding="utf-8")
     return [out / name for name in names]
