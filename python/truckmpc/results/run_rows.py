@@ -18,12 +18,12 @@ __all__ = [
     "Figure",
     "comparison_rows",
     "driving_rows",
+    "end_speed_note",
     "equal_time_rows",
     "figure_rows",
     "heading",
     "notes",
     "optimum_rows",
-    "end_speed_note",
 ]
 
 NAMES = {"pi": "PI", "vecto_cc": "VECTO CC", "pcc": "PCC", "mpc": "MPC", "optimal": "optimum"}
@@ -156,9 +156,10 @@ def end_speed_note(summary: Mapping[str, Any]) -> str | None:
     :data:`END_SPEED_GAP_PTS` points (the headline is the corrected one); None otherwise."""
     moved = []
     for (name, baseline), entry in _comparisons(summary).items():
-        raw, fair = entry.get("delta_fuel_equal_time_pct"), entry.get("headline_pct")
-        if _finite(raw) and _finite(fair) and abs(raw - fair) > END_SPEED_GAP_PTS:
-            ends = f"{name} ends at {summary[name]['end_speed_kmh']:.1f} km/h, {baseline} at {summary[baseline]['end_speed_kmh']:.1f}"
+        raw, fair = (_finite(entry.get(key)) for key in ("delta_fuel_equal_time_pct", "headline_pct"))
+        if raw is not None and fair is not None and abs(raw - fair) > END_SPEED_GAP_PTS:
+            own, other = (summary[n]["end_speed_kmh"] for n in (name, baseline))
+            ends = f"{name} ends at {own:.1f} km/h, {baseline} at {other:.1f}"
             moved.append(f"{name} vs {NAMES.get(baseline, baseline)} {raw:+.2f} → {fair:+.2f} % ({ends})")
     if not moved:
         return None
@@ -252,8 +253,10 @@ def _has_targets(summary: Mapping[str, Any]) -> bool:
     return any(key.endswith("_target_offset_kmh") for entry in objects for key in entry)
 
 
-def _finite(value: Any) -> bool:
-    return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+def _finite(value: Any) -> float | None:
+    """`value` as a float when it is a finite number; None otherwise."""
+    finite = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+    return float(value) if finite else None
 
 
 def _number(value: Any, spec: str, scale: float = 1.0) -> str:

@@ -127,9 +127,8 @@ def _time_fair_deltas(
     doc["delta_fuel_equal_time_corrected_pct"] = (
         delta_pct(own, corrected) if reached and corrected and own is not None else None
     )
-    fair = reached and own is not None and corrected is not None
     doc[HEADLINE] = doc["delta_fuel_equal_time_corrected_pct"]
-    doc[SAVED] = corrected - own if fair else None
+    doc[SAVED] = corrected - own if reached and own is not None and corrected is not None else None
     doc["equal_time"] = equal.document(baseline)
     return doc
 
