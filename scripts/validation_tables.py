@@ -105,7 +105,6 @@ def pcc_row(summary: dict[str, Any]) -> list[str]:
         raw_and_equal_time(summary, "pcc", "vecto_cc"),
         raw_and_equal_time(summary, "mpc", "vecto_cc"),
         f"**{raw_and_equal_time(summary, 'mpc', 'pcc')}**",
-        raw_and_equal_time(summary, "optimal", "pcc"),
         per_100km(summary, "pcc", "eco_roll_entries_per_100km"),
         ", ".join(per_100km(summary, c, "neutral_engagements_per_100km") for c in ("pcc", "mpc")),
         ", ".join(per_100km(summary, c, "gear_shifts_per_100km") for c in ("pcc", "mpc")),
@@ -138,14 +137,13 @@ Study = tuple[list[Case], list[str], list[str], Callable[[dict[str, Any]], list[
 STUDIES: dict[str, Study] = {
     "pcc": (
         PCC_CASES,
-        ["--controller", "pi,vecto_cc,pcc,mpc,optimal"],
+        ["--controller", "pi,vecto_cc,pcc,mpc"],
         [
             "vecto_cc vs PI, raw (Δtime)",
             "PCC vs PI",
             "PCC vs vecto_cc",
             "MPC vs vecto_cc",
             "**MPC vs PCC**",
-            "optimum vs PCC",
             "eco-roll entries / 100 km PCC",
             "neutral engagements / 100 km PCC, MPC",
             "gear shifts / 100 km PCC, MPC",

@@ -69,6 +69,30 @@ def test_the_whole_road_plan_is_never_costlier_than_the_mpcs_closed_loop_traject
     assert optimal["plan_cost"] <= trajectory_cost(mpc, config) * 1.002
 
 
+def fuel_time_cost_g(summary, config) -> float:
+    """A run's fuel + β·time [g] with its end speed brought back to its start speed, kinetic energy
+    priced as the end-speed correction prices it: c·½(v_end² − v_start²) off the fuel."""
+    price = config.settings.derived()["kinetic_fuel_g_per_half_v2"]
+    beta = config.settings.resolved()["beta_g_per_s"]
+    v0, v1 = (summary[key] / KMH_PER_MPS for key in ("start_speed_kmh", "end_speed_kmh"))
+    return 1000 * summary["fuel_kg"] - price * 0.5 * (v1**2 - v0**2) + beta * summary["time_s"]
+
+
+@pytest.mark.parametrize(
+    "road",
+    [make_section("crest", 1500, 2.0, tail_m=0.0), make_section("hill", 1000, 2.0, tail_m=500.0)],
+    ids=["ending on a crest", "ending after a climb"],
+)
+def test_with_the_fuel_time_cost_the_optimum_bounds_the_mpcs_fuel_and_time_whatever_its_end_speed(road):
+    """Roads that end where the MPC, pricing its end speed, leaves it off v_ref: the optimum (free end
+    speed priced alike, no comfort prices) costs no more fuel + β·time, end speed corrected. Raised to
+    v_ref at the end, or paying for its shifts and coasts, it cost up to 9 g more here."""
+    config = load_run_config()
+    optimal = simulate(road, config, "optimal").summary
+    mpc = simulate(road, config, "mpc").summary
+    assert fuel_time_cost_g(optimal, config) <= fuel_time_cost_g(mpc, config)
+
+
 def test_the_optimum_drives_close_to_its_plan_and_beats_the_pi():
     config = load_run_config()
     road = default_test_track()

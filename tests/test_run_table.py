@@ -23,6 +23,7 @@ from truckmpc.results.run_table import render_text, run_table
 runner = CliRunner()
 
 MEASURES = {  # the summary's Δ key in each comparison, and the row that prints it
+    "headline_pct": "Δfuel at equal trip time and end speed vs {} [%]",
     "delta_fuel_equal_time_pct": "Δfuel at equal trip time vs {} [%]",
     "delta_fuel_pct": "Δfuel vs {} [%]",
     "delta_time_pct": "Δtrip time vs {} [%]",
@@ -71,9 +72,11 @@ def test_each_delta_stands_in_its_own_controllers_column(three):
 
 def test_the_headline_comes_first_with_the_summarys_numbers(three):
     table, summary, _ = three
-    assert table.labels()[:4] == [
+    assert table.labels()[:6] == [
         "fuel [kg]",
         "trip time [s]",
+        "Δfuel at equal trip time and end speed vs PI [%]",
+        "Δfuel at equal trip time and end speed vs PCC [%]",
         "Δfuel at equal trip time vs PI [%]",
         "Δfuel at equal trip time vs PCC [%]",
     ]
@@ -83,6 +86,11 @@ def test_the_headline_comes_first_with_the_summarys_numbers(three):
         assert table.row("trip time [s]")[name] == f"{summary[name]['time_s']:.1f}"
     assert summary["delta_fuel_equal_time_pct_mpc"] is not None
     assert table.row("Δfuel at equal trip time vs PI [%]")["mpc"] == f"{summary['delta_fuel_equal_time_pct_mpc']:+.2f}"
+    # The headline: the PCC's fuel at the MPC's trip time and both end speeds priced, read from the
+    # re-run's figures rather than from the comparison's own Δ.
+    pcc = summary["equal_time_mpc_vs_pcc"]
+    fair = 100 * (summary["mpc"]["fuel_corrected_kg"] / pcc["pcc_fuel_corrected_kg"] - 1)
+    assert table.row("Δfuel at equal trip time and end speed vs PCC [%]")["mpc"] == f"{fair:+.2f}"
 
 
 def test_driving_figures_count_neutral_and_eco_roll_apart_from_gear_shifts(three):
@@ -204,3 +212,20 @@ def test_the_pccs_neutral_entries_beside_its_eco_roll_entries_are_explained(thre
     assert LEGEND_PCC in printed.splitlines()
     _, _, without = simulate(tmp_path / "pi-mpc", "--controller", "pi,mpc")
     assert LEGEND_PCC not in without
+
+
+def _ending(end_kmh: float) -> dict[str, Any]:
+    return {"fuel_kg": 5.0, "time_s": 800.0, "end_speed_kmh": end_kmh}
+
+
+@pytest.mark.parametrize(("raw", "fair", "said"), [(-5.54, -4.59, True), (-5.0, -4.6, False), (-4.0, -4.51, True)])
+def test_a_run_whose_end_speeds_move_the_equal_time_delta_by_over_half_a_point_says_so_once(raw, fair, said):
+    """A constructed summary: the note names the pair and both figures only when the raw and the
+    corrected Δ at equal trip time lie more than 0.5 points apart (either way)."""
+    entry = {"controller": "mpc", "baseline": "pi", "delta_fuel_equal_time_pct": raw, "headline_pct": fair}
+    summary = {"pi": _ending(84.8), "mpc": _ending(79.6), "comparisons": [entry]}
+    lines = render_text(run_table(summary)).splitlines()
+    notes = [line for line in lines if line.startswith("end speeds:")]
+    assert len(notes) == int(said)
+    if said:
+        assert f"mpc vs PI {raw:+.2f} → {fair:+.2f} %" in notes[0] and "mpc ends at 79.6 km/h" in notes[0]

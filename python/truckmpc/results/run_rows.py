@@ -18,6 +18,7 @@ __all__ = [
     "Figure",
     "comparison_rows",
     "driving_rows",
+    "end_speed_note",
     "equal_time_rows",
     "figure_rows",
     "heading",
@@ -31,6 +32,7 @@ NAMES = {"pi": "PI", "vecto_cc": "VECTO CC", "pcc": "PCC", "mpc": "MPC", "optima
 LEGEND = (
     "Δ [%] = (column − baseline) / baseline: negative = less than the baseline.",
     "At equal trip time: the baseline re-run at the set speed that matches the column's trip time.",
+    "And end speed: each run's fuel less the fuel worth the kinetic energy it ends with above its start speed.",
 )
 LEGEND_TARGETS = (LEGEND[0], LEGEND[1].replace("at the set speed", "with its target speeds offset to the speed"))
 LEGEND_PCC = (
@@ -98,8 +100,8 @@ def comparison_rows(
     baselines: Sequence[str] | None = None,
 ) -> tuple[Row, ...]:
     """For each ``(key, label)`` of ``measures`` and each baseline that ran (or of ``baselines``),
-    the row ``label vs BASELINE [%]``: each controller's ``delta_<key>_pct`` against it in its own
-    column; "" where it was not compared (the baseline's own cell) or not comparable (a stalled run:
+    the row ``label vs BASELINE [%]``: each controller's ``key`` (a comparison's Δ [%]) against it
+    in its own column; "" where it was not compared (the baseline's own cell) or not comparable (a stalled run:
     :func:`notes` says why)."""
     comparisons = _comparisons(summary)
     rows = []
@@ -108,7 +110,7 @@ def comparison_rows(
             cells = []
             for name in columns:
                 entry = comparisons.get((name, baseline))
-                cells.append("" if entry is None else _number(entry.get(f"delta_{key}_pct"), "+.2f"))
+                cells.append("" if entry is None else _number(entry.get(key), "+.2f"))
             rows.append(Row(f"{label} vs {NAMES.get(baseline, baseline)}", "%", tuple(cells)))
     return tuple(rows)
 
@@ -140,9 +142,31 @@ def equal_time_rows(summary: Mapping[str, Any], columns: Sequence[str]) -> tuple
             rows.append(Row(f"{who}: {label}", unit, cells))
         errors = tuple(_number(entry.get("time_error_pct"), "+.3f") for entry in found)
         rows.append(Row(f"{who}: time error", "%", errors))
-        measure = (("fuel_equal_time_corrected", "Δfuel at equal trip time, end speeds corrected"),)
+        measure = (("delta_fuel_equal_time_corrected_pct", "Δfuel at equal trip time, end speeds corrected"),)
         rows += comparison_rows(summary, columns, measure, (baseline,))
     return tuple(rows)
+
+
+END_SPEED_GAP_PTS = 0.5
+"""How far [points] the end-speed correction may move a Δ at equal trip time before the table says so."""
+
+
+def end_speed_note(summary: Mapping[str, Any]) -> str | None:
+    """One line when the end speeds move some Δfuel at equal trip time by more than
+    :data:`END_SPEED_GAP_PTS` points (the headline is the corrected one); None otherwise."""
+    moved = []
+    for (name, baseline), entry in _comparisons(summary).items():
+        raw, fair = (_finite(entry.get(key)) for key in ("delta_fuel_equal_time_pct", "headline_pct"))
+        if raw is not None and fair is not None and abs(raw - fair) > END_SPEED_GAP_PTS:
+            own, other = (summary[n]["end_speed_kmh"] for n in (name, baseline))
+            ends = f"{name} ends at {own:.1f} km/h, {baseline} at {other:.1f}"
+            moved.append(f"{name} vs {NAMES.get(baseline, baseline)} {raw:+.2f} → {fair:+.2f} % ({ends})")
+    if not moved:
+        return None
+    return (
+        f"end speeds: correcting them moves Δfuel at equal trip time by more than {END_SPEED_GAP_PTS:g} points, "
+        f"{'; '.join(moved)}: quote the figure at equal trip time and end speed."
+    )
 
 
 def heading(summary: Mapping[str, Any]) -> str:
@@ -190,6 +214,9 @@ def notes(summary: Mapping[str, Any], columns: Sequence[str], legend: bool) -> I
             against.setdefault((name, entry["not_comparable"]), []).append(baseline)
     for (name, reason), baselines in against.items():
         yield f"{name} vs {', '.join(baselines)}: {reason}"
+    moved = end_speed_note(summary)
+    if moved is not None:
+        yield moved
     for name, run in zip(columns, runs, strict=True):
         if run.get("message"):
             yield f"{name}: {run['message']}"
@@ -224,6 +251,12 @@ def _has_targets(summary: Mapping[str, Any]) -> bool:
         return bool(road["target_speeds"])
     objects = (v for k, v in summary.items() if k.startswith("equal_time") and isinstance(v, Mapping))
     return any(key.endswith("_target_offset_kmh") for entry in objects for key in entry)
+
+
+def _finite(value: Any) -> float | None:
+    """`value` as a float when it is a finite number; None otherwise."""
+    finite = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+    return float(value) if finite else None
 
 
 def _number(value: Any, spec: str, scale: float = 1.0) -> str:

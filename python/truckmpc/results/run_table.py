@@ -1,7 +1,8 @@
 """The table of a run read at a glance, built from its ``summary.json`` document alone.
 
 One column per controller, in run order. The headline comes first (fuel, trip time, Δfuel at
-equal trip time against each baseline that ran), then the Δ as driven, the driving figures and
+equal trip time and end speed against each baseline that ran, then the same at equal trip time
+alone), then the Δ as driven, the driving figures and
 the realtime ratio; ``verbose`` adds the solver statistics, the optimum's plan and the equal-time
 search. A row that has no value in any column is left out. Each Δ stands in its own controller's
 column; the baseline's own cell is blank. :func:`render_text` prints it (``truckmpc simulate``);
@@ -24,13 +25,17 @@ from truckmpc.results.run_rows import (
     notes,
     optimum_rows,
 )
+from truckmpc.results.summary import HEADLINE
 from truckmpc.results.table_model import Row, RunTable, Section
 
 __all__ = ["Row", "RunTable", "Section", "render_text", "run_table"]
 
 
 _HEADLINE = (Figure("fuel_kg", ".3f"), Figure("time_s", ".1f"))
-_EQUAL_TIME = (("fuel_equal_time", "Δfuel at equal trip time"),)
+_EQUAL_TIME = (
+    (HEADLINE, "Δfuel at equal trip time and end speed"),
+    ("delta_fuel_equal_time_pct", "Δfuel at equal trip time"),
+)
 _SOLVER = (
     Figure("horizon_solves", "d"),
     Figure("infeasible_solves", "d"),
@@ -73,9 +78,9 @@ _CONVERGENCE = (
     "(and at twice pedal_levels)"
 )
 _AS_DRIVEN = (
-    ("fuel", "Δfuel"),
-    ("time", "Δtrip time"),
-    ("fuel_corrected", "Δfuel, end speeds corrected"),
+    ("delta_fuel_pct", "Δfuel"),
+    ("delta_time_pct", "Δtrip time"),
+    ("delta_fuel_corrected_pct", "Δfuel, end speeds corrected"),
 )
 
 

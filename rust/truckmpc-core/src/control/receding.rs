@@ -132,13 +132,14 @@ impl RecedingController {
         }
     }
 
-    /// The whole-road optimum: the same DP solved once over the entire road from the start (no
-    /// receding horizon; the final stage bound raised to v_ref at the road's end), its cost-to-go
+    /// The whole-road optimum: the same DP with the bound's prices ([`DpSettings::bound`]) solved
+    /// once over the entire road from the start (no receding horizon; the speed at the road's end
+    /// priced as at a horizon's end), its cost-to-go
     /// kept for every stage; each stage's control is then chosen from the truck's state predicted
     /// at the stage's start by a one-stage solve against the next stage's stored values. What it
     /// does when a one-stage solve finds no admissible path follows `on_infeasible`, as the MPC.
     pub fn whole_road(vehicle: Arc<Vehicle>, params: DpSettings, start_gears: GearLogic) -> Self {
-        RecedingController { whole_road: true, ..Self::new(vehicle, params, start_gears) }
+        RecedingController { whole_road: true, ..Self::new(vehicle, params.bound(), start_gears) }
     }
 
     /// Plan the whole road from `start` at `s0_m`: the DP over every stage to the road's end.

@@ -102,6 +102,20 @@ impl DpSettings {
         }
     }
 
+    /// The settings of the whole-road bound: with the fuel_time cost, fuel + β·time alone (the
+    /// prices of gear shifts, neutral engagements and braking at 0; the band and the shift limit
+    /// kept), so that no controller within the same band and limit drives the road for less on the
+    /// DP's model. A price the MPC pays for comfort would let the optimum trade fuel + β·time
+    /// for fewer shifts or coasts, and lose to a run that paid them. The speed_penalty cost is
+    /// returned as is: its prices are its objective.
+    pub fn bound(self) -> Self {
+        if self.mpc.cost != CostKind::FuelTime {
+            return self;
+        }
+        let free = |m: &mut MpcParams| (m.q_gear_shift, m.q_neutral) = (0.0, 0.0);
+        DpSettings { q_brake: 0.0, ..self.with_mpc(free) }
+    }
+
     /// Whether `vehicle` can drive this cost: with fuel_time and no β given, the truck must hold
     /// v_ref on a flat road in a gear within [n_min, n_max] (β is derived there); the error names
     /// beta_g_per_s.
@@ -228,5 +242,20 @@ mod tests {
         let mut expected = fine.with_mpc(|m| (m.allow_neutral, m.horizon_m) = (false, RELAXED_HORIZON_MAX_M));
         (expected.k_lim, expected.cruise.v_dec_kmh) = (1, relaxed.cruise.v_dec_kmh);
         assert_eq!(relaxed.with_mpc(|m| m.delta_kmh = 0.0), expected.with_mpc(|m| m.delta_kmh = 0.0));
+    }
+
+    #[test]
+    fn the_bound_prices_fuel_and_time_alone_with_the_fuel_time_cost_and_keeps_the_speed_penalty_cost() {
+        let fuel_time = DpSettings::default();
+        assert!(fuel_time.mpc.q_gear_shift > 0.0 && fuel_time.mpc.q_neutral > 0.0 && fuel_time.q_brake > 0.0);
+        let bound = fuel_time.clone().bound();
+        assert_eq!((bound.mpc.q_gear_shift, bound.mpc.q_neutral, bound.q_brake), (0.0, 0.0, 0.0));
+        // The band, the shift limit and the grid stay: the bound is over the same drives.
+        assert_eq!(
+            (bound.cruise.clone(), bound.k_lim, bound.mpc.delta_kmh),
+            (fuel_time.cruise.clone(), fuel_time.k_lim, fuel_time.mpc.delta_kmh)
+        );
+        let thesis = DpSettings::thesis();
+        assert_eq!(thesis.clone().bound(), thesis);
     }
 }

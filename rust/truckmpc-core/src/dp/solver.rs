@@ -238,7 +238,9 @@ impl Solver {
 
     /// Solve over a whole road's stages at once (one grade per stage) and keep every stage's
     /// cost-to-go in `table` (stage k at index k), for one-stage solves against it later; `bands`
-    /// as for [`Solver::solve_in_bands`] (None: the cruise band everywhere).
+    /// as for [`Solver::solve_in_bands`] (None: the cruise band everywhere). The road's end is
+    /// a horizon's end: with the fuel_time cost its speed is free and priced by the terminal cost,
+    /// as the end-speed correction prices a run's.
     pub fn solve_recording(
         &mut self,
         vehicle: &Vehicle,
@@ -249,10 +251,10 @@ impl Solver {
     ) -> Solution {
         table.stages.clear();
         table.stages.resize_with(slopes.len() + 1, StageValues::default);
-        self.solve_inner(vehicle, start, slopes, bands, None, Ends::Recording { table, to_v_ref: true })
+        self.solve_inner(vehicle, start, slopes, bands, None, Ends::Recording(table))
     }
 
-    /// As [`Solver::solve_from_stage`] (the horizon's end priced, not raised to v_ref), keeping
+    /// As [`Solver::solve_from_stage`], keeping
     /// every stage's cost-to-go in `table` as [`Solver::solve_recording`] does: a horizon whose
     /// later stages are then decided by one-stage solves against it. `bands` as for
     /// [`Solver::solve_recording`].
@@ -266,7 +268,7 @@ impl Solver {
     ) -> Solution {
         table.stages.clear();
         table.stages.resize_with(slopes.len() + 1, StageValues::default);
-        self.solve_inner(vehicle, start, slopes, bands, first_stage, Ends::Recording { table, to_v_ref: false })
+        self.solve_inner(vehicle, start, slopes, bands, first_stage, Ends::Recording(table))
     }
 
     /// One stage on grade `slope` from `start`, ending on the states of `next` with their
@@ -321,13 +323,9 @@ impl Solver {
             Ends::Values(next) => Some(*next),
             _ => None,
         };
-        // A horizon of the fuel_time cost ends on its reachable speeds, priced by the terminal cost
-        // (its kinetic energy in fuel): requiring v_ref there kept the truck from planning a coast
-        // into a descent beyond the horizon. The whole road ends at v_ref, as every cost does.
-        let raise_end = matches!(ends, Ends::Recording { to_v_ref: true, .. });
         // Intervals, grids, gear ranges and active gears of every stage; the last stage's are those
         // of `terminal` when the solve ends on stored values.
-        self.stage_grids(vehicle, start, slopes, first_stage, terminal, raise_end);
+        self.stage_grids(vehicle, start, slopes, first_stage, terminal);
         self.gear_states(vehicle, start, terminal);
         let cached_from = if self.caching { first_stage } else { None };
         if let Some(stage) = cached_from {
@@ -344,7 +342,7 @@ impl Solver {
         self.load_horizon_end(n_stages, gears, terminal);
         self.shift_same_cur.clear();
         self.shift_same_cur.resize(gears, true);
-        if let Ends::Recording { table, .. } = &mut ends {
+        if let Ends::Recording(table) = &mut ends {
             table.stages[n_stages] = self.stage_values(n_stages, gears, true);
         }
 
@@ -355,7 +353,7 @@ impl Solver {
                 return Solution { feasible: false, cost: f64::INFINITY, states, transitions, ..Solution::default() };
             }
             transitions += self.backward_stage(vehicle, k, cached_from.map(|s| s + k as u64), start.gear);
-            if let (Ends::Recording { table, .. }, true) = (&mut ends, k > 0) {
+            if let (Ends::Recording(table), true) = (&mut ends, k > 0) {
                 table.stages[k] = self.stage_values(k, gears, false);
             }
             std::mem::swap(&mut self.cost_cur, &mut self.cost_next);

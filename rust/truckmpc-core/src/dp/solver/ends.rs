@@ -11,9 +11,8 @@ use crate::dp::values::{StageValues, ValueTable};
 pub(super) enum Ends<'a> {
     /// At the horizon's end, cost 0 on every final state.
     Horizon,
-    /// At the horizon's end, keeping every stage's cost-to-go; the final stage raised to v_ref
-    /// when `to_v_ref` (a whole road), priced as a horizon's end otherwise.
-    Recording { table: &'a mut ValueTable, to_v_ref: bool },
+    /// At the horizon's end (a whole road's end, too), keeping every stage's cost-to-go.
+    Recording(&'a mut ValueTable),
     /// On stored states with their cost-to-go.
     Values(&'a StageValues),
 }

@@ -36,12 +36,16 @@ impl Solver {
         slopes: &[f64],
         first_stage: Option<u64>,
         terminal: Option<&StageValues>,
-        raise_end: bool,
     ) {
         // Absolute stages, when known, let the interval passes reuse steps of earlier solves.
         let p = &self.params;
         let memo = first_stage.filter(|_| self.caching).map(|stage| (stage, &mut self.interval_memo));
-        let raise_end = raise_end || p.mpc.cost == CostKind::SpeedPenalty;
+        // The speed_penalty cost has no price for the speed left at the end: it ends at v_ref or
+        // above. The fuel_time cost ends on its reachable speeds, priced by the terminal cost (its
+        // kinetic energy in fuel): requiring v_ref there kept the truck from planning a coast into
+        // a descent beyond a horizon, and made the whole road's optimum pay for an end speed the
+        // end-speed correction would have priced lower (a run it then no longer bounded).
+        let raise_end = p.mpc.cost == CostKind::SpeedPenalty;
         space::intervals_from_stage(vehicle, p, start.v_mps, slopes, &self.bands, memo, raise_end, &mut self.intervals);
         let delta = p.delta_mps();
         self.grids.clear();
