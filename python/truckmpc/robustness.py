@@ -103,10 +103,8 @@ def run_case(road: RoadProfile, config: RunConfig, case: Case, controller: str =
     deltas = compare(results["pi"].summary, results[controller].summary, "pi", controller)
     found = equal_time_baselines(road, truth, results).get(controller)
     equal = None if found is None else found.delta_fuel_pct(results[controller].summary["fuel_kg"])
-    reached = found is not None and found.reached
-    quoted = headline(
-        results[controller].summary.get("fuel_corrected_kg"), found.fuel_corrected_kg if reached else None
-    )
+    base_kg = found.fuel_corrected_kg if found is not None and found.reached else None
+    quoted = headline(results[controller].summary.get("fuel_corrected_kg"), base_kg)
     return {
         "case": case.label,
         "mass_kg": case.mass_kg,
