@@ -180,7 +180,7 @@ def test_the_sweep_plot_draws_the_pcc_deltas(descent, tmp_path, monkeypatch):
     sweep(["--road", str(descent), "--controller", "pcc", *grid, "--jobs", "1", "--out", str(alone)])
     result = runner.invoke(app, ["plot", str(alone)])
     assert result.exit_code == 0, result.output
-    assert sorted(p.name for p in alone.glob("*.png")) == ["sweep.png"]
+    assert sorted(p.name for p in alone.glob("*.png")) == ["headline.png", "sweep.png"]
     both = tmp_path / "both"
     sweep(["--road", str(descent), "--controller", "pcc,mpc", *grid, "--jobs", "1", "--out", str(both)])
     drawn = []
