@@ -29,9 +29,10 @@ OutOpt = Annotated[
     typer.Option(
         "--out",
         metavar="DIR",
-        help="Output directory: sweep.csv (a row per road and combination, each figure in a column "
-        "<controller>_<figure>: pi_fuel_kg, mpc_delta_fuel_pct), sweep.json (and sweep.partial.csv while running; "
-        "summary.csv for a fleet, sweep.parquet with --parquet).",
+        help="Output directory: sweep.csv (a row per road and combination, the headline first, each look-ahead "
+        "controller's saving at equal trip time and end speed: mpc_headline_vs_pcc_pct, mpc_saved_kg; then each "
+        "figure in a column <controller>_<figure>: pi_fuel_kg, mpc_delta_fuel_pct), sweep.json (and "
+        "sweep.partial.csv while running; summary.csv for a fleet, sweep.parquet with --parquet).",
     ),
 ]
 GridOpt = Annotated[
