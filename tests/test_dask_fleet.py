@@ -73,7 +73,10 @@ def test_a_broken_road_fails_in_its_rows_only(swept) -> None:
     assert all(r["pi_fuel_kg"] == r["mpc_delta_fuel_pct"] == r["mpc_stalled"] == "" for r in broken)
     others = [r for r in rows if r["road"] != "broken"]
     assert all(r["error"] == "" and r["mpc_delta_fuel_pct"] != "" for r in others)
-    assert "all rows mpc: Δfuel vs PI " in result.stdout and "; 8 failed, on broken" in result.stdout
+    assert all(r["mpc_headline_pct"] == r["mpc_saved_kg"] == "" for r in broken)
+    assert "all rows, mpc as driven against the PI: Δfuel " in result.stdout
+    assert "; 8 failed, on broken" in result.stdout
+    assert "all rows, mpc against the PI at equal trip time and end speed: Δfuel " in result.stdout
 
 
 def test_the_summary_gives_mean_spread_and_worst_road_per_axis_value(swept) -> None:
@@ -97,6 +100,8 @@ def test_the_summary_gives_mean_spread_and_worst_road_per_axis_value(swept) -> N
         assert (int(entry["rows"]), int(entry["compared"]), int(entry["failed"])) == (len(members), len(fuel), failed)
         assert float(entry["mean_delta_fuel_pct"]) == pytest.approx(statistics.fmean(fuel), rel=1e-5)
         assert float(entry["std_delta_fuel_pct"]) == pytest.approx(statistics.stdev(fuel), rel=1e-5)
+        quoted = [float(r["mpc_headline_pct"]) for r in members if r["mpc_headline_pct"]]
+        assert float(entry["headline_vs_pi_mean_pct"]) == pytest.approx(statistics.fmean(quoted), rel=1e-5)
         worst = max((r for r in members if r["mpc_delta_fuel_pct"]), key=lambda r: float(r["mpc_delta_fuel_pct"]))
         assert (entry["worst_road"], entry["worst_direction"], entry["worst_vehicle"]) == (
             worst["road"],

@@ -143,7 +143,10 @@ def test_the_pcc_curve_is_simulates_pcc_at_each_set_speed(tmp_path: Path) -> Non
     args = ["pareto", "--road", str(path), "--speeds", "82,86", "--curves", "pi,pcc", "--jobs", "1", "--out", str(out)]
     result = runner.invoke(app, args)
     assert result.exit_code == 0, result.output
-    assert "descent: pcc at the PI's trip time" in result.output and (out / "pareto.png").stat().st_size > 0
+    assert (
+        "descent: pcc against the PI at equal trip time and end speed" in result.output
+        and (out / "pareto.png").stat().st_size > 0
+    )
     with (out / "pareto.csv").open(newline="") as handle:
         rows = [r for r in csv.DictReader(handle) if r["controller"] == "pcc"]
     assert [float(r["v_ref_kmh"]) for r in rows] == [82.0, 86.0]

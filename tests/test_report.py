@@ -16,7 +16,6 @@ import pytest
 from typer.testing import CliRunner
 
 from truckmpc.cli import app
-from truckmpc.sweep.columns import delta_column
 
 ROADS = Path(__file__).resolve().parent.parent / "roads"
 ROAD = ROADS / "hill_L500_A2.csv"
@@ -240,17 +239,22 @@ def test_a_sweep_report_has_a_row_per_row_of_the_sweep(sweep_dir: Path, tmp_path
         rows = list(csv.DictReader(handle))
     table = page.tables["sweep-table"]
     groups, headings, body = table[0], table[1], table[2:]
-    assert {"pi", "pcc", "mpc", "mpc vs pi", "pcc vs pi", "mpc vs pcc"} <= set(groups)
+    assert groups[1:4] == [
+        "mpc vs pcc, equal time and end speed",
+        "mpc vs pi, equal time and end speed",
+        "pcc vs pi, equal time and end speed",
+    ]
     assert headings[0] == "horizon_m" and len(body) == len(rows) == 2
-    fuel_at = [i for i, h in enumerate(headings) if h == "fuel [kg]"]  # pi, pcc, mpc in that order
-    equal_time_at = headings.index("Δfuel, equal time [%]")  # the first comparison: mpc vs pi
-    for cells, row in zip(body, rows, strict=True):
+    assert headings[1:3] == ["Δfuel [%]", "saved [kg]"]  # the headline first: the MPC against the PCC
+    fuel_at = [i for i, h in enumerate(page.tables["runs-table"][1]) if h == "fuel [kg]"]  # pi, pcc, mpc
+    for cells, runs, row in zip(body, page.tables["runs-table"][2:], rows, strict=True):
         assert float(cells[0]) == float(row["horizon_m"])
         for at, name in zip(fuel_at, ("pi", "pcc", "mpc"), strict=True):
-            assert float(cells[at]) == pytest.approx(float(row[f"{name}_fuel_kg"]), abs=5e-4)
-        mpc_equal_time = float(row[delta_column("mpc", "fuel_equal_time")])
-        assert float(cells[equal_time_at]) == pytest.approx(mpc_equal_time, abs=5e-3)
-    assert len(page.images) == 2 and all(is_png(src) for src in page.images)
+            assert float(runs[at]) == pytest.approx(float(row[f"{name}_fuel_kg"]), abs=5e-4)
+        own, pcc = float(row["mpc_fuel_corrected_kg"]), float(row["mpc_equal_time_pcc_fuel_corrected_kg"])
+        assert float(cells[1]) == pytest.approx(100 * (own - pcc) / pcc, abs=5e-3)
+        assert float(cells[2]) == pytest.approx(pcc - own, abs=5e-4)
+    assert len(page.images) == 3 and all(is_png(src) for src in page.images)
     replay = shlex.split(page.codes["replay-command"])
     assert replay[:2] == ["cd", json.loads((sweep_dir / "sweep.json").read_text())["command"]["cwd"]]
     assert replay[replay.index("--out") + 1] == str(sweep_dir.resolve()) + "-replay"
@@ -295,3 +299,15 @@ def test_without_matplotlib_the_report_is_written_without_figures_and_says_so(
     page = Page(target.read_text(encoding="utf-8"))
     assert not page.images and "No figures: " + MISSING_MATPLOTLIB in "".join(page.text)
     assert page.tables["run-table"][0] == ["", "pi", "pcc", "mpc"]
+
+
+def test_the_run_page_leads_with_the_headline_against_the_pcc(run_dir: Path, run_page: Page) -> None:
+    """The first sentence of the page is the MPC's saving against the PCC at equal trip time and end
+    speed, recomputed here from summary.json's fuels (the PCC re-run at the MPC's trip time)."""
+    doc = json.loads((run_dir / "summary.json").read_text(encoding="utf-8"))
+    own, pcc = doc["mpc"]["fuel_corrected_kg"], doc["equal_time_mpc_vs_pcc"]["pcc_fuel_corrected_kg"]
+    pct = 100 * (own - pcc) / pcc
+    lead = next(text for text in run_page.text if text.startswith("The "))
+    word = "less" if pct < 0 else "more"
+    expected = f"The MPC uses {abs(pct):.2f} % {word} fuel than the PCC at equal trip time and equal end speed"
+    assert lead.startswith(expected) and f"({pcc - own:.3f} kg saved)" in lead

@@ -17,6 +17,7 @@ from typer.testing import CliRunner
 from truckmpc import load_run_config, simulate
 from truckmpc import robustness as rb
 from truckmpc.cli import app
+from truckmpc.equal_time import equal_time_baselines
 from truckmpc.roads import RoadProfile, concatenate, make_section, write_road
 
 COARSE = ("delta_kmh=0.2", "stage_m=50", "horizon_m=1000")
@@ -90,6 +91,19 @@ def test_the_study_has_every_case_and_its_references(tmp_path):
     assert math.isclose(light["delta_fuel_pct"], 100 * (mpc_light - pi_light) / pi_light)
     text = rb.format_study(rows, "mpc")
     assert text.count("\n") == len(rows) + 1 and "map grade noise 1 %" in text
+    assert text.startswith("mpc against the PI on the true truck and road, at equal trip time and end speed")
+
+
+def test_the_study_quotes_the_headline_from_the_corrected_fuels_at_equal_time():
+    """The exact case's headline is the MPC's corrected fuel against the PI re-run at its trip time."""
+    road = _road()
+    config = load_run_config(overrides=COARSE)
+    row = rb.run_case(road, config, rb.Case("exact", 40000.0, 40000.0))
+    runs = {"pi": simulate(road, config, "pi"), "mpc": simulate(road, config, "mpc")}
+    pi_at_mpc_time = equal_time_baselines(road, config, runs)["mpc"].fuel_corrected_kg
+    own = runs["mpc"].summary["fuel_corrected_kg"]
+    assert math.isclose(row["headline_pct"], 100 * (own - pi_at_mpc_time) / pi_at_mpc_time)
+    assert math.isclose(row["saved_kg"], pi_at_mpc_time - own)
 
 
 def test_controller_road_is_recorded_and_replayed(tmp_path, monkeypatch):

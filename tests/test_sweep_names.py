@@ -145,7 +145,7 @@ def test_an_old_style_directory_plots_its_old_columns(descent, tmp_path, monkeyp
 
     monkeypatch.setattr(plot_sweep, "save", kept_figures)
     plot_sweep.plot_sweep(out, out / "sweep.png")
-    assert [path.name for _, path in drawn] == ["sweep.png", "realtime.png"]
+    assert [path.name for _, path in drawn] == ["sweep.png", "realtime.png", "headline.png"]
     header, _ = read_csv(out / "sweep.csv")
     fuel = header.index("delta_fuel_pct")
     axes = {ax.get_ylabel(): ax for ax in drawn[0][0].axes}

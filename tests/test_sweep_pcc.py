@@ -180,7 +180,7 @@ def test_the_sweep_plot_draws_the_pcc_deltas(descent, tmp_path, monkeypatch):
     sweep(["--road", str(descent), "--controller", "pcc", *grid, "--jobs", "1", "--out", str(alone)])
     result = runner.invoke(app, ["plot", str(alone)])
     assert result.exit_code == 0, result.output
-    assert sorted(p.name for p in alone.glob("*.png")) == ["sweep.png"]
+    assert sorted(p.name for p in alone.glob("*.png")) == ["headline.png", "sweep.png"]
     both = tmp_path / "both"
     sweep(["--road", str(descent), "--controller", "pcc,mpc", *grid, "--jobs", "1", "--out", str(both)])
     drawn = []
@@ -199,8 +199,9 @@ def test_the_sweep_plot_draws_the_pcc_deltas(descent, tmp_path, monkeypatch):
 
 def test_the_default_sweep_keeps_its_columns():
     """Without --controller the columns are the error column (blank unless a run of the row failed),
-    the PI's and the MPC's figures, every controller's gear shifts and neutral engagements apart,
-    each also per 100 km (issue 25), then the MPC's Δ against the PI: each prefixed by its controller."""
+    the MPC's headline against the PI (% and kg, issue 44), the PI's and the MPC's figures, every
+    controller's gear shifts and neutral engagements apart, each also per 100 km (issue 25), then the
+    MPC's Δ against the PI: each prefixed by its controller."""
     gears = ["gear_shifts", "gear_shifts_per_100km", "neutral_engagements", "neutral_engagements_per_100km"]
     figures = ["fuel_kg", "fuel_corrected_kg", "time_s", "end_speed_kmh", "brake_energy_kj", *gears, "stalled"]
     mpc_own = ["neutral_distance_m", "realtime_ratio", "solve_ms_mean", "solve_ms_max", "infeasible_solves"]
@@ -208,6 +209,8 @@ def test_the_default_sweep_keeps_its_columns():
     deltas = ["fuel", "time", "fuel_corrected", "fuel_equal_time", "fuel_equal_time_corrected"]
     assert list(SWEEP_COLUMNS) == [
         "error",
+        "mpc_headline_pct",
+        "mpc_saved_kg",
         *(f"pi_{name}" for name in figures),
         *(f"mpc_{name}" for name in figures),
         *(f"mpc_{name}" for name in mpc_own),

@@ -3,6 +3,9 @@
 A stalled run did not drive the whole road, so its fuel and time are not those of the road: when
 either run stalled there is no delta, and the reason says which run stalled and where. A baseline of
 zero (no fuel used on a descent, say) gives no delta either.
+
+:func:`headline` is the figure every output quotes: a look-ahead run's fuel against a baseline's at
+equal trip time and equal end speed, in % and in kilograms saved.
 """
 
 from __future__ import annotations
@@ -47,6 +50,27 @@ def delta_pct(value: float, base: float) -> float | None:
     if not base or not math.isfinite(base):
         return None
     return PCT_PER_FRACTION * (value - base) / base
+
+
+@dataclass(frozen=True)
+class Headline:
+    """A run's saving against a baseline at equal trip time and equal end speed: Δfuel [%]
+    (negative is fuel saved) and the fuel saved [kg] (positive is saved); None each where there is
+    no comparison (a run stalled, the baseline did not reach the run's trip time)."""
+
+    pct: float | None
+    saved_kg: float | None
+
+
+def headline(fuel_corrected_kg: float | None, baseline_fuel_corrected_kg: float | None) -> Headline:
+    """The headline of a run whose end-speed-corrected fuel is `fuel_corrected_kg` [kg] against
+    its baseline re-run at the run's trip time, whose end-speed-corrected fuel is
+    `baseline_fuel_corrected_kg` [kg] (``summary.json``'s ``headline_pct`` and ``saved_kg``, and
+    what every table, CSV and page quotes, read through this one function)."""
+    if fuel_corrected_kg is None or baseline_fuel_corrected_kg is None:
+        return Headline(None, None)
+    pct = delta_pct(fuel_corrected_kg, baseline_fuel_corrected_kg)
+    return Headline(pct, None if pct is None else baseline_fuel_corrected_kg - fuel_corrected_kg)
 
 
 def _stall(name: str, summary: Mapping[str, Any]) -> str:

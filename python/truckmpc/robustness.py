@@ -11,9 +11,10 @@ so a wrong map or mass does not change it):
   `correlation_m` (the error of a terrain model or a GPS import after smoothing), integrated to
   altitude; the reference is the controller on the true map.
 
-For each case the table gives Δfuel and Δtime of the controller against the PI [%], Δfuel at equal
-trip time (the PI re-tuned to the controller's time), and the share of the reference's equal-time
-saving that is kept.
+For each case the table gives the headline first, the controller's Δfuel against the PI at equal
+trip time and equal end speed (the PI re-tuned to the controller's time, both end speeds corrected,
+:func:`truckmpc.compare.headline`) [%] and the fuel it saves [kg], the share of the reference's
+headline saving that is kept, then Δfuel and Δtime as driven [%].
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ from typing import Any
 
 import numpy as np
 
-from truckmpc.compare import compare
+from truckmpc.compare import compare, headline
 from truckmpc.config import RunConfig
 from truckmpc.equal_time import equal_time_baselines
 from truckmpc.errors import ConfigError
@@ -92,7 +93,8 @@ def cases(mass_kg: float, seeds: Sequence[int]) -> list[Case]:
 
 
 def run_case(road: RoadProfile, config: RunConfig, case: Case, controller: str = "mpc") -> dict[str, Any]:
-    """Drive the PI and `controller` in `case`'s world; Δfuel, Δtime and Δfuel at equal time [%]."""
+    """Drive the PI and `controller` in `case`'s world; Δfuel, Δtime and Δfuel at equal time [%],
+    and the headline (at equal trip time and end speed) [%] with the fuel saved [kg]."""
     truth = config.with_values({"mass_kg": case.mass_kg, "controller_mass_kg": None}, case.label)
     world = truth.with_values({"controller_mass_kg": case.controller_mass_kg}, case.label)
     told = noisy_map(road, case.sigma_pct, case.seed) if case.sigma_pct > 0 else None
@@ -101,6 +103,8 @@ def run_case(road: RoadProfile, config: RunConfig, case: Case, controller: str =
     deltas = compare(results["pi"].summary, results[controller].summary, "pi", controller)
     found = equal_time_baselines(road, truth, results).get(controller)
     equal = None if found is None else found.delta_fuel_pct(results[controller].summary["fuel_kg"])
+    base_kg = found.fuel_corrected_kg if found is not None and found.reached else None
+    quoted = headline(results[controller].summary.get("fuel_corrected_kg"), base_kg)
     return {
         "case": case.label,
         "mass_kg": case.mass_kg,
@@ -110,6 +114,8 @@ def run_case(road: RoadProfile, config: RunConfig, case: Case, controller: str =
         "delta_fuel_pct": deltas.delta_fuel_pct,
         "delta_time_pct": deltas.delta_time_pct,
         "delta_fuel_equal_time_pct": equal,
+        "headline_pct": quoted.pct,
+        "saved_kg": quoted.saved_kg,
         "not_comparable": deltas.not_comparable,
     }
 
@@ -119,14 +125,14 @@ def _with_map(road: RoadProfile, told: RoadProfile | None) -> RoadProfile:
 
 
 def kept_shares(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    """Each row with `kept_pct`: its equal-time saving as a share of its reference's [%] (the exact
+    """Each row with `kept_pct`: its headline saving as a share of its reference's [%] (the exact
     model at the same truck mass); None where either is missing or the reference saves nothing."""
     exact = [row for row in rows if row["controller_mass_kg"] == row["mass_kg"] and not row["grade_sigma_pct"]]
     reference = {row["mass_kg"]: row for row in exact}
     out = []
     for row in rows:
         base = reference.get(row["mass_kg"])
-        mine, ref = row["delta_fuel_equal_time_pct"], None if base is None else base["delta_fuel_equal_time_pct"]
+        mine, ref = row["headline_pct"], None if base is None else base["headline_pct"]
         kept = None if mine is None or ref is None or ref >= 0 else PCT_PER_FRACTION * mine / ref
         out.append({**row, "kept_pct": kept})
     return out
@@ -146,19 +152,30 @@ def study(
 
 
 def format_study(rows: list[dict[str, Any]], controller: str) -> str:
-    """The study as a text table: Δfuel, Δtime and Δfuel at equal time against the PI [%], and the
-    share of the reference's equal-time saving kept [%]."""
-    header = f"{'case':<44} {'Δfuel %':>8} {'Δtime %':>8} {'Δfuel eq.t. %':>13} {'kept %':>7}"
-    lines = [f"{controller} against the pi on the true truck and road", header]
+    """The study as a text table: the headline against the PI [%] and the fuel saved [kg], the
+    share of the reference's headline saving kept [%], then Δfuel and Δtime as driven [%]."""
+    header = f"{'case':<44} {'Δfuel %':>8} {'saved kg':>9} {'kept %':>7} {'as driven: Δfuel %':>18} {'Δtime %':>8}"
+    lines = [
+        f"{controller} against the PI on the true truck and road, at equal trip time and end speed (the PI re-run "
+        f"at the {controller}'s trip time, both end speeds corrected), then as driven",
+        header,
+    ]
     for row in rows:
-        cells = [_cell(row[key], width) for key, width in _COLUMNS]
+        cells = [_cell(row[key], width, digits) for key, width, digits in _COLUMNS]
         note = f"  ({row['not_comparable']})" if row["not_comparable"] else ""
         lines.append(f"{row['case']:<44} " + " ".join(cells) + note)
     return "\n".join(lines)
 
 
-_COLUMNS = (("delta_fuel_pct", 8), ("delta_time_pct", 8), ("delta_fuel_equal_time_pct", 13), ("kept_pct", 7))
+_COLUMNS = (
+    ("headline_pct", 8, 2),
+    ("saved_kg", 9, 3),
+    ("kept_pct", 7, 2),
+    ("delta_fuel_pct", 18, 2),
+    ("delta_time_pct", 8, 2),
+)
+"""Each column of the table: its row key, width and decimals."""
 
 
-def _cell(value: float | None, width: int) -> str:
-    return f"{'n/a':>{width}}" if value is None else f"{value:>+{width}.2f}"
+def _cell(value: float | None, width: int, digits: int) -> str:
+    return f"{'n/a':>{width}}" if value is None else f"{value:>+{width}.{digits}f}"

@@ -1,5 +1,6 @@
 """``truckmpc pareto``: :func:`truckmpc.pareto.plan_pareto` and :func:`truckmpc.pareto.run_pareto`,
-each controller's saving at the PI's trip time printed, and the figure drawn."""
+each controller's headline at the PCC's and the PI's trip time (and equal end speed) printed, and
+the figure drawn."""
 
 from __future__ import annotations
 
@@ -22,6 +23,7 @@ from truckmpc.cli.options import (
 from truckmpc.cli.study import notice, pooled_study, stop_notes, study_inputs
 from truckmpc.errors import TruckmpcError
 from truckmpc.pareto import equal_time_savings, plan_pareto, run_pareto
+from truckmpc.pareto.fronts import BASELINES
 from truckmpc.pareto.plan import CURVE_CONTROLLERS
 from truckmpc.plot.pareto import plot_pareto
 from truckmpc.sweep import SweepError, parse_axis, progress_bar
@@ -92,16 +94,33 @@ def pareto_cmd(
         with progress_bar(not quiet) as hook:
             result = run_pareto(plan, out, jobs=jobs, progress=hook, force=force, notice=notice, scheduler=scheduler)
     written = [result.csv_path]
-    savings = equal_time_savings(result.rows, plan.base_v_ref_kmh)
-    for road_name, by_controller in savings.items():
-        for name, saving in by_controller.items():
-            text = saving.reason if saving.pct is None else f"{saving.pct:+.2f} %"
-            typer.echo(f"{road_name}: {name} at the PI's trip time at v_ref {plan.base_v_ref_kmh:g} km/h: {text}")
+    for line in _saving_lines(result.rows, plan.base_v_ref_kmh):
+        typer.echo(line)
     try:
         written += plot_pareto(out, out / "pareto.png", plan.base_v_ref_kmh)
     except TruckmpcError as err:  # no matplotlib: the CSV stands on its own
         typer.echo(f"no figure: {err}", err=True)
     typer.echo(f"wrote {', '.join(map(str, written))} ({result.runs} runs, {result.resumed} resumed)")
+
+
+def _saving_lines(rows: list[dict[str, str]], v_ref_kmh: float) -> list[str]:
+    """Each look-ahead curve's headline on each road against the PCC (when its curve ran) and the PI:
+    at the baseline's trip time at v_ref and equal end speed, in % and kg saved, or why there is none."""
+    ran = {row["controller"] for row in rows}
+    lines = []
+    for base in (base for base in BASELINES if base in ran):
+        for road_name, by_controller in equal_time_savings(rows, v_ref_kmh, base).items():
+            for name, saving in by_controller.items():
+                text = (
+                    saving.reason
+                    if saving.pct is None
+                    else f"Δfuel {saving.pct:+.2f} % ({saving.saved_kg:.3f} kg saved)"
+                )
+                lines.append(
+                    f"{road_name}: {name} against the {base.upper()} at equal trip time and end speed (the "
+                    f"{base.upper()}'s trip time at v_ref {v_ref_kmh:g} km/h): {text}"
+                )
+    return lines
 
 
 def _numbers(option: str, key: str, spec: str | None) -> list[float] | None:

@@ -16,7 +16,7 @@ from truckmpc.cli.study import notice, pooled_study, stop_notes, study_inputs
 from truckmpc.record import program_record
 from truckmpc.status import status_line
 from truckmpc.sweep import plan_sweep, progress_bar, run_plan
-from truckmpc.sweep.columns import DEFAULT_CONTROLLERS, LOOK_AHEAD, check_controllers, delta_column
+from truckmpc.sweep.columns import DEFAULT_CONTROLLERS, LOOK_AHEAD, check_controllers, delta_column, headline_column
 from truckmpc.sweep.summary import check_parquet, fleet_outputs
 
 __all__ = ["sweep_cmd"]
@@ -29,9 +29,10 @@ OutOpt = Annotated[
     typer.Option(
         "--out",
         metavar="DIR",
-        help="Output directory: sweep.csv (a row per road and combination, each figure in a column "
-        "<controller>_<figure>: pi_fuel_kg, mpc_delta_fuel_pct), sweep.json (and sweep.partial.csv while running; "
-        "summary.csv for a fleet, sweep.parquet with --parquet).",
+        help="Output directory: sweep.csv (a row per road and combination, the headline first, each look-ahead "
+        "controller's saving at equal trip time and end speed: mpc_headline_vs_pcc_pct, mpc_saved_kg; then each "
+        "figure in a column <controller>_<figure>: pi_fuel_kg, mpc_delta_fuel_pct), sweep.json (and "
+        "sweep.partial.csv while running; summary.csv for a fleet, sweep.parquet with --parquet).",
     ),
 ]
 GridOpt = Annotated[
@@ -154,11 +155,21 @@ def _sweep_controllers(text: str) -> tuple[str, ...]:
 
 
 def _sweep_deltas(row: Mapping[str, str], controllers: Sequence[str]) -> str:
-    """`Δfuel vs PI -1.23 %, Δtrip time +0.45 %` of each look-ahead controller against the PI (named
-    when there are several), `-` where blank."""
+    """Each look-ahead controller's headline against the PCC (when it ran) and the PI, `Δfuel -2.31 %
+    (0.123 kg saved)`, then its Δfuel and Δtrip time as driven against the PI; `-` where blank."""
     parts = []
     for name in controllers:
+        bases = [base for base in ("pcc", "pi") if base != name and (base == "pi" or base in controllers)]
+        quoted = ", ".join(f"against the {base.upper()} {_headline(row, name, base)}" for base in bases)
         shown = [f"{float(v):+.2f}" if v else "-" for v in (row[delta_column(name, k)] for k in ("fuel", "time"))]
-        named = f"{name} " if len(controllers) > 1 else ""
-        parts.append(f"{named}Δfuel vs PI {shown[0]} %, Δtrip time {shown[1]} %")
+        parts.append(
+            f"{name} at equal trip time and end speed {quoted}; as driven Δfuel vs PI {shown[0]} %, "
+            f"Δtrip time {shown[1]} %"
+        )
     return "; ".join(parts)
+
+
+def _headline(row: Mapping[str, str], name: str, base: str) -> str:
+    """`Δfuel -2.31 % (0.123 kg saved)` of `name` against `base`, `-` where the row has none."""
+    pct, kg = (row.get(headline_column(name, base, kind), "") for kind in ("headline", "saved"))
+    return f"Δfuel {float(pct):+.2f} % ({float(kg):.3f} kg saved)" if pct and kg else "-"

@@ -1,9 +1,11 @@
 """Fuel–time curves from ``pareto.csv`` rows, and the saving at equal trip time read off them.
 
 A curve is one controller's (trip time [s], end-speed-corrected fuel [kg]) points on one road,
-sorted by time; between points it is taken as linear. The equal-time saving of a curve is its fuel
-at the baseline's trip time at the reference set speed, against the baseline's corrected fuel
-there, in % (negative: it saves).
+sorted by time; between points it is taken as linear. The equal-time saving of a curve is its
+corrected fuel at the baseline's trip time at the reference set speed against the baseline's
+corrected fuel there: the headline, at equal trip time and equal end speed
+(:func:`truckmpc.compare.headline`), in % (negative: it saves) and kg saved. The baseline is the PI,
+or the PCC when its curve was run.
 """
 
 from __future__ import annotations
@@ -13,9 +15,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from truckmpc.compare import headline
 from truckmpc.sweep.cells import parse_cell
 
 BASELINE = "pi"
+"""The baseline every curve is compared with; also :data:`BASELINES`' others, where they ran."""
+
+BASELINES = ("pcc", "pi")
+"""The curves a look-ahead curve's saving is read against, in the order it is printed."""
 
 
 @dataclass(frozen=True)
@@ -56,28 +63,34 @@ def curves(rows: Sequence[Mapping[str, str]]) -> dict[str, dict[str, Curve]]:
 
 @dataclass(frozen=True)
 class Saving:
-    """A look-ahead curve's fuel saving [%] at the baseline's trip time at the reference set speed
-    (negative: it saves), or why there is none."""
+    """A look-ahead curve's headline at the baseline's trip time at the reference set speed: Δfuel
+    [%] (negative: it saves) and fuel saved [kg], or why there is none."""
 
     pct: float | None
     reason: str | None = None
+    saved_kg: float | None = None
 
 
-def reference_point(rows: Sequence[Mapping[str, str]], road: str, v_ref_kmh: float) -> tuple[float, float] | str:
-    """(trip time [s], corrected fuel [kg]) of the baseline at the reference set speed on `road`,
+def reference_point(
+    rows: Sequence[Mapping[str, str]], road: str, v_ref_kmh: float, baseline: str = BASELINE
+) -> tuple[float, float] | str:
+    """(trip time [s], corrected fuel [kg]) of `baseline` at the reference set speed on `road`,
     or why there is none."""
     for row in rows:
-        if row["road"] == road and row["controller"] == BASELINE and abs(float(row["v_ref_kmh"]) - v_ref_kmh) < 1e-9:
+        if row["road"] == road and row["controller"] == baseline and abs(float(row["v_ref_kmh"]) - v_ref_kmh) < 1e-9:
             if parse_cell(row["stalled"]) is not False:
                 what = "failed" if row.get("error") else "stalled"
-                return f"not comparable: the pi {what} at v_ref {v_ref_kmh:g} km/h"
+                return f"not comparable: the {baseline} {what} at v_ref {v_ref_kmh:g} km/h"
             return float(row["time_s"]), float(row["fuel_corrected_kg"])
-    return f"not comparable: no pi run at v_ref {v_ref_kmh:g} km/h (the reference; add it to --speeds)"
+    return f"not comparable: no {baseline} run at v_ref {v_ref_kmh:g} km/h (the reference; add it to --speeds)"
 
 
-def equal_time_savings(rows: Sequence[Mapping[str, str]], v_ref_kmh: float) -> dict[str, dict[str, Saving]]:
-    """Road -> look-ahead controller -> its saving at the baseline's trip time at `v_ref_kmh`; a
-    curve with a stalled run, or whose times do not reach the reference's, has none."""
+def equal_time_savings(
+    rows: Sequence[Mapping[str, str]], v_ref_kmh: float, baseline: str = BASELINE
+) -> dict[str, dict[str, Saving]]:
+    """Road -> look-ahead controller -> its saving at `baseline`'s trip time at `v_ref_kmh` (every
+    curve but the PI's and the baseline's); a curve with a stalled run, or whose times do not reach
+    the reference's, has none."""
     out: dict[str, dict[str, Saving]] = {}
     stalls = {
         (row["road"], row["controller"]): ("failed" if row.get("error") else "stalled", row["value"])
@@ -85,10 +98,10 @@ def equal_time_savings(rows: Sequence[Mapping[str, str]], v_ref_kmh: float) -> d
         if parse_cell(row["stalled"]) is not False
     }
     for road in dict.fromkeys(row["road"] for row in rows):
-        reference = reference_point(rows, road, v_ref_kmh)
+        reference = reference_point(rows, road, v_ref_kmh, baseline)
         by_controller = curves(rows).get(road, {})
         for controller in dict.fromkeys(row["controller"] for row in rows if row["road"] == road):
-            if controller == BASELINE:
+            if controller in (BASELINE, baseline):
                 continue
             curve = by_controller.get(controller)
             if isinstance(reference, str):
@@ -97,9 +110,12 @@ def equal_time_savings(rows: Sequence[Mapping[str, str]], v_ref_kmh: float) -> d
                 what, value = stalls[road, controller]
                 saving = Saving(None, f"not comparable: {controller} {what} at {value}")
             elif curve is None or (fuel := curve.fuel_at(reference[0])) is None:
-                saving = Saving(None, f"not comparable: the pi's trip time at v_ref is outside {controller}'s times")
+                saving = Saving(
+                    None, f"not comparable: the {baseline}'s trip time at v_ref is outside {controller}'s times"
+                )
             else:
-                saving = Saving(100 * (fuel / reference[1] - 1))
+                quoted = headline(fuel, reference[1])
+                saving = Saving(quoted.pct, saved_kg=quoted.saved_kg)
             out.setdefault(road, {})[controller] = saving
     return out
 

@@ -10,14 +10,17 @@
 - A **sweep directory** (``sweep.csv``, as written by ``truckmpc sweep``) gives ``sweep.png``: Δfuel
   (raw and at equal trip time) and Δtime [%] against the prediction horizon, one line per (S, δ),
   one column per road and direction (figures 6.16–6.18; ``allow_neutral = false`` dashed), and
-  ``realtime.png``: the real-time ratio q against the horizon on a log scale (figure 6.19).
+  ``realtime.png``: the real-time ratio q against the horizon on a log scale (figure 6.19), and
+  ``headline.png``: each look-ahead controller's saving against the PCC and the PI at equal trip
+  time and equal end speed per road and truck (the only picture of a fleet without a numeric axis).
 - A **Pareto directory** (``pareto.csv``, as written by ``truckmpc pareto``) gives ``pareto.png``:
   end-speed-corrected fuel against trip time, one curve per controller, the saving at the PI's trip
   time at the reference set speed annotated.
 
 Modules: :mod:`~truckmpc.plot.run` (run pictures; their title :mod:`~truckmpc.plot.run_title`,
 their set speed, band and stops :mod:`~truckmpc.plot.run_speed` and :mod:`~truckmpc.plot.band`),
-:mod:`~truckmpc.plot.sweep` (sweep pictures), :mod:`~truckmpc.plot.figures` (matplotlib and saving).
+:mod:`~truckmpc.plot.sweep` (sweep pictures; their headline :mod:`~truckmpc.plot.headline`),
+:mod:`~truckmpc.plot.figures` (matplotlib and saving).
 
 matplotlib is an optional dependency (``pip install 'truckmpc[plot]'``). It is imported only when a
 picture is drawn, and only through its object-oriented API (``matplotlib.figure.Figure``), so no GUI

@@ -1,9 +1,11 @@
 """The pictures of a sweep: ``sweep.png``, Δfuel (raw, and at equal trip time: against the PI
 re-tuned to the run's trip time) and Δtime [%] of each look-ahead controller the sweep ran (MPC,
 PCC) against the PI, against the prediction horizon, one line per (S, δ), one column
-per road and direction (figures 6.16–6.18 of the thesis; ``allow_neutral = false`` dashed), and
-``realtime.png``, the MPC's real-time ratio q against the horizon on a log scale (figure 6.19).
-Without a horizon axis the numeric axis that varies most is used.
+per road and direction (figures 6.16–6.18 of the thesis; ``allow_neutral = false`` dashed),
+``realtime.png``, the MPC's real-time ratio q against the horizon on a log scale (figure 6.19), and
+``headline.png``, the headline per road and truck (:mod:`truckmpc.plot.headline`). Without a horizon
+axis the numeric axis that varies most is used; without one that varies (a fleet study) only the
+headline is drawn.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from truckmpc.plot.figures import PlotError, figure_class, save
+from truckmpc.plot.headline import headline_comparisons, headline_figure
 from truckmpc.plot.sweep_csv import COMPARED, compared_controllers, delta_metrics, grid_axes, read_sweep
 from truckmpc.sweep.columns import RUNS, delta_column
 
@@ -46,19 +49,36 @@ class _Layout:
 
 def plot_sweep(directory: str | os.PathLike[str], out: str | os.PathLike[str], *, svg: bool = False) -> list[Path]:
     """Draw a sweep: Δfuel (raw and at equal trip time) and Δtime against the horizon to ``out``,
-    q against the horizon beside it."""
+    q against the horizon and the headline per road and truck beside it."""
     return save(sweep_figures(directory, out), svg)
 
 
 def sweep_figures(directory: str | os.PathLike[str], out: str | os.PathLike[str]) -> list[tuple[Any, Path]]:
     """The matplotlib Figures of the sweep in ``directory``, each with the file it goes to: the Δ
-    picture at ``out``, and the real-time picture beside it when the sweep has a q column."""
+    picture at ``out``, the real-time picture beside it when the sweep has a q column, and the
+    headline beside them when it has the headline columns (alone when no numeric axis varies)."""
     directory = Path(directory)
     out = Path(out)
     header, rows = read_sweep(directory)
-    compared = compared_controllers(header)
     axes = grid_axes(directory, header)
-    x_axis = _x_axis(rows, axes, directory / "sweep.csv")
+    headline = []
+    if headline_comparisons(header):
+        path = out.with_name("headline.png" if out.name == "sweep.png" else f"{out.stem}-headline{out.suffix}")
+        headline.append((headline_figure(figure_class(), header, rows, axes), path))
+    try:
+        x_axis = _x_axis(rows, axes, directory / "sweep.csv")
+    except PlotError:
+        if headline:
+            return headline
+        raise
+    return [*_delta_figures(out, header, rows, axes, x_axis), *headline]
+
+
+def _delta_figures(
+    out: Path, header: Sequence[str], rows: Sequence[Row], axes: Sequence[str], x_axis: str
+) -> list[tuple[Any, Path]]:
+    """The Δ picture at `out` and the real-time picture beside it when the sweep has a q column."""
+    compared = compared_controllers(header)
     subject = " and ".join(label for _, label in compared)
     layout = _Layout(
         rows,

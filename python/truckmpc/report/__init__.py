@@ -2,7 +2,8 @@
 
 The page holds the summary table (for a run, the model of the ``simulate`` table,
 :func:`truckmpc.results.run_table.run_table`; for a sweep, one row per row of ``sweep.csv`` with
-the headline columns), the figures of ``truckmpc plot`` embedded as PNG ``data:`` URIs, the
+the headline, each look-ahead controller's saving at equal trip time and equal end speed, first),
+the figures of ``truckmpc plot`` embedded as PNG ``data:`` URIs, the
 command that repeats the run or sweep, its provenance (program version, roads with their SHA-256,
 the truck, the inputs as given) and every resolved parameter with its unit and meaning. Nothing
 in it is fetched from elsewhere: the file alone is the report.

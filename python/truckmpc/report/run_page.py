@@ -9,6 +9,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from truckmpc.compare import headline
 from truckmpc.report.figures import Figure, figures_html
 from truckmpc.report.html import code_block, definitions, escape, section
 from truckmpc.report.inputs import RunDir
@@ -69,19 +70,43 @@ def _lead(lines: list[str]) -> str:
 
 
 def _headline(summary: Mapping[str, Any]) -> list[str]:
-    """One sentence per comparison: how much less (or more) fuel at equal trip time, else as driven."""
+    """One sentence per comparison, those against the PCC first, then the MPC's: how much less (or
+    more) fuel at equal trip time and equal end speed (the headline, with the kilograms saved), else
+    as driven."""
+    comparisons = [c for c in summary.get("comparisons") or () if isinstance(c, Mapping)]
+    comparisons.sort(key=lambda c: (c.get("baseline") != "pcc", c.get("controller") != "mpc"))
     lines = []
-    for comparison in summary.get("comparisons") or ():
-        if not isinstance(comparison, Mapping):
-            continue
+    for comparison in comparisons:
         run, base = (NAMES.get(str(comparison.get(k)), str(comparison.get(k))) for k in ("controller", "baseline"))
-        delta, how = comparison.get("delta_fuel_equal_time_pct"), "at equal trip time"
-        if not isinstance(delta, (int, float)):
-            delta, how = comparison.get("delta_fuel_pct"), "as driven"
-        if isinstance(delta, (int, float)):
+        quoted = comparison_headline(summary, comparison)
+        if quoted is not None:
+            pct, kg = quoted
+            word = "less" if pct < 0 else "more"
+            saved = f"{kg:.3f} kg saved" if kg >= 0 else f"{-kg:.3f} kg more"
+            lines.append(
+                f"The {run} uses {abs(pct):.2f} % {word} fuel than the {base} at equal trip time and equal end "
+                f"speed ({saved})."
+            )
+        elif isinstance(delta := comparison.get("delta_fuel_pct"), (int, float)):
             word = "less" if delta < 0 else "more"
-            lines.append(f"The {run} uses {abs(delta):.2f} % {word} fuel than the {base} {how}.")
+            lines.append(f"The {run} uses {abs(delta):.2f} % {word} fuel than the {base} as driven.")
     return lines
+
+
+def comparison_headline(summary: Mapping[str, Any], comparison: Mapping[str, Any]) -> tuple[float, float] | None:
+    """A comparison's headline, (Δfuel [%], fuel saved [kg]), from the summary's fuels: its
+    controller's end-speed-corrected fuel and its baseline's re-run at the controller's trip time
+    (its ``equal_time`` object), through :func:`truckmpc.compare.headline`; None where there is none."""
+    run, base = str(comparison.get("controller")), str(comparison.get("baseline"))
+    keys = (f"equal_time_{run}_vs_{base}",) if base != "pi" else (f"equal_time_{run}", "equal_time")
+    equal: Mapping[str, Any] = next((summary[key] for key in keys if isinstance(summary.get(key), Mapping)), {})
+    own = summary.get(run)
+    quoted = headline(
+        own.get("fuel_corrected_kg") if isinstance(own, Mapping) else None, equal.get(f"{base}_fuel_corrected_kg")
+    )
+    if comparison.get("not_comparable") or quoted.pct is None or quoted.saved_kg is None:
+        return None
+    return quoted.pct, quoted.saved_kg
 
 
 def _replay_html(run: RunDir) -> str:

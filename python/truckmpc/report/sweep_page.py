@@ -12,7 +12,7 @@ from truckmpc.report.html import code_block, definitions, escape, section, table
 from truckmpc.report.inputs import SweepDir
 from truckmpc.report.replay import typed_line
 from truckmpc.report.settings import is_sections, settings_html
-from truckmpc.report.sweep_table import shared_keys, sweep_columns, sweep_table_html
+from truckmpc.report.sweep_table import run_columns, shared_keys, sweep_columns, sweep_table_html
 
 __all__ = ["sweep_body", "sweep_title"]
 
@@ -38,18 +38,26 @@ def sweep_body(sweep: SweepDir, figures: list[Figure], missing: str | None) -> s
     nav = " ".join(f'<a href="#{ident}">{escape(title)}</a>' for ident, title in _CONTENTS)
     shared = shared_keys(sweep.header, sweep.rows)
     columns = sweep_columns(sweep.header, _axes(sweep), tuple(shared))
+    runs = run_columns(sweep.header, _axes(sweep), tuple(shared))
     caption = ", ".join(f"{key} {value}" for key, value in shared.items())
     lead = (
-        f"{len(sweep.rows)} rows, one per road, direction and combination of the grid. Δ [%] = (controller − "
-        "baseline) / baseline: negative means less than the baseline; at equal trip time the baseline is re-run "
-        "at the set speed that matches the controller's trip time."
+        f"{len(sweep.rows)} rows, one per road, direction, truck and combination of the grid. The figure to quote "
+        "is each look-ahead controller's saving at equal trip time and equal end speed: Δfuel [%] = (controller − "
+        "baseline) / baseline with the baseline re-run at the set speed that matches the controller's trip time "
+        "and both runs' end speeds corrected (negative means less fuel than the baseline), and the fuel saved [kg]. "
+        "As driven, the runs are compared as they ended."
     )
     base = sweep.settings.get("base_config")
     parts = [
         f"<h1>{escape(sweep_title(sweep))}</h1>\n",
         f'<p class="lead">{escape(lead)}</p>\n',
         f"<nav>{nav}</nav>\n",
-        section("summary", "Summary", sweep_table_html(sweep.rows, columns, caption)),
+        section(
+            "summary",
+            "Summary",
+            sweep_table_html(sweep.rows, columns, caption)
+            + sweep_table_html(sweep.rows, runs, "Fuel and trip time of each run", ident="runs-table"),
+        ),
         section("figures", "Figures", figures_html(figures, missing)),
         section("replay", "Repeat the sweep", _replay_html(sweep)),
         section("provenance", "Provenance", _provenance_html(sweep.settings)),

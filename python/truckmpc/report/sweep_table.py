@@ -1,6 +1,7 @@
-"""A sweep's table: one row per row of ``sweep.csv`` (road, direction, vehicle, the grid's values),
-with each controller's fuel and trip time and each comparison's Δfuel and Δtrip time as driven and
-Δfuel at equal trip time, the headline columns of the sweep."""
+"""A sweep's tables, one row per row of ``sweep.csv`` (road, direction, vehicle, the grid's values):
+the summary, each comparison's headline first (Δfuel at equal trip time and equal end speed [%] and
+the fuel saved [kg]), then Δfuel and Δtrip time as driven against the PI [%]; and each run's fuel
+[kg] and trip time [s]. Both fit the page's width: cells wrap rather than scroll sideways."""
 
 from __future__ import annotations
 
@@ -9,16 +10,15 @@ from dataclasses import dataclass
 from typing import Any
 
 from truckmpc.report.html import escape, scalar_text
-from truckmpc.sweep.columns import ERROR_COLUMN, RUNS, VERSUS
+from truckmpc.sweep.columns import ERROR_COLUMN, RUNS, VERSUS, headline_column
 
-__all__ = ["Column", "shared_keys", "sweep_columns", "sweep_table_html"]
+__all__ = ["Column", "run_columns", "shared_keys", "sweep_columns", "sweep_table_html"]
 
 _FIGURES = (("fuel_kg", "fuel [kg]", ".3f"), ("time_s", "trip time [s]", ".1f"))
-_DELTAS = (
-    ("fuel_equal_time", "Δfuel, equal time [%]"),
-    ("fuel", "Δfuel [%]"),
-    ("time", "Δtime [%]"),
-)
+_HEADLINE = (("headline", "Δfuel [%]", "+.2f"), ("saved", "saved [kg]", ".3f"))
+_HEADLINES = (("mpc", "pcc"), ("mpc", "pi"), ("pcc", "pi"))
+"""The comparisons whose headline the table shows, in order: the MPC against the PCC first."""
+_DELTAS = (("fuel", "Δfuel [%]"), ("time", "Δtime [%]"))
 _SHARED = ("road", "direction", "vehicle")
 """Row keys shown once, above the table, when every row has the same value."""
 
@@ -43,29 +43,47 @@ def shared_keys(header: Sequence[str], rows: Sequence[Mapping[str, Any]]) -> dic
     }
 
 
-def sweep_columns(header: Sequence[str], axes: Sequence[str], shared: Sequence[str] = ()) -> list[Column]:
-    """The columns of the table for a sweep.csv with `header` and grid `axes`, without the `shared`
-    keys (said once above the table)."""
+def _keys(header: Sequence[str], axes: Sequence[str], shared: Sequence[str]) -> list[Column]:
     names = [name for name in _SHARED if name not in shared]
-    keys = [Column("", name, name) for name in (*names, *axes) if name in header]
+    return [Column("", name, name) for name in (*names, *axes) if name in header]
+
+
+def sweep_columns(header: Sequence[str], axes: Sequence[str], shared: Sequence[str] = ()) -> list[Column]:
+    """The columns of the summary table for a sweep.csv with `header` and grid `axes`, without the
+    `shared` keys (said once above the table): each comparison's headline, then as driven."""
+    headlines = [
+        Column(f"{run} vs {base}, equal time and end speed", heading, headline_column(run, base, kind), spec)
+        for run, base in _HEADLINES
+        for kind, heading, spec in _HEADLINE
+        if headline_column(run, base, kind) in header
+    ]
+    deltas = [
+        Column(f"{v.run} vs {v.base}, as driven", heading, column, "+.2f")
+        for v in VERSUS
+        if v.base == "pi"
+        for kind, heading in _DELTAS
+        for column in [dict(v.columns).get(kind)]
+        if column is not None and column in header
+    ]
+    return _keys(header, axes, shared) + headlines + deltas
+
+
+def run_columns(header: Sequence[str], axes: Sequence[str], shared: Sequence[str] = ()) -> list[Column]:
+    """The columns of the runs' table: each controller's fuel and trip time."""
     figures = [
         Column(name, heading, run.column(field), spec)
         for name, run in RUNS.items()
         for field, heading, spec in _FIGURES
         if run.column(field) in header
     ]
-    deltas = [
-        Column(f"{v.run} vs {v.base}", heading, column, "+.2f")
-        for v in VERSUS
-        for kind, heading in _DELTAS
-        for column in [dict(v.columns).get(kind)]
-        if column is not None and column in header
-    ]
-    return keys + figures + deltas
+    return _keys(header, axes, shared) + figures
 
 
-def sweep_table_html(rows: Sequence[Mapping[str, Any]], columns: Sequence[Column], caption: str = "") -> str:
-    """The table, with a row of group headings over the columns, and each row's error under it."""
+def sweep_table_html(
+    rows: Sequence[Mapping[str, Any]], columns: Sequence[Column], caption: str = "", ident: str = "sweep-table"
+) -> str:
+    """The table, with a row of group headings over the columns, and each row's error under it; as
+    wide as the page, its cells wrapping (the page's ``table.sweep`` style)."""
     groups: list[tuple[str, int]] = []
     for column in columns:
         if groups and groups[-1][0] == column.group:
@@ -82,9 +100,9 @@ def sweep_table_html(rows: Sequence[Mapping[str, Any]], columns: Sequence[Column
         if error:
             body.append(f'<tr><td colspan="{len(columns)}" class="note">error: {escape(str(error))}</td></tr>\n')
     return (
-        f'<div class="wide"><table class="numbers sweep" id="sweep-table"><caption>{escape(caption)}</caption>'
+        f'<table class="numbers sweep" id="{escape(ident)}"><caption>{escape(caption)}</caption>'
         f"<thead><tr>{top}</tr>"
-        f"<tr>{names}</tr></thead>\n<tbody>\n{''.join(body)}</tbody></table></div>\n"
+        f"<tr>{names}</tr></thead>\n<tbody>\n{''.join(body)}</tbody></table>\n"
     )
 
 

@@ -25,16 +25,19 @@ fails leaves its error in its rows' ``error`` column; the others go on.
 
 Fleets (:mod:`~truckmpc.sweep.fleet`): ``--road`` takes directories and globs too, ``--vehicle``
 may be repeated (a ``vehicle`` column), the roads may be driven both ways; the rows are summarised
-per axis value (:mod:`~truckmpc.sweep.summary`: ``summary.csv``).
+per axis value (:mod:`~truckmpc.sweep.summary`: ``summary.csv``), led by each truck's headline over
+the roads (:mod:`~truckmpc.sweep.savings`).
 
 Modules: :mod:`~truckmpc.sweep.grid` (axes), :mod:`~truckmpc.sweep.inputs` (axes and each
 combination's configuration, checked), :mod:`~truckmpc.sweep.fleet` (roads, directions,
 vehicles), :mod:`~truckmpc.sweep.plan` (rows, run keys), :mod:`~truckmpc.sweep.columns` (CSV columns
-and cells), :mod:`~truckmpc.sweep.files` (the directory's files), :mod:`~truckmpc.sweep.task` (one
-run, in a worker), :mod:`~truckmpc.sweep.cluster` and :mod:`~truckmpc.sweep.runner` (the Dask
+and cells), :mod:`~truckmpc.sweep.compared` (a row's comparisons and headline),
+:mod:`~truckmpc.sweep.files` (the directory's files), :mod:`~truckmpc.sweep.task` (one run, in a
+worker), :mod:`~truckmpc.sweep.cluster` and :mod:`~truckmpc.sweep.runner` (the Dask
 cluster and the runs on it), :mod:`~truckmpc.sweep.run` (running and resuming),
 :mod:`~truckmpc.sweep.waiting` (rows waiting for their runs), :mod:`~truckmpc.sweep.summary` (the
-summary per axis value, Parquet), :mod:`~truckmpc.sweep.progress` (the progress bar).
+summary per axis value, Parquet), :mod:`~truckmpc.sweep.savings` (a group's headline over its
+roads), :mod:`~truckmpc.sweep.progress` (the progress bar).
 """
 
 from truckmpc.sweep.cells import cell

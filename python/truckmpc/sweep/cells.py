@@ -1,14 +1,16 @@
 """The text of a ``sweep.csv`` cell: a value as written (:func:`cell`, also a YAML ``--set`` value)
-and read back (:func:`parse_cell`, also for ``truckmpc plot`` and ``pareto``)."""
+and read back (:func:`parse_cell`, also for ``truckmpc plot`` and ``pareto``), and a row's ``error``
+cell (:func:`error_text`)."""
 
 from __future__ import annotations
 
 import contextlib
 import json
 import math
+from collections.abc import Mapping
 from typing import Any
 
-__all__ = ["cell", "parse_cell", "yaml_text"]
+__all__ = ["cell", "error_text", "parse_cell", "yaml_text"]
 
 
 def cell(value: Any) -> str:
@@ -41,3 +43,12 @@ def parse_cell(text: str) -> Any:
         with contextlib.suppress(ValueError):
             return number(text)
     return text
+
+
+def error_text(failed: Mapping[str, str]) -> str | None:
+    """The ``error`` cell of a row from each failed run's error (``pi, mpc: line`` when they say
+    the same); None when none failed."""
+    by_line: dict[str, list[str]] = {}
+    for name, line in failed.items():
+        by_line.setdefault(line, []).append(name)
+    return "; ".join(f"{', '.join(names)}: {line}" for line, names in by_line.items()) or None

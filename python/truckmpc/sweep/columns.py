@@ -12,8 +12,12 @@ Every column but ``error`` belongs to one controller and follows one pattern,
 ``<controller>_<figure>`` (:func:`run_column`): ``pi_fuel_kg``, ``mpc_neutral_distance_m``,
 ``pcc_equal_time_pi_fuel_kg``; a comparison is the figure ``delta_<kind>_pct`` of the controller
 compared, against the PI, or ``delta_<kind>_vs_<base>_pct`` against another baseline
-(:func:`versus_column`): ``mpc_delta_fuel_pct``, ``mpc_delta_fuel_vs_pcc_pct``. Names written by
-earlier versions are read through :mod:`truckmpc.sweep.renamed`.
+(:func:`versus_column`): ``mpc_delta_fuel_pct``, ``mpc_delta_fuel_vs_pcc_pct``. Right after ``error``
+come the headline columns (:func:`headline_column`): each look-ahead controller's saving at equal
+trip time and equal end speed against the PI and against the PCC, in % (``mpc_headline_pct``,
+``mpc_headline_vs_pcc_pct``, negative is saved) and in kg (``mpc_saved_kg``,
+``mpc_saved_vs_pcc_kg``, positive is saved). Names written by earlier versions are read through
+:mod:`truckmpc.sweep.renamed`.
 """
 
 from __future__ import annotations
@@ -24,9 +28,10 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from truckmpc.compare import compare, delta_pct
+from truckmpc.compare import compare
 from truckmpc.schema import SUMMARY_SPECS
-from truckmpc.sweep.cells import cell, parse_cell
+from truckmpc.sweep.cells import cell, error_text, parse_cell
+from truckmpc.sweep.compared import HEADLINE_KINDS, deltas, equal_time_fields
 
 SWEPT = {"pi": ("all",), "pcc": ("all", "look_ahead"), "mpc": ("all", "look_ahead", "mpc")}
 """Which of the declared figures (:mod:`truckmpc.schema`, a spec's ``sweep``) go to each
@@ -43,12 +48,6 @@ def swept_figures(controller: str) -> tuple[str, ...]:
 PI_FIELDS = swept_figures("pi")
 """Figures of a run's summary that go to the CSV for every controller (gear shifts between forward
 gears and entries into neutral apart, each also per 100 km)."""
-
-
-def equal_time_fields(baseline: str) -> tuple[str, ...]:
-    """The figures of `baseline` re-tuned to a run's trip time (:mod:`truckmpc.equal_time`): its
-    set speed [km/h], fuel and end-speed-corrected fuel [kg]; blank where it could not be."""
-    return tuple(f"equal_time_{baseline}_{name}" for name in ("v_ref_kmh", "fuel_kg", "fuel_corrected_kg"))
 
 
 EQUAL_TIME_FIELDS = equal_time_fields("pi")
@@ -102,6 +101,13 @@ def versus_column(run: str, base: str, kind: str) -> str:
     return f"{run}_delta_{kind}{against}_pct"
 
 
+def headline_column(run: str, base: str, kind: str) -> str:
+    """The column of `run`'s headline figure `kind` (``headline`` [%], ``saved`` [kg]) against
+    `base`: ``<run>_<kind>_<unit>`` against the PI, ``<run>_<kind>_vs_<base>_<unit>`` otherwise."""
+    against = "" if base == BASELINE else f"_vs_{base}"
+    return f"{run}_{kind}{against}_{dict(HEADLINE_KINDS)[kind]}"
+
+
 @dataclass(frozen=True)
 class Versus:
     """One comparison of a row: `run` against `base`, each kind of Δ [%] (see :func:`deltas`) in
@@ -115,6 +121,11 @@ class Versus:
     def columns(self) -> tuple[tuple[str, str], ...]:
         """(kind, column) of each Δ."""
         return tuple((kind, versus_column(self.run, self.base, kind)) for kind in self.kinds)
+
+    @property
+    def headline_columns(self) -> tuple[tuple[str, str], ...]:
+        """(kind, column) of the headline's figures, % and kg (:func:`headline_column`)."""
+        return tuple((kind, headline_column(self.run, self.base, kind)) for kind, _ in HEADLINE_KINDS)
 
     @property
     def equal_time(self) -> bool:
@@ -159,22 +170,6 @@ CONVERGENCE_COLUMNS = tuple(RUNS["mpc"].column(field) for field in CONVERGENCE_F
 blank where a halved run is not comparable, and the last three where the row plans no pedal levels."""
 
 
-def deltas(base: Mapping[str, Any], run: Mapping[str, Any], base_name: str, run_name: str) -> dict[str, Any]:
-    """Δ [%] of `run` against `base` by kind: ``fuel`` and ``time`` (:func:`compare`); where those
-    are comparable also ``fuel_corrected`` (both end speeds corrected) and ``fuel_equal_time`` (raw
-    and ``_corrected``) against `base` re-tuned to `run`'s trip time (the ``equal_time_<base>_*``
-    figures of `run`); None where there is none."""
-    comparison = compare(base, run, base_name, run_name)
-    out: dict[str, Any] = {"fuel": comparison.delta_fuel_pct, "time": comparison.delta_time_pct}
-    if comparison.not_comparable is not None:
-        return out
-    _, equal_fuel, equal_corrected = equal_time_fields(base_name)
-    out["fuel_corrected"] = _delta(run["fuel_corrected_kg"], base.get("fuel_corrected_kg"))
-    out["fuel_equal_time"] = _delta(run["fuel_kg"], run.get(equal_fuel))
-    out["fuel_equal_time_corrected"] = _delta(run["fuel_corrected_kg"], run.get(equal_corrected))
-    return out
-
-
 def check_controllers(names: Sequence[str]) -> tuple[str, ...]:
     """The look-ahead controllers of a sweep in column order; ValueError (the reason) unless each
     is one of :data:`LOOK_AHEAD`, once."""
@@ -204,17 +199,30 @@ class Layout:
     def versus(self) -> tuple[Versus, ...]:
         return tuple(v for v in VERSUS if v.run in self.runs and v.base in self.runs)
 
+    def fields(self, controller: str) -> tuple[str, ...]:
+        """`controller`'s figures in the CSV: its own, with each baseline other than the PI re-tuned
+        to its trip time (:func:`equal_time_fields`), which its headline against that baseline needs."""
+        others = (field for base in self.baselines(controller) if base != BASELINE for field in equal_time_fields(base))
+        return (*RUNS[controller].fields, *others)
+
     @functools.cached_property
     def sources(self) -> tuple[tuple[str, str, str], ...]:
         """(controller, figure, column) of every figure column."""
-        return tuple((name, field, RUNS[name].column(field)) for name in self.runs for field in RUNS[name].fields)
+        return tuple((name, field, RUNS[name].column(field)) for name in self.runs for field in self.fields(name))
+
+    @functools.cached_property
+    def headlines(self) -> tuple[str, ...]:
+        """The headline columns, each comparison's % then kg: the MPC's against the PCC first."""
+        ordered = sorted(self.versus, key=lambda v: (-LOOK_AHEAD.index(v.run), v.base == BASELINE))
+        return tuple(column for v in ordered for _, column in v.headline_columns)
 
     @functools.cached_property
     def columns(self) -> tuple[str, ...]:
         """The result columns (after ``road``, ``direction`` and the axes)."""
         figures = tuple(column for _, _, column in self.sources)
         compared = tuple(column for v in self.versus for _, column in v.columns)
-        return (ERROR_COLUMN, *figures, *compared, *(CONVERGENCE_COLUMNS if self.check_convergence else ()))
+        convergence = CONVERGENCE_COLUMNS if self.check_convergence else ()
+        return (ERROR_COLUMN, *self.headlines, *figures, *compared, *convergence)
 
     def baselines(self, controller: str) -> tuple[str, ...]:
         """The controllers re-tuned to `controller`'s trip time in its worker (its equal-time deltas)."""
@@ -230,7 +238,7 @@ class Layout:
         }
         for v in self.versus:
             by_kind = {} if {v.base, v.run} & set(failed) else deltas(runs[v.base], runs[v.run], v.base, v.run)
-            values.update({column: by_kind.get(kind) for kind, column in v.columns})
+            values.update({column: by_kind.get(kind) for kind, column in (*v.columns, *v.headline_columns)})
         if self.check_convergence:  # the moves of the MPC's deltas against the PI
             comparable = not {"pi", "mpc"} & set(failed) and compare(runs["pi"], runs["mpc"]).not_comparable is None
             moves = zip(CONVERGENCE_COLUMNS, CONVERGENCE_FIELDS, strict=True)
@@ -241,7 +249,20 @@ class Layout:
     def figures(self, controller: str, cells: Sequence[str]) -> dict[str, Any]:
         """`controller`'s figures read back from a row's result cells."""
         named = dict(zip(self.columns, cells, strict=False))
-        return {field: parse_cell(named[RUNS[controller].column(field)]) for field in RUNS[controller].fields}
+        return {field: parse_cell(named[RUNS[controller].column(field)]) for field in self.fields(controller)}
+
+    def completed(self, cells: Sequence[str]) -> list[str]:
+        """A row's result cells read back with its blank headline cells filled from its own figures
+        where they hold them (a row an earlier version wrote, which had no headline columns)."""
+        if self.failed(cells) or len(cells) != len(self.columns):
+            return list(cells)
+        named = dict(zip(self.columns, cells, strict=True))
+        runs = {name: self.figures(name, cells) for name in self.runs}
+        for v in self.versus:
+            by_kind = deltas(runs[v.base], runs[v.run], v.base, v.run)
+            for kind, column in v.headline_columns:
+                named[column] = named[column] or cell(by_kind.get(kind))
+        return [named[column] for column in self.columns]
 
     def failed(self, cells: Sequence[str]) -> bool:
         """Whether a row read back has an error (it is run again on resume)."""
@@ -271,19 +292,6 @@ ALL_COLUMNS: tuple[str, ...] = Layout(LOOK_AHEAD, check_convergence=True).column
 """Every result column a sweep may have."""
 
 
-def error_text(failed: Mapping[str, str]) -> str | None:
-    """The ``error`` cell of a row from each failed run's error (``pi, mpc: line`` when they say
-    the same); None when none failed."""
-    by_line: dict[str, list[str]] = {}
-    for name, line in failed.items():
-        by_line.setdefault(line, []).append(name)
-    return "; ".join(f"{', '.join(names)}: {line}" for line, names in by_line.items()) or None
-
-
 def result_cells(pi: Mapping[str, Any], mpc: Mapping[str, Any], check_convergence: bool = False) -> list[str]:
     """The result cells of a PI and MPC row (:data:`SWEEP_COLUMNS`) from the two runs' figures."""
     return Layout(DEFAULT_CONTROLLERS, check_convergence).cells({"pi": pi, "mpc": mpc})
-
-
-def _delta(value: float | None, base: float | None) -> float | None:
-    return None if value is None or base is None else delta_pct(value, base)

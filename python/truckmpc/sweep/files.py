@@ -43,10 +43,15 @@ def _identity(settings: Mapping[str, Any]) -> dict[str, Any]:
 
 
 def check_out_dir(
-    out: Path, settings: Mapping[str, Any], stem: str = "sweep", renames: Mapping[str, str] | None = None
+    out: Path,
+    settings: Mapping[str, Any],
+    stem: str = "sweep",
+    renames: Mapping[str, str] | None = None,
+    added: frozenset[str] = frozenset(),
 ) -> None:
     """Refuse to mix studies: an existing ``<stem>.json`` in ``out`` must describe this one, its
-    ``columns`` read through `renames` (old name -> new name)."""
+    ``columns`` read through `renames` (old name -> new name) and lacking at most the columns
+    `added` since."""
     csv_name, partial_name, settings_name = file_names(stem)
     path = out / settings_name
     try:
@@ -64,6 +69,8 @@ def check_out_dir(
     if renames and isinstance(theirs["columns"], list):
         theirs["columns"] = _renamed(theirs["columns"], renames)
     mine = _identity(settings)
+    if isinstance(theirs["columns"], list) and _positions(theirs["columns"], mine["columns"] or [], added):
+        theirs["columns"] = mine["columns"]
     differ = [key for key in _IDENTITY if mine[key] != theirs[key]]
     if differ:
         raise SweepError(
@@ -117,10 +124,11 @@ def csv_line(cells: Sequence[str]) -> str:
 
 
 def read_rows(
-    path: Path, columns: Sequence[str], renames: Mapping[str, str] | None = None
+    path: Path, columns: Sequence[str], renames: Mapping[str, str] | None = None, added: frozenset[str] = frozenset()
 ) -> list[tuple[int, list[str]]]:
     """(line number, cells) of each complete line of a sweep CSV after its header (whose names are
-    read through `renames`, old name -> new name), whatever its number of cells (a last line cut
+    read through `renames`, old name -> new name; a header without some of the columns `added`
+    since gives those cells blank), whatever its number of cells (a last line cut
     short by an interruption is ignored; bytes that are not UTF-8 are read as U+FFFD, so a damaged
     line is still a line)."""
     try:
@@ -133,7 +141,8 @@ def read_rows(
     lines[-1] = lines[-1][:-1]  # what follows the last newline: a line cut short, or nothing
     if not lines[0]:
         return []
-    if _renamed(next(csv.reader([lines[0]]), []), renames or {}) != list(columns):
+    positions = _positions(_renamed(next(csv.reader([lines[0]]), []), renames or {}), columns, added)
+    if positions is None:
         raise SweepError(f"{path}: its columns are not this sweep's; remove it or use another --out")
     rows = []
     for number, line in enumerate(lines[1:], start=2):
@@ -143,20 +152,40 @@ def read_rows(
             cells = next(csv.reader([line]), [])
         except csv.Error:  # e.g. a NUL byte
             cells = []
-        rows.append((number, cells))
+        rows.append((number, _placed(cells, positions)))
     return rows
 
 
 def finished_rows(
-    out: Path, columns: Sequence[str], stem: str = "sweep", renames: Mapping[str, str] | None = None
+    out: Path,
+    columns: Sequence[str],
+    stem: str = "sweep",
+    renames: Mapping[str, str] | None = None,
+    added: frozenset[str] = frozenset(),
 ) -> list[tuple[str, list[str]]]:
     """The rows already in ``<stem>.csv`` and ``<stem>.partial.csv`` (possibly repeated), each with
-    where it was read (``DIR/sweep.partial.csv:7``); see :func:`read_rows` for `renames`."""
+    where it was read (``DIR/sweep.partial.csv:7``); see :func:`read_rows` for `renames` and `added`."""
     return [
         (f"{out / name}:{number}", cells)
         for name in file_names(stem)[:2]
-        for number, cells in read_rows(out / name, columns, renames)
+        for number, cells in read_rows(out / name, columns, renames, added)
     ]
+
+
+def _positions(header: Sequence[Any], columns: Sequence[str], added: frozenset[str]) -> list[int | None] | None:
+    """Where each of `columns` is in `header` (None: a column added since, absent); None if
+    `header` is not `columns` less some of the `added` ones, in order."""
+    if list(header) != [c for c in columns if c in header or c not in added]:
+        return None
+    return [header.index(c) if c in header else None for c in columns]
+
+
+def _placed(cells: list[str], positions: Sequence[int | None]) -> list[str]:
+    """A row's `cells` under this sweep's columns (blank where its header lacked one); as read when
+    their number is not the header's (a damaged row, dropped later)."""
+    if len(cells) != sum(p is not None for p in positions):
+        return cells
+    return [cells[p] if p is not None else "" for p in positions]
 
 
 def _renamed(names: Sequence[Any], renames: Mapping[str, str]) -> list[Any]:

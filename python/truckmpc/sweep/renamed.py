@@ -5,15 +5,20 @@ Earlier versions wrote the MPC's solver figures, its equal-time baseline's, its 
 its convergence moves without the ``mpc_`` prefix (``neutral_distance_m``, ``delta_fuel_pct``), and
 its Δ against the PCC as ``delta_<kind>_mpc_vs_pcc_pct``. Readers map a header through
 :func:`current_names` before comparing it with :mod:`truckmpc.sweep.columns`'s names.
+
+Earlier versions wrote neither the headline columns nor the MPC's PCC re-tuned to its trip time
+(:data:`ADDED_COLUMNS`): a header without them is this sweep's, its rows' cells there are blank,
+and a resume fills the headline where the row's own figures give it.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterable
 
-from truckmpc.sweep.columns import RUNS, versus_column
+from truckmpc.sweep.columns import LOOK_AHEAD, RUNS, Layout, versus_column
+from truckmpc.sweep.compared import equal_time_fields
 
-__all__ = ["RENAMED_COLUMNS", "current_name", "current_names"]
+__all__ = ["ADDED_COLUMNS", "RENAMED_COLUMNS", "current_name", "current_names"]
 
 _UNPREFIXED_MPC = (
     "neutral_distance_m",
@@ -43,6 +48,12 @@ RENAMED_COLUMNS: dict[str, str] = {
     "delta_fuel_equal_time_mpc_vs_pcc_pct": versus_column("mpc", "pcc", "fuel_equal_time"),
 }
 """Old column name -> the name the sweep writes now."""
+
+
+ADDED_COLUMNS: frozenset[str] = frozenset(
+    (*Layout(LOOK_AHEAD).headlines, *(RUNS["mpc"].column(field) for field in equal_time_fields("pcc")))
+)
+"""The columns added since earlier versions: blank in the rows those wrote."""
 
 
 def current_name(name: str) -> str:

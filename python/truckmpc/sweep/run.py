@@ -24,7 +24,7 @@ from truckmpc.sweep.files import (
 )
 from truckmpc.sweep.grid import Axis
 from truckmpc.sweep.plan import SHARED_SECTIONS, Row, SweepPlan, plan_sweep
-from truckmpc.sweep.renamed import RENAMED_COLUMNS
+from truckmpc.sweep.renamed import ADDED_COLUMNS, RENAMED_COLUMNS
 from truckmpc.sweep.runner import ProgressHook, Runner
 from truckmpc.sweep.task import RunBase, Task
 from truckmpc.sweep.waiting import Run, Waiting
@@ -112,7 +112,7 @@ def run_plan(
     and :class:`SweepInterrupted` (a ``KeyboardInterrupt``) says how many.
     """
     out, notice = Path(out), notice or _to_stderr
-    check_out_dir(out, plan.settings, renames=RENAMED_COLUMNS)
+    check_out_dir(out, plan.settings, renames=RENAMED_COLUMNS, added=ADDED_COLUMNS)
     done = _resumed_rows(plan, out, notice)
     resumed = len(done)
     pending = [row for row in plan.rows if row.index not in done]
@@ -216,7 +216,7 @@ def _resumed_rows(plan: SweepPlan, out: Path, notice: Callable[[str], None]) -> 
     done: dict[int, list[str]] = {}
     dropped: list[str] = []
     failed: set[int] = set()
-    for where, cells in finished_rows(out, plan.columns, renames=RENAMED_COLUMNS):
+    for where, cells in finished_rows(out, plan.columns, renames=RENAMED_COLUMNS, added=ADDED_COLUMNS):
         row = by_key.get(tuple(cells[:first_result]))
         if row is not None and plan.layout.failed(cells[first_result:]):
             failed.add(row.index)
@@ -225,8 +225,8 @@ def _resumed_rows(plan: SweepPlan, out: Path, notice: Callable[[str], None]) -> 
         problem = "not a row of this sweep" if row is None else damage
         if problem is not None or row is None:
             dropped.append(f"{where}: {problem}")
-        else:
-            done.setdefault(row.index, cells)
+        else:  # an earlier version's row gets its headline from its own figures
+            done.setdefault(row.index, [*cells[:first_result], *plan.layout.completed(cells[first_result:])])
     if dropped:
         rows = "1 damaged row" if len(dropped) == 1 else f"{len(dropped)} damaged rows"
         notice(f"dropped {rows}, to run again ({dropped[0]}{'; ...' if len(dropped) > 1 else ''})")

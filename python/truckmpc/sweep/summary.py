@@ -1,6 +1,9 @@
 """A fleet study's summary: for each axis value (and each vehicle, each direction, and all rows
-together), each look-ahead controller's Δfuel and Δtime against the PI [%] over the roads — mean,
-standard deviation, the worst road (the least saving) — and how many rows failed; ``summary.csv``.
+together), each look-ahead controller's headline over the roads — its saving against the PCC and
+against the PI at equal trip time and equal end speed: mean and distance-weighted mean [%], mean and
+total fuel saved [kg], best and worst road (:mod:`truckmpc.sweep.savings`) — then its Δfuel and
+Δtime as driven against the PI [%] (mean, standard deviation, the worst road) and how many rows
+failed; ``summary.csv``.
 And the result table as Parquet (``--parquet``, with pyarrow), since fleet tables outgrow CSV.
 """
 
@@ -13,16 +16,21 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from truckmpc.atomic import atomic_write_text
+from truckmpc.roads import RoadProfile
 from truckmpc.sweep.cells import parse_cell
-from truckmpc.sweep.columns import ERROR_COLUMN, delta_column
+from truckmpc.sweep.columns import ERROR_COLUMN, Layout, delta_column
 from truckmpc.sweep.errors import SweepError
 from truckmpc.sweep.files import csv_line
+from truckmpc.sweep.savings import SAVINGS_FIGURES, savings, savings_column
 
 if TYPE_CHECKING:
     from truckmpc.sweep.plan import SweepPlan
     from truckmpc.sweep.run import SweepResult
 
 SUMMARY_NAME = "summary.csv"
+
+HEADLINE_BASELINES = ("pcc", "pi")
+"""The baselines a controller's headline is summarised against, in column order."""
 
 SUMMARY_COLUMNS = (
     "axis",
@@ -31,6 +39,7 @@ SUMMARY_COLUMNS = (
     "rows",
     "compared",
     "failed",
+    *(savings_column(base, figure) for base in HEADLINE_BASELINES for figure in SAVINGS_FIGURES),
     "mean_delta_fuel_pct",
     "std_delta_fuel_pct",
     "mean_delta_time_pct",
@@ -42,8 +51,10 @@ SUMMARY_COLUMNS = (
     "failed_roads",
     "first_error",
 )
-"""Columns of ``summary.csv``: ``rows`` of the axis value, ``compared`` those with both Δs (not
-stalled, not failed), ``failed`` those with an error; the standard deviation is the sample's (0 for
+"""Columns of ``summary.csv``: ``rows`` of the axis value, ``compared`` those with both Δs as driven
+(not stalled, not failed), ``failed`` those with an error; the headline against the PCC and the PI
+(``headline_vs_<baseline>_*``, :data:`~truckmpc.sweep.savings.SAVINGS_FIGURES`; blank against a
+baseline the sweep did not run); the standard deviation is the sample's (0 for
 one row); the worst road is the compared row with the largest Δfuel; ``failed_roads`` names the
 roads of the failed rows, ``first_error`` the first one's error."""
 
@@ -61,12 +72,20 @@ def summary_groups(rows: Rows, axes: Sequence[str]) -> list[tuple[str, str, list
     return groups
 
 
-def summarise(rows: Rows, axes: Sequence[str], controllers: Sequence[str]) -> list[dict[str, str]]:
-    """The summary rows (:data:`SUMMARY_COLUMNS`, as cell text) of a sweep's result rows."""
+def summarise(
+    rows: Rows, axes: Sequence[str], controllers: Sequence[str], lengths_m: Mapping[str, float]
+) -> list[dict[str, str]]:
+    """The summary rows (:data:`SUMMARY_COLUMNS`, as cell text) of a sweep's result rows, each road
+    weighted by its length [m] in `lengths_m` (by road name) in the distance-weighted means."""
+    versus = Layout(tuple(controllers)).versus
     out = []
     for axis, value, members in summary_groups(rows, axes):
         for controller in controllers:
-            out.append({"axis": axis, "value": value, "controller": controller, **_figures(members, controller)})
+            summary = {"axis": axis, "value": value, "controller": controller, **_figures(members, controller)}
+            for base in HEADLINE_BASELINES:
+                ran = any((v.run, v.base) == (controller, base) for v in versus)
+                summary.update(savings(members if ran else [], controller, base, lengths_m))
+            out.append(summary)
     return out
 
 
@@ -114,23 +133,43 @@ def write_summary(out: Path, summary: Sequence[Mapping[str, str]]) -> Path:
 
 
 def summary_lines(summary: Sequence[Mapping[str, str]]) -> list[str]:
-    """One line per summary row: the group, the mean and spread of Δfuel and Δtime, the worst road,
-    the failed rows."""
+    """The lines of each summary row: its headline against each baseline that ran (mean, distance-
+    weighted mean, fuel saved, best and worst road), then Δfuel and Δtrip time as driven against the
+    PI with the worst road, and the failed rows."""
     lines = []
     for row in summary:
-        group = "all rows" if row["axis"] == "all" else f"{row['axis']}={row['value']}"
+        group = "all rows" if row["axis"] == "all" else f"{row['axis']} {row['value']}"
+        who = f"{group}, {row['controller']}"
+        for base in HEADLINE_BASELINES:
+            if row[savings_column(base, "compared")] not in ("", "0"):
+                lines.append(f"{who} against the {base.upper()} at equal trip time and end speed: {_saving(row, base)}")
         if row["mean_delta_fuel_pct"]:
             worst = ", ".join(v for v in (row["worst_direction"], row["worst_vehicle"]) if v)
             text = (
-                f"Δfuel vs PI {float(row['mean_delta_fuel_pct']):+.2f} % ± {float(row['std_delta_fuel_pct']):.2f}, "
+                f"Δfuel {float(row['mean_delta_fuel_pct']):+.2f} % ± {float(row['std_delta_fuel_pct']):.2f}, "
                 f"Δtrip time {float(row['mean_delta_time_pct']):+.2f} % over {row['compared']} rows; worst "
                 f"{row['worst_road']} ({worst}) {float(row['worst_delta_fuel_pct']):+.2f} %"
             )
         else:
             text = "no comparable row"
         failed = f"; {row['failed']} failed, on {row['failed_roads']}" if row["failed"] != "0" else ""
-        lines.append(f"{group} {row['controller']}: {text}{failed}")
+        lines.append(f"{who} as driven against the PI: {text}{failed}")
     return lines
+
+
+def _saving(row: Mapping[str, str], base: str) -> str:
+    """One baseline's headline figures of a summary row, in words."""
+
+    def figure(name: str) -> float:
+        return float(row[savings_column(base, name)])
+
+    return (
+        f"Δfuel {figure('mean_pct'):+.2f} % on average ({figure('weighted_pct'):+.2f} % weighted by distance), "
+        f"{figure('mean_saved_kg'):.3f} kg saved per road, {figure('total_saved_kg'):.3f} kg in all, over "
+        f"{row[savings_column(base, 'compared')]} rows; best {row[savings_column(base, 'best_road')]} "
+        f"{figure('best_pct'):+.2f} % ({figure('best_saved_kg'):.3f} kg), worst "
+        f"{row[savings_column(base, 'worst_road')]} {figure('worst_pct'):+.2f} % ({figure('worst_saved_kg'):.3f} kg)"
+    )
 
 
 def check_parquet() -> None:
@@ -167,7 +206,8 @@ def fleet_outputs(out: Path, plan: SweepPlan, result: SweepResult, parquet: bool
     files: list[Path] = []
     failed = any(row[ERROR_COLUMN] for row in result.rows)
     if len(plan.roads) > 1 or len(plan.vehicle_paths) > 1 or failed:
-        summary = summarise(result.rows, [axis.key for axis in plan.axes], plan.controllers)
+        lengths_m = {road.name: road.length_m for road in plan.roads if isinstance(road, RoadProfile)}
+        summary = summarise(result.rows, [axis.key for axis in plan.axes], plan.controllers, lengths_m)
         lines += summary_lines(summary)
         files.append(write_summary(out, summary))
     if parquet:

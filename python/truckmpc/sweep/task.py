@@ -15,7 +15,8 @@ from truckmpc.equal_time import equal_time_baselines
 from truckmpc.errors import RoadError, TruckmpcError
 from truckmpc.roads import RoadProfile
 from truckmpc.sim import RunResult, simulate
-from truckmpc.sweep.columns import CONVERGENCE_FIELDS, ERROR_COLUMN, RUNS, equal_time_fields
+from truckmpc.sweep.columns import CONVERGENCE_FIELDS, ERROR_COLUMN, RUNS
+from truckmpc.sweep.compared import equal_time_fields
 
 ERROR = ERROR_COLUMN
 """The key of a failed run's one-line error in its figures (which hold nothing else): the name of
@@ -104,7 +105,7 @@ def _figures(profile: RoadProfile, config: RunConfig, task: Task) -> dict[str, A
 
 def _equal_time_figures(profile: RoadProfile, config: RunConfig, base: RunResult, run: RunResult) -> dict[str, Any]:
     """`base`'s controller re-tuned to `run`'s trip time, starting from `base` (its run at v_ref):
-    ``equal_time_<base>_*`` (:func:`~truckmpc.sweep.columns.equal_time_fields`), None each where the
+    ``equal_time_<base>_*`` (:func:`~truckmpc.sweep.compared.equal_time_fields`), None each where the
     time was not reached."""
     fields = equal_time_fields(base.name)
     figures: dict[str, Any] = dict.fromkeys(fields)
