@@ -124,12 +124,12 @@ def test_a_road_without_stops_is_driven_as_before() -> None:
     road = whole_road()
     plain = RoadProfile("plain", road.distance_m, road.altitude_m, target_speed_kmh=road.target_speed_kmh)
     result = simulate(plain, config, "pi")
-    out = _core.run(config.settings, plain.core(), np.ascontiguousarray(plain.altitude_m), "pi")
+    out_summary, out_trace = _core.run(config.settings, plain.core(), np.ascontiguousarray(plain.altitude_m), "pi")
     timing = ("compute_time_s", "realtime_ratio")
     assert {k: v for k, v in result.summary.items() if k not in (*timing, "fuel_corrected_kg")} == {
-        k: v for k, v in out.summary.items() if k not in timing
+        k: v for k, v in out_summary.items() if k not in timing
     }
-    for name, column in out.trace.items():
+    for name, column in out_trace.items():
         np.testing.assert_array_equal(result.trace[name], column)
 
 

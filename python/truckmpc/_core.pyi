@@ -4,7 +4,7 @@ Checked against the compiled module by `python -m mypy.stubtest truckmpc._core` 
 """
 
 from collections.abc import Mapping, Sequence
-from typing import Any, Protocol, TypedDict, final
+from typing import Any, Protocol, TypeAlias, TypedDict, final
 
 import numpy as np
 import numpy.typing as npt
@@ -14,7 +14,6 @@ __all__ = [
     "MapTruck",
     "ParamError",
     "Road",
-    "RunOutput",
     "Settings",
     "Vehicle",
     "controllers",
@@ -267,16 +266,9 @@ def summary_specs() -> list[dict[str, Any]]:
 def trace_specs() -> list[dict[str, Any]]:
     """Every column of a run's trace, in the CSV's order: a record each, as `summary_specs`."""
 
-@final
-class RunOutput:
-    """What a closed-loop run returns."""
-
-    @property
-    def controller(self) -> str: ...
-    @property
-    def summary(self) -> dict[str, Any]: ...
-    @property
-    def trace(self) -> dict[str, npt.NDArray[Any]]: ...
+_RunOutput: TypeAlias = tuple[dict[str, Any], dict[str, npt.NDArray[Any]]]
+"""What a closed-loop run returns: its summary (figures by name, as `truckmpc.sim.simulate` documents)
+and its trace (1-D arrays by column name, float64 but `gear` int64)."""
 
 def run(
     settings: Settings,
@@ -284,7 +276,7 @@ def run(
     altitude_m: npt.NDArray[np.float64],
     controller: str,
     controller_road: Road | None = None,
-) -> RunOutput:
+) -> _RunOutput:
     """Drive `road` with a built-in controller from its start to its end (or a stall), the closed
     loop in Rust with the GIL released.
 
@@ -295,7 +287,7 @@ def run(
         controller_road: the road the controller plans on, if not `road` (the plant drives `road`).
 
     Returns:
-        RunOutput; the summary of a controller that solves the DP also holds its `settings`, with
+        (summary, trace); the summary of a controller that solves the DP also holds its `settings`, with
         the resolved values under their declared names.
     """
 
@@ -306,7 +298,7 @@ def run_python(
     controller: Any,
     profile: Any,
     state_type: Any,
-) -> RunOutput:
+) -> _RunOutput:
     """Drive `road` with a controller written in Python, in the same closed loop as the built-in ones.
 
     Args:

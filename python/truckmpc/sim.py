@@ -119,7 +119,7 @@ def _drive(road: RoadProfile, config: RunConfig, controller: str | Controller) -
         if controller not in CONTROLLERS:
             raise ConfigError(f"controller: expected one of {', '.join(CONTROLLERS)}, got {controller!r}")
         told = None if road.controller_map is None else road.controller_map.core()
-        out = _core.run(config.settings, road.core(), altitude_m, controller, told)
+        figures, trace = _core.run(config.settings, road.core(), altitude_m, controller, told)
         name, extra = controller, {}
     else:
         if config.settings.get("controller_mass_kg") is not None:
@@ -131,10 +131,10 @@ def _drive(road: RoadProfile, config: RunConfig, controller: str | Controller) -
             raise ConfigError(
                 f"controller_road: expected a built-in controller, got the Python controller {controller.name!r}"
             )
-        out = _core.run_python(config.settings, road.core(), altitude_m, controller, road, PlantState)
+        figures, trace = _core.run_python(config.settings, road.core(), altitude_m, controller, road, PlantState)
         summary_of = getattr(controller, "summary", None)
         name, extra = controller.name, dict(summary_of()) if callable(summary_of) else {}
-    summary = {**out.summary, **extra}
+    summary = {**figures, **extra}
     g_per_half_v2 = config.settings.derived()["kinetic_fuel_g_per_half_v2"]
     summary["fuel_corrected_kg"] = None if summary["stalled"] else corrected_fuel_kg(summary, g_per_half_v2)
-    return RunResult(name=name, road=road.name, summary=summary, trace=dict(out.trace))
+    return RunResult(name=name, road=road.name, summary=summary, trace=dict(trace))

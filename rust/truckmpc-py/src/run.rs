@@ -1,5 +1,5 @@
 //! Binding of the Rust closed loop: `run` drives a built-in controller over a road with the GIL
-//! released, `run_python` a controller written in Python; both return a `RunOutput`.
+//! released, `run_python` a controller written in Python; both return the run's summary and trace.
 //! `controllers` lists the built-in controllers.
 
 use numpy::PyReadonlyArray1;
@@ -18,30 +18,21 @@ use crate::params::PySettings;
 use crate::road::PyRoad;
 use crate::signals;
 
-/// The outcome of `run`: the controller's name, the summary figures (dict, keys as
-/// `truckmpc.sim.simulate` documents, plus the solver's for the MPC) and the trace (dict of 1-D
-/// numpy arrays, float64 but `gear` int64).
-#[pyclass(name = "RunOutput", module = "truckmpc._core", frozen)]
-struct PyRunOutput {
-    #[pyo3(get)]
-    controller: String,
-    #[pyo3(get)]
-    summary: Py<PyDict>,
-    #[pyo3(get)]
-    trace: Py<PyDict>,
-}
+/// The outcome of `run`: the summary figures (dict, keys as `truckmpc.sim.simulate` documents, plus
+/// the DP controllers' `settings`) and the trace (dict of 1-D numpy arrays, float64 but `gear` int64).
+type Output<'py> = (Bound<'py, PyDict>, Bound<'py, PyDict>);
 
 /// Drive `road` with the built-in `controller`, the GIL released (arguments: `_core.pyi`).
 #[pyfunction]
 #[pyo3(signature = (settings, road, altitude_m, controller, controller_road=None))]
-fn run(
-    py: Python<'_>,
+fn run<'py>(
+    py: Python<'py>,
     settings: &PySettings,
     road: &PyRoad,
     altitude_m: PyReadonlyArray1<'_, f64>,
     controller: &str,
     controller_road: Option<&PyRoad>,
-) -> PyResult<PyRunOutput> {
+) -> PyResult<Output<'py>> {
     let scenario = &settings.inner;
     let mut ctrl = scenario.controller(controller).map_err(to_py)?;
     let altitude_m = altitude_m.as_array().to_vec();
@@ -58,21 +49,16 @@ fn controllers() -> Vec<(&'static str, &'static str, bool)> {
     CONTROLLERS.iter().map(|k| (k.name, k.doc, k.solves_dp)).collect()
 }
 
-fn output_of(py: Python<'_>, output: RunOutput) -> PyResult<PyRunOutput> {
+fn output_of(py: Python<'_>, output: RunOutput) -> PyResult<Output<'_>> {
     let summary = summary_dict(py, &output.summary)?;
     if let Some(settings) = &output.settings {
         summary.set_item("settings", dict_of(py, settings)?)?;
     }
-    Ok(PyRunOutput {
-        controller: output.controller.to_string(),
-        summary: summary.unbind(),
-        trace: trace_dict(py, output.trace)?.unbind(),
-    })
+    Ok((summary, trace_dict(py, output.trace)?))
 }
 
-/// Add `run`, `run_python`, `controllers` and `RunOutput` to the module.
+/// Add `run`, `run_python` and `controllers` to the module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_class::<PyRunOutput>()?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(run_python, m)?)?;
     m.add_function(wrap_pyfunction!(controllers, m)?)?;
@@ -125,15 +111,15 @@ impl Controller for PyController {
 
 /// Drive `road` with a controller written in Python, in the same closed loop (arguments: `_core.pyi`).
 #[pyfunction]
-fn run_python(
-    py: Python<'_>,
+fn run_python<'py>(
+    py: Python<'py>,
     settings: &PySettings,
     road: &PyRoad,
     altitude_m: PyReadonlyArray1<'_, f64>,
     controller: Py<PyAny>,
     profile: Py<PyAny>,
     state_type: Py<PyAny>,
-) -> PyResult<PyRunOutput> {
+) -> PyResult<Output<'py>> {
     let mut ctrl = PyController { obj: controller, profile, state_type, error: None };
     let altitude_m = altitude_m.as_array().to_vec();
     let output = settings.inner.run(&road.inner, None, &altitude_m, &mut ctrl).map_err(to_py)?;
