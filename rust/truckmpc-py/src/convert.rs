@@ -50,3 +50,13 @@ pub fn dict_of<'py>(py: Python<'py>, pairs: &[(&str, Value)]) -> PyResult<Bound<
     }
     Ok(out)
 }
+
+/// A struct of the core's read off the same-named attributes of a Python object (a dataclass, a
+/// reader's data): the core declares the fields once; the struct literal fails to compile if one is
+/// left out.
+macro_rules! read_attrs {
+    ($obj:expr, $kind:ident { $($field:ident),* $(,)? }) => {
+        $kind { $($field: $obj.getattr(stringify!($field))?.extract()?),* }
+    };
+}
+pub(crate) use read_attrs;

@@ -26,9 +26,6 @@ pub fn to_py(err: CoreError) -> PyErr {
             value.setattr("related", related)?;
             Ok(())
         };
-        match set() {
-            Ok(()) => py_err,
-            Err(e) => e,
-        }
+        set().err().unwrap_or(py_err)
     })
 }

@@ -6,24 +6,16 @@ use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use truckmpc_core::sim::schema::{Column, Figure, SUMMARY, TRACE};
+use truckmpc_core::params::Value;
+use truckmpc_core::sim::schema::{Column, SUMMARY, TRACE};
 use truckmpc_core::sim::{RunSummary, Trace};
 
 use crate::convert::dict_of;
 
 /// The figures `s` carries, keyed by their declared names, in the declaration's order.
 pub fn summary_dict<'py>(py: Python<'py>, s: &RunSummary) -> PyResult<Bound<'py, PyDict>> {
-    let out = PyDict::new(py);
-    for (spec, value) in s.figures() {
-        match value {
-            Figure::Number(x) => out.set_item(spec.name, x)?,
-            Figure::Count(n) => out.set_item(spec.name, n)?,
-            Figure::Flag(b) => out.set_item(spec.name, b)?,
-            Figure::Text(text) => out.set_item(spec.name, text)?,
-            Figure::Null => out.set_item(spec.name, py.None())?,
-        }
-    }
-    Ok(out)
+    let figures: Vec<(&str, Value)> = s.figures().map(|(spec, figure)| (spec.name, figure.into())).collect();
+    dict_of(py, &figures)
 }
 
 /// The trace's columns as numpy arrays (float64, `gear` int64), in the declaration's order.

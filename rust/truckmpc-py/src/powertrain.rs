@@ -1,5 +1,5 @@
 //! The map-based truck (`truckmpc_core::powertrain`) as Python sees it: built from an engine, a
-//! driveline and a body read off typed Python objects, and asked for its figures.
+//! driveline and a body read off the attributes of Python objects, and asked for its figures.
 
 use std::sync::Arc;
 
@@ -7,48 +7,11 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use truckmpc_core::figures;
-use truckmpc_core::powertrain::{Body, Driveline, Engine, MapTruck};
+use truckmpc_core::powertrain::{Body, DrivelineData, EngineData, TruckParts};
 use truckmpc_core::scenario::ComponentTruck;
 
-use crate::convert::dict_of;
+use crate::convert::{dict_of, read_attrs};
 use crate::errors::to_py;
-
-/// Rows of (speed, torque, value) points of a map or curve.
-type Rows = Vec<(f64, f64, f64)>;
-
-/// An engine's data, read off the attributes of any object that has them (a VECTO `EngineData`).
-#[derive(FromPyObject)]
-struct EngineData {
-    idle_speed_rpm: f64,
-    inertia_kgm2: f64,
-    full_load: Rows,
-    fuel_map: Rows,
-}
-
-/// A gearbox and axle with their losses and the tyres' radius, read off an object's attributes.
-#[derive(FromPyObject)]
-struct DrivelineData {
-    gear_ratios: Vec<f64>,
-    axle_ratio: f64,
-    gear_efficiency: f64,
-    axle_efficiency: f64,
-    loss_torque_nm: f64,
-    wheel_radius_m: f64,
-    gear_loss_maps: Option<Vec<Rows>>,
-    axle_loss_map: Option<Rows>,
-}
-
-/// The body and load, read off an object's attributes.
-#[derive(FromPyObject)]
-struct BodyData {
-    mass_kg: f64,
-    wheels_inertia_kgm2: f64,
-    cda_m2: f64,
-    air_density_kgpm3: f64,
-    rolling_resistance: f64,
-    aux_power_w: f64,
-    cda_curve: Option<Vec<(f64, f64)>>,
-}
 
 /// A truck from component data (engine, driveline, body), checked by the core, and how long a gear
 /// shift interrupts traction [s].
@@ -62,28 +25,33 @@ impl PyMapTruck {
     #[new]
     #[pyo3(signature = (engine, driveline, body, traction_interruption_s=0.0))]
     fn new(
-        engine: EngineData,
-        driveline: DrivelineData,
-        body: BodyData,
+        engine: &Bound<'_, PyAny>,
+        driveline: &Bound<'_, PyAny>,
+        body: &Bound<'_, PyAny>,
         traction_interruption_s: f64,
     ) -> PyResult<Self> {
-        let e = engine;
-        let engine = Engine::new(e.idle_speed_rpm, e.inertia_kgm2, &e.full_load, &e.fuel_map).map_err(to_py)?;
-        let d = driveline;
-        let losses = (d.gear_efficiency, d.axle_efficiency, d.loss_torque_nm);
-        let driveline = Driveline::new((&d.gear_ratios, d.axle_ratio), losses, d.wheel_radius_m)
-            .and_then(|built| built.with_loss_maps(d.gear_loss_maps.as_deref(), d.axle_loss_map.as_deref()))
-            .map_err(to_py)?;
-        let b = body;
-        let (mass_kg, wheels_inertia_kgm2, cda_m2) = (b.mass_kg, b.wheels_inertia_kgm2, b.cda_m2);
-        let (air_density_kgpm3, rolling_resistance, aux_power_w) =
-            (b.air_density_kgpm3, b.rolling_resistance, b.aux_power_w);
-        let body = Body { mass_kg, wheels_inertia_kgm2, cda_m2, air_density_kgpm3, rolling_resistance, aux_power_w };
-        let mut truck = MapTruck::new(engine, driveline, body).map_err(to_py)?;
-        if let Some(curve) = &b.cda_curve {
-            truck = truck.with_cda_curve(curve).map_err(to_py)?;
-        }
-        let inner = ComponentTruck::new(truck, traction_interruption_s).map_err(to_py)?;
+        let parts = TruckParts {
+            engine: read_attrs!(engine, EngineData { idle_speed_rpm, inertia_kgm2, full_load, fuel_map }),
+            driveline: read_attrs!(
+                driveline,
+                DrivelineData {
+                    gear_ratios,
+                    axle_ratio,
+                    gear_efficiency,
+                    axle_efficiency,
+                    loss_torque_nm,
+                    wheel_radius_m,
+                    gear_loss_maps,
+                    axle_loss_map,
+                }
+            ),
+            body: read_attrs!(
+                body,
+                Body { mass_kg, wheels_inertia_kgm2, cda_m2, air_density_kgpm3, rolling_resistance, aux_power_w }
+            ),
+            cda_curve: body.getattr("cda_curve")?.extract()?,
+        };
+        let inner = ComponentTruck::new(parts.build().map_err(to_py)?, traction_interruption_s).map_err(to_py)?;
         Ok(PyMapTruck { inner: Arc::new(inner) })
     }
 

@@ -7,6 +7,7 @@ use pyo3::prelude::*;
 use truckmpc_core::figures;
 use truckmpc_core::{CruiseParams, Road};
 
+use crate::convert::read_attrs;
 use crate::errors::to_py;
 
 /// A road profile: points `distance_m` [m] (strictly increasing), the grade of each segment
@@ -39,24 +40,14 @@ impl PyRoad {
         &self,
         py: Python<'py>,
         distance_m: PyReadonlyArray1<'_, f64>,
-        cruise: CruiseData,
+        cruise: &Bound<'py, PyAny>,
     ) -> PyResult<SpeedBandArrays<'py>> {
-        let CruiseData { v_ref_kmh, v_dec_kmh, v_inc_kmh, target_offset_kmh, target_decel_mps2 } = cruise;
-        let cruise = CruiseParams { v_ref_kmh, v_dec_kmh, v_inc_kmh, target_offset_kmh, target_decel_mps2 };
+        let cruise =
+            read_attrs!(cruise, CruiseParams { v_ref_kmh, v_dec_kmh, v_inc_kmh, target_offset_kmh, target_decel_mps2 });
         let distance_m = distance_m.as_array().to_vec();
         let [set, low, high] = figures::speed_band(&self.inner, &cruise, &distance_m).map_err(to_py)?;
         Ok((set.into_pyarray(py), low.into_pyarray(py), high.into_pyarray(py)))
     }
-}
-
-/// The cruise keys of the band [km/h, m/s²], read off an object's attributes.
-#[derive(FromPyObject)]
-struct CruiseData {
-    v_ref_kmh: f64,
-    v_dec_kmh: f64,
-    v_inc_kmh: f64,
-    target_offset_kmh: f64,
-    target_decel_mps2: f64,
 }
 
 /// The set speed, v_min and v_max along a road [km/h], as numpy arrays.

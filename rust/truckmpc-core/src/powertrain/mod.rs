@@ -14,6 +14,7 @@
 //! - [`loss_map`]: a gear's or the axle's torque loss over speed and torque (VECTO's loss maps);
 //! - [`driveline`]: gear and axle ratios, their losses, the tyre radius;
 //! - [`truck`]: the whole truck: road loads, engine operating points, the fuel to hold a speed;
+//! - [`parts`]: a truck's component data as a file reader gives it, and the truck built from it;
 //! - [`fuel_grid`]: the fuel map resampled on a regular grid, for fast evaluation;
 //! - [`dynamics`]: the truck as the plant and the controllers drive it (pedal, brake, gear).
 
@@ -26,6 +27,7 @@ pub mod fuel_grid;
 pub mod fuel_map;
 pub mod interface;
 pub mod loss_map;
+pub mod parts;
 pub mod thesis;
 pub mod truck;
 
@@ -42,6 +44,7 @@ pub use fuel_grid::FuelGrid;
 pub use fuel_map::FuelMap;
 pub use interface::{AffineAccel, Control, EnergyStore, Powertrain, RateForm, NEUTRAL};
 pub use loss_map::LossMap;
+pub use parts::{DrivelineData, EngineData, TruckParts};
 pub use thesis::{GearConstants, ThesisModel};
 pub use truck::{Body, MapTruck, OperatingPoint, RoadLoads, G_MPS2};
 

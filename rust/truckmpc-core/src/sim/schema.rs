@@ -230,6 +230,19 @@ pub enum Figure<'a> {
     Null,
 }
 
+impl From<Figure<'_>> for Value {
+    /// The figure as a value of the kind it is (a count as a whole number).
+    fn from(figure: Figure<'_>) -> Value {
+        match figure {
+            Figure::Number(x) => Value::Float(x),
+            Figure::Count(n) => Value::Int(i64::try_from(n).unwrap_or(i64::MAX)),
+            Figure::Flag(b) => Value::Bool(b),
+            Figure::Text(text) => Value::Text(text.to_string()),
+            Figure::Null => Value::Null,
+        }
+    }
+}
+
 /// Reads a figure from a run's summary; None when the run does not carry it.
 pub type ReadFigure = for<'a> fn(&'a RunSummary) -> Option<Figure<'a>>;
 
