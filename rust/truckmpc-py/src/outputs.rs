@@ -14,7 +14,7 @@ use crate::convert::dict_of;
 
 /// The figures `s` carries, keyed by their declared names, in the declaration's order.
 pub fn summary_dict<'py>(py: Python<'py>, s: &RunSummary) -> PyResult<Bound<'py, PyDict>> {
-    let figures: Vec<(&str, Value)> = s.figures().map(|(spec, figure)| (spec.name, figure.into())).collect();
+    let figures: Vec<(&str, Value)> = s.figures().map(|(spec, figure)| (spec.name, figure.value())).collect();
     dict_of(py, &figures)
 }
 

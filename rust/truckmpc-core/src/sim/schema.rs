@@ -230,10 +230,10 @@ pub enum Figure<'a> {
     Null,
 }
 
-impl From<Figure<'_>> for Value {
+impl Figure<'_> {
     /// The figure as a value of the kind it is (a count as a whole number).
-    fn from(figure: Figure<'_>) -> Value {
-        match figure {
+    pub fn value(self) -> Value {
+        match self {
             Figure::Number(x) => Value::Float(x),
             Figure::Count(n) => Value::Int(i64::try_from(n).unwrap_or(i64::MAX)),
             Figure::Flag(b) => Value::Bool(b),
