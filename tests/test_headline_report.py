@@ -56,3 +56,9 @@ def test_the_fleet_report_fits_1280_px(fleet_page: str) -> None:
     headings = re.findall(r'<th scope="col">([^<]*)</th>', head[: head.index("</thead>")])
     # road and vehicle, the headline (% and kg) of MPC vs PCC, MPC vs PI, PCC vs PI, Δfuel and Δtime as driven
     assert len(headings) == 2 + 3 * 2 + 2 * 2
+
+
+def test_a_road_name_wraps_between_its_words(fleet_page: str) -> None:
+    """A narrow column breaks a road's name after an underscore, not inside a word."""
+    table = fleet_page[fleet_page.index('id="sweep-table"') :]
+    assert "<td>hill_<wbr>L500_<wbr>A2</td>" in table

@@ -94,7 +94,9 @@ def sweep_table_html(
     names = "".join(f'<th scope="col">{escape(c.heading)}</th>' for c in columns)
     body = []
     for row in rows:
-        cells = "".join(f"<td>{escape(_cell(row.get(c.source), c.spec))}</td>" for c in columns)
+        # A break opportunity after each underscore: a road's name wraps between its words, not
+        # anywhere, in a column as narrow as the page's width leaves it.
+        cells = "".join(f"<td>{escape(_cell(row.get(c.source), c.spec)).replace('_', '_<wbr>')}</td>" for c in columns)
         body.append(f"<tr>{cells}</tr>\n")
         error = row.get(ERROR_COLUMN)
         if error:
