@@ -100,6 +100,7 @@ tbody th { text-align: left; font-weight: normal; }
 table.numbers thead th.group { text-align: center; border-bottom: 1px solid #c9d1d9; }
 table.sweep { font-size: 0.86rem; width: 100%; table-layout: fixed; }
 table.sweep th, table.sweep td { padding: 0.25rem 0.45rem; overflow-wrap: anywhere; }
+table.numbers .key { text-align: left; }
 table.roads td { overflow-wrap: anywhere; }
 tr.group th { background: #f7f9fb; font-weight: 600; padding-top: 0.6rem; }
 tr.headline th, tr.headline td { font-weight: 600; }

@@ -91,12 +91,10 @@ def sweep_table_html(
         else:
             groups.append((column.group, 1))
     top = "".join(f'<th colspan="{n}" scope="colgroup" class="group">{escape(group)}</th>' for group, n in groups)
-    names = "".join(f'<th scope="col">{escape(c.heading)}</th>' for c in columns)
+    names = "".join(f'<th scope="col"{_key_class(c)}>{escape(c.heading)}</th>' for c in columns)
     body = []
     for row in rows:
-        # A break opportunity after each underscore: a road's name wraps between its words, not
-        # anywhere, in a column as narrow as the page's width leaves it.
-        cells = "".join(f"<td>{escape(_cell(row.get(c.source), c.spec)).replace('_', '_<wbr>')}</td>" for c in columns)
+        cells = "".join(f"<td{_key_class(c)}>{_wrappable(_cell(row.get(c.source), c.spec))}</td>" for c in columns)
         body.append(f"<tr>{cells}</tr>\n")
         error = row.get(ERROR_COLUMN)
         if error:
@@ -106,6 +104,17 @@ def sweep_table_html(
         f"<thead><tr>{top}</tr>"
         f"<tr>{names}</tr></thead>\n<tbody>\n{''.join(body)}</tbody></table>\n"
     )
+
+
+def _key_class(column: Column) -> str:
+    """The class of a row key's cells (road, direction, vehicle: text, set left)."""
+    return "" if column.group else ' class="key"'
+
+
+def _wrappable(text: str) -> str:
+    """`text` escaped, with a break opportunity after each underscore: a road's name wraps between
+    its words, not anywhere, in a column as narrow as the page's width leaves it."""
+    return escape(text).replace("_", "_<wbr>")
 
 
 def _cell(value: Any, spec: str) -> str:
