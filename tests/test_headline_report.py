@@ -59,6 +59,7 @@ def test_the_fleet_report_fits_1280_px(fleet_page: str) -> None:
 
 
 def test_a_road_name_wraps_between_its_words(fleet_page: str) -> None:
-    """A narrow column breaks a road's name after an underscore, not inside a word."""
+    """A narrow column breaks a road's name after an underscore, not inside a word, set left as text."""
     table = fleet_page[fleet_page.index('id="sweep-table"') :]
     assert '<td class="key">hill_<wbr>L500_<wbr>A2</td>' in table
+    assert "text-align: left" in css_rule(fleet_page, "table.numbers .key")

@@ -7,9 +7,11 @@ from __future__ import annotations
 import csv
 import json
 import math
+from types import SimpleNamespace
 
 import pytest
 
+from truckmpc import _core
 from truckmpc.vecto import load_vecto_truck
 from truckmpc.vecto.declaration import combination_rolling_resistance, cross_wind_cda_curve
 from truckmpc.vecto.truck import truck_values
@@ -161,3 +163,14 @@ def test_a_speed_the_truck_cannot_hold_gives_no_fuel_rate_but_says_why() -> None
     # A descent VECTO's tractor brakes on: no fuel; the brakes take power at the wheels.
     down = map_truck_stationary_point(truck, 80.0, -3.0)
     assert down["feasible"] and down["fuel_rate_g_per_h"] == 0.0 and down["brake_power_w"] > 50e3
+
+
+def test_a_part_of_the_wrong_type_or_missing_an_attribute_is_named() -> None:
+    """The binding reads a truck's parts off attributes: a value of the wrong type is a TypeError
+    naming the part's field, a missing attribute an AttributeError naming it."""
+    engine = {"idle_speed_rpm": 600.0, "inertia_kgm2": 4.0, "full_load": [], "fuel_map": []}
+    with pytest.raises(TypeError, match=r"failed to extract field EngineData\.idle_speed_rpm"):
+        _core.MapTruck(SimpleNamespace(**{**engine, "idle_speed_rpm": "600"}), None, None)  # type: ignore[arg-type]
+    del engine["fuel_map"]
+    with pytest.raises(AttributeError, match="fuel_map"):
+        _core.MapTruck(SimpleNamespace(**engine), None, None)  # type: ignore[arg-type]

@@ -107,8 +107,9 @@ def sweep_table_html(
 
 
 def _key_class(column: Column) -> str:
-    """The class of a row key's cells (road, direction, vehicle: text, set left)."""
-    return "" if column.group else ' class="key"'
+    """The class of the road's, direction's and vehicle's cells: text, set left (a grid axis's
+    values are numbers more often than not and stay right)."""
+    return ' class="key"' if not column.group and column.source in _SHARED else ""
 
 
 def _wrappable(text: str) -> str:

@@ -1,5 +1,6 @@
 //! Conversions between Python objects and the core's user values ([`Value`]).
 
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use truckmpc_core::params::Value;
@@ -53,10 +54,23 @@ pub fn dict_of<'py>(py: Python<'py>, pairs: &[(&str, Value)]) -> PyResult<Bound<
 
 /// A struct of the core's read off the same-named attributes of a Python object (a dataclass, a
 /// reader's data): the core declares the fields once; the struct literal fails to compile if one is
-/// left out.
+/// left out. A missing attribute raises `AttributeError`, a value of the wrong type a `TypeError`
+/// naming the field (`field_error`).
 macro_rules! read_attrs {
     ($obj:expr, $kind:ident { $($field:ident),* $(,)? }) => {
-        $kind { $($field: $obj.getattr(stringify!($field))?.extract()?),* }
+        $kind { $($field: $obj.getattr(stringify!($field))?.extract().map_err(|err| {
+            $crate::convert::field_error(stringify!($kind), stringify!($field), err)
+        })?),* }
     };
 }
 pub(crate) use read_attrs;
+
+/// A `TypeError` naming the field `kind.field` that could not be read, caused by `err`.
+pub fn field_error(kind: &str, field: &str, err: impl Into<PyErr>) -> PyErr {
+    Python::attach(|py| {
+        let err = err.into();
+        let named = PyTypeError::new_err(format!("failed to extract field {kind}.{field}: {}", err.value(py)));
+        named.set_cause(py, Some(err));
+        named
+    })
+}

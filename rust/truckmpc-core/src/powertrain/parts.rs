@@ -76,7 +76,7 @@ impl TruckParts {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::powertrain::tests::{body, plane_points};
+    use crate::powertrain::tests::{body, plane, plane_points};
     use crate::CoreError;
 
     fn parts() -> TruckParts {
@@ -102,16 +102,22 @@ mod tests {
         }
     }
 
-    /// Every part reaches the truck: the idle speed, the ratios and radius (engine speed at 20 m/s
-    /// in gear 2 is 240 rad/s), the body, the drag-area curve and the loss maps.
+    /// Every part reaches the truck: the engine's idle speed, inertia, full-load and drag curves
+    /// and fuel map; the ratios and radius (engine speed at 20 m/s in gear 2 is 240 rad/s), the
+    /// efficiencies and drag torque; the body; then the drag-area curve and the loss maps.
     #[test]
     fn every_part_reaches_the_truck() {
         let truck = parts().build().unwrap();
-        assert_eq!(truck.engine().idle_rpm(), 600.0);
+        let engine = truck.engine();
+        assert_eq!((engine.idle_rpm(), engine.inertia_kgm2()), (600.0, 4.0));
+        assert_eq!((engine.max_torque_nm(1200.0), engine.drag_torque_nm(1200.0)), (2000.0, -150.0));
+        assert!((engine.fuel_rate_g_per_h(900.0, 500.0) - plane(900.0, 500.0)).abs() < 1e-6);
         let expected_rpm = 240.0 * 60.0 / (2.0 * std::f64::consts::PI);
         assert!((truck.driveline().engine_speed_rpm(20.0, 2) - expected_rpm).abs() < 1e-9);
+        assert!((truck.driveline().efficiency() - 0.98 * 0.97).abs() < 1e-12);
+        assert_eq!(truck.driveline().loss_torque_nm(), 20.0);
         assert_eq!(*truck.body(), body());
-        assert_eq!((truck.cda_m2(10.0), truck.driveline().has_loss_maps()), (6.0, (false, false)));
+        assert_eq!((truck.cda_m2(15.0), truck.driveline().has_loss_maps()), (6.0, (false, false)));
 
         let map: Rows = vec![(0.0, 0.0, 10.0), (3000.0, 0.0, 10.0), (0.0, 3000.0, 40.0), (3000.0, 3000.0, 40.0)];
         let mut with = parts();
@@ -119,8 +125,7 @@ mod tests {
         with.driveline.gear_loss_maps = Some(vec![map.clone(); 3]);
         with.driveline.axle_loss_map = Some(map);
         let truck = with.build().unwrap();
-        assert_eq!((truck.cda_m2(10.0), truck.driveline().has_loss_maps()), (6.0, (true, true)));
-        assert_eq!(truck.cda_m2(20.0), 7.0);
+        assert_eq!((truck.cda_m2(15.0), truck.driveline().has_loss_maps()), (6.5, (true, true)));
     }
 
     /// A refused value is named, whichever part holds it.

@@ -231,11 +231,12 @@ pub enum Figure<'a> {
 }
 
 impl Figure<'_> {
-    /// The figure as a value of the kind it is (a count as a whole number).
+    /// The figure as a value of the kind it is (a count as a whole number; beyond i64, which no
+    /// count reaches, as a number).
     pub fn value(self) -> Value {
         match self {
             Figure::Number(x) => Value::Float(x),
-            Figure::Count(n) => Value::Int(i64::try_from(n).unwrap_or(i64::MAX)),
+            Figure::Count(n) => i64::try_from(n).map_or(Value::Float(n as f64), Value::Int),
             Figure::Flag(b) => Value::Bool(b),
             Figure::Text(text) => Value::Text(text.to_string()),
             Figure::Null => Value::Null,
