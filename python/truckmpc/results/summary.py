@@ -31,7 +31,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
-from truckmpc.compare import compare, delta_pct
+from truckmpc.compare import compare, delta_pct, headline
 from truckmpc.equal_time import BASELINES, EqualTime, compared_with
 from truckmpc.sim import RunResult
 
@@ -124,11 +124,9 @@ def _time_fair_deltas(
     reached = equal.reached and raw is not None and corrected is not None
     own = run.get("fuel_corrected_kg")
     doc["delta_fuel_equal_time_pct"] = delta_pct(run["fuel_kg"], raw) if reached and raw else None
-    doc["delta_fuel_equal_time_corrected_pct"] = (
-        delta_pct(own, corrected) if reached and corrected and own is not None else None
-    )
-    doc[HEADLINE] = doc["delta_fuel_equal_time_corrected_pct"]
-    doc[SAVED] = corrected - own if reached and corrected is not None and own is not None else None
+    quoted = headline(own, corrected if reached else None)
+    doc["delta_fuel_equal_time_corrected_pct"] = quoted.pct
+    doc[HEADLINE], doc[SAVED] = quoted.pct, quoted.saved_kg
     doc["equal_time"] = equal.document(baseline)
     return doc
 
