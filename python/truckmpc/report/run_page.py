@@ -16,7 +16,7 @@ from truckmpc.report.inputs import RunDir
 from truckmpc.report.replay import replay_run, typed_line
 from truckmpc.report.run_table import run_table_html
 from truckmpc.report.settings import settings_html
-from truckmpc.results.run_rows import NAMES
+from truckmpc.results.run_rows import NAMES, equal_time_of
 from truckmpc.results.run_table import run_table
 
 __all__ = ["run_body", "run_title"]
@@ -98,9 +98,7 @@ def comparison_headline(summary: Mapping[str, Any], comparison: Mapping[str, Any
     controller's end-speed-corrected fuel and its baseline's re-run at the controller's trip time
     (its ``equal_time`` object), through :func:`truckmpc.compare.headline`; None where there is none."""
     run, base = str(comparison.get("controller")), str(comparison.get("baseline"))
-    keys = (f"equal_time_{run}_vs_{base}",) if base != "pi" else (f"equal_time_{run}", "equal_time")
-    equal: Mapping[str, Any] = next((summary[key] for key in keys if isinstance(summary.get(key), Mapping)), {})
-    own = summary.get(run)
+    equal, own = equal_time_of(summary, run, base), summary.get(run)
     quoted = headline(
         own.get("fuel_corrected_kg") if isinstance(own, Mapping) else None, equal.get(f"{base}_fuel_corrected_kg")
     )

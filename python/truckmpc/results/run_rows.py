@@ -19,6 +19,7 @@ __all__ = [
     "comparison_rows",
     "driving_rows",
     "end_speed_note",
+    "equal_time_of",
     "equal_time_rows",
     "figure_rows",
     "heading",
@@ -128,7 +129,7 @@ def equal_time_rows(summary: Mapping[str, Any], columns: Sequence[str]) -> tuple
     offset), trip time, fuel, runs and time error, and the end-speed-corrected Δfuel."""
     rows: list[Row] = []
     for baseline in _baselines(summary):
-        found = [_equal_time(summary, name, baseline) for name in columns]
+        found = [equal_time_of(summary, name, baseline) for name in columns]
         who = f"{NAMES.get(baseline, baseline)} re-run"
         offset = any(f"{baseline}_target_offset_kmh" in entry for entry in found)
         setting = ("target offset", "target_offset_kmh", "+.2f") if offset else ("v_ref", "v_ref_kmh", ".2f")
@@ -233,7 +234,7 @@ def _baselines(summary: Mapping[str, Any]) -> list[str]:
     return list(dict.fromkeys(baseline for _, baseline in _comparisons(summary)))
 
 
-def _equal_time(summary: Mapping[str, Any], name: str, baseline: str) -> Mapping[str, Any]:
+def equal_time_of(summary: Mapping[str, Any], name: str, baseline: str) -> Mapping[str, Any]:
     """The equal-time object of ``name`` against ``baseline`` ({} when there is none): against the
     PI ``equal_time_<name>``, or ``equal_time`` when only two controllers ran."""
     if (name, baseline) not in _comparisons(summary):
