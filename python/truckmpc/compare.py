@@ -52,6 +52,11 @@ def delta_pct(value: float, base: float) -> float | None:
     return PCT_PER_FRACTION * (value - base) / base
 
 
+HEADLINE_BASELINES = ("pcc", "pi")
+"""The baselines a look-ahead controller's headline is quoted against, in the order outputs give
+it: the PCC (what trucks drive today), then the PI."""
+
+
 @dataclass(frozen=True)
 class Headline:
     """A run's saving against a baseline at equal trip time and equal end speed: Δfuel [%]

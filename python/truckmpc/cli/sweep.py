@@ -13,6 +13,7 @@ import typer
 from truckmpc.cli.invocation import typed_command
 from truckmpc.cli.options import ConfigOpt, ForceOpt, JobsOpt, QuietOpt, ReverseAllOpt, RoadsOpt, SchedulerOpt, SetOpt
 from truckmpc.cli.study import notice, pooled_study, stop_notes, study_inputs
+from truckmpc.compare import HEADLINE_BASELINES
 from truckmpc.record import program_record
 from truckmpc.status import status_line
 from truckmpc.sweep import plan_sweep, progress_bar, run_plan
@@ -159,7 +160,7 @@ def _sweep_deltas(row: Mapping[str, str], controllers: Sequence[str]) -> str:
     (0.123 kg saved)`, then its Δfuel and Δtrip time as driven against the PI; `-` where blank."""
     parts = []
     for name in controllers:
-        bases = [base for base in ("pcc", "pi") if base != name and (base == "pi" or base in controllers)]
+        bases = [base for base in HEADLINE_BASELINES if base != name and (base == "pi" or base in controllers)]
         quoted = ", ".join(f"against the {base.upper()} {_headline(row, name, base)}" for base in bases)
         shown = [f"{float(v):+.2f}" if v else "-" for v in (row[delta_column(name, k)] for k in ("fuel", "time"))]
         parts.append(

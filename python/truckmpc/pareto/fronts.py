@@ -15,13 +15,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from truckmpc.compare import headline
+from truckmpc.compare import HEADLINE_BASELINES, headline
 from truckmpc.sweep.cells import parse_cell
 
 BASELINE = "pi"
 """The baseline every curve is compared with; also :data:`BASELINES`' others, where they ran."""
 
-BASELINES = ("pcc", "pi")
+BASELINES = HEADLINE_BASELINES
 """The curves a look-ahead curve's saving is read against, in the order it is printed."""
 
 

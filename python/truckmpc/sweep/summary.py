@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from truckmpc.atomic import atomic_write_text
+from truckmpc.compare import HEADLINE_BASELINES
 from truckmpc.roads import RoadProfile
 from truckmpc.sweep.cells import parse_cell
 from truckmpc.sweep.columns import ERROR_COLUMN, Layout, delta_column
@@ -28,9 +29,6 @@ if TYPE_CHECKING:
     from truckmpc.sweep.run import SweepResult
 
 SUMMARY_NAME = "summary.csv"
-
-HEADLINE_BASELINES = ("pcc", "pi")
-"""The baselines a controller's headline is summarised against, in column order."""
 
 SUMMARY_COLUMNS = (
     "axis",
