@@ -103,7 +103,8 @@ class Vehicle:
     def engine_speed_rpm(self, v_mps: float, gear: int) -> float: ...
     def engine_torque_nm(self, v_mps: float, pedal: float, gear: int) -> float: ...
     def stationary(self, v_mps: float, slope: float, gear: int) -> _Stationary:
-        """The levels holding `v_mps` (> 0) on grade `slope` in `gear`, and the engine there."""
+        """The levels holding `v_mps` (> 0) on grade `slope` [-] (Δh/ΔL, 0.01 = 1 %) in `gear`, and the
+        engine there."""
 
 G_MPS2: float
 """Gravitational acceleration [m/s²] of the map-based truck (VECTO 3's)."""

@@ -24,7 +24,7 @@ pub fn check_gear(gear: usize, lowest: usize, forward_gears: usize) -> CoreResul
     Ok(())
 }
 
-/// The levels holding `v_mps` (> 0) on grade `slope` in `gear` (tables B.1/B.2): `pedal`, `brake`,
+/// The levels holding `v_mps` (> 0) on grade `slope` [-] (Δh/ΔL, 0.01 = 1 %) in `gear` (tables B.1/B.2): `pedal`, `brake`,
 /// `feasible`, `eigenvalue_per_m` [1/m], and the engine there: `engine_speed_rpm`,
 /// `engine_torque_nm`, `fuel_rate_g_per_h`.
 pub fn stationary(vehicle: &Vehicle, v_mps: f64, slope: f64, gear: usize) -> CoreResult<Figures> {

@@ -35,7 +35,7 @@ impl PyVehicle {
         figures::engine_torque_nm(&self.inner, v_mps, pedal, gear).map_err(to_py)
     }
 
-    /// Levels holding `v_mps` on grade `slope` in `gear` (`figures::stationary`).
+    /// Levels holding `v_mps` on grade `slope` [-] in `gear` (`figures::stationary`).
     fn stationary<'py>(&self, py: Python<'py>, v_mps: f64, slope: f64, gear: usize) -> PyResult<Bound<'py, PyDict>> {
         dict_of(py, &figures::stationary(&self.inner, v_mps, slope, gear).map_err(to_py)?)
     }
