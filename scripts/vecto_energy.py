@@ -63,7 +63,7 @@ def ledger(road_path: Path, controller: str) -> tuple[dict[str, float], dict[str
     alpha = np.arctan(np.asarray(t["slope"])[:-1])
     mass, core = truck.mass_kg, truck.core
     air = sum(
-        0.5 * truck.keys["air_density_kgpm3"] * core.cda_m2(u) * u * u * d for u, d in zip(v_mid, ds, strict=True)
+        0.5 * truck.keys["air_density_kgpm3"] * core.at(u)["cda_m2"] * u * u * d for u, d in zip(v_mid, ds, strict=True)
     )
     vehicle = config.core_vehicle
     work_pos = work_neg = 0.0

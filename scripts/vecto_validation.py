@@ -43,8 +43,8 @@ def main() -> None:
 
     for r in in_gear:
         v_mps, gear, slope = r["v_act [km/h]"] / KMH_PER_MPS, int(r["Gear [-]"]), math.atan(r["grad [%]"] / 100)
-        note("engine speed", truck.engine_speed_rpm(v_mps, gear), r["n_eng_avg [1/min]"])
-        loads = truck.road_loads(v_mps, r["acc [m/s^2]"], slope)
+        note("engine speed", truck.at(v_mps, gear=gear)["engine_speed_rpm"], r["n_eng_avg [1/min]"])
+        loads = truck.at(v_mps, r["acc [m/s^2]"], slope)
         for name, (key, column, _) in LOADS.items():
             note(name, loads[key] / 1e3, r[column])
         note(
@@ -53,7 +53,7 @@ def main() -> None:
             r["FC-Map [g/h]"],
         )
         if r["acc [m/s^2]"] == 0.0:
-            op = truck.operating_point(v_mps, 0.0, slope, gear)
+            op = truck.at(v_mps, 0.0, slope, gear)
             note("fuel to hold a steady speed", op["fuel_rate_g_per_h"], r["FC-Map [g/h]"])
     criteria = {
         "engine speed": 0.005,

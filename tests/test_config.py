@@ -104,12 +104,12 @@ def test_thesis_preset_is_tables_6_1_6_2_and_simulation() -> None:
     assert (mpc.q_fuel, mpc.q_speed_change, mpc.q_gear_shift, mpc.q_brake) == (2.0, 15.0, 15.0, 100.0)
     assert (mpc.grid, mpc.neutral_rule, mpc.fuel_cut_arcs, mpc.on_infeasible) == ("moving", "nearest", False, "hold")
     assert (mpc.k_lim, mpc.q_speed_below, mpc.q_speed_below_per_km, mpc.q_brake_per_km) == (None, None, None, None)
-    assert (run.settings.resolved()["k_lim"], run.settings.resolved()["q_speed_below"]) == (
+    assert (run.settings.derived()["k_lim"], run.settings.derived()["q_speed_below"]) == (
         8,
         7.0,
     )  # S k_lim = 200 m; delta 0.2
     fine = load_run_config(config_paths=["thesis"], overrides=["stage_m=50", "delta_kmh=0.1"]).settings
-    assert (fine.resolved()["k_lim"], fine.resolved()["q_speed_below"], fine.resolved()["q_brake"]) == (4, 5.0, 100.0)
+    assert (fine.derived()["k_lim"], fine.derived()["q_speed_below"], fine.derived()["q_brake"]) == (4, 5.0, 100.0)
     assert (run.sim.plant_dt_s, run.sim.trace_step_m, run.sim.start_speed_kmh) == (0.05, 25.0, None)
 
 
@@ -117,13 +117,13 @@ def test_default_mpc_weighs_per_kilometre_what_the_thesis_weighs_per_25_m_stage(
     run = load_run_config()
     mpc = run.mpc
     assert (mpc.grid, mpc.neutral_rule, mpc.fuel_cut_arcs, mpc.epsilon) == ("fixed", "quadratic", True, None)
-    assert (run.settings.resolved()["q_speed_below"], run.settings.resolved()["q_brake"]) == (5.0, 100.0)  # at S 25 m
+    assert (run.settings.derived()["q_speed_below"], run.settings.derived()["q_brake"]) == (5.0, 100.0)  # at S 25 m
     for stage_m in (12.5, 50.0):
         other = load_run_config(overrides=[f"stage_m={stage_m}"]).settings
-        assert other.resolved()["q_speed_below"] == pytest.approx(5.0 * stage_m / 25.0)
-        assert other.resolved()["q_brake"] == pytest.approx(100.0 * stage_m / 25.0)
+        assert other.derived()["q_speed_below"] == pytest.approx(5.0 * stage_m / 25.0)
+        assert other.derived()["q_brake"] == pytest.approx(100.0 * stage_m / 25.0)
     # A weight given per stage is used as given.
-    assert load_run_config(overrides=["q_brake=7"]).settings.resolved()["q_brake"] == 7.0
+    assert load_run_config(overrides=["q_brake=7"]).settings.derived()["q_brake"] == 7.0
 
 
 def test_a_brake_weight_is_needed_per_stage_or_per_kilometre() -> None:

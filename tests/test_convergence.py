@@ -63,9 +63,9 @@ def test_the_halved_runs_are_the_mpc_at_half_delta_and_half_stage_with_q2_and_th
 def test_weights_given_per_kilometre_keep_their_value_per_kilometre_at_half_the_stage():
     config = load_run_config(overrides=["stage_m=50"])
     halves = halved_configs(config)
-    assert halves["half_stage"].settings.resolved()["q_speed_below"] == config.settings.resolved()["q_speed_below"] / 2
-    assert halves["half_stage"].settings.resolved()["q_brake"] == config.settings.resolved()["q_brake"] / 2
-    assert halves["half_delta"].settings.resolved()["q_speed_below"] == config.settings.resolved()["q_speed_below"]
+    assert halves["half_stage"].settings.derived()["q_speed_below"] == config.settings.derived()["q_speed_below"] / 2
+    assert halves["half_stage"].settings.derived()["q_brake"] == config.settings.derived()["q_brake"] / 2
+    assert halves["half_delta"].settings.derived()["q_speed_below"] == config.settings.derived()["q_speed_below"]
     assert halves["half_delta"].mpc.delta_kmh == config.mpc.delta_kmh / 2
 
 
@@ -97,7 +97,7 @@ def test_the_fuel_time_costs_move_is_corrected_fuel_plus_beta_time_over_the_pis_
     halves = halved_configs(config)
     halved = run_halves(road, halves)
     doc = convergence_document(results, halved, halves)
-    beta = config.settings.resolved()["beta_g_per_s"]
+    beta = config.settings.derived()["beta_g_per_s"]
     run, pi_g = results["mpc"].summary, 1000 * results["pi"].summary["fuel_kg"]
     for half, result in halved.items():
         at = result.summary

@@ -108,7 +108,7 @@ def test_pedal_levels_off_the_grid_are_driven_as_planned():
     pedal = result.trace["pedal"]
     on_level = (np.abs(pedal * levels - np.round(pedal * levels)) < 1e-9) & (pedal > 0) & (pedal < 1)
     assert on_level.sum() >= 5
-    beta = config.settings.resolved()["beta_g_per_s"]
+    beta = config.settings.derived()["beta_g_per_s"]
     without = simulate(default_test_track(), load_run_config(), "optimal").summary
     cost = {name: 1000 * s["fuel_kg"] + beta * s["time_s"] for name, s in (("levels", summary), ("grid", without))}
     assert cost["levels"] <= cost["grid"] * (1 + 2e-4)
@@ -133,4 +133,4 @@ def test_the_rescue_solve_changes_gear_directly_not_through_a_one_stage_coast():
     starts = np.flatnonzero((gear[1:] == 0) & (gear[:-1] != 0)) + 1
     ends = np.flatnonzero((gear[1:] != 0) & (gear[:-1] == 0)) + 1
     coasts_m = distance[ends] - distance[starts[: len(ends)]]
-    assert np.all(coasts_m >= config.settings.resolved()["k_lim"] * stage_m), coasts_m
+    assert np.all(coasts_m >= config.settings.derived()["k_lim"] * stage_m), coasts_m

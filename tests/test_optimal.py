@@ -50,10 +50,10 @@ def trajectory_cost(result, config) -> float:
     mpc = config.mpc
     return float(
         mpc.q_fuel * fuel_g.sum()
-        + s.resolved()["q_speed_below"] * (deficit**2).sum()
+        + s.derived()["q_speed_below"] * (deficit**2).sum()
         + mpc.q_speed_change * np.abs(np.diff(v)).sum()
         + mpc.q_gear_shift * shifts
-        + s.resolved()["q_brake"] * trace["brake"][at][:-1].sum()
+        + s.derived()["q_brake"] * trace["brake"][at][:-1].sum()
     )
 
 
@@ -73,7 +73,7 @@ def fuel_time_cost_g(summary, config) -> float:
     """A run's fuel + β·time [g] with its end speed brought back to its start speed, kinetic energy
     priced as the end-speed correction prices it: c·½(v_end² − v_start²) off the fuel."""
     price = config.settings.derived()["kinetic_fuel_g_per_half_v2"]
-    beta = config.settings.resolved()["beta_g_per_s"]
+    beta = config.settings.derived()["beta_g_per_s"]
     v0, v1 = (summary[key] / KMH_PER_MPS for key in ("start_speed_kmh", "end_speed_kmh"))
     return 1000 * summary["fuel_kg"] - price * 0.5 * (v1**2 - v0**2) + beta * summary["time_s"]
 

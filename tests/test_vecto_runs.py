@@ -41,7 +41,7 @@ def test_holding_v_ref_on_a_grade_burns_the_operating_points_fuel(job: Path) -> 
     summary = result.summary
     v_mps = config.cruise.v_ref_kmh / KMH_PER_MPS
     gear = int(result.trace["gear"][-1])
-    point = config.truck.core.operating_point(v_mps, 0.0, float(np.arctan(grade)), gear)
+    point = config.truck.core.at(v_mps, 0.0, float(np.arctan(grade)), gear)
     # The PI settles within a few hundred metres; compare the last 4 km, where it holds v_ref.
     trace = result.trace
     last = trace["distance_m"] >= trace["distance_m"][-1] - 4000.0
@@ -95,13 +95,13 @@ def test_beta_of_vectos_tractor_is_the_exact_maps_marginal_price_of_time() -> No
     # speed in the band (the cost is that flat: 0.2 % from end to end).
     config = load_run_config(TRACTOR_JOB)
     settings, truck = config.settings, config.truck.core
-    beta = settings.resolved()["beta_g_per_s"]
+    beta = settings.derived()["beta_g_per_s"]
     assert beta is not None and settings.derived()["kinetic_fuel_g_per_half_v2"] > 0.0
     v_ref = config.cruise.v_ref_kmh
 
     def fuel_per_m(v_kmh: float) -> float:
         v_mps = v_kmh / KMH_PER_MPS
-        return truck.operating_point(v_mps, 0.0, 0.0, truck.facts["gears"])["fuel_rate_g_per_h"] / 3600.0 / v_mps
+        return truck.at(v_mps, 0.0, 0.0, truck.facts["gears"])["fuel_rate_g_per_h"] / 3600.0 / v_mps
 
     exact = (v_ref / KMH_PER_MPS) ** 2 * (fuel_per_m(v_ref + 2.0) - fuel_per_m(v_ref - 2.0)) / (4.0 / KMH_PER_MPS)
     assert beta == pytest.approx(exact, rel=0.01)
@@ -151,9 +151,7 @@ def test_the_plotted_operating_points_are_the_trucks_own(job: Path, tmp_path: Pa
     result = simulate(_road([grade] * 5), config, "pi")
     speed_rpm, torque_nm = operating_points(config.core_vehicle, result.trace)
     gear = int(result.trace["gear"][-1])
-    steady = config.truck.core.operating_point(
-        config.cruise.v_ref_kmh / KMH_PER_MPS, 0.0, float(np.arctan(grade)), gear
-    )
+    steady = config.truck.core.at(config.cruise.v_ref_kmh / KMH_PER_MPS, 0.0, float(np.arctan(grade)), gear)
     assert speed_rpm[-1] == pytest.approx(steady["engine_speed_rpm"], rel=2e-3)
     assert torque_nm[-1] == pytest.approx(steady["engine_torque_nm"], rel=5e-3)
     out = tmp_path / "run"
@@ -179,11 +177,11 @@ def test_loss_maps_from_vtlm_files_and_from_the_xml_give_the_hand_computed_engin
     for truck in trucks:
         core = truck.core
         assert (core.facts["gear_loss_maps"], core.facts["axle_loss_map"]) == (True, True)
-        loads = core.road_loads(v_mps, 0.0, float(np.arctan(grade)))
+        loads = core.at(v_mps, 0.0, float(np.arctan(grade)))
         wheel_nm = loads["wheel_w"] / v_mps * truck.wheel_radius_m
         axle_in = (wheel_nm / 2.5 + 30.0) / 0.98
         gearbox_in = (axle_in / 1.0 + 22.0) / 0.98
-        point = core.operating_point(v_mps, 0.0, float(np.arctan(grade)), gear)
+        point = core.at(v_mps, 0.0, float(np.arctan(grade)), gear)
         omega = point["engine_speed_rpm"] * np.pi / 30.0
         assert point["engine_torque_nm"] == pytest.approx(gearbox_in + truck.aux_power_w / omega, abs=0.5)
 

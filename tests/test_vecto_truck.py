@@ -40,8 +40,8 @@ def test_engine_speed_road_loads_and_fuel_map_match_vecto_at_every_row_in_gear()
         # Issue 27 asks for 0.5 % (speed) and 1 % (powers, fuel map); the model is as VECTO's to the
         # excerpt's rounding, so the checks are tight enough to catch g = 9.81 or a trailer tyre's
         # RRC off by 1 %.
-        assert truck.engine_speed_rpm(v_mps, gear) == pytest.approx(r["n_eng_avg [1/min]"], rel=1e-5)
-        loads = truck.road_loads(v_mps, r["acc [m/s^2]"], math.atan(r["grad [%]"] / 100))
+        assert truck.at(v_mps, gear=gear)["engine_speed_rpm"] == pytest.approx(r["n_eng_avg [1/min]"], rel=1e-5)
+        loads = truck.at(v_mps, r["acc [m/s^2]"], math.atan(r["grad [%]"] / 100))
         for key, column in (("air_w", "P_air [kW]"), ("rolling_w", "P_roll [kW]"), ("slope_w", "P_slope [kW]")):
             assert loads[key] / 1e3 == pytest.approx(r[column], rel=2e-4), column
         fuel = truck.engine_point(r["n_eng_avg [1/min]"], r["T_eng_fcmap [Nm]"])["fuel_rate_g_per_h"]
@@ -70,9 +70,7 @@ def test_driveline_losses_fitted_on_the_full_load_rows_give_the_steady_rows_fuel
     assert defaults["loss_torque_nm"] == pytest.approx(keys["loss_torque_nm"], rel=1e-3)
     truck = load_vecto_truck(TRACTOR_JOB, keys).core
     for r in steady:
-        op = truck.operating_point(
-            r["v_act [km/h]"] / KMH_PER_MPS, 0.0, math.atan(r["grad [%]"] / 100), int(r["Gear [-]"])
-        )
+        op = truck.at(r["v_act [km/h]"] / KMH_PER_MPS, 0.0, math.atan(r["grad [%]"] / 100), int(r["Gear [-]"]))
         assert op["feasible"]
         assert op["engine_speed_rpm"] == pytest.approx(r["n_eng_avg [1/min]"], rel=0.005)
         assert op["fuel_rate_g_per_h"] == pytest.approx(r["FC-Map [g/h]"], rel=0.02)

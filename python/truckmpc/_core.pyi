@@ -4,7 +4,7 @@ Checked against the compiled module by `python -m mypy.stubtest truckmpc._core` 
 """
 
 from collections.abc import Mapping, Sequence
-from typing import Any, Protocol, TypeAlias, TypedDict, final
+from typing import Any, Literal, NotRequired, Protocol, TypeAlias, TypedDict, final
 
 import numpy as np
 import numpy.typing as npt
@@ -17,13 +17,10 @@ __all__ = [
     "Settings",
     "Vehicle",
     "controllers",
-    "key_changes",
-    "parameter_specs",
+    "declaration",
     "parameter_value",
     "run",
     "run_python",
-    "summary_specs",
-    "trace_specs",
 ]
 
 class ParamError(ValueError):
@@ -34,16 +31,20 @@ class ParamError(ValueError):
     got: str | None
     related: list[str]
 
-def parameter_specs() -> list[dict[str, Any]]:
-    """Every declared parameter, section by section: a record each (name, section, kind, unit,
-    doc, default, choices, expected), typed by `truckmpc.config.keys.ParamSpec`."""
+def declaration(name: Literal["parameters", "key_changes", "summary", "trace"]) -> list[dict[str, Any]]:
+    """The records of one of the core's declarations, in its order (raises ParamError for another name).
+
+    - "parameters": every declared parameter, section by section (name, section, kind, unit, doc,
+      default, choices, expected), typed by `truckmpc.config.keys.ParamSpec`;
+    - "key_changes": every key renamed, replaced or added, oldest first (key, kind, new, why,
+      replays_with, version), typed by `truckmpc.config.keys.KeyChange`;
+    - "summary": every figure of a controller's summary, in `summary.json`'s order, and "trace":
+      every column of a run's trace, in the CSV's order (name, unit, label, doc, kind, runs, source,
+      merge, merge_of, sweep, decimals), typed by `truckmpc.schema.OutputSpec`.
+    """
 
 def parameter_value(key: str, value: Any) -> Any:
     """The value of `key` as the core reads `value`: type and range checked (raises ParamError)."""
-
-def key_changes() -> list[dict[str, Any]]:
-    """Every key renamed, replaced or added, oldest first: a record each (key, kind, new, why,
-    replays_with, version), typed by `truckmpc.config.keys.KeyChange`."""
 
 class _Derived(TypedDict):
     horizon_stages: int
@@ -55,6 +56,14 @@ class _Derived(TypedDict):
     kinetic_fuel_g_per_half_v2: float
     """Grams of fuel per unit of ½v² [m²/s²] in the gear the PI settles in at v_ref: the end-speed
     correction's price of kinetic energy."""
+    k_lim: int
+    """The resolved keys follow, with the values the run uses: k_lim [stages] (null: round(200 m / S))."""
+    q_speed_below: float
+    """The weight on speed below v_min, per stage."""
+    q_brake: float
+    """The weight on braking, per stage."""
+    beta_g_per_s: float | None
+    """β [g/s]: None with the speed_penalty cost; derived from v_ref when not given."""
 
 @final
 class Settings:
@@ -75,12 +84,10 @@ class Settings:
         """These settings with `changes` made, the same truck."""
     def values(self) -> dict[str, Any]: ...
     def get(self, key: str) -> Any: ...
-    def resolved(self) -> dict[str, Any]:
-        """The resolved keys (`k_lim`, `q_speed_below`, `q_brake`, `beta_g_per_s`) with the values the run uses."""
     @property
     def vehicle(self) -> Vehicle: ...
     def derived(self) -> _Derived:
-        """Figures derived from the settings and the truck."""
+        """Figures derived from the settings and the truck, the resolved keys among them."""
     def steady_gear(self, v_mps: float) -> int:
         """The gear the PI gear logic settles in at constant speed `v_mps` [m/s]."""
 
@@ -164,7 +171,9 @@ class _BodyData(Protocol):
     @property
     def cda_curve(self) -> Sequence[tuple[float, float]] | None: ...
 
-class _RoadLoads(TypedDict):
+class _DrivingState(TypedDict):
+    cda_m2: float
+    """Drag area at the speed [m²]."""
     air_w: float
     rolling_w: float
     slope_w: float
@@ -172,16 +181,15 @@ class _RoadLoads(TypedDict):
     wheels_inertia_w: float
     wheel_w: float
     """Their sum: the power at the wheels [W]."""
-
-class _OperatingPoint(TypedDict):
-    engine_speed_rpm: float
-    engine_torque_nm: float
-    engine_power_w: float
-    fuel_rate_g_per_h: float
+    engine_speed_rpm: NotRequired[float]
+    """The engine's figures, in a gear only."""
+    engine_torque_nm: NotRequired[float]
+    engine_power_w: NotRequired[float]
+    fuel_rate_g_per_h: NotRequired[float]
     """NaN beyond the full-load curve's speeds."""
-    brake_power_w: float
+    brake_power_w: NotRequired[float]
     """At the wheels, beyond what the engine's drag takes [W]."""
-    feasible: bool
+    feasible: NotRequired[bool]
 
 class _TruckFacts(TypedDict):
     gears: int
@@ -218,14 +226,11 @@ class MapTruck:
     @property
     def facts(self) -> _TruckFacts:
         """What the truck is: gears, rated power, what its maps cover, which losses loss maps give."""
-    def cda_m2(self, v_mps: float) -> float: ...
     def engine_point(self, speed_rpm: float, torque_nm: float) -> _EnginePoint:
         """The engine at `speed_rpm` and `torque_nm`."""
-    def engine_speed_rpm(self, v_mps: float, gear: int) -> float: ...
-    def road_loads(self, v_mps: float, acc_mps2: float, slope_rad: float) -> _RoadLoads:
-        """Road loads [W] at `v_mps`, `acc_mps2` and `slope_rad`."""
-    def operating_point(self, v_mps: float, acc_mps2: float, slope_rad: float, gear: int) -> _OperatingPoint:
-        """The engine's operating point at `v_mps` (> 0), `acc_mps2` and `slope_rad` in `gear`."""
+    def at(self, v_mps: float, acc_mps2: float = 0.0, slope_rad: float = 0.0, gear: int | None = None) -> _DrivingState:
+        """The truck at `v_mps` (> 0), `acc_mps2` and `slope_rad`: its drag area and road loads, and in
+        `gear` (1..=gears) the engine's operating point."""
 
 class _CruiseData(Protocol):
     """The cruise keys that shape the band: v_ref, v_dec, v_inc and the target offset [km/h], the
@@ -258,14 +263,6 @@ class Road:
         """The band the controllers work to at each of `distance_m` [m] (increasing) for one cruise
         setting [km/h]: the stretch's set speed (without the top falling ahead of a lower one),
         v_min and v_max."""
-
-def summary_specs() -> list[dict[str, Any]]:
-    """Every figure of a controller's summary, in `summary.json`'s order: a record each (name,
-    unit, label, doc, kind, runs, source, merge, merge_of, sweep, decimals), typed by
-    `truckmpc.schema.OutputSpec`."""
-
-def trace_specs() -> list[dict[str, Any]]:
-    """Every column of a run's trace, in the CSV's order: a record each, as `summary_specs`."""
 
 _RunOutput: TypeAlias = tuple[dict[str, Any], dict[str, npt.NDArray[Any]]]
 """What a closed-loop run returns: its summary (figures by name, as `truckmpc.sim.simulate` documents)

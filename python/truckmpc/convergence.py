@@ -57,7 +57,7 @@ def halved_configs(config: RunConfig) -> dict[str, RunConfig]:
     stage (or by table 6.2's δ rule) held at the run's value, k_lim kept at its spacing in metres;
     with pedal levels K > 0, also at 2K levels (the pedal step halved)."""
     settings = config.settings
-    resolved = settings.resolved()
+    resolved = settings.derived()
     # Q2 given per kilometre scales with S by itself; per stage (or by the δ rule) it is held.
     pinned: dict[str, Any] = {}
     if settings.get("q_speed_below_per_km") is None:
@@ -103,7 +103,7 @@ def convergence_document(
         detail: dict[str, Any] = {
             "delta_kmh": mpc_settings.delta_kmh,
             "stage_m": mpc_settings.stage_m,
-            "k_lim": configs[half].settings.resolved()["k_lim"],
+            "k_lim": configs[half].settings.derived()["k_lim"],
             "pedal_levels": mpc_settings.pedal_levels,
             "delta_fuel_pct": moved.delta_fuel_pct,
             "delta_time_pct": moved.delta_time_pct,
@@ -121,7 +121,7 @@ def convergence_document(
         ):
             doc[f"delta_{name}_pct_{half}"] = None if at_run is None or at_half is None else at_half - at_run
         if configs[half].mpc.cost == "fuel_time":
-            beta = configs[half].settings.resolved()["beta_g_per_s"]
+            beta = configs[half].settings.derived()["beta_g_per_s"]
             doc[f"delta_cost_pct_{half}"] = None if reason is not None else cost_move_pct(base, mpc, summary, beta)
         objects[half] = detail
     moves = {key: value for key, value in doc.items() if value is not None}

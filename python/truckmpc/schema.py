@@ -1,5 +1,5 @@
-"""The outputs of a run, declared once in the core (``truckmpc._core.summary_specs`` and
-``trace_specs``): every figure of a controller's summary and every column of its trace, each with
+"""The outputs of a run, declared once in the core (``truckmpc._core.declaration("summary")``
+and ``("trace")``): every figure of a controller's summary and every column of its trace, each with
 its name (unit in the name), unit, label, meaning, which runs carry it, where it is computed, how a
 road driven as legs joins it (:mod:`truckmpc.legs`) and whose ``sweep.csv`` columns carry it
 (:mod:`truckmpc.sweep.columns`). The outputs reference page's tables are made from it
@@ -57,13 +57,13 @@ class OutputSpec:
     """Decimals the trace's CSV writes; None for summary figures and whole numbers."""
 
 
-SUMMARY_SPECS: tuple[OutputSpec, ...] = tuple(OutputSpec(**record) for record in _core.summary_specs())
+SUMMARY_SPECS: tuple[OutputSpec, ...] = tuple(OutputSpec(**record) for record in _core.declaration("summary"))
 """Every figure of a controller's summary, in ``summary.json``'s order."""
 
 SUMMARY: dict[str, OutputSpec] = {spec.name: spec for spec in SUMMARY_SPECS}
 """The summary's figures by name."""
 
-TRACE_SPECS: tuple[OutputSpec, ...] = tuple(OutputSpec(**record) for record in _core.trace_specs())
+TRACE_SPECS: tuple[OutputSpec, ...] = tuple(OutputSpec(**record) for record in _core.declaration("trace"))
 """Every column of a run's trace, in the CSV's order."""
 
 TRACE_COLUMNS: tuple[str, ...] = tuple(spec.name for spec in TRACE_SPECS)

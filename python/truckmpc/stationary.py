@@ -57,7 +57,7 @@ def map_truck_stationary_point(
     v_mps, slope_rad = speed_kmh / KMH_PER_MPS, math.atan(slope_pct / PCT_PER_FRACTION)
     lo, hi = core.facts["full_load_speed_range_rpm"]
     gears = range(1, core.facts["gears"] + 1) if gear is None else [gear]
-    points = {g: core.operating_point(v_mps, 0.0, slope_rad, g) for g in gears}
+    points = {g: core.at(v_mps, 0.0, slope_rad, g) for g in gears}
     if gear is None:
         feasible = [g for g, p in points.items() if p["feasible"]]
         outside = {g: max(lo - p["engine_speed_rpm"], p["engine_speed_rpm"] - hi, 0.0) for g, p in points.items()}

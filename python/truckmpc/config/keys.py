@@ -58,13 +58,13 @@ class KeyChange:
 
 
 CONFIG_DIR = Path(__file__).resolve().parent.parent / "configs"
-SPECS: tuple[ParamSpec, ...] = tuple(ParamSpec(**record) for record in _core.parameter_specs())
+SPECS: tuple[ParamSpec, ...] = tuple(ParamSpec(**record) for record in _core.declaration("parameters"))
 """Every declared parameter, section by section in declaration order."""
 SPEC_BY_KEY: dict[str, ParamSpec] = {spec.name: spec for spec in SPECS}
 SECTION_NAMES: tuple[str, ...] = tuple(dict.fromkeys(spec.section for spec in SPECS))
 KEYS: tuple[str, ...] = tuple(SPEC_BY_KEY)
 """Every key, section by section in declaration order."""
-KEY_CHANGES: tuple[KeyChange, ...] = tuple(KeyChange(**record) for record in _core.key_changes())
+KEY_CHANGES: tuple[KeyChange, ...] = tuple(KeyChange(**record) for record in _core.declaration("key_changes"))
 """Keys renamed, replaced or added, oldest first (the core's registry)."""
 RETIRED_KEYS: dict[str, KeyChange] = {c.key: c for c in KEY_CHANGES if c.kind != "added"}
 """Keys no longer declared (renamed or replaced), each with its change."""

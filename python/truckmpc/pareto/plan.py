@@ -136,7 +136,7 @@ def plan_pareto(
             config = _point_config(vehicle, configs, extra, curve, parameter, value)
             check_trace(profile, config)
             controller = CURVE_CONTROLLERS[curve]
-            beta = config.settings.resolved()["beta_g_per_s"] if controller == "mpc" else None
+            beta = config.settings.derived()["beta_g_per_s"] if controller == "mpc" else None
             work = run_work(profile, config, controller)
             points.append(Point(len(points), r, curve, parameter, float(value), v, beta, extra, work))
     direction = "reverse" if reverse else "forward"

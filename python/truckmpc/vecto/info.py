@@ -32,7 +32,7 @@ def truck_info(truck: VectoTruck) -> dict[str, Any]:
         "axle_ratio": job.gearbox.axle_ratio,
         "wheel_radius_m": truck.wheel_radius_m,
         "cda_declared_m2": job.vehicle.cda_m2,
-        "cda_at_80_kmh_m2": core.cda_m2(_REFERENCE_KMH / KMH_PER_MPS),
+        "cda_at_80_kmh_m2": core.at(_REFERENCE_KMH / KMH_PER_MPS)["cda_m2"],
         "cross_wind": truck.keys["cross_wind"],
         "rolling_resistance": truck.rolling_resistance,
         "aux_power_w": truck.aux_power_w,

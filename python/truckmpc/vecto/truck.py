@@ -34,7 +34,7 @@ DRIVELINE_LOSS_NOTE = (
     "tractor's full-load climb in gear 11 and used in every gear"
 )
 _MIN_GROSS_MASS_T = 16.0  # group 5 is a 4x2 tractor above 16 t
-_VECTO_SPECS = [record for record in _core.parameter_specs() if record["section"] == "vecto"]
+_VECTO_SPECS = [record for record in _core.declaration("parameters") if record["section"] == "vecto"]
 """The core's records of its ``vecto`` section (``truckmpc.config.keys.ParamSpec`` types them, a
 layer above)."""
 TRUCK_KEYS: tuple[str, ...] = (*(record["name"] for record in _VECTO_SPECS), "air_density_kgpm3")

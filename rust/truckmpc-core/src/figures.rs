@@ -1,6 +1,6 @@
 //! A model's answers as named figures, for the tools above the core (the binding hands them on as
 //! they are): the levels holding a speed and the engine's operating point there, a map-based
-//! truck's road loads and operating points, the speed band along a road. Each checks its arguments
+//! truck at a driving state, the speed band along a road. Each checks its arguments
 //! and names the one at fault.
 
 use crate::band::SpeedBand;
@@ -60,50 +60,49 @@ pub fn engine_torque_nm(vehicle: &Vehicle, v_mps: f64, pedal: f64, gear: usize) 
     Ok(vehicle.engine_torque_nm(vehicle.engine_speed_rpm(v_mps, gear), pedal, gear))
 }
 
-/// Engine speed [rpm] of a map-based `truck` at `v_mps` in `gear` (1..=gears).
-pub fn map_engine_speed_rpm(truck: &MapTruck, v_mps: f64, gear: usize) -> CoreResult<f64> {
-    check_gear(gear, 1, truck.driveline().gears())?;
-    Ok(truck.driveline().engine_speed_rpm(v_mps, gear))
-}
-
-/// Road loads [W] of `truck` at `v_mps`, `acc_mps2`, `slope_rad`: `air_w`, `rolling_w`, `slope_w`,
-/// `vehicle_inertia_w`, `wheels_inertia_w` and `wheel_w`, their sum.
-pub fn road_loads(truck: &MapTruck, v_mps: f64, acc_mps2: f64, slope_rad: f64) -> Figures {
+/// A map-based `truck` at `v_mps` (> 0), `acc_mps2` and `slope_rad`: the drag area `cda_m2` [m²]
+/// at that speed, the road loads [W] `air_w`, `rolling_w`, `slope_w`, `vehicle_inertia_w`,
+/// `wheels_inertia_w` and `wheel_w` (their sum), and, in a `gear` (1..=gears), the engine's
+/// operating point: `engine_speed_rpm`, `engine_torque_nm`, `engine_power_w`, `fuel_rate_g_per_h`
+/// (NaN beyond the full-load curve's speeds), `brake_power_w` (at the wheels, beyond the engine's
+/// drag) and `feasible`.
+pub fn driving_state(
+    truck: &MapTruck,
+    v_mps: f64,
+    acc_mps2: f64,
+    slope_rad: f64,
+    gear: Option<usize>,
+) -> CoreResult<Figures> {
+    if !(v_mps > 0.0 && v_mps.is_finite() && acc_mps2.is_finite() && slope_rad.is_finite()) {
+        let got = format!("{v_mps}, {acc_mps2}, {slope_rad}");
+        return Err(CoreError::invalid("v_mps, acc_mps2, slope_rad", "a finite speed > 0 and finite values").got(got));
+    }
     let l = truck.road_loads(v_mps, acc_mps2, slope_rad);
-    let named = [
+    let mut figures: Figures = [
+        ("cda_m2", truck.cda_m2(v_mps)),
         ("air_w", l.air_w),
         ("rolling_w", l.rolling_w),
         ("slope_w", l.slope_w),
         ("vehicle_inertia_w", l.vehicle_inertia_w),
         ("wheels_inertia_w", l.wheels_inertia_w),
         ("wheel_w", l.wheel_w()),
-    ];
-    named.into_iter().map(|(k, x)| (k, Value::Float(x))).collect()
-}
-
-/// The engine's operating point of `truck` at `v_mps` (> 0), `acc_mps2`, `slope_rad` in `gear`:
-/// `engine_speed_rpm`, `engine_torque_nm`, `engine_power_w`, `fuel_rate_g_per_h` (NaN beyond the
-/// full-load curve's speeds), `brake_power_w` (at the wheels, beyond the engine's drag), `feasible`.
-pub fn operating_point(
-    truck: &MapTruck,
-    v_mps: f64,
-    acc_mps2: f64,
-    slope_rad: f64,
-    gear: usize,
-) -> CoreResult<Figures> {
-    check_gear(gear, 1, truck.driveline().gears())?;
-    let op = truck.operating_point(v_mps, acc_mps2, slope_rad, gear).ok_or_else(|| {
-        CoreError::invalid("v_mps, acc_mps2, slope_rad", "a finite speed > 0 and finite values")
-            .got(format!("{v_mps}, {acc_mps2}, {slope_rad}"))
-    })?;
-    Ok(vec![
-        ("engine_speed_rpm", Value::Float(op.engine_speed_rpm)),
-        ("engine_torque_nm", Value::Float(op.engine_torque_nm)),
-        ("engine_power_w", Value::Float(op.engine_torque_nm * op.engine_speed_rpm / RPM_PER_RAD_S)),
-        ("fuel_rate_g_per_h", Value::Float(op.fuel_g_per_h)),
-        ("brake_power_w", Value::Float(op.brake_power_w)),
-        ("feasible", Value::Bool(op.feasible)),
-    ])
+    ]
+    .into_iter()
+    .map(|(k, x)| (k, Value::Float(x)))
+    .collect();
+    if let Some(gear) = gear {
+        check_gear(gear, 1, truck.driveline().gears())?;
+        let op = truck.operating_point(v_mps, acc_mps2, slope_rad, gear).expect("finite arguments, speed > 0");
+        figures.extend([
+            ("engine_speed_rpm", Value::Float(op.engine_speed_rpm)),
+            ("engine_torque_nm", Value::Float(op.engine_torque_nm)),
+            ("engine_power_w", Value::Float(op.engine_torque_nm * op.engine_speed_rpm / RPM_PER_RAD_S)),
+            ("fuel_rate_g_per_h", Value::Float(op.fuel_g_per_h)),
+            ("brake_power_w", Value::Float(op.brake_power_w)),
+            ("feasible", Value::Bool(op.feasible)),
+        ]);
+    }
+    Ok(figures)
 }
 
 /// `truck`'s engine at `speed_rpm` and `torque_nm` (finite): `max_torque_nm` and `drag_torque_nm`
@@ -182,5 +181,34 @@ mod tests {
             let CoreError::Invalid { key, .. } = refused.unwrap_err();
             assert_eq!(key, "gear");
         }
+    }
+
+    /// A map-based truck at a driving state: the drag area and the road loads at any speed, summing
+    /// to the power at the wheels; in a gear the engine's power is its torque times its speed, the
+    /// speed the driveline's; a gear the truck lacks, and a standstill, are refused by name.
+    #[test]
+    fn a_driving_state_gives_the_road_loads_and_in_a_gear_the_engine() {
+        let truck = crate::powertrain::tests::truck();
+        let figure = |figures: &Figures, key: &str| match figures.iter().find(|(k, _)| *k == key) {
+            Some((_, Value::Float(x))) => *x,
+            other => panic!("{key}: {other:?}"),
+        };
+        let (v, slope) = (22.0, 0.01_f64.atan());
+        let loads = driving_state(&truck, v, 0.1, slope, None).unwrap();
+        assert_eq!(loads.len(), 7, "no engine figures without a gear: {loads:?}");
+        assert_eq!(figure(&loads, "cda_m2"), 6.0);
+        let parts = ["air_w", "rolling_w", "slope_w", "vehicle_inertia_w", "wheels_inertia_w"];
+        let sum: f64 = parts.iter().map(|k| figure(&loads, k)).sum();
+        assert!((sum - figure(&loads, "wheel_w")).abs() < 1e-9 * sum);
+        let in_gear = driving_state(&truck, v, 0.1, slope, Some(3)).unwrap();
+        assert_eq!(in_gear[..7], loads[..]);
+        let rpm = figure(&in_gear, "engine_speed_rpm");
+        assert_eq!(rpm, truck.driveline().engine_speed_rpm(v, 3));
+        let power = figure(&in_gear, "engine_torque_nm") * rpm / RPM_PER_RAD_S;
+        assert!((figure(&in_gear, "engine_power_w") - power).abs() < 1e-9 * power);
+        let CoreError::Invalid { key, .. } = driving_state(&truck, v, 0.0, slope, Some(4)).unwrap_err();
+        assert_eq!(key, "gear");
+        let CoreError::Invalid { key, .. } = driving_state(&truck, 0.0, 0.0, slope, None).unwrap_err();
+        assert_eq!(key, "v_mps, acc_mps2, slope_rad");
     }
 }

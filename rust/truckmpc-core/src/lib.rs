@@ -1,6 +1,7 @@
 //! truckmpc-core: the physics and optimisation kernel of truckmpc, free of any Python dependency.
 //!
 //! - [`params`]: every parameter of a run, declared once (name with unit, type, default, range, doc);
+//! - [`declarations`]: what the core declares (parameters, key changes, outputs), as records;
 //! - [`vehicle`]: the built-in trucks behind one type, dispatched statically;
 //! - [`figures`]: a model's answers as named figures, for the tools above the core;
 //! - [`levels`]: pedal and brake levels joining two speeds (B.5, B.7) and stationary points (B.3);
@@ -19,6 +20,7 @@
 
 pub mod band;
 pub mod control;
+pub mod declarations;
 pub mod dp;
 pub mod error;
 pub mod figures;

@@ -17,8 +17,7 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ParamError", m.py().get_type::<errors::ParamError>())?;
-    m.add_function(wrap_pyfunction!(params::parameter_specs, m)?)?;
-    m.add_function(wrap_pyfunction!(params::key_changes_py, m)?)?;
+    m.add_function(wrap_pyfunction!(params::declaration, m)?)?;
     m.add_function(wrap_pyfunction!(params::parameter_value, m)?)?;
     m.add_class::<params::PySettings>()?;
     m.add_class::<vehicle::PyVehicle>()?;
@@ -26,6 +25,5 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<powertrain::PyMapTruck>()?;
     m.add("G_MPS2", truckmpc_core::powertrain::G_MPS2)?;
     run::register(m)?;
-    outputs::register(m)?;
     Ok(())
 }

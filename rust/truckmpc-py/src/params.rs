@@ -1,9 +1,9 @@
-//! The declared parameters as Python sees them: their specs, and `Settings`, a run's model
+//! The core's declarations and parameters as Python sees them, and `Settings`, a run's model
 //! ([`Scenario`]) built from a flat mapping of user values.
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use truckmpc_core::params::{key_changes, Value};
+use truckmpc_core::declarations::records;
 use truckmpc_core::scenario::Scenario;
 use truckmpc_core::RunSettings;
 
@@ -12,18 +12,11 @@ use crate::errors::to_py;
 use crate::powertrain::PyMapTruck;
 use crate::vehicle::PyVehicle;
 
-/// Every declared parameter, section by section in declaration order, each a dict of its record
-/// (`ParamSpec::record`).
+/// The records of the core's declaration `name` ("parameters", "key_changes", "summary" or
+/// "trace"), each a dict (`truckmpc_core::declarations::records`).
 #[pyfunction]
-pub fn parameter_specs(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
-    RunSettings::specs().iter().map(|spec| dict_of(py, &spec.record())).collect()
-}
-
-/// Every key renamed, replaced or added, oldest first, each a dict of its record
-/// (`KeyChange::record`).
-#[pyfunction(name = "key_changes")]
-pub fn key_changes_py(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
-    key_changes().iter().map(|change| dict_of(py, &change.record())).collect()
+pub fn declaration<'py>(py: Python<'py>, name: &str) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    records(name).map_err(to_py)?.iter().map(|record| dict_of(py, record)).collect()
 }
 
 /// The value of `key` as the core reads `value`: type and range checked against its declaration.
@@ -60,10 +53,7 @@ impl PySettings {
 
     /// Every key's value, in declaration order.
     fn values<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let settings = self.inner.settings();
-        let pairs: Vec<(&str, Value)> =
-            RunSettings::specs().iter().map(|spec| (spec.name, settings.get(spec.name).expect("declared"))).collect();
-        dict_of(py, &pairs)
+        dict_of(py, &self.inner.settings().values())
     }
 
     /// The value of one key.
@@ -74,20 +64,14 @@ impl PySettings {
         }
     }
 
-    /// The keys whose values the run resolves (`k_lim`, `q_speed_below`, `q_brake`,
-    /// `beta_g_per_s`), with the values it uses.
-    fn resolved<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        dict_of(py, &self.inner.resolved().map_err(to_py)?)
-    }
-
     /// The validated vehicle model.
     #[getter]
     fn vehicle(&self) -> PyVehicle {
         PyVehicle { inner: self.inner.vehicle().clone() }
     }
 
-    /// Figures derived from the settings and the truck: `horizon_stages`, `replan_stages`,
-    /// `v_ref_range_kmh` (lowest, highest) and `kinetic_fuel_g_per_half_v2`.
+    /// Figures derived from the settings and the truck (`Scenario::derived`), the resolved keys
+    /// (`k_lim`, `q_speed_below`, `q_brake`, `beta_g_per_s`) among them.
     fn derived<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         dict_of(py, &self.inner.derived().map_err(to_py)?)
     }

@@ -61,42 +61,21 @@ impl PyMapTruck {
         dict_of(py, &figures::truck_facts(self.inner.truck()))
     }
 
-    /// Drag area Cd·A [m²] at `v_mps`.
-    fn cda_m2(&self, v_mps: f64) -> f64 {
-        self.inner.truck().cda_m2(v_mps)
-    }
-
     /// The engine at `speed_rpm` and `torque_nm` (`figures::engine_point`).
     fn engine_point<'py>(&self, py: Python<'py>, speed_rpm: f64, torque_nm: f64) -> PyResult<Bound<'py, PyDict>> {
         dict_of(py, &figures::engine_point(self.inner.truck(), speed_rpm, torque_nm).map_err(to_py)?)
     }
 
-    /// Engine speed [rpm] at `v_mps` in `gear` (1..=gears).
-    fn engine_speed_rpm(&self, v_mps: f64, gear: usize) -> PyResult<f64> {
-        figures::map_engine_speed_rpm(self.inner.truck(), v_mps, gear).map_err(to_py)
-    }
-
-    /// Road loads [W] at `v_mps`, `acc_mps2` and `slope_rad` (`figures::road_loads`).
-    fn road_loads<'py>(
+    /// The truck at `v_mps`, `acc_mps2` and `slope_rad`, in `gear` if given (`figures::driving_state`).
+    #[pyo3(signature = (v_mps, acc_mps2=0.0, slope_rad=0.0, gear=None))]
+    fn at<'py>(
         &self,
         py: Python<'py>,
         v_mps: f64,
         acc_mps2: f64,
         slope_rad: f64,
+        gear: Option<usize>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        dict_of(py, &figures::road_loads(self.inner.truck(), v_mps, acc_mps2, slope_rad))
-    }
-
-    /// The engine's operating point at `v_mps`, `acc_mps2`, `slope_rad` in `gear` (`figures::operating_point`).
-    fn operating_point<'py>(
-        &self,
-        py: Python<'py>,
-        v_mps: f64,
-        acc_mps2: f64,
-        slope_rad: f64,
-        gear: usize,
-    ) -> PyResult<Bound<'py, PyDict>> {
-        let point = figures::operating_point(self.inner.truck(), v_mps, acc_mps2, slope_rad, gear).map_err(to_py)?;
-        dict_of(py, &point)
+        dict_of(py, &figures::driving_state(self.inner.truck(), v_mps, acc_mps2, slope_rad, gear).map_err(to_py)?)
     }
 }

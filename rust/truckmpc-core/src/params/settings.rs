@@ -84,6 +84,11 @@ impl RunSettings {
             .or_else(|| self.vecto.get(key))
     }
 
+    /// Every key with its value as a user would write it, in declaration order.
+    pub fn values(&self) -> Vec<(&'static str, Value)> {
+        Self::specs().iter().map(|spec| (spec.name, self.get(spec.name).expect("a declared key has a value"))).collect()
+    }
+
     /// Defaults overridden by `values`, validated.
     pub fn from_values<'a>(values: impl IntoIterator<Item = (&'a str, &'a Value)>) -> CoreResult<Self> {
         let mut settings = RunSettings::default();

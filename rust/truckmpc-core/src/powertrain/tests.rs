@@ -142,7 +142,7 @@ pub(crate) fn body() -> Body {
     }
 }
 
-pub(super) fn truck() -> MapTruck {
+pub(crate) fn truck() -> MapTruck {
     let driveline = Driveline::new((&[3.0, 2.0, 1.0], 3.0), (0.98, 0.97, 20.0), 0.5).unwrap();
     MapTruck::new(engine(), driveline, body()).unwrap()
 }

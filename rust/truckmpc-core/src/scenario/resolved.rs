@@ -30,16 +30,19 @@ impl Scenario {
     /// `v_ref_range_kmh` ([lowest, highest] set speed whose band the truck can drive: v_ref − v_dec
     /// at or above gear 1 at n_min_rpm, v_ref + v_inc at or below the top gear at n_max_rpm) and
     /// `kinetic_fuel_g_per_half_v2` (grams of fuel per unit of ½v² [m²/s²] the engine adds in the
-    /// gear the PI settles in at v_ref: kinetic energy's price for the end-speed correction).
+    /// gear the PI settles in at v_ref: kinetic energy's price for the end-speed correction),
+    /// followed by [`Scenario::resolved`]'s keys and values.
     pub fn derived(&self) -> CoreResult<Figures> {
         let mpc = &self.settings().mpc;
         let (lowest_kmh, highest_kmh) = self.v_ref_range_kmh();
-        Ok(vec![
+        let mut figures = vec![
             ("horizon_stages", Value::Int(mpc.stages() as i64)),
             ("replan_stages", Value::Int(mpc.replan_stages() as i64)),
             ("v_ref_range_kmh", Value::List(vec![Value::Float(lowest_kmh), Value::Float(highest_kmh)])),
             ("kinetic_fuel_g_per_half_v2", Value::Float(self.kinetic_fuel_g_per_half_v2()?)),
-        ])
+        ];
+        figures.extend(self.resolved()?);
+        Ok(figures)
     }
 
     /// The look-ahead controller's settings as it runs with them: its keys and the cruise keys,
@@ -93,6 +96,8 @@ mod tests {
         assert!(*lo < 85.0 && 85.0 < *hi, "the default 85 km/h lies inside [{lo}, {hi}]");
         let Value::Float(price) = derived[3].1 else { panic!("{:?}", derived[3]) };
         assert!(price > 0.0 && price.is_finite());
+        let names: Vec<&str> = derived[4..].iter().map(|(name, _)| *name).collect();
+        assert_eq!(names, ["k_lim", "q_speed_below", "q_brake", "beta_g_per_s"], "the resolved keys follow");
     }
 
     /// The output of a run whose controller solves the DP carries the settings it ran with; a
