@@ -15,7 +15,6 @@ import json
 import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 from typing import Any
 
@@ -56,6 +55,10 @@ class RunRequest:
 
 def program_version() -> str:
     """The installed truckmpc's version."""
+    # Imported here: importlib.metadata brings email, zipfile and socket, about 20 ms that every
+    # `import truckmpc` would pay for a figure only a run's record and --version print.
+    from importlib.metadata import PackageNotFoundError, version
+
     try:
         return version("truckmpc")
     except PackageNotFoundError:  # running from a source tree that was never installed
