@@ -17,8 +17,10 @@
 
 use super::rows::RowSpan;
 
+mod recent;
 mod stages;
 
+pub use self::recent::RecentRows;
 pub use self::stages::RowCache;
 
 /// Values for a contiguous range of source keys (grid indices), grown at either end on demand.
@@ -40,6 +42,13 @@ impl<T> Default for Keyed<T> {
 
 /// Slack kept in front of the first value when the buffer is (re)built.
 const FRONT_SLACK: usize = 32;
+
+impl<T> Keyed<T> {
+    /// The memory the values hold [bytes].
+    fn bytes(&self) -> usize {
+        self.data.capacity() * std::mem::size_of::<T>()
+    }
+}
 
 impl<T: Copy + Default> Keyed<T> {
     fn clear(&mut self) {
@@ -257,6 +266,12 @@ pub struct StageRows {
 }
 
 impl StageRows {
+    /// The memory the rows and arcs hold [bytes] (emptied ones keep theirs for the next key).
+    pub fn bytes(&self) -> usize {
+        let gears: usize = self.gears.iter().map(|g| g.blocks.bytes() + g.costs.capacity() * size_of::<f64>()).sum();
+        gears + self.arcs.iter().map(Keyed::bytes).sum::<usize>()
+    }
+
     /// Empty the stage for a key.
     pub fn reset(&mut self, key: StageKey) {
         self.key = key;

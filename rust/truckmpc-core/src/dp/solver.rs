@@ -41,7 +41,7 @@ mod trace;
 use self::choices::{Choices, Decision};
 use self::ends::Ends;
 use self::grids::StageGrid;
-use super::cache::{RowCache, RowScratch, StageKey, StageRows, PAD};
+use super::cache::{RecentRows, RowCache, RowScratch, StageKey, StageRows, PAD};
 use super::params::DpSettings;
 use super::rows::RowMemo;
 use super::space::{self, Intervals};
@@ -146,6 +146,8 @@ pub struct Solver {
     /// Rows of the stage being solved when they do not come from the cache.
     scratch_rows: StageRows,
     cache: RowCache,
+    /// Rows of stages solved off the cache's window (the whole-road plan), kept by key.
+    recent: RecentRows,
     /// Steps of the interval passes from earlier solves, by absolute stage.
     interval_memo: space::IntervalMemo,
     /// Whether the CPU has AVX2 (for the second pass), detected once.
@@ -181,6 +183,7 @@ impl Solver {
             row_memo: RowMemo::default(),
             scratch_rows: StageRows::default(),
             cache: RowCache::default(),
+            recent: RecentRows::default(),
             interval_memo: space::IntervalMemo::default(),
             avx2: Avx2Token::detect(),
         }

@@ -32,10 +32,17 @@ impl Solver {
         let p = &self.params;
         let v_max_next = self.bands[k + 1].v_max_mps();
         let mut uncounted = 0;
+        let key = StageKey {
+            slope_torque_nm: self.slope_torques[k],
+            origin_mps: here.index.origin_mps,
+            next_origin_mps: next.index.origin_mps,
+            next_v_max_mps: v_max_next,
+        };
         let (stage, computed): (&mut StageRows, &mut u64) = match abs_stage {
             Some(stage) if k > 0 => self.cache.stage(stage),
+            None if k > 0 && self.caching => (self.recent.rows(key), &mut self.cache.computed),
             _ => {
-                self.scratch_rows.reset(StageKey { slope_torque_nm: self.slope_torques[k], ..StageKey::default() });
+                self.scratch_rows.reset(key);
                 (&mut self.scratch_rows, &mut uncounted)
             }
         };

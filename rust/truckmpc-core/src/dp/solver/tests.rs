@@ -278,6 +278,37 @@ fn moving_grid_rows_from_the_cache_give_the_same_bits() {
     }
 }
 
+/// A whole-road solve (off the cache's window) on a road whose grades come back: the rows kept by
+/// key give the same cost, trajectory and stored values, bit for bit, as rows computed at every
+/// stage, and are computed for a tenth of the stages or fewer where a road of distinct grades
+/// computes them at every stage.
+#[test]
+fn a_whole_road_solve_with_rows_kept_by_key_gives_the_same_bits() {
+    let vehicle = Vehicle::new(VehicleParams::default()).unwrap();
+    // Nine grades, on every other stretch of 40 stages; flat between.
+    let slopes: Vec<f64> = (0..400).map(|i| 0.01 * ((i * 7 % 9) as f64 - 4.0) * ((i / 40) % 2) as f64).collect();
+    let distinct: Vec<f64> = slopes.iter().enumerate().map(|(i, a)| a + 1e-7 * i as f64).collect();
+    let start = InitialState { v_mps: 85.0 / 3.6, gear: 12, stages_since_shift: 100 };
+    let solve = |slopes: &[f64], caching: bool| {
+        let mut solver = Solver::new(DpSettings::thesis().bound());
+        solver.set_caching(caching);
+        let mut table = crate::dp::ValueTable::default();
+        let sol = solver.solve_recording(&vehicle, start, slopes, None, &mut table);
+        let path: Vec<(u64, usize)> = sol.trajectory.iter().map(|p| (p.v_mps.to_bits(), p.gear)).collect();
+        let gears = vehicle.forward_gears() + 1;
+        let values: Vec<Option<(u64, u32)>> = (table.stages.iter())
+            .flat_map(|st| (0..gears).flat_map(move |g| (0..st.count).map(move |j| st.get(g, j))))
+            .map(|value| value.map(|(cost, counter)| (cost.to_bits(), counter)))
+            .collect();
+        ((sol.feasible, sol.cost.to_bits(), path, values), solver.rows_computed())
+    };
+    let ((with, kept_rows), (without, _)) = (solve(&slopes, true), solve(&slopes, false));
+    assert!(with.0, "feasible");
+    assert_eq!(with, without);
+    let (_, every_stage_rows) = solve(&distinct, true);
+    assert!(kept_rows > 0 && kept_rows * 10 < every_stage_rows, "{kept_rows} rows against {every_stage_rows}");
+}
+
 /// Per lane, the first strict improvement over the targets that are states (`lo..=hi`).
 fn scalar_lane(costs: &[f64], steps: usize, base: i64, (lo, hi): (u32, u32), values: &[f64], l: usize) -> (f64, u32) {
     let mut best = (INF, 0);
