@@ -60,7 +60,11 @@ DP_BYTES_PER_UNIT = 2.5
 
 WHOLE_ROAD_BYTES_PER_POINT = 110.0
 """Memory of a whole-road optimum run [bytes] per road stage × grid point: the plan (its decisions
-for every gear and its stored values) and the process; its relaxed solves keep no rows."""
+for every gear and its stored values) and the process, besides the rows it keeps by key
+(:data:`WHOLE_ROAD_KEPT_ROWS_BYTES`)."""
+
+WHOLE_ROAD_KEPT_ROWS_BYTES = 256e6
+"""The rows the whole-road solve keeps by stage key [bytes]: the core's budget for them."""
 
 LEVEL_UNIT_S = 4e-7
 """Seconds per pedal-level arc unit (one road stage × one grid point × one level arc, ``pedal_levels``)
@@ -127,8 +131,9 @@ def dp_units(profile: RoadProfile, config: RunConfig) -> float:
 
 def run_work(profile: RoadProfile, config: RunConfig, controller: str) -> Work:
     """Estimated seconds and DP memory of one run of `controller` ("pi", "mpc" or "optimal") over
-    `profile`. The whole-road optimum is one solve over all the road's stages (its rows not cached)
-    and a one-stage solve per stage, holding every stage's values."""
+    `profile`. The whole-road optimum is one solve over all the road's stages (computing each stage's
+    rows, as the estimate counts, though a grade that comes back finds them kept) and a one-stage
+    solve per stage, holding every stage's values."""
     plant_s = plant_steps(profile, config) * PLANT_STEP_S
     stages, points = road_stages(profile, config), grid_points(config)
     level_arcs = max(float(config.settings.get("pedal_levels")) - 1, 0.0)  # the levels between 0 and 1
@@ -137,7 +142,7 @@ def run_work(profile: RoadProfile, config: RunConfig, controller: str) -> Work:
     levels_s = stages * points * level_arcs * LEVEL_UNIT_S
     if controller == "optimal":
         dp_s = stages * points**2 * DP_UNIT_LARGE_S + 2 * levels_s
-        return Work(plant_s, dp_s, stages * points * WHOLE_ROAD_BYTES_PER_POINT)
+        return Work(plant_s, dp_s, stages * points * WHOLE_ROAD_BYTES_PER_POINT + WHOLE_ROAD_KEPT_ROWS_BYTES)
     if controller != "mpc":
         return Work(plant_s, 0.0)
     rows_bytes = solve_units(config) * DP_BYTES_PER_UNIT
