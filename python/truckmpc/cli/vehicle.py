@@ -14,7 +14,10 @@ from truckmpc.config import load_run_config
 from truckmpc.config.keys import RENAMED_KEYS
 from truckmpc.config.vecto_truck import truck_from_overrides
 from truckmpc.errors import VehicleError
+from truckmpc.vecto.electric import ElectricTruckJob
+from truckmpc.vecto.electric_info import electric_truck_info
 from truckmpc.vecto.info import truck_info
+from truckmpc.vecto.xml_file import read_declaration_xml
 
 __all__ = ["vehicle_app"]
 
@@ -38,12 +41,24 @@ def info_cmd(
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of text.")] = False,
 ) -> None:
     """Masses, ratios, air drag, rolling resistance, rated power and the maps' ranges, as simulated
-    (VECTO's declaration-mode trailer, load and auxiliaries included; --set payload_kg=… and so on)."""
-    doc = truck_info(truck_from_overrides(job, set_ or ()))
+    (VECTO's declaration-mode trailer, load and auxiliaries included; --set payload_kg=… and so on).
+    A battery-electric truck's declaration XML: its machines, reduction, batteries and vehicle as read."""
+    electric = _electric(job)
+    if electric is not None and set_:
+        raise VehicleError(f"--set {set_[0]}: expected no keys for a battery-electric truck (none apply yet), got one")
+    doc = electric_truck_info(electric) if electric is not None else truck_info(truck_from_overrides(job, set_ or ()))
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
         return
-    typer.echo("\n".join(_text(doc)))
+    typer.echo("\n".join(_electric_text(doc) if electric is not None else _text(doc)))
+
+
+def _electric(path: Path) -> ElectricTruckJob | None:
+    """The battery-electric truck a declaration XML declares, or None for any other truck file."""
+    if path.suffix.lower() != ".xml" or not path.is_file():
+        return None
+    job = read_declaration_xml(path)
+    return job if isinstance(job, ElectricTruckJob) else None
 
 
 @vehicle_app.command("plot", short_help="Draw a VECTO truck's fuel map and a run's points.")
@@ -119,3 +134,35 @@ def _text(d: dict[str, Any]) -> list[str]:
         f"  shifts          traction interrupted {d['traction_interruption_s']:g} s",
         f"  note            {d['driveline_losses']}",
     ]
+
+
+def _electric_text(d: dict[str, Any]) -> list[str]:
+    m = d["machines"]
+    levels = " and ".join(f"{v:g}" for v in m["voltage_levels_v"])
+    machines = (
+        f"{m['count']} × {m['type']} at {m['position']}, {m['rated_power_w'] / 1e3:.0f} kW rated each, "
+        f"{m['max_torque_nm']:.0f} Nm up to {m['top_speed_rpm']:.0f} rpm "
+        f"(continuous {m['continuous_torque_nm']:.0f} Nm, "
+        f"{m['overload_torque_nm']:.0f} Nm for {m['overload_duration_s']:g} s)"
+    )
+    lines = [
+        f"{d['job']}: battery-electric {d['category'].lower()} {d['axle_config']} ({d['architecture']})",
+        f"  mass            {d['corrected_actual_mass_kg']:.0f} kg (corrected actual), "
+        f"{d['gross_mass_kg']:.0f} kg permissible",
+        f"  machines        {machines}",
+        f"  power maps      {m['power_map_size'][0]} speeds × {m['power_map_size'][1]} torques at {levels} V",
+        f"  reduction       ratio {d['reduction_ratio']:g}, loss map of {d['reduction_loss_map_points']} points",
+    ]
+    for b in d["batteries"]:
+        lo, hi = b["soc_window_pct"]
+        lines.append(
+            f"  battery {b['string_id']}       {b['type']} {b['rated_capacity_ah']:g} Ah, "
+            f"OCV {b['ocv_range_v'][0]:.0f}-{b['ocv_range_v'][1]:.0f} V, usable {lo:g}-{hi:g} %: "
+            f"{b['usable_energy_kwh']:.0f} kWh"
+        )
+    lines += [
+        f"  air drag        Cd·A {d['cda_declared_m2']:g} m² declared",
+        f"  auxiliaries     {'; '.join(d['auxiliaries'])}",
+        "  note            read only: truckmpc does not drive a battery-electric truck yet",
+    ]
+    return lines

@@ -15,8 +15,9 @@ from truckmpc import _core
 from truckmpc.errors import VehicleError
 from truckmpc.vecto import declaration as decl
 from truckmpc.vecto.components import VectoJob, read_job
+from truckmpc.vecto.electric import ElectricTruckJob
 from truckmpc.vecto.parts import Body, Driveline
-from truckmpc.vecto.xml_job import read_xml_job
+from truckmpc.vecto.xml_file import read_declaration_xml
 
 __all__ = [
     "DRIVELINE_LOSS_NOTE",
@@ -78,7 +79,12 @@ def load_vecto_truck(path: Path, values: Mapping[str, Any] | None = None) -> Vec
     """Read a ``.vecto`` job and build its truck with declaration mode's additions (``values`` set
     among :data:`TRUCK_KEYS`, checked by :func:`truck_values`)."""
     keys = truck_values(values)
-    job = read_xml_job(path) if path.suffix.lower() == ".xml" else read_job(path)
+    job = read_declaration_xml(path) if path.suffix.lower() == ".xml" else read_job(path)
+    if isinstance(job, ElectricTruckJob):
+        raise VehicleError(
+            f"{path}: expected a diesel truck (truckmpc does not drive a battery-electric one yet; 'truckmpc "
+            f"vehicle info {path.name}' shows what it read), got a battery-electric truck ({job.architecture})"
+        )
     segment = _segment(job, keys)
     vehicle = job.vehicle
     payload = segment.reference_load_kg if keys["payload_kg"] is None else keys["payload_kg"]

@@ -31,7 +31,7 @@ from truckmpc.vecto.xml_tree import (
     text,
 )
 
-__all__ = ["read_xml_job"]
+__all__ = ["axles_of", "declared_vehicle", "job_of", "loss_map_of", "read_xml_job"]
 
 # VECTO's declaration rules for a gearbox with a clutch. Engine inertia [kg m²]: clutch 1.3
 # (a torque converter's would be 1.2) + engine base 0.41 + 0.27 kg m² per litre of displacement.
@@ -47,12 +47,21 @@ _AUXILIARIES = {"Fan": "FAN", "SteeringPump": "STP", "HVAC": "AC", "ElectricSyst
 def read_xml_job(path: Path) -> VectoJob:
     """Read a VECTO declaration XML file into a declaration-mode job (every component's path is the
     file's, and no other files are read)."""
+    return job_of(path, declared_vehicle(path))
+
+
+def declared_vehicle(path: Path) -> Element:
+    """The ``Vehicle`` element of a VECTO declaration XML file."""
     root = parse(path)
     if root.name != "VectoInputDeclaration":
         raise VehicleError(
             f"{path}:{root.line}: expected a VECTO declaration (root element VectoInputDeclaration), got <{root.name}>"
         )
-    vehicle = child(root, "Vehicle")
+    return child(root, "Vehicle")
+
+
+def job_of(path: Path, vehicle: Element) -> VectoJob:
+    """The diesel truck of a declaration's ``Vehicle`` element."""
     components = child(vehicle, "Components")
     gearbox = _gearbox(child(components, "Gearbox", "Data"), child(components, "Axlegear", "Data"))
     idle = opt(vehicle, "IdlingSpeed")
@@ -99,7 +108,7 @@ def _fuel_map(el: Element) -> tuple[tuple[float, float, float], ...]:
     return tuple(v for _, v in rows)
 
 
-def _loss_map(el: Element) -> LossPoints:
+def loss_map_of(el: Element) -> LossPoints:
     """(input speed [rpm], input torque [Nm], torque loss [Nm]) points."""
     rows = table(el, (("inputSpeed", 0.0), ("inputTorque", None), ("torqueLoss", 0.0)), 4)
     check_once(located(rows), "(input speed, input torque)")
@@ -131,14 +140,13 @@ def _gearbox(data: Element, axlegear: Element) -> GearboxData:
         axle_ratio=number(child(axlegear, "Ratio"), positive=True),
         gear_ratios=tuple(ratios),
         traction_interruption_s=_TRACTION_INTERRUPTION_S[kind],
-        gear_loss_maps=tuple(_loss_map(child(g, "TorqueLossMap")) for g in gears),
-        axle_loss_map=_loss_map(child(axlegear, "TorqueLossMap")),
+        gear_loss_maps=tuple(loss_map_of(child(g, "TorqueLossMap")) for g in gears),
+        axle_loss_map=loss_map_of(child(axlegear, "TorqueLossMap")),
     )
 
 
 def _vehicle(vehicle: Element, components: Element) -> VehicleData:
     """The vehicle: masses [kg; gross in t], declared air drag Cd·A [m²], axles in axle-number order."""
-    axles = numbered(child(components, "AxleWheels", "Data", "Axles"), "Axle")
     return VehicleData(
         path=vehicle.file,
         category=text(child(vehicle, "VehicleCategory")),
@@ -146,8 +154,13 @@ def _vehicle(vehicle: Element, components: Element) -> VehicleData:
         curb_mass_kg=number(child(vehicle, "CurbMassChassis"), positive=True),
         cda_m2=number(child(components, "AirDrag", "Data", "DeclaredCdxA"), positive=True),
         gross_mass_t=number(child(vehicle, "GrossVehicleMass"), positive=True) / 1000.0,
-        axles=tuple(_axle(a) for a in axles),
+        axles=axles_of(components),
     )
+
+
+def axles_of(components: Element) -> tuple[Axle, ...]:
+    """The vehicle's axles, in axle-number order."""
+    return tuple(_axle(a) for a in numbered(child(components, "AxleWheels", "Data", "Axles"), "Axle"))
 
 
 def _axle(axle: Element) -> Axle:

@@ -22,6 +22,7 @@ __all__ = [
     "attr",
     "boolean",
     "child",
+    "entries",
     "located",
     "number",
     "numbered",
@@ -170,13 +171,19 @@ def numbered(parent: Element, name: str) -> list[Element]:
     return [c for _, c in numbered]
 
 
-def table(el: Element, columns: tuple[tuple[str, float | None], ...], fewest: int) -> list[Row]:
+def entries(
+    el: Element, columns: tuple[tuple[str, float | None], ...], fewest: int
+) -> list[tuple[Element, tuple[float, ...]]]:
     """The ``Entry`` children of ``el`` as numbers, one per (attribute, lowest value) column."""
-    (a, low_a), (b, low_b), (c, low_c) = columns
-    rows = [(e, (attr(e, a, low_a), attr(e, b, low_b), attr(e, c, low_c))) for e in el.children if e.name == "Entry"]
+    rows = [(e, tuple(attr(e, name, low) for name, low in columns)) for e in el.children if e.name == "Entry"]
     if len(rows) < fewest:
         raise VehicleError(f"{el.where}: expected at least {fewest} <Entry> elements, got {len(rows)}")
     return rows
+
+
+def table(el: Element, columns: tuple[tuple[str, float | None], ...], fewest: int) -> list[Row]:
+    """:func:`entries` of three columns."""
+    return [(e, (a, b, c)) for e, (a, b, c) in entries(el, columns, fewest)]
 
 
 def located(rows: list[Row]) -> list[Located]:
