@@ -6,8 +6,10 @@ and what the command line does with such a truck today."""
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 from typer.testing import CliRunner
 
@@ -139,3 +141,27 @@ def test_vehicle_info_shows_the_electric_truck_and_simulate_refuses_it_in_one_li
         assert refused.exit_code == 2, refused.output
         assert "Traceback" not in refused.output and len(refused.output.strip().splitlines()) == 1, refused.output
     assert not (tmp_path / "o").exists()
+
+
+def test_the_machine_efficiency_is_mechanical_over_electric_power_driving_and_the_inverse_braking() -> None:
+    from truckmpc.plot.electric import machine_efficiency_pct
+
+    # The file's last point: 750 Nm at 8276.06 rpm is 650.0 kW at the shaft for 739.46 kW drawn.
+    mech_w = 750.0 * 8276.06 * 2 * math.pi / 60
+    points = ((8276.06, 750.0, 739_460.0), (1000.0, -300.0, -28_000.0), (0.0, 500.0, 9_000.0), (900.0, -10.0, 400.0))
+    efficiency = machine_efficiency_pct(points)
+    assert efficiency[0] == pytest.approx(100 * mech_w / 739_460.0, rel=1e-12)
+    # Braking: 300 Nm at 1000 rpm is 31.4 kW taken in, 28 kW returned.
+    assert efficiency[1] == pytest.approx(100 * 28_000.0 / (300.0 * 1000.0 * 2 * math.pi / 60), rel=1e-12)
+    # At standstill, and braking while drawing power: no efficiency.
+    assert np.isnan(efficiency[2]) and np.isnan(efficiency[3])
+
+
+@needs_bev
+def test_vehicle_plot_draws_the_machine_map_and_refuses_a_run(tmp_path: Path) -> None:
+    out = tmp_path / "map.png"
+    drawn = runner.invoke(app, ["vehicle", "plot", str(BEV_XML), "-o", str(out)])
+    assert drawn.exit_code == 0, drawn.output
+    assert out.stat().st_size > 10_000
+    refused = runner.invoke(app, ["vehicle", "plot", str(BEV_XML), "--run", str(tmp_path)])
+    assert refused.exit_code == 2 and "--run: expected none" in refused.output

@@ -53,6 +53,16 @@ def info_cmd(
     typer.echo("\n".join(_electric_text(doc) if electric is not None else _text(doc)))
 
 
+def _plot_electric(job: ElectricTruckJob, out: Path | None, svg: bool, given: str | None) -> None:
+    """Draw a battery-electric truck's machine map; ``given`` names an option it cannot take."""
+    if given:
+        raise VehicleError(f"{given}: expected none for a battery-electric truck (it is not driven yet), got one")
+    from truckmpc.plot.electric import plot_machine_map  # lazy: matplotlib
+
+    written = plot_machine_map(job, out or Path(f"{job.path.stem}-machine-map.png"), svg=svg)
+    typer.echo("wrote " + ", ".join(str(p) for p in written))
+
+
 def _electric(path: Path) -> ElectricTruckJob | None:
     """The battery-electric truck a declaration XML declares, or None for any other truck file."""
     if path.suffix.lower() != ".xml" or not path.is_file():
@@ -80,8 +90,14 @@ def plot_cmd(
     set_: SetOpt = None,
 ) -> None:
     """Draw the engine's fuel map (specific consumption [g/kWh] over speed and torque) with its
-    full-load and drag curves, and with --run the operating points of each controller's run. Needs
-    matplotlib."""
+    full-load and drag curves, and with --run the operating points of each controller's run. For a
+    battery-electric truck's declaration: one machine's efficiency map at each voltage level with its
+    torque limits and drag curve. Needs matplotlib."""
+    electric = _electric(job)
+    if electric is not None:
+        given = "--run" if run is not None else "--set" if set_ else None
+        _plot_electric(electric, out, svg, given)
+        return
     from truckmpc.plot.vehicle import plot_fuel_map, run_operating_points  # lazy: matplotlib
 
     overrides = tuple(set_ or ()) if run is None else _run_keys(run, job, set_)
