@@ -133,10 +133,12 @@ def test_vehicle_info_shows_the_electric_truck_and_simulate_refuses_it_in_one_li
     assert doc["machines"]["count"] == 2 and doc["batteries"][0]["soc_window_pct"] == [8.0, 92.0]
     # 1555.5 Ah × 84 % × the OCV's mean over 8-92 % (between 739 and 791 V): about 1 MWh.
     assert 1555.5 * 0.84 * 0.739 < doc["batteries"][0]["usable_energy_kwh"] < 1555.5 * 0.84 * 0.792
-    for args in (
-        ["simulate", "--vehicle", str(BEV_XML), "--out", str(tmp_path / "o")],
-        ["vehicle", "info", str(BEV_XML), "--set", "payload_kg=1"],
-    ):
+    # Declaration mode's group-5 long-haul trailer (7 500 kg) and reference load (19 300 kg).
+    assert (doc["group"], doc["mass_kg"]) == ("group 5 (tractor 4x2 > 16 t), Long Haul", 10143.0 + 7500.0 + 19300.0)
+    lighter = runner.invoke(app, ["vehicle", "info", str(BEV_XML), "--json", "--set", "payload_kg=1000"])
+    assert json.loads(lighter.output)["mass_kg"] == 10143.0 + 7500.0 + 1000.0
+    simulate = ["simulate", "--vehicle", str(BEV_XML), "--out", str(tmp_path / "o")]
+    for args in (simulate, ["vehicle", "info", str(BEV_XML), "--set", "v_ref_kmh=80"]):
         refused = runner.invoke(app, args)
         assert refused.exit_code == 2, refused.output
         assert "Traceback" not in refused.output and len(refused.output.strip().splitlines()) == 1, refused.output

@@ -12,7 +12,7 @@ import typer
 from truckmpc.cli.options import SetOpt
 from truckmpc.config import load_run_config
 from truckmpc.config.keys import RENAMED_KEYS
-from truckmpc.config.vecto_truck import truck_from_overrides
+from truckmpc.config.vecto_truck import truck_from_overrides, truck_keys_from_overrides
 from truckmpc.errors import VehicleError
 from truckmpc.vecto.electric import ElectricTruckJob
 from truckmpc.vecto.electric_info import electric_truck_info
@@ -44,9 +44,10 @@ def info_cmd(
     (VECTO's declaration-mode trailer, load and auxiliaries included; --set payload_kg=… and so on).
     A battery-electric truck's declaration XML: its machines, reduction, batteries and vehicle as read."""
     electric = _electric(job)
-    if electric is not None and set_:
-        raise VehicleError(f"--set {set_[0]}: expected no keys for a battery-electric truck (none apply yet), got one")
-    doc = electric_truck_info(electric) if electric is not None else truck_info(truck_from_overrides(job, set_ or ()))
+    if electric is not None:
+        doc = electric_truck_info(electric, truck_keys_from_overrides(job, set_ or ()))
+    else:
+        doc = truck_info(truck_from_overrides(job, set_ or ()))
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
         return
@@ -162,9 +163,9 @@ def _electric_text(d: dict[str, Any]) -> list[str]:
         f"{m['overload_torque_nm']:.0f} Nm for {m['overload_duration_s']:g} s)"
     )
     lines = [
-        f"{d['job']}: battery-electric {d['category'].lower()} {d['axle_config']} ({d['architecture']})",
-        f"  mass            {d['corrected_actual_mass_kg']:.0f} kg (corrected actual), "
-        f"{d['gross_mass_kg']:.0f} kg permissible",
+        f"{d['job']}: battery-electric, {d['group']} ({d['architecture']})",
+        f"  mass            {d['mass_kg']:.0f} kg = vehicle {d['corrected_actual_mass_kg']:.0f} (corrected actual) "
+        f"+ trailer {d['trailer_mass_kg']:.0f} + load {d['payload_kg']:.0f}",
         f"  machines        {machines}",
         f"  power maps      {m['power_map_size'][0]} speeds × {m['power_map_size'][1]} torques at {levels} V",
         f"  reduction       ratio {d['reduction_ratio']:g}, loss map of {d['reduction_loss_map_points']} points",
@@ -177,7 +178,10 @@ def _electric_text(d: dict[str, Any]) -> list[str]:
             f"{b['usable_energy_kwh']:.0f} kWh"
         )
     lines += [
-        f"  air drag        Cd·A {d['cda_declared_m2']:g} m² declared",
+        f"  tyres           dynamic radius {d['wheel_radius_m']:.4f} m",
+        f"  air drag        Cd·A {d['cda_declared_m2']:g} m² declared, {d['cda_at_80_kmh_m2']:.3f} m² at 80 km/h "
+        f"({d['cross_wind']} cross-wind correction)",
+        f"  rolling         RRC {d['rolling_resistance']:.5f} (the whole combination at this mass)",
         f"  auxiliaries     {'; '.join(d['auxiliaries'])}",
         "  note            read only: truckmpc does not drive a battery-electric truck yet",
     ]

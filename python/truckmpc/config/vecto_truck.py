@@ -19,7 +19,7 @@ from truckmpc.config.layers import Layers
 from truckmpc.config.yamlfile import parse_assignment
 from truckmpc.errors import ConfigError
 from truckmpc.vecto import declaration as decl
-from truckmpc.vecto.truck import TRUCK_KEYS, VectoTruck, load_vecto_truck, pi_shift_speeds_rpm
+from truckmpc.vecto.truck import TRUCK_KEYS, VectoTruck, load_vecto_truck, pi_shift_speeds_rpm, truck_values
 
 __all__ = [
     "STILL_APPLIES",
@@ -28,6 +28,7 @@ __all__ = [
     "is_vecto_job",
     "refuse_thesis_key",
     "truck_from_overrides",
+    "truck_keys_from_overrides",
     "truck_layer",
 ]
 
@@ -62,6 +63,21 @@ def build_truck(job: Path, layers: Layers) -> VectoTruck:
 
 def truck_from_overrides(job: Path, overrides: Sequence[str]) -> VectoTruck:
     """The truck of `job` with `--set key=value` overrides of its keys (``truckmpc vehicle info``)."""
+    return build_truck(job, _override_layers(job, overrides))
+
+
+def truck_keys_from_overrides(job: Path, overrides: Sequence[str]) -> dict[str, Any]:
+    """The VECTO truck's keys with `--set key=value` overrides, as the core reads them (a truck the
+    run does not build, such as a battery-electric one that ``vehicle info`` shows)."""
+    layers = _override_layers(job, overrides)
+    try:
+        return truck_values({key: layers.values[key] for key in TRUCK_KEYS if key in layers.values})
+    except _core.ParamError as err:
+        raise layers.blame(err) from None
+
+
+def _override_layers(job: Path, overrides: Sequence[str]) -> Layers:
+    """`--set key=value` overrides of the VECTO truck's keys, each refused unless it is one."""
     layers = Layers()
     for text in overrides:
         key, value = parse_assignment(text)
@@ -71,7 +87,7 @@ def truck_from_overrides(job: Path, overrides: Sequence[str]) -> VectoTruck:
                 f"--set {key}: expected a key of the VECTO truck ({', '.join(TRUCK_KEYS)}), got a run's key"
             )
         layers.override(key, value, TRUCK_KEYS)
-    return build_truck(job, layers)
+    return layers
 
 
 def truck_layer(truck: VectoTruck) -> dict[str, Any]:

@@ -4,28 +4,44 @@ info``): its machines, reduction, batteries and vehicle, each figure with its un
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
+from truckmpc.units import KMH_PER_MPS
+from truckmpc.vecto.combination import declared_combination
 from truckmpc.vecto.electric import BatteryData, ElectricMachineData, ElectricTruckJob
+
+_REFERENCE_KMH = 80.0
 
 __all__ = ["electric_truck_info", "usable_energy_kwh"]
 
 
-def electric_truck_info(job: ElectricTruckJob) -> dict[str, Any]:
-    """The truck's components as read, with the figures a reader checks first."""
+def electric_truck_info(job: ElectricTruckJob, keys: Mapping[str, Any]) -> dict[str, Any]:
+    """The truck's components as read, with the figures a reader checks first, and the vehicle as
+    declaration mode completes it with the VECTO truck's ``keys`` (``truck_values``)."""
     vehicle = job.vehicle
+    c = declared_combination(vehicle, keys, job.path)
+    curve = np.array(c.cda_curve)
+    cda_at_80 = float(np.interp(_REFERENCE_KMH / KMH_PER_MPS, curve[:, 0], curve[:, 1]))
     return {
         "job": str(job.path),
         "files": {str(job.path): hashlib.sha256(job.path.read_bytes()).hexdigest()},
         "architecture": job.architecture,
+        "group": c.segment.name,
         "category": vehicle.category,
         "axle_config": vehicle.axle_config,
         "corrected_actual_mass_kg": vehicle.curb_mass_kg,
+        "trailer_mass_kg": c.trailer_mass_kg,
+        "payload_kg": c.payload_kg,
+        "mass_kg": c.mass_kg,
         "gross_mass_kg": vehicle.gross_mass_t * 1000.0,
+        "wheel_radius_m": c.wheel_radius_m,
         "cda_declared_m2": vehicle.cda_m2,
-        "axle_rolling_resistances": [a.rolling_resistance for a in vehicle.axles],
+        "cda_at_80_kmh_m2": cda_at_80,
+        "cross_wind": keys["cross_wind"],
+        "rolling_resistance": c.rolling_resistance,
         "machines": _machines(job.machine),
         "reduction_ratio": job.reduction.ratio,
         "reduction_loss_map_points": len(job.reduction.loss_map),

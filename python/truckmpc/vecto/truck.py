@@ -14,6 +14,7 @@ from typing import Any
 from truckmpc import _core
 from truckmpc.errors import VehicleError
 from truckmpc.vecto import declaration as decl
+from truckmpc.vecto.combination import declared_combination
 from truckmpc.vecto.components import VectoJob, read_job
 from truckmpc.vecto.electric import ElectricTruckJob
 from truckmpc.vecto.parts import Body, Driveline
@@ -34,7 +35,6 @@ DRIVELINE_LOSS_NOTE = (
     "(gear_efficiency 0.9546, loss_torque_nm 107, axle_efficiency 1) are fitted on VECTO's generic "
     "tractor's full-load climb in gear 11 and used in every gear"
 )
-_MIN_GROSS_MASS_T = 16.0  # group 5 is a 4x2 tractor above 16 t
 _VECTO_SPECS = [record for record in _core.declaration("parameters") if record["section"] == "vecto"]
 """The core's records of its ``vecto`` section (``truckmpc.config.keys.ParamSpec`` types them, a
 layer above)."""
@@ -85,26 +85,30 @@ def load_vecto_truck(path: Path, values: Mapping[str, Any] | None = None) -> Vec
             f"{path}: expected a diesel truck (truckmpc does not drive a battery-electric one yet; 'truckmpc "
             f"vehicle info {path.name}' shows what it read), got a battery-electric truck ({job.architecture})"
         )
-    segment = _segment(job, keys)
-    vehicle = job.vehicle
-    payload = segment.reference_load_kg if keys["payload_kg"] is None else keys["payload_kg"]
-    trailer = segment.trailer_mass_kg if keys["trailer_mass_kg"] is None else keys["trailer_mass_kg"]
-    mass = vehicle.curb_mass_kg + trailer + payload
-    where = f"{vehicle.path}: AxleConfig.Axles"
-    driven = [a for a in vehicle.axles if a.driven] or list(vehicle.axles)
-    radius = sum(decl.dynamic_radius_m(a.tyre, where) for a in driven) / len(driven)
-    rrc, wheels_inertia = _wheels(job, segment, mass)
-    cda0 = vehicle.cda_m2 + segment.trailer_delta_cda_m2
-    curve = decl.cross_wind_cda_curve(cda0, keys["cross_wind"], segment.cross_wind_parameters, segment.height_m)
+    c = declared_combination(job.vehicle, keys, job.path, job.declaration_mode)
     aux = keys["aux_power_w"]
     aux = decl.auxiliary_power_w(job.auxiliaries, str(job.path)) if aux is None else aux
-    body = Body(mass, wheels_inertia, cda0, keys["air_density_kgpm3"], rrc, aux, cda_curve=tuple(curve))
+    body = Body(
+        c.mass_kg, c.wheels_inertia_kgm2, c.cda_m2, keys["air_density_kgpm3"], c.rolling_resistance, aux, c.cda_curve
+    )
     loss_maps = _loss_maps(job, keys)
     _refuse_replaced_loss_keys(path, loss_maps, keys)
     interruption_s = keys["traction_interruption_s"]
     interruption_s = job.gearbox.traction_interruption_s if interruption_s is None else interruption_s
-    core = _core_truck(job, keys, radius, loss_maps, body, interruption_s)
-    return VectoTruck(job, segment, mass, payload, trailer, radius, rrc, tuple(curve), aux, keys, core)
+    core = _core_truck(job, keys, c.wheel_radius_m, loss_maps, body, interruption_s)
+    return VectoTruck(
+        job,
+        c.segment,
+        c.mass_kg,
+        c.payload_kg,
+        c.trailer_mass_kg,
+        c.wheel_radius_m,
+        c.rolling_resistance,
+        c.cda_curve,
+        aux,
+        keys,
+        core,
+    )
 
 
 def _loss_maps(job: VectoJob, keys: Mapping[str, Any]) -> dict[str, Any]:
@@ -146,45 +150,6 @@ def driveline_losses(truck: VectoTruck) -> str:
     parts = ["the gears' loss maps" if gears else "", "the axle's loss map" if axle else ""]
     used = " and ".join(p for p in parts if p)
     return (f"{used}; otherwise: " if used else "") + DRIVELINE_LOSS_NOTE + named
-
-
-def _segment(job: VectoJob, keys: Mapping[str, Any]) -> decl.Segment:
-    """VECTO's group of a declaration-mode job's vehicle on the mission."""
-    vehicle = job.vehicle
-    if not job.declaration_mode:
-        raise VehicleError(
-            f"{job.path}: SavedInDeclMode: expected a declaration-mode job (truckmpc adds declaration mode's "
-            "trailer, load and air drag; an engineering-mode job's own are not read yet), got false"
-        )
-    mission = keys["mission"]
-    segment = decl.SEGMENTS.get((vehicle.category, vehicle.axle_config, mission))
-    if segment is None or vehicle.gross_mass_t <= _MIN_GROSS_MASS_T:
-        carried = "; ".join(s.name for s in decl.SEGMENTS.values())
-        raise VehicleError(
-            f"{vehicle.path}: VehCat/AxleConfig/MassMax: expected a group truckmpc carries ({carried}), "
-            f"got {vehicle.category} {vehicle.axle_config} of {vehicle.gross_mass_t:g} t on {mission}"
-        )
-    if len(segment.vehicle_axle_shares) != len(vehicle.axles):
-        raise VehicleError(
-            f"{vehicle.path}: AxleConfig.Axles: "
-            f"expected {len(segment.vehicle_axle_shares)} axles, got {len(vehicle.axles)}"
-        )
-    return segment
-
-
-def _wheels(job: VectoJob, segment: decl.Segment, mass_kg: float) -> tuple[float, float]:
-    """The combination's rolling resistance coefficient and its wheels' inertia [kg m²], the
-    vehicle's axles and the standard trailer's."""
-    vehicle, ta = job.vehicle, segment.trailer_axles
-    share = segment.trailer_axle_share / ta.count
-    axles = [
-        (s, a.rolling_resistance, a.tyre_test_load_n, 4 if a.twin_tyres else 2)
-        for s, a in zip(segment.vehicle_axle_shares, vehicle.axles, strict=True)
-    ]
-    axles += [(share, ta.rolling_resistance, ta.tyre_test_load_n, 2)] * ta.count
-    inertia = sum((4 if a.twin_tyres else 2) * a.wheel_inertia_kgm2 for a in vehicle.axles)
-    inertia += 2 * ta.count * decl.wheel_inertia_kgm2(ta.tyre, "the standard trailer")
-    return decl.combination_rolling_resistance(axles, mass_kg), inertia
 
 
 def _core_truck(
