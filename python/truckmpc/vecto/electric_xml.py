@@ -15,15 +15,16 @@ from pathlib import Path
 
 from truckmpc.errors import VehicleError
 from truckmpc.vecto.checks import check_once
-from truckmpc.vecto.components import VehicleData
 from truckmpc.vecto.electric import BatteryData, ElectricMachineData, ElectricTruckJob, ReductionData, VoltageLevel
-from truckmpc.vecto.xml_job import axles_of, loss_map_of
+from truckmpc.vecto.xml_job import loss_map_of, vehicle_of
 from truckmpc.vecto.xml_tree import Element, boolean, child, entries, located, number, opt, table, text
 
 __all__ = ["is_electric", "read_electric_xml"]
 
 _MACHINE_TYPES = ("ASM", "PSM", "ESM", "RM")
 _AUXILIARIES = ("SteeringPump", "ElectricSystem", "PneumaticSystem", "HVAC")
+_V2_VEHICLE = ("ChassisConfiguration", "CorrectedActualMass", "TechnicalPermissibleMaximumLadenMass")
+"""The elements of the vehicle's category, mass [kg] and permissible maximum laden mass in schema v2.x."""
 
 
 def is_electric(vehicle: Element) -> bool:
@@ -53,7 +54,7 @@ def read_electric_xml(path: Path, vehicle: Element) -> ElectricTruckJob:
     return ElectricTruckJob(
         path=path,
         architecture=architecture,
-        vehicle=_vehicle(vehicle, components),
+        vehicle=vehicle_of(vehicle, components, _V2_VEHICLE),
         machine=machine,
         reduction=_reduction(child(machine_el, "ADC", "Data")),
         batteries=tuple(_battery(b) for b in _children(child(components, "ElectricEnergyStorage"), "Battery")),
@@ -66,20 +67,6 @@ def _children(el: Element, name: str) -> list[Element]:
     if not found:
         raise VehicleError(f"{el.where}: expected at least one <{name}> element, got none")
     return found
-
-
-def _vehicle(vehicle: Element, components: Element) -> VehicleData:
-    """The vehicle: its corrected actual mass [kg], the technically permissible maximum laden mass [t],
-    declared air drag Cd·A [m²] and axles."""
-    return VehicleData(
-        path=vehicle.file,
-        category=text(child(vehicle, "ChassisConfiguration")),
-        axle_config=text(child(vehicle, "AxleConfiguration")),
-        curb_mass_kg=number(child(vehicle, "CorrectedActualMass"), positive=True),
-        cda_m2=number(child(components, "AirDrag", "Data", "DeclaredCdxA"), positive=True),
-        gross_mass_t=number(child(vehicle, "TechnicalPermissibleMaximumLadenMass"), positive=True) / 1000.0,
-        axles=axles_of(components),
-    )
 
 
 def _machine(el: Element) -> ElectricMachineData:

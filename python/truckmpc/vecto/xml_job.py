@@ -31,7 +31,7 @@ from truckmpc.vecto.xml_tree import (
     text,
 )
 
-__all__ = ["axles_of", "declared_vehicle", "job_of", "loss_map_of", "read_xml_job"]
+__all__ = ["axles_of", "declared_vehicle", "job_of", "loss_map_of", "read_xml_job", "vehicle_of"]
 
 # VECTO's declaration rules for a gearbox with a clutch. Engine inertia [kg m²]: clutch 1.3
 # (a torque converter's would be 1.2) + engine base 0.41 + 0.27 kg m² per litre of displacement.
@@ -70,7 +70,7 @@ def job_of(path: Path, vehicle: Element) -> VectoJob:
     return VectoJob(
         path=path,
         declaration_mode=True,
-        vehicle=_vehicle(vehicle, components),
+        vehicle=vehicle_of(vehicle, components),
         engine=engine,
         gearbox=gearbox,
         auxiliaries=tuple((aux_id, text(child(aux, name, "Technology"))) for name, aux_id in _AUXILIARIES.items()),
@@ -145,15 +145,21 @@ def _gearbox(data: Element, axlegear: Element) -> GearboxData:
     )
 
 
-def _vehicle(vehicle: Element, components: Element) -> VehicleData:
-    """The vehicle: masses [kg; gross in t], declared air drag Cd·A [m²], axles in axle-number order."""
+_V1_VEHICLE = ("VehicleCategory", "CurbMassChassis", "GrossVehicleMass")
+"""The elements of schema v1.0's vehicle category, curb mass and gross mass."""
+
+
+def vehicle_of(vehicle: Element, components: Element, names: tuple[str, str, str] = _V1_VEHICLE) -> VehicleData:
+    """The vehicle: its category, mass [kg] and gross mass [t] from the elements ``names`` (schema
+    v1.0's by default), declared air drag Cd·A [m²], axles in axle-number order."""
+    category, mass, gross = names
     return VehicleData(
         path=vehicle.file,
-        category=text(child(vehicle, "VehicleCategory")),
+        category=text(child(vehicle, category)),
         axle_config=text(child(vehicle, "AxleConfiguration")),
-        curb_mass_kg=number(child(vehicle, "CurbMassChassis"), positive=True),
+        curb_mass_kg=number(child(vehicle, mass), positive=True),
         cda_m2=number(child(components, "AirDrag", "Data", "DeclaredCdxA"), positive=True),
-        gross_mass_t=number(child(vehicle, "GrossVehicleMass"), positive=True) / 1000.0,
+        gross_mass_t=number(child(vehicle, gross), positive=True) / 1000.0,
         axles=axles_of(components),
     )
 
