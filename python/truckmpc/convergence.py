@@ -57,16 +57,16 @@ def halved_configs(config: RunConfig) -> dict[str, RunConfig]:
     stage (or by table 6.2's δ rule) held at the run's value, k_lim kept at its spacing in metres;
     with pedal levels K > 0, also at 2K levels (the pedal step halved)."""
     settings = config.settings
-    resolved = settings.derived()
+    derived = settings.derived()
     # Q2 given per kilometre scales with S by itself; per stage (or by the δ rule) it is held.
     pinned: dict[str, Any] = {}
     if settings.get("q_speed_below_per_km") is None:
-        pinned["q_speed_below"] = resolved["q_speed_below"]
+        pinned["q_speed_below"] = derived["q_speed_below"]
     where = "--check-convergence"
     stage_m, delta_kmh, levels = settings.get("stage_m"), settings.get("delta_kmh"), settings.get("pedal_levels")
     halves = {
         "half_delta": config.with_values({**pinned, "delta_kmh": delta_kmh / 2}, where),
-        "half_stage": config.with_values({**pinned, "stage_m": stage_m / 2, "k_lim": 2 * resolved["k_lim"]}, where),
+        "half_stage": config.with_values({**pinned, "stage_m": stage_m / 2, "k_lim": 2 * derived["k_lim"]}, where),
     }
     if levels > 0:
         try:

@@ -63,8 +63,8 @@ WHOLE_ROAD_BYTES_PER_POINT = 110.0
 for every gear and its stored values) and the process, besides the rows it keeps by key
 (:data:`WHOLE_ROAD_KEPT_ROWS_BYTES`)."""
 
-WHOLE_ROAD_KEPT_ROWS_BYTES = 256e6
-"""The rows the whole-road solve keeps by stage key [bytes]: the core's budget for them."""
+WHOLE_ROAD_KEPT_ROWS_BYTES = float(256 << 20)
+"""The rows the whole-road solve keeps by stage key [bytes]: the core's budget for them (256 MiB)."""
 
 LEVEL_UNIT_S = 4e-7
 """Seconds per pedal-level arc unit (one road stage × one grid point × one level arc, ``pedal_levels``)
@@ -137,8 +137,8 @@ def run_work(profile: RoadProfile, config: RunConfig, controller: str) -> Work:
     plant_s = plant_steps(profile, config) * PLANT_STEP_S
     stages, points = road_stages(profile, config), grid_points(config)
     level_arcs = max(float(config.settings.get("pedal_levels")) - 1, 0.0)  # the levels between 0 and 1
-    # Level arcs: once per road stage in the MPC's cache; twice in the optimum (its whole-road solve
-    # and its one-stage solves keep no rows).
+    # Level arcs: once per road stage in the MPC's cache; twice in the optimum (its one-stage solves
+    # keep no rows, and its whole-road solve keeps them only by grade).
     levels_s = stages * points * level_arcs * LEVEL_UNIT_S
     if controller == "optimal":
         dp_s = stages * points**2 * DP_UNIT_LARGE_S + 2 * levels_s

@@ -12,7 +12,7 @@ import typer
 from truckmpc.cli.options import SetOpt
 from truckmpc.config import load_run_config
 from truckmpc.config.keys import RENAMED_KEYS
-from truckmpc.config.vecto_truck import truck_from_overrides, truck_keys_from_overrides
+from truckmpc.config.vecto_truck import electric_truck_keys, truck_from_overrides
 from truckmpc.errors import VehicleError
 from truckmpc.vecto.electric import ElectricTruckJob
 from truckmpc.vecto.electric_info import electric_truck_info
@@ -45,7 +45,7 @@ def info_cmd(
     A battery-electric truck's declaration XML: its machines, reduction, batteries and vehicle as read."""
     electric = _electric(job)
     if electric is not None:
-        doc = electric_truck_info(electric, truck_keys_from_overrides(job, set_ or ()))
+        doc = electric_truck_info(electric, electric_truck_keys(job, set_ or ()))
     else:
         doc = truck_info(truck_from_overrides(job, set_ or ()))
     if as_json:

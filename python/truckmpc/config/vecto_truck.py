@@ -22,13 +22,14 @@ from truckmpc.vecto import declaration as decl
 from truckmpc.vecto.truck import TRUCK_KEYS, VectoTruck, load_vecto_truck, pi_shift_speeds_rpm, truck_values
 
 __all__ = [
+    "ELECTRIC_KEYS",
     "STILL_APPLIES",
     "VECTO_VALUES",
     "build_truck",
+    "electric_truck_keys",
     "is_vecto_job",
     "refuse_thesis_key",
     "truck_from_overrides",
-    "truck_keys_from_overrides",
     "truck_layer",
 ]
 
@@ -66,9 +67,20 @@ def truck_from_overrides(job: Path, overrides: Sequence[str]) -> VectoTruck:
     return build_truck(job, _override_layers(job, overrides))
 
 
-def truck_keys_from_overrides(job: Path, overrides: Sequence[str]) -> dict[str, Any]:
-    """The VECTO truck's keys with `--set key=value` overrides, as the core reads them (a truck the
-    run does not build, such as a battery-electric one that ``vehicle info`` shows)."""
+ELECTRIC_KEYS = ("mission", "payload_kg", "trailer_mass_kg", "cross_wind")
+"""The VECTO truck's keys that apply to a battery-electric truck today: its declaration-mode
+combination's (the others describe a diesel driveline or are not modelled for it yet)."""
+
+
+def electric_truck_keys(job: Path, overrides: Sequence[str]) -> dict[str, Any]:
+    """The VECTO truck's keys with `--set key=value` overrides of :data:`ELECTRIC_KEYS`, as the core
+    reads them (a battery-electric truck, which ``vehicle info`` shows); any other key is refused."""
+    for text in overrides:
+        key = parse_assignment(text)[0]
+        if key not in ELECTRIC_KEYS:
+            raise ConfigError(
+                f"--set {key}: expected a key a battery-electric truck takes ({', '.join(ELECTRIC_KEYS)}), got another"
+            )
     layers = _override_layers(job, overrides)
     try:
         return truck_values({key: layers.values[key] for key in TRUCK_KEYS if key in layers.values})

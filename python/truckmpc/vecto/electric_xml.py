@@ -158,7 +158,10 @@ def _battery(el: Element) -> BatteryData:
         raise VehicleError(
             f"{soc_max_el.where}: expected a value above SOCmin ({soc_min:g}) and at most 100, got {soc_max:g}"
         )
-    string_id = number(child(el, "StringID"), minimum=0.0)
+    string_el = child(el, "StringID")
+    string_id = number(string_el, minimum=0.0)
+    if string_id != int(string_id):
+        raise VehicleError(f"{string_el.where}: expected a whole number, got {text(string_el)!r}")
     return BatteryData(
         string_id=int(string_id),
         battery_type=text(child(data, "BatteryType")),

@@ -9,7 +9,8 @@
 //! changes with the start speed, but is most often the same from one solve to the next (clamped at
 //! v_min, or carried by the same chain of bounds): a stage whose key changed takes its new key's
 //! rows. A solve without the cache (the first stage, whose grid is the start speed, or a horizon
-//! off the stage boundaries) fills a scratch [`StageRows`] the same way.
+//! off the stage boundaries) fills a scratch [`StageRows`] the same way; the whole-road plan keeps
+//! its stages' rows by key instead ([`RecentRows`]).
 //!
 //! Layout: per target gear, blocks of `LANES` consecutive source velocities whose rows are stored
 //! transposed ([`Block`]), because the DP's first pass walks one target gear at a time over all

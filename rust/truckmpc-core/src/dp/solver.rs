@@ -146,8 +146,10 @@ pub struct Solver {
     /// Rows of the stage being solved when they do not come from the cache.
     scratch_rows: StageRows,
     cache: RowCache,
-    /// Rows of stages solved off the cache's window (the whole-road plan), kept by key.
+    /// Rows of the whole-road plan's stages (a recording solve off the cache's window), kept by key.
     recent: RecentRows,
+    /// Whether the solve under way keeps its stages' rows in `recent`.
+    keeps_rows_by_key: bool,
     /// Steps of the interval passes from earlier solves, by absolute stage.
     interval_memo: space::IntervalMemo,
     /// Whether the CPU has AVX2 (for the second pass), detected once.
@@ -184,6 +186,7 @@ impl Solver {
             scratch_rows: StageRows::default(),
             cache: RowCache::default(),
             recent: RecentRows::default(),
+            keeps_rows_by_key: false,
             interval_memo: space::IntervalMemo::default(),
             avx2: Avx2Token::detect(),
         }
@@ -331,6 +334,7 @@ impl Solver {
         self.stage_grids(vehicle, start, slopes, first_stage, terminal);
         self.gear_states(vehicle, start, terminal);
         let cached_from = if self.caching { first_stage } else { None };
+        self.keeps_rows_by_key = self.caching && first_stage.is_none() && matches!(ends, Ends::Recording(_));
         if let Some(stage) = cached_from {
             // Stage k of this solve (k ≥ 1 has grid states) is absolute stage `stage + k`.
             let keys = (1..n_stages).map(|k| StageKey {

@@ -1,16 +1,16 @@
-//! Rows of the stages of solves that do not run on the window of absolute stages (the whole-road
-//! plan, a horizon off the stage boundaries), kept by key within a memory budget, the least
-//! recently used replaced first. A road's grades come back (the US long-haul road's 32 185 stages
-//! of 25 m have 2 278 distinct grades), so a whole-road solve computes most keys' rows once
-//! instead of once a stage.
+//! Rows of the whole-road plan's stages (a solve off the window of absolute stages), kept by key
+//! within a memory budget, the least recently used replaced first. A road's grades come back (the
+//! US long-haul road's 32 184 stages of 25 m have 2 278 distinct grades), so the plan computes most
+//! keys' rows once instead of once a stage.
 
 use std::collections::HashMap;
 
 use super::{StageKey, StageRows};
 
-/// The memory the kept rows may hold before the least recently used set is reused [bytes]: about
-/// 1 100 sets of a 12-gear truck's rows at δ 0.05 km/h, which take the whole-road solve of the US
-/// long-haul road from 32 185 stages' rows computed to about 4 300.
+/// The memory the kept rows may hold before the least recently used set is reused [bytes] (256 MiB;
+/// the set being filled when it is reached comes on top): about 1 100 sets of a 12-gear truck's
+/// rows at δ 0.05 km/h, which take the whole-road solve of the US long-haul road from 32 184
+/// stages' rows computed to about 4 300.
 const BUDGET_BYTES: usize = 256 << 20;
 
 /// Rows by key, for stages solved off the window.

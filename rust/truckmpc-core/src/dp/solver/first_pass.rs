@@ -40,7 +40,7 @@ impl Solver {
         };
         let (stage, computed): (&mut StageRows, &mut u64) = match abs_stage {
             Some(stage) if k > 0 => self.cache.stage(stage),
-            None if k > 0 && self.caching => (self.recent.rows(key), &mut self.cache.computed),
+            None if k > 0 && self.keeps_rows_by_key => (self.recent.rows(key), &mut self.cache.computed),
             _ => {
                 self.scratch_rows.reset(key);
                 (&mut self.scratch_rows, &mut uncounted)

@@ -289,24 +289,28 @@ fn a_whole_road_solve_with_rows_kept_by_key_gives_the_same_bits() {
     let slopes: Vec<f64> = (0..400).map(|i| 0.01 * ((i * 7 % 9) as f64 - 4.0) * ((i / 40) % 2) as f64).collect();
     let distinct: Vec<f64> = slopes.iter().enumerate().map(|(i, a)| a + 1e-7 * i as f64).collect();
     let start = InitialState { v_mps: 85.0 / 3.6, gear: 12, stages_since_shift: 100 };
-    let solve = |slopes: &[f64], caching: bool| {
-        let mut solver = Solver::new(DpSettings::thesis().bound());
-        solver.set_caching(caching);
-        let mut table = crate::dp::ValueTable::default();
-        let sol = solver.solve_recording(&vehicle, start, slopes, None, &mut table);
-        let path: Vec<(u64, usize)> = sol.trajectory.iter().map(|p| (p.v_mps.to_bits(), p.gear)).collect();
-        let gears = vehicle.forward_gears() + 1;
-        let values: Vec<Option<(u64, u32)>> = (table.stages.iter())
-            .flat_map(|st| (0..gears).flat_map(move |g| (0..st.count).map(move |j| st.get(g, j))))
-            .map(|value| value.map(|(cost, counter)| (cost.to_bits(), counter)))
-            .collect();
-        ((sol.feasible, sol.cost.to_bits(), path, values), solver.rows_computed())
-    };
-    let ((with, kept_rows), (without, _)) = (solve(&slopes, true), solve(&slopes, false));
-    assert!(with.0, "feasible");
-    assert_eq!(with, without);
-    let (_, every_stage_rows) = solve(&distinct, true);
-    assert!(kept_rows > 0 && kept_rows * 10 < every_stage_rows, "{kept_rows} rows against {every_stage_rows}");
+    // The thesis's settings (Euler stages, moving grid) and the declared defaults (trapezoid stages,
+    // fixed grid, fuel-cut arcs), each as the whole-road optimum prices it.
+    for params in [DpSettings::thesis().bound(), DpSettings::default().bound()] {
+        let solve = |slopes: &[f64], caching: bool| {
+            let mut solver = Solver::new(params.clone());
+            solver.set_caching(caching);
+            let mut table = crate::dp::ValueTable::default();
+            let sol = solver.solve_recording(&vehicle, start, slopes, None, &mut table);
+            let path: Vec<(u64, usize)> = sol.trajectory.iter().map(|p| (p.v_mps.to_bits(), p.gear)).collect();
+            let gears = vehicle.forward_gears() + 1;
+            let values: Vec<Option<(u64, u32)>> = (table.stages.iter())
+                .flat_map(|st| (0..gears).flat_map(move |g| (0..st.count).map(move |j| st.get(g, j))))
+                .map(|value| value.map(|(cost, counter)| (cost.to_bits(), counter)))
+                .collect();
+            ((sol.feasible, sol.cost.to_bits(), path, values), solver.rows_computed())
+        };
+        let ((with, kept_rows), (without, _)) = (solve(&slopes, true), solve(&slopes, false));
+        assert!(with.0, "feasible ({:?})", params.mpc.stage_model);
+        assert_eq!(with, without, "{:?}", params.mpc.stage_model);
+        let (_, every_stage_rows) = solve(&distinct, true);
+        assert!(kept_rows > 0 && kept_rows * 10 < every_stage_rows, "{kept_rows} rows against {every_stage_rows}");
+    }
 }
 
 /// Per lane, the first strict improvement over the targets that are states (`lo..=hi`).
