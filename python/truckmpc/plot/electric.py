@@ -26,7 +26,7 @@ def machine_efficiency_pct(power_map: tuple[tuple[float, float, float], ...]) ->
     points = np.array(power_map, dtype=float)
     mech_w = points[:, 1] * points[:, 0] / RPM_PER_RAD_S
     el_w = points[:, 2]
-    valid = (mech_w * el_w > 0.0) & (np.abs(mech_w) > 0.0)
+    valid = mech_w * el_w > 0.0
     ratio = np.divide(mech_w, el_w, out=np.full_like(el_w, np.nan), where=valid)
     efficiency: np.ndarray = 100.0 * np.where(mech_w > 0.0, ratio, 1.0 / ratio)
     return efficiency
