@@ -16,38 +16,8 @@
 //! **Slope.** The road's grade Δh/ΔL is turned into the angle α = arctan(grade), as VECTO does.
 
 use super::interface::{AffineAccel, Control, EnergyStore, Powertrain, RateForm, NEUTRAL};
-use super::{Curve, FuelGrid, MapTruck, G_MPS2, RPM_PER_RAD_S};
-
-/// Engine speed step of the resampled torque curves [rpm].
-const CURVE_STEP_RPM: f64 = 0.5;
-
-/// A curve over engine speed resampled every [`CURVE_STEP_RPM`]: one multiply and one lerp per
-/// look-up instead of a search. Outside its range it holds the end values, as [`Curve`] does.
-#[derive(Debug, Clone)]
-struct Sampled {
-    lo_rpm: f64,
-    values: Vec<f64>,
-}
-
-impl Sampled {
-    fn new(curve: &Curve, range_rpm: (f64, f64)) -> Self {
-        Self::from_fn(range_rpm, |n| curve.at(n))
-    }
-
-    fn from_fn((lo_rpm, hi_rpm): (f64, f64), f: impl Fn(f64) -> f64) -> Self {
-        let nodes = ((hi_rpm - lo_rpm) / CURVE_STEP_RPM).ceil() as usize + 2;
-        Sampled { lo_rpm, values: (0..nodes).map(|i| f(lo_rpm + i as f64 * CURVE_STEP_RPM)).collect() }
-    }
-
-    #[inline]
-    fn at(&self, n_rpm: f64) -> f64 {
-        let last = (self.values.len() - 2) as f64;
-        let t = ((n_rpm - self.lo_rpm) / CURVE_STEP_RPM).clamp(0.0, last);
-        let i = t as usize;
-        let f = t - i as f64;
-        self.values[i] + f * (self.values[i + 1] - self.values[i])
-    }
-}
+use super::sampled::Sampled;
+use super::{FuelGrid, MapTruck, G_MPS2, RPM_PER_RAD_S};
 
 /// The truck's equations of motion and fuel rate, from its component data.
 #[derive(Debug, Clone)]
@@ -345,8 +315,7 @@ fn wheel_ranges(truck: &MapTruck, range_rpm: (f64, f64)) -> Vec<(Sampled, Sample
     let wheel = |torque: &dyn Fn(f64) -> f64, gear: usize| {
         Sampled::from_fn(range_rpm, |n| driveline.wheel_torque_nm(torque(n) - aux_w / (n / RPM_PER_RAD_S), gear, n))
     };
-    let mut out =
-        vec![(Sampled { lo_rpm: 0.0, values: vec![0.0, 0.0] }, Sampled { lo_rpm: 0.0, values: vec![0.0, 0.0] })];
+    let mut out = vec![(Sampled::zero(), Sampled::zero())];
     for gear in 1..=driveline.gears() {
         out.push((wheel(&|n| engine.drag_torque_nm(n), gear), wheel(&|n| engine.max_torque_nm(n), gear)));
     }

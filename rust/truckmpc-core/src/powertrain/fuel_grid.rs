@@ -30,12 +30,23 @@ impl FuelGrid {
 
     /// [`FuelGrid::new`] with `nodes` (≥ 2) along each axis.
     pub fn with_nodes(map: &FuelMap, speed_rpm: (f64, f64), torque_nm: (f64, f64), nodes: usize) -> Self {
+        Self::from_fn(speed_rpm, torque_nm, nodes, |n, t| map.extrapolate(n, t).max(0.0))
+    }
+
+    /// Any function `value(speed [rpm], torque [Nm])` sampled on `nodes` (≥ 2) along each axis
+    /// over `speed_rpm` × `torque_nm`.
+    pub fn from_fn(
+        speed_rpm: (f64, f64),
+        torque_nm: (f64, f64),
+        nodes: usize,
+        value: impl Fn(f64, f64) -> f64,
+    ) -> Self {
         let nodes = nodes.max(2);
         let node = |(lo, hi): (f64, f64), i: usize| lo + (hi - lo) * i as f64 / (nodes - 1) as f64;
         let mut values = Vec::with_capacity(nodes * nodes);
         for i in 0..nodes {
             let n = node(speed_rpm, i);
-            values.extend((0..nodes).map(|j| map.extrapolate(n, node(torque_nm, j)).max(0.0)));
+            values.extend((0..nodes).map(|j| value(n, node(torque_nm, j))));
         }
         FuelGrid { nodes, speed_rpm, torque_nm, values }
     }

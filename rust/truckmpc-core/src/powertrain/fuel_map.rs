@@ -25,7 +25,17 @@ impl FuelMap {
     /// errors. At least three points not on one line, finite values, fuel rate ≥ 0, no (speed, torque)
     /// twice.
     pub fn new(key: &str, points: &[(f64, f64, f64)]) -> CoreResult<Self> {
-        check_points(key, points)?;
+        Self::build(key, points, true)
+    }
+
+    /// [`FuelMap::new`] for a value of either sign (an electric machine's loss, which its maps
+    /// give slightly negative at standstill).
+    pub fn signed(key: &str, points: &[(f64, f64, f64)]) -> CoreResult<Self> {
+        Self::build(key, points, false)
+    }
+
+    fn build(key: &str, points: &[(f64, f64, f64)], nonnegative: bool) -> CoreResult<Self> {
+        check_points(key, points, nonnegative)?;
         let range = |f: fn(&(f64, f64, f64)) -> f64| {
             points.iter().map(f).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
         };
@@ -102,7 +112,7 @@ fn scale(value: f64, (lo, hi): (f64, f64)) -> f64 {
     (value - lo) / (hi - lo)
 }
 
-fn check_points(key: &str, points: &[(f64, f64, f64)]) -> CoreResult<()> {
+fn check_points(key: &str, points: &[(f64, f64, f64)], nonnegative: bool) -> CoreResult<()> {
     if points.len() < 3 {
         return Err(CoreError::invalid(key, "at least three points").got(points.len()));
     }
@@ -112,7 +122,7 @@ fn check_points(key: &str, points: &[(f64, f64, f64)]) -> CoreResult<()> {
         if !(n.is_finite() && t.is_finite() && f.is_finite()) {
             return Err(CoreError::invalid(key, format!("finite numbers at point {row}")).got(format!("{n}, {t}, {f}")));
         }
-        if f < 0.0 {
+        if nonnegative && f < 0.0 {
             return Err(CoreError::invalid(key, format!("a fuel rate >= 0 at point {row}")).got(f));
         }
         if !seen.insert((n.to_bits(), t.to_bits())) {

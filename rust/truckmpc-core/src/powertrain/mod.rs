@@ -16,18 +16,21 @@
 //! - [`truck`]: the whole truck: road loads, engine operating points, the fuel to hold a speed;
 //! - [`parts`]: a truck's component data as a file reader gives it, and the truck built from it;
 //! - [`fuel_grid`]: the fuel map resampled on a regular grid, for fast evaluation;
-//! - [`dynamics`]: the truck as the plant and the controllers drive it (pedal, brake, gear).
+//! - [`dynamics`]: the truck as the plant and the controllers drive it (pedal, brake, gear);
+//! - [`electric`]: a battery-electric truck, its machines, reduction and battery.
 
 pub mod curve;
 pub mod delaunay;
 pub mod driveline;
 pub mod dynamics;
+pub mod electric;
 pub mod engine;
 pub mod fuel_grid;
 pub mod fuel_map;
 pub mod interface;
 pub mod loss_map;
 pub mod parts;
+mod sampled;
 pub mod thesis;
 pub mod truck;
 
@@ -39,6 +42,7 @@ pub(crate) mod tests;
 pub use curve::Curve;
 pub use driveline::Driveline;
 pub use dynamics::MapModel;
+pub use electric::{ElectricModel, ElectricParts, ElectricTruck};
 pub use engine::Engine;
 pub use fuel_grid::FuelGrid;
 pub use fuel_map::FuelMap;

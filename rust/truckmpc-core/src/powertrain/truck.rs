@@ -79,30 +79,24 @@ pub struct MapTruck {
 impl MapTruck {
     /// A truck from its engine, driveline and body; the body's values are checked.
     pub fn new(engine: Engine, driveline: Driveline, body: Body) -> CoreResult<Self> {
-        let checks = [
-            ("mass_kg", body.mass_kg, body.mass_kg > 0.0, "a number > 0"),
-            ("wheels_inertia_kgm2", body.wheels_inertia_kgm2, body.wheels_inertia_kgm2 >= 0.0, "a number >= 0"),
-            ("cda_m2", body.cda_m2, body.cda_m2 >= 0.0, "a number >= 0"),
-            ("air_density_kgpm3", body.air_density_kgpm3, body.air_density_kgpm3 > 0.0, "a number > 0"),
-            ("rolling_resistance", body.rolling_resistance, body.rolling_resistance >= 0.0, "a number >= 0"),
-            ("aux_power_w", body.aux_power_w, body.aux_power_w >= 0.0, "a number >= 0"),
-        ];
-        for (key, value, ok, expected) in checks {
-            if !(value.is_finite() && ok) {
-                return Err(CoreError::invalid(key, expected).got(value));
-            }
-        }
+        check_body(&body)?;
         Ok(MapTruck { engine, driveline, body, cda_curve: None })
     }
 
     /// The same truck with a drag area that depends on speed: `(speed [m/s], Cd·A [m²])` points,
     /// linear between them (the end segments continued).
     pub fn with_cda_curve(mut self, points: &[(f64, f64)]) -> CoreResult<Self> {
+        Self::check_cda_points(points)?;
+        self.cda_curve = Some(Curve::new("cda_curve", points)?);
+        Ok(self)
+    }
+
+    /// Refuses a drag area below zero, naming `cda_curve`.
+    pub(crate) fn check_cda_points(points: &[(f64, f64)]) -> CoreResult<()> {
         if let Some(&(v, cda)) = points.iter().find(|p| !(p.1 >= 0.0)) {
             return Err(CoreError::invalid("cda_curve", "Cd·A >= 0 at every speed").got(format!("{cda} m² at {v} m/s")));
         }
-        self.cda_curve = Some(Curve::new("cda_curve", points)?);
-        Ok(self)
+        Ok(())
     }
 
     /// The same truck at another total mass [kg] (a different load), checked as in [`MapTruck::new`].
@@ -177,4 +171,22 @@ impl MapTruck {
             feasible: in_range && torque <= self.engine.max_torque_nm(speed_rpm),
         })
     }
+}
+
+/// Refuses a body value out of its range, naming its key.
+pub(crate) fn check_body(body: &Body) -> CoreResult<()> {
+    let checks = [
+        ("mass_kg", body.mass_kg, body.mass_kg > 0.0, "a number > 0"),
+        ("wheels_inertia_kgm2", body.wheels_inertia_kgm2, body.wheels_inertia_kgm2 >= 0.0, "a number >= 0"),
+        ("cda_m2", body.cda_m2, body.cda_m2 >= 0.0, "a number >= 0"),
+        ("air_density_kgpm3", body.air_density_kgpm3, body.air_density_kgpm3 > 0.0, "a number > 0"),
+        ("rolling_resistance", body.rolling_resistance, body.rolling_resistance >= 0.0, "a number >= 0"),
+        ("aux_power_w", body.aux_power_w, body.aux_power_w >= 0.0, "a number >= 0"),
+    ];
+    for (key, value, ok, expected) in checks {
+        if !(value.is_finite() && ok) {
+            return Err(CoreError::invalid(key, expected).got(value));
+        }
+    }
+    Ok(())
 }
