@@ -216,13 +216,109 @@ class _EnginePoint(TypedDict):
     in_fuel_map: bool
     """Whether the point lies inside the fuel map's convex hull."""
 
+class _LevelData(Protocol):
+    """One machine at one voltage [V]: torque limits (speed [rpm], most driving and most braking
+    torque [Nm]) and power map (speed [rpm], torque [Nm], electric power [W])."""
+
+    @property
+    def voltage_v(self) -> float: ...
+    @property
+    def torque_limits(self) -> _Rows: ...
+    @property
+    def power_map(self) -> _Rows: ...
+
+class _MachineData(Protocol):
+    """`count` alike machines, one machine's inertia [kg m²], levels and drag curve (speed [rpm],
+    drag torque [Nm])."""
+
+    @property
+    def count(self) -> int: ...
+    @property
+    def inertia_kgm2(self) -> float: ...
+    @property
+    def levels(self) -> Sequence[_LevelData]: ...
+    @property
+    def drag_curve(self) -> Sequence[tuple[float, float]]: ...
+
+class _ReductionData(Protocol):
+    """The reduction's ratio, loss map (input speed [rpm], input torque [Nm], loss [Nm]) and the
+    tyres' dynamic radius [m]."""
+
+    @property
+    def ratio(self) -> float: ...
+    @property
+    def loss_map(self) -> _Rows | None: ...
+    @property
+    def wheel_radius_m(self) -> float: ...
+
+class _BatteryData(Protocol):
+    """Capacity [Ah]; open-circuit voltage, 20 s resistance [mΩ] and current limits [A] over the
+    state of charge [%]; the declared usable window [%]."""
+
+    @property
+    def capacity_ah(self) -> float: ...
+    @property
+    def ocv(self) -> Sequence[tuple[float, float]]: ...
+    @property
+    def resistance_mohm(self) -> Sequence[tuple[float, float]]: ...
+    @property
+    def current_limits(self) -> _Rows: ...
+    @property
+    def soc_window_pct(self) -> tuple[float, float]: ...
+
+class _ElectricFacts(TypedDict):
+    gears: int
+    max_torque_nm: float
+    """The machines' most driving torque at standstill [Nm]."""
+    peak_power_w: float
+    """The most their torque limits give [W]."""
+    top_speed_rpm: float
+    reduction_ratio: float
+    battery_ocv_v: float
+    battery_resistance_ohm: float
+    battery_max_discharge_w: float
+    battery_max_charge_w: float
+    soc_start_pct: float
+    usable_window_pct: list[float]
+    """Declaration mode's window, narrowed for ageing [%]."""
+    usable_energy_kwh: float
+
+class _MachinePoint(TypedDict):
+    electric_power_w: float
+    """From the power map's triangulation of the loss torque, at the battery's voltage [W]."""
+    loss_w: float
+    max_drive_nm: float
+    max_brake_nm: float
+    drag_nm: float
+    battery_current_a: float
+    """The current giving that electric power at the terminals [A]."""
+    battery_internal_w: float
+
 @final
 class MapTruck:
-    """A truck from component data: engine, driveline, body, and its gearbox's traction interruption [s]."""
+    """A truck from component data: engine, driveline, body, and its gearbox's traction interruption
+    [s]; or a battery-electric truck (`MapTruck.electric`)."""
 
     def __new__(
         cls, engine: _EngineData, driveline: _DrivelineData, body: _BodyData, traction_interruption_s: float = 0.0
     ) -> MapTruck: ...
+    @staticmethod
+    def electric(
+        machine: _MachineData,
+        reduction: _ReductionData,
+        battery: _BatteryData,
+        body: _BodyData,
+        conditioning_w: float,
+        soc_start_pct: float | None,
+    ) -> MapTruck:
+        """A battery-electric truck; `soc_start_pct` None: the middle of the usable window."""
+    @property
+    def is_electric(self) -> bool: ...
+    def machine_point(self, speed_rpm: float, torque_nm: float) -> _MachinePoint:
+        """A battery-electric truck's machines together at `speed_rpm` and `torque_nm`."""
+    @property
+    def electric_facts(self) -> _ElectricFacts:
+        """What the battery-electric truck is (ParamError for an engine-driven one)."""
     @property
     def facts(self) -> _TruckFacts:
         """What the truck is: gears, rated power, what its maps cover, which losses loss maps give."""

@@ -19,9 +19,9 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from truckmpc.units import G_PER_KG, KMH_PER_MPS
+from truckmpc.units import G_PER_KG, J_PER_KWH, KMH_PER_MPS
 
-__all__ = ["corrected_fuel_kg", "kinetic_correction_kg", "summary_corrected_kg"]
+__all__ = ["corrected_energy_kwh", "corrected_fuel_kg", "kinetic_correction_kg", "summary_corrected_kg"]
 
 
 def kinetic_correction_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
@@ -35,6 +35,14 @@ def corrected_fuel_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float
     """A run's fuel [kg] with its end speed brought back to its start speed (negative correction
     when it ends faster than it started)."""
     return float(summary["fuel_kg"]) - kinetic_correction_kg(summary, g_per_half_v2)
+
+
+def corrected_energy_kwh(summary: Mapping[str, Any], j_per_half_v2: float) -> float:
+    """A battery-electric run's net battery energy [kWh] with its end speed brought back to its
+    start speed, kinetic energy priced in battery energy (`j_per_half_v2`, joules per m²/s², in the
+    one gear)."""
+    v_start, v_end = summary["start_speed_kmh"] / KMH_PER_MPS, summary["end_speed_kmh"] / KMH_PER_MPS
+    return float(summary["energy_kwh"]) - float(j_per_half_v2 * 0.5 * (v_end**2 - v_start**2) / J_PER_KWH)
 
 
 def summary_corrected_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:

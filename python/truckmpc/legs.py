@@ -90,7 +90,7 @@ def merge_legs(road: RoadProfile, results: Sequence[RunResult], bounds: Sequence
             "end_m": end_m,
             "entry_speed_kmh": result.summary["start_speed_kmh"],
             "exit_speed_kmh": result.summary["end_speed_kmh"],
-            "fuel_kg": result.summary["fuel_kg"],
+            **{key: result.summary[key] for key in ("fuel_kg", "energy_kwh") if key in result.summary},
             "time_s": result.summary["time_s"],
         }
         for (start_m, end_m), result in zip(bounds, results, strict=False)
@@ -138,6 +138,8 @@ def _sum(merged: dict[str, Any], key: str, legs: Legs, stalled: bool) -> None:
 
 
 def _sum_unless_stalled(merged: dict[str, Any], key: str, legs: Legs, stalled: bool) -> None:
+    if key not in legs[0]:
+        return
     _sum(merged, key, legs, stalled)
     merged[key] = None if stalled else merged.get(key)
 

@@ -6,9 +6,9 @@ road driven as legs joins it (:mod:`truckmpc.legs`) and whose ``sweep.csv`` colu
 (:func:`summary_table`, :func:`trace_table`).
 
 A spec's ``runs`` is ``every``, ``pcc`` (VECTO's rule-based predictive cruise control), ``dp`` (the
-controllers that solve the DP: ``mpc``, ``optimal``), ``optimal`` (the whole-road optimum) or
-``legs`` (a road with stops, driven as its legs); its ``source`` is ``core`` or ``python`` (added
-after the core's run).
+controllers that solve the DP: ``mpc``, ``optimal``), ``optimal`` (the whole-road optimum), ``legs``
+(a road with stops, driven as its legs) or ``electric`` (a battery-electric truck's runs); its
+``source`` is ``core`` or ``python`` (added after the core's run).
 """
 
 from __future__ import annotations
@@ -43,7 +43,8 @@ class OutputSpec:
     kind: str
     """number, count, flag, text or record."""
     runs: str
-    """Which runs carry it: every, pcc, dp (mpc, optimal), optimal, or legs (a road with stops)."""
+    """Which runs carry it: every, pcc, dp (mpc, optimal), optimal, legs (a road with stops), or
+    electric (a battery-electric truck's)."""
     source: str
     """Where it is computed: core, or python (after the core's run)."""
     merge: str
@@ -75,6 +76,7 @@ _RUNS = {
     "dp": "`mpc`, `optimal`",
     "optimal": "`optimal`",
     "legs": "a road with stops",
+    "electric": "a battery-electric truck's",
 }
 """Which runs carry a figure, in the reference page's words."""
 

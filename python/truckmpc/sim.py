@@ -32,7 +32,7 @@ import numpy as np
 from truckmpc import _core
 from truckmpc.controller import Controller, PlantState
 from truckmpc.errors import ConfigError
-from truckmpc.fuel import corrected_fuel_kg
+from truckmpc.fuel import corrected_energy_kwh, corrected_fuel_kg
 from truckmpc.legs import drive_legs
 from truckmpc.schema import TRACE_COLUMNS
 
@@ -135,6 +135,10 @@ def _drive(road: RoadProfile, config: RunConfig, controller: str | Controller) -
         summary_of = getattr(controller, "summary", None)
         name, extra = controller.name, dict(summary_of()) if callable(summary_of) else {}
     summary = {**figures, **extra}
-    g_per_half_v2 = config.settings.derived()["kinetic_fuel_g_per_half_v2"]
-    summary["fuel_corrected_kg"] = None if summary["stalled"] else corrected_fuel_kg(summary, g_per_half_v2)
+    per_half_v2 = config.settings.derived()["kinetic_fuel_g_per_half_v2"]
+    if "energy_kwh" in summary:  # a battery-electric truck: the price is in joules per unit of ½v²
+        corrected = None if summary["stalled"] else corrected_energy_kwh(summary, per_half_v2)
+        summary["energy_corrected_kwh"] = corrected
+    else:
+        summary["fuel_corrected_kg"] = None if summary["stalled"] else corrected_fuel_kg(summary, per_half_v2)
     return RunResult(name=name, road=road.name, summary=summary, trace=dict(trace))

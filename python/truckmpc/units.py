@@ -20,6 +20,9 @@ PCT_PER_FRACTION = 100.0
 G_PER_KG = 1000.0
 """Grams per kilogram."""
 
+J_PER_KWH = 3.6e6
+"""Joules per kilowatt-hour."""
+
 KG_PER_T = 1000.0
 """Kilograms per tonne."""
 

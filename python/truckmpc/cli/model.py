@@ -11,7 +11,7 @@ from typing import Annotated
 import typer
 
 from truckmpc.cli.options import ConfigOpt, SetOpt, VehicleOpt, run_config_from
-from truckmpc.config.vecto_truck import truck_from_overrides
+from truckmpc.config.vecto_truck import diesel_truck_from_overrides
 from truckmpc.errors import VehicleError
 from truckmpc.stationary import map_truck_stationary_point, stationary_point
 
@@ -97,7 +97,7 @@ def _map_truck_point(
 ) -> None:
     if config:
         raise VehicleError(f"--config: expected none with a VECTO truck ({job.name}): its keys are set with --set")
-    truck = truck_from_overrides(job, set_ or ())
+    truck = diesel_truck_from_overrides(job, set_ or (), "model stationary")
     gears = truck.core.facts["gears"]
     parsed = _parse_gear(gear, gears)
     if parsed == 0:

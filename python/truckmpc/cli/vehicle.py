@@ -12,11 +12,12 @@ import typer
 from truckmpc.cli.options import SetOpt
 from truckmpc.config import load_run_config
 from truckmpc.config.keys import RENAMED_KEYS
-from truckmpc.config.vecto_truck import electric_truck_keys, truck_from_overrides
+from truckmpc.config.vecto_truck import diesel_truck_from_overrides, electric_truck_keys
 from truckmpc.errors import VehicleError
 from truckmpc.vecto.electric import ElectricTruckJob
 from truckmpc.vecto.electric_info import electric_truck_info
 from truckmpc.vecto.info import truck_info
+from truckmpc.vecto.truck import VectoTruck
 from truckmpc.vecto.xml_file import read_declaration_xml
 
 __all__ = ["vehicle_app"]
@@ -47,7 +48,7 @@ def info_cmd(
     if electric is not None:
         doc = electric_truck_info(electric, electric_truck_keys(job, set_ or ()))
     else:
-        doc = truck_info(truck_from_overrides(job, set_ or ()))
+        doc = truck_info(diesel_truck_from_overrides(job, set_ or (), "vehicle info"))
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
         return
@@ -104,7 +105,7 @@ def plot_cmd(
     overrides = tuple(set_ or ()) if run is None else _run_keys(run, job, set_)
     config = load_run_config(job, overrides=overrides)
     truck = config.truck
-    assert truck is not None
+    assert isinstance(truck, VectoTruck), "a declaration of a battery-electric truck returned above"
     points = None if run is None else run_operating_points(run, config.core_vehicle)
     written = plot_fuel_map(truck, out or Path(f"{job.stem}-fuel-map.png"), svg=svg, runs=points)
     typer.echo("wrote " + ", ".join(str(p) for p in written))

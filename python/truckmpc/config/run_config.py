@@ -40,7 +40,7 @@ from truckmpc.config.layers import Layers, Origin, problem
 from truckmpc.config.vecto_truck import VECTO_VALUES, build_truck, is_vecto_job, refuse_thesis_key, truck_layer
 from truckmpc.config.yamlfile import parse_assignment
 from truckmpc.errors import ConfigError
-from truckmpc.vecto.truck import VectoTruck
+from truckmpc.vecto.truck import AnyVectoTruck
 
 PathLike = str | os.PathLike[str]
 __all__ = ["Origin", "RunConfig", "Section", "config_from_values", "load_run_config"]
@@ -85,7 +85,7 @@ class RunConfig:
 
     settings: _core.Settings
     origins: Mapping[str, Origin] = field(repr=False)
-    truck: VectoTruck | None = field(default=None, repr=False)
+    truck: AnyVectoTruck | None = field(default=None, repr=False)
     """The VECTO truck the run drives, when the vehicle is a VECTO job (None: the thesis's model)."""
 
     def section(self, name: str) -> Section:
@@ -121,6 +121,11 @@ class RunConfig:
     def v_max_kmh(self) -> float:
         """v_max = v_ref + v_inc [km/h], above which the PI brakes."""
         return float(self.cruise.v_ref_kmh + self.cruise.v_inc_kmh)
+
+    @property
+    def is_electric(self) -> bool:
+        """Whether the truck is battery-electric (its runs draw battery energy, not fuel)."""
+        return self.truck is not None and self.truck.core.is_electric
 
     def with_values(self, changes: Mapping[str, Any], where: str) -> RunConfig:
         """This configuration with `changes` (key: user value) made and checked by the core, the same
@@ -198,7 +203,7 @@ def config_from_values(values: Mapping[str, Any], where: str, job: Path | None =
     return _build(layers, None if job is None else build_truck(job, layers))
 
 
-def _build(layers: Layers, truck: VectoTruck | None) -> RunConfig:
+def _build(layers: Layers, truck: AnyVectoTruck | None) -> RunConfig:
     """The run's settings, built once by the core with `truck`; an error names the value's origin."""
     core_truck = None if truck is None else truck.core
 

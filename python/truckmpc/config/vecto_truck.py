@@ -17,15 +17,24 @@ from truckmpc import _core
 from truckmpc.config.keys import KEYS, VEHICLE_KEYS
 from truckmpc.config.layers import Layers
 from truckmpc.config.yamlfile import parse_assignment
-from truckmpc.errors import ConfigError
+from truckmpc.errors import ConfigError, VehicleError
 from truckmpc.vecto import declaration as decl
-from truckmpc.vecto.truck import TRUCK_KEYS, VectoTruck, load_vecto_truck, pi_shift_speeds_rpm, truck_values
+from truckmpc.vecto.electric_truck import ElectricVectoTruck
+from truckmpc.vecto.truck import (
+    TRUCK_KEYS,
+    AnyVectoTruck,
+    VectoTruck,
+    load_vecto_truck,
+    pi_shift_speeds_rpm,
+    truck_values,
+)
 
 __all__ = [
     "ELECTRIC_KEYS",
     "STILL_APPLIES",
     "VECTO_VALUES",
     "build_truck",
+    "diesel_truck_from_overrides",
     "electric_truck_keys",
     "is_vecto_job",
     "refuse_thesis_key",
@@ -54,7 +63,7 @@ def refuse_thesis_key(key: str, job: Path) -> None:
         )
 
 
-def build_truck(job: Path, layers: Layers) -> VectoTruck:
+def build_truck(job: Path, layers: Layers) -> AnyVectoTruck:
     """The truck of `job` from the layers' values of its keys; a bad value is blamed on its origin."""
     try:
         return load_vecto_truck(job, {key: layers.values[key] for key in TRUCK_KEYS if key in layers.values})
@@ -62,9 +71,21 @@ def build_truck(job: Path, layers: Layers) -> VectoTruck:
         raise layers.blame(err) from None
 
 
-def truck_from_overrides(job: Path, overrides: Sequence[str]) -> VectoTruck:
+def truck_from_overrides(job: Path, overrides: Sequence[str]) -> AnyVectoTruck:
     """The truck of `job` with `--set key=value` overrides of its keys (``truckmpc vehicle info``)."""
     return build_truck(job, _override_layers(job, overrides))
+
+
+def diesel_truck_from_overrides(job: Path, overrides: Sequence[str], command: str) -> VectoTruck:
+    """:func:`truck_from_overrides` for a command that needs an engine-driven truck; a
+    battery-electric one is refused in one line naming `command`."""
+    truck = truck_from_overrides(job, overrides)
+    if isinstance(truck, ElectricVectoTruck):
+        raise VehicleError(
+            f"{job}: expected a diesel truck for '{command}' (not built for a battery-electric truck yet), "
+            f"got a battery-electric truck ({truck.job.architecture})"
+        )
+    return truck
 
 
 ELECTRIC_KEYS = ("mission", "payload_kg", "trailer_mass_kg", "cross_wind")
@@ -102,10 +123,12 @@ def _override_layers(job: Path, overrides: Sequence[str]) -> Layers:
     return layers
 
 
-def truck_layer(truck: VectoTruck) -> dict[str, Any]:
+def truck_layer(truck: AnyVectoTruck) -> dict[str, Any]:
     """The run's keys the truck sets: the vehicle keys its components give (so that the settings a
     run records, and the checks between keys, describe this truck) and the PI's shift speeds for
     its engine (``gear_down_rpm``, ``gear_up_rpm``)."""
+    if isinstance(truck, ElectricVectoTruck):
+        return _electric_layer(truck)
     job, keys, gears = truck.job, truck.keys, len(truck.job.gearbox.gear_ratios)
     down, up = pi_shift_speeds_rpm(truck)
     return {
@@ -121,4 +144,24 @@ def truck_layer(truck: VectoTruck) -> dict[str, Any]:
         "gear_efficiencies": [keys["gear_efficiency"]] * gears,
         "gear_down_rpm": down,
         "gear_up_rpm": up,
+    }
+
+
+def _electric_layer(truck: ElectricVectoTruck) -> dict[str, Any]:
+    """A battery-electric truck's vehicle keys: one gear of the reduction's ratio, the machines'
+    inertia, no shift speeds (the core sets the same from the truck; these describe it in a run's
+    record)."""
+    machine = truck.job.machine
+    return {
+        "mass_kg": truck.mass_kg,
+        "engine_inertia_kgm2": machine.count * machine.inertia_kgm2,
+        "final_drive_ratio": 1.0,
+        "final_drive_efficiency": 1.0,
+        "wheel_radius_m": truck.wheel_radius_m,
+        "rolling_resistance": truck.rolling_resistance,
+        "gravity_mps2": _core.G_MPS2,
+        "gear_ratios": [truck.job.reduction.ratio],
+        "gear_efficiencies": [1.0],
+        "gear_down_rpm": [None],
+        "gear_up_rpm": [None],
     }

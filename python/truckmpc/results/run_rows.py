@@ -68,6 +68,10 @@ class Figure(NamedTuple):
 
 _DRIVING = (
     Figure("fuel_kg_per_100km", ".2f"),
+    Figure("energy_kwh_per_100km", ".2f"),
+    Figure("recovered_kwh", ".2f"),
+    Figure("soc_start_pct", ".2f"),
+    Figure("soc_end_pct", ".2f"),
     Figure("mean_speed_kmh", ".2f"),
     Figure("end_speed_kmh", ".2f"),
     Figure("gear_shifts_per_100km", ".1f"),

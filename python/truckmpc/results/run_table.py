@@ -31,7 +31,7 @@ from truckmpc.results.table_model import Row, RunTable, Section
 __all__ = ["Row", "RunTable", "Section", "render_text", "run_table"]
 
 
-_HEADLINE = (Figure("fuel_kg", ".3f"), Figure("time_s", ".1f"))
+_HEADLINE = (Figure("fuel_kg", ".3f"), Figure("energy_kwh", ".2f"), Figure("time_s", ".1f"))
 _EQUAL_TIME = (
     (HEADLINE, "Δfuel at equal trip time and end speed"),
     ("delta_fuel_equal_time_pct", "Δfuel at equal trip time"),
@@ -68,11 +68,17 @@ def run_table(summary: Mapping[str, Any], *, verbose: bool = False) -> RunTable:
     shown = tuple(Section(s.title, tuple(r for r in s.rows if any(r.cells))) for s in sections)
     legend = any(row.label.startswith("Δ") for section in shown for row in section.rows)
     lines = list(notes(summary, columns, legend))
+    if any("energy_kwh" in run for run in runs):
+        lines.append(_ELECTRIC)
     if isinstance(summary.get("convergence"), Mapping):
         lines += [_CONVERGENCE, *convergence_lines(summary["convergence"], _label_width(shown))]
     return RunTable(heading(summary), columns, tuple(s for s in shown if s.rows), tuple(lines))
 
 
+_ELECTRIC = (
+    "battery-electric truck: each run as driven; its comparisons against a baseline (raw and at equal trip "
+    "time) are not computed for battery energy yet"
+)
 _CONVERGENCE = (
     "convergence: how far the MPC's Δ vs PI moves at half the speed step δ and at half the stage S "
     "(and at twice pedal_levels)"
@@ -114,4 +120,4 @@ def _columns(summary: Mapping[str, Any]) -> tuple[str, ...]:
     recorded = (summary.get("run") or {}).get("controllers")
     if recorded:
         return tuple(name for name in recorded if isinstance(summary.get(name), Mapping))
-    return tuple(k for k, v in summary.items() if isinstance(v, Mapping) and "fuel_kg" in v)
+    return tuple(k for k, v in summary.items() if isinstance(v, Mapping) and ("fuel_kg" in v or "energy_kwh" in v))

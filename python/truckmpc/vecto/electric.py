@@ -101,3 +101,8 @@ class ElectricTruckJob:
     batteries: tuple[BatteryData, ...]
     auxiliaries: tuple[tuple[str, str], ...]
     """(auxiliary, technology) pairs as the file names them."""
+
+    @property
+    def files(self) -> tuple[Path, ...]:
+        """The files the truck was read from: the declaration alone."""
+        return (self.path,)

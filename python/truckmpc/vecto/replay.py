@@ -10,14 +10,14 @@ from pathlib import Path
 from typing import Any
 
 from truckmpc.errors import ConfigError
-from truckmpc.vecto.truck import VectoTruck, truck_values
+from truckmpc.vecto.truck import AnyVectoTruck, truck_values
 
 __all__ = ["check_read_files", "recorded_job", "truck_record"]
 
 _DEFAULTS = truck_values()
 
 
-def truck_record(truck: VectoTruck) -> dict[str, Any]:
+def truck_record(truck: AnyVectoTruck) -> dict[str, Any]:
     """The ``run.vehicle`` record of a run driving ``truck``: the job, each file it read with its
     SHA-256, the keys set to other than their defaults, and the masses they resolved to [kg]."""
     job = truck.job
@@ -51,7 +51,7 @@ def recorded_job(record: Any, where: str) -> tuple[Path, dict[str, Any]] | None:
     return Path(job), keys
 
 
-def check_read_files(truck: VectoTruck, record: dict[str, Any], where: str) -> None:
+def check_read_files(truck: AnyVectoTruck, record: dict[str, Any], where: str) -> None:
     """A file the job names that was missing then (a loss map) and is there now changes the truck."""
     added = sorted({str(Path(p).resolve()) for p in truck.job.files} - set(record["files"]))
     if added:

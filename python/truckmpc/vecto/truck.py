@@ -17,12 +17,14 @@ from truckmpc.vecto import declaration as decl
 from truckmpc.vecto.combination import declared_combination
 from truckmpc.vecto.components import VectoJob, read_job
 from truckmpc.vecto.electric import ElectricTruckJob
+from truckmpc.vecto.electric_truck import ElectricVectoTruck, load_electric_truck
 from truckmpc.vecto.parts import Body, Driveline
 from truckmpc.vecto.xml_file import read_declaration_xml
 
 __all__ = [
     "DRIVELINE_LOSS_NOTE",
     "TRUCK_KEYS",
+    "AnyVectoTruck",
     "VectoTruck",
     "driveline_losses",
     "load_vecto_truck",
@@ -75,16 +77,14 @@ class VectoTruck:
     core: _core.MapTruck
 
 
-def load_vecto_truck(path: Path, values: Mapping[str, Any] | None = None) -> VectoTruck:
-    """Read a ``.vecto`` job and build its truck with declaration mode's additions (``values`` set
-    among :data:`TRUCK_KEYS`, checked by :func:`truck_values`)."""
+def load_vecto_truck(path: Path, values: Mapping[str, Any] | None = None) -> AnyVectoTruck:
+    """Read a ``.vecto`` job or a declaration XML and build its truck with declaration mode's
+    additions (``values`` set among :data:`TRUCK_KEYS`, checked by :func:`truck_values`): a diesel
+    truck, or a battery-electric one from its declaration."""
     keys = truck_values(values)
     job = read_declaration_xml(path) if path.suffix.lower() == ".xml" else read_job(path)
     if isinstance(job, ElectricTruckJob):
-        raise VehicleError(
-            f"{path}: expected a diesel truck (truckmpc does not drive a battery-electric one yet; 'truckmpc "
-            f"vehicle info {path.name}' shows what it read), got a battery-electric truck ({job.architecture})"
-        )
+        return load_electric_truck(job, keys)
     c = declared_combination(job.vehicle, keys, job.path, job.declaration_mode)
     aux = keys["aux_power_w"]
     aux = decl.auxiliary_power_w(job.auxiliaries, str(job.path)) if aux is None else aux
@@ -109,6 +109,10 @@ def load_vecto_truck(path: Path, values: Mapping[str, Any] | None = None) -> Vec
         keys,
         core,
     )
+
+
+AnyVectoTruck = VectoTruck | ElectricVectoTruck
+"""A truck from VECTO's files: diesel, or battery-electric."""
 
 
 def _loss_maps(job: VectoJob, keys: Mapping[str, Any]) -> dict[str, Any]:

@@ -7,7 +7,7 @@ use crate::band::SpeedBand;
 use crate::error::{CoreError, CoreResult};
 use crate::levels;
 use crate::params::{CruiseParams, ParamSet, Value};
-use crate::powertrain::{MapTruck, RPM_PER_RAD_S};
+use crate::powertrain::{ElectricTruck, MapTruck, RPM_PER_RAD_S};
 use crate::road::Road;
 use crate::vehicle::{Vehicle, NEUTRAL};
 
@@ -145,6 +145,59 @@ pub fn truck_facts(truck: &MapTruck) -> Figures {
         ("axle_loss_map", Value::Bool(axle_map)),
         ("efficiency", Value::Float(driveline.efficiency())),
     ]
+}
+
+/// What a battery-electric truck is: its machines' torque and speed, the reduction, the battery
+/// at the start's state of charge.
+pub fn electric_facts(truck: &ElectricTruck) -> Figures {
+    let (machines, battery) = (truck.machines(), truck.battery());
+    let top = machines.top_rpm();
+    let peak_w = (0..=200)
+        .map(|k| top * k as f64 / 200.0)
+        .map(|n| machines.max_drive_nm(n) * n / RPM_PER_RAD_S)
+        .fold(0.0, f64::max);
+    vec![
+        ("gears", Value::Int(1)),
+        ("max_torque_nm", Value::Float(machines.max_drive_nm(0.0))),
+        ("peak_power_w", Value::Float(peak_w)),
+        ("top_speed_rpm", Value::Float(top)),
+        ("reduction_ratio", Value::Float(truck.ratio())),
+        ("battery_ocv_v", Value::Float(battery.ocv_v)),
+        ("battery_resistance_ohm", Value::Float(battery.resistance_ohm)),
+        ("battery_max_discharge_w", Value::Float(battery.max_discharge_w())),
+        ("battery_max_charge_w", Value::Float(battery.max_charge_w())),
+        ("soc_start_pct", Value::Float(100.0 * battery.soc)),
+        (
+            "usable_window_pct",
+            Value::List(vec![Value::Float(100.0 * battery.soc_window.0), Value::Float(100.0 * battery.soc_window.1)]),
+        ),
+        (
+            "usable_energy_kwh",
+            Value::Float(battery.energy_per_soc_j() * (battery.soc_window.1 - battery.soc_window.0) / 3.6e6),
+        ),
+    ]
+}
+
+/// The machines of a battery-electric truck at `speed_rpm` and `torque_nm` (all machines
+/// together, at the shaft): their electric power and loss from the power map's triangulation, their
+/// torque limits and drag there, and the battery's current and power for that electric power.
+pub fn machine_point(truck: &ElectricTruck, speed_rpm: f64, torque_nm: f64) -> CoreResult<Figures> {
+    if !(speed_rpm.is_finite() && speed_rpm >= 0.0 && torque_nm.is_finite()) {
+        return Err(CoreError::invalid("speed_rpm", "a speed >= 0 and a finite torque")
+            .got(format!("{speed_rpm} rpm, {torque_nm} Nm")));
+    }
+    let machines = truck.machines();
+    let electric_w = machines.electric_power_w(speed_rpm, torque_nm);
+    let battery = truck.battery();
+    Ok(vec![
+        ("electric_power_w", Value::Float(electric_w)),
+        ("loss_w", Value::Float(machines.loss_w(speed_rpm, torque_nm))),
+        ("max_drive_nm", Value::Float(machines.max_drive_nm(speed_rpm))),
+        ("max_brake_nm", Value::Float(machines.max_brake_nm(speed_rpm))),
+        ("drag_nm", Value::Float(machines.drag_nm(speed_rpm))),
+        ("battery_current_a", Value::Float(battery.current_a(electric_w))),
+        ("battery_internal_w", Value::Float(battery.internal_power_w(electric_w))),
+    ])
 }
 
 /// The speed band of `cruise` along `road` at each of `distance_m` [m] (increasing) [km/h]: the

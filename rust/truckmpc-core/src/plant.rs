@@ -31,13 +31,17 @@ pub struct PlantState {
     pub fuel_g: f64,
     /// Energy dissipated in the service (friction) brakes [J].
     pub brake_energy_j: f64,
+    /// Energy returned to the store while the rate was negative, in the rate's unit (for a
+    /// battery, joules recovered while braking beyond what the truck drew meanwhile; zero for a
+    /// fuel tank).
+    pub returned: f64,
     /// Set once the speed fell below the stall speed or the energy store ran empty; the plant then
     /// no longer moves.
     pub stalled: bool,
 }
 
-/// Derivatives of (s, v, fuel, brake energy) with respect to time.
-type Rates = [f64; 4];
+/// Derivatives of (s, v, fuel, brake energy, energy returned) with respect to time.
+type Rates = [f64; 5];
 
 /// The truck on a road, integrated in time.
 #[derive(Debug, Clone)]
@@ -61,7 +65,7 @@ impl<P: Powertrain> Plant<P> {
         let stall_speed_mps = vehicle.stall_speed_mps();
         let store = vehicle.store();
         let stalled = v_mps < stall_speed_mps || store.is_empty(0.0);
-        let state = PlantState { s_m, v_mps, t_s: 0.0, fuel_g: 0.0, brake_energy_j: 0.0, stalled };
+        let state = PlantState { s_m, v_mps, t_s: 0.0, fuel_g: 0.0, brake_energy_j: 0.0, returned: 0.0, stalled };
         let (engaged_gear, interruption_left_s) = (None, 0.0);
         Plant { vehicle, road, state, segment_hint: 0, stall_speed_mps, engaged_gear, interruption_left_s, store }
     }
@@ -91,7 +95,7 @@ impl<P: Powertrain> Plant<P> {
             self.vehicle.energy_rate(v_mps, u)
         };
         let brake_power = self.vehicle.friction_brake_force_n(v_mps, u) * v_mps;
-        [v_mps, accel, energy, brake_power]
+        [v_mps, accel, energy, brake_power, (-energy).max(0.0)]
     }
 
     /// Advance by `dt_s` with constant inputs. No-op once stalled. The step is split at the road's
@@ -160,6 +164,7 @@ impl<P: Powertrain> Plant<P> {
         self.state.v_mps += d(1);
         self.state.fuel_g += d(2);
         self.state.brake_energy_j += d(3);
+        self.state.returned += d(4);
         self.state.t_s += dt_s;
         if !(self.state.v_mps >= self.stall_speed_mps) || self.store.is_empty(self.state.fuel_g) {
             self.state.stalled = true;

@@ -10,7 +10,7 @@ pub use crate::params::VehicleParams;
 pub use crate::powertrain::interface::NEUTRAL;
 use crate::powertrain::interface::{AffineAccel, Control, EnergyStore, Powertrain, RateForm};
 pub use crate::powertrain::thesis::GearConstants;
-use crate::powertrain::{MapModel, ThesisModel, G_MPS2};
+use crate::powertrain::{ElectricModel, MapModel, ThesisModel, G_MPS2};
 
 /// The built-in powertrains.
 #[derive(Debug, Clone)]
@@ -20,6 +20,8 @@ pub enum Model {
     Thesis(ThesisModel),
     /// A truck from component data (see [`crate::powertrain::dynamics`] for what its pedal means).
     Map(Arc<MapModel>),
+    /// A battery-electric truck (see [`crate::powertrain::electric::model`] for its pedal).
+    Electric(Arc<ElectricModel>),
 }
 
 /// Calls `$call` on the model inside `$vehicle`, whichever it is.
@@ -32,6 +34,10 @@ macro_rules! dispatch {
             }
             Model::Map(model) => {
                 let $m: &MapModel = model;
+                $call
+            }
+            Model::Electric(model) => {
+                let $m: &ElectricModel = model;
                 $call
             }
         }
@@ -88,6 +94,42 @@ impl Vehicle {
         Ok(Vehicle { params, model: Model::Map(model), gears: gear_constants })
     }
 
+    /// A battery-electric truck, as [`Vehicle::from_map`] with the machines for the engine: one
+    /// gear of the reduction's ratio, the machines' inertia, and the speed below which a cruise
+    /// has stopped as the idle speed (so the stall speed is that speed).
+    pub fn from_electric(model: Arc<ElectricModel>, base: &VehicleParams) -> CoreResult<Self> {
+        let truck = model.truck();
+        let body = truck.body();
+        let params = VehicleParams {
+            mass_kg: body.mass_kg,
+            engine_inertia_kgm2: truck.machines().inertia_kgm2(),
+            idle_speed_rpm: Powertrain::stall_speed_mps(model.as_ref()) * model.rpm_per_mps(),
+            final_drive_ratio: 1.0,
+            final_drive_efficiency: 1.0,
+            wheel_inertia_kgm2: body.wheels_inertia_kgm2,
+            rolling_resistance: body.rolling_resistance,
+            gravity_mps2: G_MPS2,
+            air_density_kgpm3: body.air_density_kgpm3,
+            wheel_radius_m: truck.wheel_radius_m(),
+            brake_torque_max_nm: base.brake_torque_max_nm,
+            gear_ratios: vec![truck.ratio()],
+            gear_efficiencies: vec![1.0],
+            ..base.clone()
+        };
+        ThesisModel::new(params.clone())?;
+        let c1 = model.c1();
+        let gears = vec![
+            GearConstants { c1, c3: 0.0, c4: 0.0 },
+            GearConstants { c1, c3: truck.ratio(), c4: model.rpm_per_mps() },
+        ];
+        Ok(Vehicle { params, model: Model::Electric(model), gears })
+    }
+
+    /// Whether the truck draws on a battery.
+    pub fn is_electric(&self) -> bool {
+        matches!(self.model, Model::Electric(_))
+    }
+
     /// The powertrain.
     #[inline]
     pub fn model(&self) -> &Model {
@@ -124,6 +166,9 @@ impl Vehicle {
     /// Engine speed [rpm]: c4·v in gear, idle speed in neutral.
     #[inline]
     pub fn engine_speed_rpm(&self, v_mps: f64, gear: usize) -> f64 {
+        if let Model::Electric(m) = &self.model {
+            return m.rpm_per_mps() * v_mps;
+        }
         if gear == NEUTRAL {
             self.params.idle_speed_rpm
         } else {
@@ -138,6 +183,7 @@ impl Vehicle {
             Model::Thesis(t) => t.engine_torque_nm(n_rpm, pedal, gear),
             Model::Map(_) if gear == NEUTRAL => 0.0,
             Model::Map(m) => m.engine_torque_nm(n_rpm / self.gears[gear].c4, pedal, gear),
+            Model::Electric(m) => m.machine_torque_nm(n_rpm / m.rpm_per_mps(), pedal, gear),
         }
     }
 
@@ -171,6 +217,7 @@ impl Vehicle {
         match &self.model {
             Model::Thesis(t) => t.max_engine_speed_rpm(),
             Model::Map(m) => m.truck().engine().speed_range_rpm().1,
+            Model::Electric(m) => m.truck().machines().top_rpm(),
         }
     }
 
@@ -257,6 +304,11 @@ impl Powertrain for Vehicle {
 
     fn kinetic_energy_price(&self, gear: usize) -> Option<f64> {
         dispatch!(self, m => Powertrain::kinetic_energy_price(m, gear))
+    }
+
+    #[inline]
+    fn brake_draws_energy(&self) -> bool {
+        dispatch!(self, m => Powertrain::brake_draws_energy(m))
     }
 
     fn store(&self) -> EnergyStore {

@@ -33,7 +33,7 @@ fn vehicle() -> Arc<Vehicle> {
 }
 
 fn state(v_kmh: f64, t_s: f64) -> PlantState {
-    PlantState { s_m: 0.0, v_mps: v_kmh / KMH, t_s, fuel_g: 0.0, brake_energy_j: 0.0, stalled: false }
+    PlantState { s_m: 0.0, v_mps: v_kmh / KMH, t_s, fuel_g: 0.0, brake_energy_j: 0.0, returned: 0.0, stalled: false }
 }
 
 fn flat() -> Road {

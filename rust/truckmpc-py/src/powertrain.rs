@@ -7,14 +7,17 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use truckmpc_core::figures;
-use truckmpc_core::powertrain::{Body, DrivelineData, EngineData, TruckParts};
+use truckmpc_core::powertrain::electric::{BatteryData, ElectricParts, LevelData, MachineData, ReductionData};
+use truckmpc_core::powertrain::{Body, DrivelineData, ElectricTruck, EngineData, MapTruck, TruckParts};
 use truckmpc_core::scenario::ComponentTruck;
+use truckmpc_core::CoreError;
 
 use crate::convert::{dict_of, read_attrs};
 use crate::errors::to_py;
 
-/// A truck from component data (engine, driveline, body), checked by the core, and how long a gear
-/// shift interrupts traction [s].
+/// A truck from component data, checked by the core: an engine, a driveline and a body, with how
+/// long a gear shift interrupts traction [s]; or (`MapTruck.electric`) electric machines, their
+/// reduction, a battery and a body.
 #[pyclass(name = "MapTruck", module = "truckmpc._core", frozen)]
 pub struct PyMapTruck {
     pub inner: Arc<ComponentTruck>,
@@ -55,15 +58,74 @@ impl PyMapTruck {
         Ok(PyMapTruck { inner: Arc::new(inner) })
     }
 
-    /// What the truck is (`figures::truck_facts`).
+    /// A battery-electric truck from its machines, reduction, battery and body, its machines'
+    /// conditioning power [W] and the state of charge it starts from [%] (None: the middle of the
+    /// usable window).
+    #[staticmethod]
+    fn electric(
+        machine: &Bound<'_, PyAny>,
+        reduction: &Bound<'_, PyAny>,
+        battery: &Bound<'_, PyAny>,
+        body: &Bound<'_, PyAny>,
+        conditioning_w: f64,
+        soc_start_pct: Option<f64>,
+    ) -> PyResult<Self> {
+        let mut levels = Vec::new();
+        for level in machine.getattr("levels")?.try_iter()? {
+            let level = level?;
+            levels.push(read_attrs!(level, LevelData { voltage_v, torque_limits, power_map }));
+        }
+        let machine = MachineData {
+            count: machine.getattr("count")?.extract()?,
+            inertia_kgm2: machine.getattr("inertia_kgm2")?.extract()?,
+            levels,
+            drag_curve: machine.getattr("drag_curve")?.extract()?,
+        };
+        let parts = ElectricParts {
+            machine,
+            reduction: read_attrs!(reduction, ReductionData { ratio, loss_map, wheel_radius_m }),
+            battery: read_attrs!(
+                battery,
+                BatteryData { capacity_ah, ocv, resistance_mohm, current_limits, soc_window_pct }
+            ),
+            body: read_attrs!(
+                body,
+                Body { mass_kg, wheels_inertia_kgm2, cda_m2, air_density_kgpm3, rolling_resistance, aux_power_w }
+            ),
+            conditioning_w,
+            cda_curve: body.getattr("cda_curve")?.extract()?,
+            soc_start_pct,
+        };
+        Ok(PyMapTruck { inner: Arc::new(ComponentTruck::electric(parts.build().map_err(to_py)?)) })
+    }
+
+    /// What the engine-driven truck is (`figures::truck_facts`).
     #[getter]
     fn facts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        dict_of(py, &figures::truck_facts(self.inner.truck()))
+        dict_of(py, &figures::truck_facts(self.map_truck()?))
+    }
+
+    /// What the battery-electric truck is (`figures::electric_facts`).
+    #[getter]
+    fn electric_facts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        dict_of(py, &figures::electric_facts(self.electric_truck()?))
+    }
+
+    /// The machines at `speed_rpm` and `torque_nm` (`figures::machine_point`).
+    fn machine_point<'py>(&self, py: Python<'py>, speed_rpm: f64, torque_nm: f64) -> PyResult<Bound<'py, PyDict>> {
+        let truck = self.electric_truck()?;
+        dict_of(py, &figures::machine_point(truck, speed_rpm, torque_nm).map_err(to_py)?)
+    }
+
+    /// Whether the truck is battery-electric.
+    #[getter]
+    fn is_electric(&self) -> bool {
+        self.inner.electric_truck().is_some()
     }
 
     /// The engine at `speed_rpm` and `torque_nm` (`figures::engine_point`).
     fn engine_point<'py>(&self, py: Python<'py>, speed_rpm: f64, torque_nm: f64) -> PyResult<Bound<'py, PyDict>> {
-        dict_of(py, &figures::engine_point(self.inner.truck(), speed_rpm, torque_nm).map_err(to_py)?)
+        dict_of(py, &figures::engine_point(self.map_truck()?, speed_rpm, torque_nm).map_err(to_py)?)
     }
 
     /// The truck at `v_mps`, `acc_mps2` and `slope_rad`, in `gear` if given (`figures::driving_state`).
@@ -76,6 +138,22 @@ impl PyMapTruck {
         slope_rad: f64,
         gear: Option<usize>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        dict_of(py, &figures::driving_state(self.inner.truck(), v_mps, acc_mps2, slope_rad, gear).map_err(to_py)?)
+        dict_of(py, &figures::driving_state(self.map_truck()?, v_mps, acc_mps2, slope_rad, gear).map_err(to_py)?)
+    }
+}
+
+impl PyMapTruck {
+    /// The engine-driven truck, or a `ParamError` for a battery-electric one.
+    fn map_truck(&self) -> PyResult<&MapTruck> {
+        self.inner
+            .truck()
+            .ok_or_else(|| to_py(CoreError::invalid("truck", "an engine-driven truck").got("a battery-electric truck")))
+    }
+
+    /// The battery-electric truck, or a `ParamError` for an engine-driven one.
+    fn electric_truck(&self) -> PyResult<&ElectricTruck> {
+        self.inner
+            .electric_truck()
+            .ok_or_else(|| to_py(CoreError::invalid("truck", "a battery-electric truck").got("an engine-driven truck")))
     }
 }

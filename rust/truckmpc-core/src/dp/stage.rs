@@ -18,6 +18,7 @@
 pub use crate::params::StageModel;
 
 use crate::levels::{brake_accel_on, pedal_accel_on, AffineAccel};
+use crate::powertrain::{Control, Powertrain};
 use crate::vehicle::{Vehicle, NEUTRAL};
 
 /// Fixed-point iterations of the trapezoid's implicit end speed, after an Euler first guess.
@@ -134,6 +135,29 @@ pub fn fuel_g(model: StageModel, vehicle: &Vehicle, (v_i, v_j): (f64, f64), peda
 #[inline]
 pub fn half_stage_fuel_g(vehicle: &Vehicle, v_mps: f64, pedal: f64, gear: usize, h_m: f64) -> f64 {
     0.5 * h_m * vehicle.fuel_rate_gps(v_mps, pedal, gear) / v_mps
+}
+
+/// Energy of a braking stage from `v_i` to `v_j` [m/s] over `h_m` at `brake` in `gear`, in the
+/// store's unit (negative where braking returns more than the truck draws meanwhile); zero for a
+/// truck whose braking draws nothing ([`Powertrain::brake_draws_energy`]), as at a diesel's fuel
+/// cut, so its brake arcs keep their cost.
+#[inline]
+pub fn brake_energy(
+    model: StageModel,
+    vehicle: &Vehicle,
+    (v_i, v_j): (f64, f64),
+    brake: f64,
+    gear: usize,
+    h_m: f64,
+) -> f64 {
+    if !vehicle.brake_draws_energy() {
+        return 0.0;
+    }
+    let per_m = |v: f64| vehicle.energy_rate(v, Control { pedal: 0.0, brake, gear }) / v;
+    match model {
+        StageModel::Euler => h_m * per_m(v_i),
+        StageModel::Trapezoid => 0.5 * h_m * (per_m(v_i) + per_m(v_j)),
+    }
 }
 
 /// Time [s] of a stage from `v_i` to `v_j` [m/s] over `h_m`.

@@ -1,6 +1,6 @@
 //! The keys of a truck read from VECTO's files (a `.vecto` job or a declaration XML): what
-//! declaration mode adds to the components (mission, load, trailer, cross wind, auxiliaries) and
-//! the driveline losses where the job gives no loss map. With the thesis's truck they keep their
+//! declaration mode adds to the components (mission, load, trailer, cross wind, auxiliaries), the
+//! driveline losses where the job gives no loss map, and a battery's state of charge at the start. With the thesis's truck they keep their
 //! defaults.
 
 use super::Range;
@@ -52,5 +52,7 @@ declare_params! {
         use_loss_maps: bool = true, unit "-", range Range::ANY;
         /// How long a gear shift interrupts traction; null: the gearbox file's value (TracInt).
         traction_interruption_s: Option<f64> = None, unit "s", range TRACTION_INTERRUPTION_RANGE_S;
+        /// State of charge a battery-electric truck starts from; null: the middle of its usable window (VECTO's declaration run).
+        soc_start_pct: Option<f64> = None, unit "%", range Range::between(0.0, 100.0);
     }
 }

@@ -160,6 +160,12 @@ pub trait Powertrain {
         None
     }
 
+    /// Whether the brake changes the energy rate (a truck that recovers braking energy); false:
+    /// braking draws what zero pedal draws, and the DP's brake arcs charge nothing for it.
+    fn brake_draws_energy(&self) -> bool {
+        false
+    }
+
     /// The store the energy rate draws on.
     fn store(&self) -> EnergyStore;
 }

@@ -19,7 +19,6 @@ use crate::control::{Controller, GearLogic};
 use crate::dp::{fuel_time, DpSettings};
 use crate::error::{CoreError, CoreResult};
 use crate::params::{RunSettings, Value};
-use crate::powertrain::MapModel;
 use crate::road::Road;
 use crate::sim::{self, RunOutput};
 use crate::vehicle::Vehicle;
@@ -43,7 +42,13 @@ impl Scenario {
         if truck.is_none() {
             truck::check_no_truck_keys(&settings)?;
         }
+        let mut settings = settings;
         let vehicle = Arc::new(vehicle_of(&settings, truck.as_deref(), None)?);
+        if vehicle.is_electric() {
+            truck::electric_speed_window(&mut settings, &vehicle)?;
+        } else {
+            truck::check_no_electric_keys(&settings)?;
+        }
         check_drivable(&settings, &vehicle)?;
         let controller_vehicle = match settings.sim.controller_mass_kg {
             Some(mass_kg) => Arc::new(vehicle_of(&settings, truck.as_deref(), Some(mass_kg))?),
@@ -143,15 +148,11 @@ impl Scenario {
 
 /// The truck of `settings` (the thesis's model, or `truck`'s), at `mass_kg` when given.
 fn vehicle_of(settings: &RunSettings, truck: Option<&ComponentTruck>, mass_kg: Option<f64>) -> CoreResult<Vehicle> {
-    let brake_nm = settings.vehicle.brake_torque_max_nm;
     match (truck, mass_kg) {
         (None, None) => Vehicle::new(settings.vehicle.clone()),
         (None, Some(_)) => Vehicle::new(settings.controller_vehicle_params()),
-        (Some(t), None) => Vehicle::from_map(t.model(brake_nm), &settings.vehicle),
-        (Some(t), Some(m)) => {
-            let model: Arc<MapModel> = t.model_at_mass(m, brake_nm)?;
-            Vehicle::from_map(model, &settings.vehicle)
-        }
+        (Some(t), None) => t.vehicle(&settings.vehicle),
+        (Some(t), Some(m)) => t.vehicle_at_mass(m, &settings.vehicle),
     }
 }
 

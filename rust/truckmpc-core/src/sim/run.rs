@@ -130,6 +130,7 @@ impl ClosedLoop {
             stopped: false,
             stall_speed_mps: vehicle.stall_speed_mps(),
             plant_dt_s: sim.plant_dt_s,
+            store: crate::powertrain::Powertrain::store(vehicle.as_ref()),
         };
         ClosedLoop {
             state: plant.state(),

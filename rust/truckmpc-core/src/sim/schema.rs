@@ -8,7 +8,7 @@
 //! `sweep.csv`'s figure columns, which an unfinished sweep resumes by: add entries, never reorder.
 
 use super::shifts::per_100km;
-use super::summary::RunSummary;
+use super::summary::{BatteryFigures, RunSummary};
 use super::trace::Trace;
 use crate::control::{PlanStats, RuleStats, SolverStats};
 use crate::params::Value;
@@ -28,6 +28,8 @@ pub enum Runs {
     Optimal,
     /// Runs over a road with stops, driven as its stop-free legs.
     Legs,
+    /// Runs of a battery-electric truck.
+    Electric,
 }
 
 /// Where a figure is computed.
@@ -149,6 +151,7 @@ impl Runs {
             Dp => "dp",
             Optimal => "optimal",
             Legs => "legs",
+            Electric => "electric",
         }
     }
 }
@@ -333,6 +336,10 @@ fn numbers(column: &mut Vec<f64>) -> Column {
     Column::Number(std::mem::take(column))
 }
 
+fn battery(s: &RunSummary, read: fn(&BatteryFigures) -> f64) -> Option<Figure<'static>> {
+    s.battery.as_ref().map(|b| Figure::Number(read(b)))
+}
+
 fn rules(s: &RunSummary, read: fn(&RuleStats) -> Figure<'static>) -> Option<Figure<'static>> {
     s.rules.as_ref().map(read)
 }
@@ -349,11 +356,28 @@ fn plan(s: &RunSummary, read: fn(&PlanStats) -> Figure<'static>) -> Option<Figur
 #[rustfmt::skip]
 pub const SUMMARY: &[SummaryFigure] = &[
     core("distance_m", "m", Number, Every, Sum, No, "distance", "Distance driven.", |s| num(s.distance_m)),
-    core("fuel_kg", "kg", Number, Every, Sum, All, "fuel", "Fuel used.", |s| num(s.fuel_kg)),
+    core("fuel_kg", "kg", Number, Every, Sum, All, "fuel", "Fuel used (none for a battery-electric truck).",
+        |s| s.battery.is_none().then_some(Figure::Number(s.fuel_kg))),
     python("fuel_corrected_kg", "kg", Number, Every, SumUnlessStalled, All, "fuel, end speed corrected",
         "Fuel plus what would bring the end speed back to the start speed; null if the truck stalled."),
     core("fuel_kg_per_100km", "kg/100km", Number, Every, Per100km("fuel_kg"), No, "fuel per 100 km",
-        "Fuel per 100 km driven; null when the truck did not move.", |s| maybe(s.fuel_kg_per_100km)),
+        "Fuel per 100 km driven; null when the truck did not move.",
+        |s| s.battery.is_none().then(|| s.fuel_kg_per_100km.map_or(Figure::Null, Figure::Number))),
+    core("energy_kwh", "kWh", Number, Electric, Sum, No, "battery energy",
+        "Net energy drawn from the battery, what braking returned deducted.", |s| battery(s, |b| b.energy_kwh)),
+    core("energy_kwh_per_100km", "kWh/100km", Number, Electric, Per100km("energy_kwh"), No,
+        "battery energy per 100 km", "Net battery energy per 100 km driven; null when the truck did not move.",
+        |s| s.battery.map(|b| b.energy_kwh_per_100km.map_or(Figure::Null, Figure::Number))),
+    python("energy_corrected_kwh", "kWh", Number, Electric, SumUnlessStalled, No,
+        "battery energy, end speed corrected",
+        "Net battery energy plus what would bring the end speed back to the start speed; null if the truck stalled."),
+    core("recovered_kwh", "kWh", Number, Electric, Sum, No, "recovered energy",
+        "Energy returned to the battery while braking returned more than the truck drew.",
+        |s| battery(s, |b| b.recovered_kwh)),
+    core("soc_start_pct", "%", Number, Electric, First, No, "state of charge at the start",
+        "The battery's state of charge at the start.", |s| battery(s, |b| b.soc_start_pct)),
+    core("soc_end_pct", "%", Number, Electric, Last, No, "state of charge at the end",
+        "The battery's state of charge at the end.", |s| battery(s, |b| b.soc_end_pct)),
     core("time_s", "s", Number, Every, Sum, All, "trip time", "Trip time.", |s| num(s.time_s)),
     core("mean_speed_kmh", "km/h", Number, Every, MeanSpeed, No, "mean speed",
         "Distance over trip time (the start speed when no time passed).", |s| num(s.mean_speed_kmh)),
@@ -375,7 +399,7 @@ pub const SUMMARY: &[SummaryFigure] = &[
     core("neutral_distance_m", "m", Number, Every, Sum, LookAhead, "neutral coasting: distance",
         "Distance coasted in neutral.", |s| num(s.neutral_distance_m)),
     core("stalled", "-", Flag, Every, Any, All, "stalled",
-        "Whether the truck stalled (its speed fell below where gear 1 turns the engine at idle).",
+        "Whether the truck stalled (its speed fell below where gear 1 turns the engine at idle) or its battery ran empty.",
         |s| Some(Figure::Flag(s.stalled))),
     core("stall_distance_m", "m", Number, Every, Last, No, "stall distance",
         "Where the truck stalled; null unless it did.",

@@ -4,6 +4,7 @@ use super::shifts::{per_100km, GearCounts};
 use super::KMH_PER_MPS;
 use crate::control::{RuleStats, SolverStats};
 use crate::plant::PlantState;
+use crate::powertrain::EnergyStore;
 
 /// Outcome of a run in figures. Fuel in kg, distances in m, times in s, speeds in km/h, energies
 /// in kJ; the wall-clock fields are measured around the run.
@@ -42,7 +43,45 @@ pub struct RunSummary {
     pub solver: Option<SolverStats>,
     /// What a rule-based controller with look-ahead (the PCC) did.
     pub rules: Option<RuleStats>,
+    /// A battery-electric truck's energy; None for a fuel tank.
+    pub battery: Option<BatteryFigures>,
 }
+
+/// A battery-electric truck's energy over a run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BatteryFigures {
+    /// Net energy drawn from the battery [kWh] (recovered energy deducted).
+    pub energy_kwh: f64,
+    /// Net energy per 100 km [kWh/100km]; None when the truck did not move.
+    pub energy_kwh_per_100km: Option<f64>,
+    /// Energy returned to the battery [kWh] (while it took in more than the truck drew).
+    pub recovered_kwh: f64,
+    /// State of charge at the start and at the end [%].
+    pub soc_start_pct: f64,
+    pub soc_end_pct: f64,
+    /// Whether the usable charge ran out (the run ended there).
+    pub empty: bool,
+}
+
+impl BatteryFigures {
+    /// The figures of a run drawing on `store` that ended in `last` after `distance_m`.
+    fn new(store: EnergyStore, last: &PlantState, distance_m: f64) -> Option<Self> {
+        let start = store.state_of_charge(0.0)?;
+        let end = store.state_of_charge(last.fuel_g)?;
+        let energy_kwh = last.fuel_g / J_PER_KWH;
+        Some(BatteryFigures {
+            energy_kwh,
+            energy_kwh_per_100km: (distance_m > 0.0).then(|| energy_kwh / (distance_m / 1e5)),
+            recovered_kwh: last.returned / J_PER_KWH,
+            soc_start_pct: 100.0 * start,
+            soc_end_pct: 100.0 * end,
+            empty: store.is_empty(last.fuel_g),
+        })
+    }
+}
+
+/// Joules per kilowatt-hour.
+const J_PER_KWH: f64 = 3.6e6;
 
 /// How the loop ended, besides the final plant state.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,6 +98,8 @@ pub struct LoopOutcome {
     pub stopped: bool,
     pub stall_speed_mps: f64,
     pub plant_dt_s: f64,
+    /// The store the truck drew on.
+    pub store: EnergyStore,
 }
 
 impl RunSummary {
@@ -72,6 +113,7 @@ impl RunSummary {
     ) -> Self {
         let distance_m = last.s_m - outcome.start_m;
         let moved = last.t_s > 0.0;
+        let battery = BatteryFigures::new(outcome.store, last, distance_m);
         RunSummary {
             distance_m,
             fuel_kg: last.fuel_g / 1000.0,
@@ -94,13 +136,19 @@ impl RunSummary {
             plant_dt_s: outcome.plant_dt_s,
             solver,
             rules,
+            battery,
         }
     }
 }
 
 fn message(last: &PlantState, outcome: &LoopOutcome) -> Option<String> {
     let km = last.s_m / 1000.0;
-    if last.stalled {
+    if last.stalled && outcome.store.is_empty(last.fuel_g) {
+        let soc = 100.0 * outcome.store.state_of_charge(last.fuel_g).unwrap_or(0.0);
+        Some(format!(
+            "battery empty at km {km:.2}: the usable charge ended there (state of charge {soc:.1} %), the trip was not driven"
+        ))
+    } else if last.stalled {
         Some(format!(
             "stalled at km {km:.2}: the speed fell below {:.1} km/h, where gear 1 turns the engine at idle",
             outcome.stall_speed_mps * KMH_PER_MPS

@@ -362,7 +362,15 @@ mod tests {
         let mut c = controller();
         let road = Road::new(vec![0.0, 5000.0], vec![0.0]).unwrap();
         let t = 85.0 / KMH_PER_MPS;
-        let at = |s_m: f64| PlantState { s_m, v_mps: t, t_s: 0.0, fuel_g: 0.0, brake_energy_j: 0.0, stalled: false };
+        let at = |s_m: f64| PlantState {
+            s_m,
+            v_mps: t,
+            t_s: 0.0,
+            fuel_g: 0.0,
+            brake_energy_j: 0.0,
+            returned: 0.0,
+            stalled: false,
+        };
         c.start(&road, &at(0.0));
         let segment = |start_m, x_low_m, end_m| PccSegment {
             start_m,

@@ -4,7 +4,9 @@
 //! are computed four at a time, with the same operations.
 
 use super::{change_cost, clamp_span, maps, trim, GridIndex, Inputs, RowMaps, RowSpan, BRAKE_WINDOW};
-use crate::dp::params::DpSettings;
+use crate::dp::params::{DpSettings, StageModel};
+use crate::dp::stage;
+use crate::powertrain::Powertrain;
 use crate::vehicle::Vehicle;
 
 /// [`pair`](super::pair) on an Euler stage: the inputs from the affine maps at v_i, the fuel from
@@ -33,10 +35,25 @@ pub(super) fn pair_euler(p: &DpSettings, m: &RowMaps, v_i: f64, v_j: f64, v_max:
     if (v_j - v_max).abs() < p.delta_mps() * BRAKE_WINDOW {
         let brake = m.brake.expect("an Euler row's brake map").input_for(v_i, v_j, h);
         if (0.0..=1.0).contains(&brake) {
-            return Some((Inputs { pedal: 0.0, brake }, p.q_brake * brake + change));
+            return Some((
+                Inputs { pedal: 0.0, brake },
+                p.q_brake * brake + change + brake_cost(p, m, (v_i, v_j), brake),
+            ));
         }
     }
     None
+}
+
+/// Q1 times the energy of an Euler braking stage for a truck whose braking draws energy (zero,
+/// and no evaluation, for the others).
+#[inline]
+fn brake_cost(p: &DpSettings, m: &RowMaps, (v_i, v_j): (f64, f64), brake: f64) -> f64 {
+    match m.map_fuel {
+        Some((vehicle, gear)) if vehicle.brake_draws_energy() => {
+            p.mpc.q_fuel * stage::brake_energy(StageModel::Euler, vehicle, (v_i, v_j), brake, gear, p.mpc.stage_m)
+        }
+        _ => 0.0,
+    }
 }
 
 /// [`forward_row`](super::forward_row) on an Euler stage: the span from the end speeds of the pedal
@@ -101,7 +118,7 @@ pub(super) fn forward_row_euler(
         if (v_j - v_max).abs() < window {
             let brake = (demand - a_brake) / g_brake;
             if (0.0..=1.0).contains(&brake) {
-                return q_brake * brake + change;
+                return q_brake * brake + change + brake_cost(p, &m, (v_i, v_j), brake);
             }
         }
         f64::INFINITY

@@ -120,7 +120,12 @@ pub(super) fn pair_trapezoid(
         let at_i = brake_accel_on(end.vehicle, v_i, end.gear, end.slope_torque);
         let brake = stage::input_for(model, &at_i, &at_j, (v_i, v_j), h);
         if (0.0..=1.0).contains(&brake) {
-            return Some((Inputs { pedal: 0.0, brake }, p.q_brake * brake + change));
+            let cost = p.q_brake * brake + change;
+            if !end.vehicle.brake_draws_energy() {
+                return Some((Inputs { pedal: 0.0, brake }, cost));
+            }
+            let energy = stage::brake_energy(model, end.vehicle, (v_i, v_j), brake, end.gear, h);
+            return Some((Inputs { pedal: 0.0, brake }, cost + p.mpc.q_fuel * energy));
         }
     }
     None

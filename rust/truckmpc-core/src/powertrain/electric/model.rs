@@ -193,6 +193,14 @@ impl ElectricModel {
         }
     }
 
+    /// Torque of the machines [Nm] at `v_mps` with `pedal` in `gear` (their drag at zero pedal
+    /// or in neutral).
+    pub fn machine_torque_nm(&self, v_mps: f64, pedal: f64, gear: usize) -> f64 {
+        let n = self.rpm_per_mps * v_mps;
+        let (wheel_nm, _) = self.machine_wheel_nm(v_mps, Control { pedal, brake: 0.0, gear });
+        self.truck.machine_nm(n, wheel_nm)
+    }
+
     /// Power drawn from the battery's store [W] under control `u` at `v_mps`.
     #[inline]
     pub fn battery_power_w(&self, v_mps: f64, u: Control) -> f64 {
@@ -319,6 +327,11 @@ impl Powertrain for ElectricModel {
 
     /// At zero pedal the machines are off, as in the brake branch at zero brake.
     fn zero_pedal_is_cut(&self) -> bool {
+        true
+    }
+
+    /// Braking returns energy to the battery.
+    fn brake_draws_energy(&self) -> bool {
         true
     }
 

@@ -52,6 +52,7 @@ fn battery(discharge_a: f64) -> BatteryData {
 }
 
 fn parts(discharge_a: f64, soc_start_pct: f64) -> ElectricParts {
+    let soc_start_pct = Some(soc_start_pct);
     ElectricParts {
         machine: MachineData {
             count: COUNT,

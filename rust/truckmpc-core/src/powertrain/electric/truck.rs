@@ -57,8 +57,9 @@ pub struct ElectricParts {
     pub conditioning_w: f64,
     /// Cd·A over speed `(speed [m/s], Cd·A [m²])`, or none for the body's constant `cda_m2`.
     pub cda_curve: Option<Vec<(f64, f64)>>,
-    /// State of charge at the start [%].
-    pub soc_start_pct: f64,
+    /// State of charge at the start [%]; none: the middle of the usable window, as declaration
+    /// mode starts a run.
+    pub soc_start_pct: Option<f64>,
 }
 
 /// A battery-electric truck, its battery held at the start's state of charge.
@@ -78,7 +79,8 @@ pub struct ElectricTruck {
 impl ElectricParts {
     /// The truck these parts make; the error names the first value its part refuses.
     pub fn build(&self) -> CoreResult<ElectricTruck> {
-        let battery = self.battery.at(self.soc_start_pct / 100.0)?;
+        let soc_pct = self.soc_start_pct.unwrap_or_else(|| self.battery.declared_start_pct());
+        let battery = self.battery.at(soc_pct / 100.0)?;
         let m = &self.machine;
         let mut levels = Vec::with_capacity(m.levels.len());
         for (i, level) in m.levels.iter().enumerate() {

@@ -1,0 +1,116 @@
+"""VECTO's generic battery-electric tractor driven: its machines and battery as VECTO's method makes
+them of the declaration (points worked by hand from the file's own rows), declaration mode's usable
+window and start, and runs of every controller reporting battery energy, not fuel."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from truckmpc import _core
+from truckmpc.cli import app
+from truckmpc.vecto.electric import ElectricTruckJob
+from truckmpc.vecto.electric_truck import load_electric_truck
+from truckmpc.vecto.truck import truck_values
+from truckmpc.vecto.xml_file import read_declaration_xml
+from vecto_files import SHARED_TRACTOR
+
+BEV_XML = SHARED_TRACTOR.parent / "vecto-generic-class5-bev" / "Group5_PEV_E4.xml"
+needs_bev = pytest.mark.skipif(not BEV_XML.is_file(), reason="VECTO's generic electric tractor (../shared) not present")
+runner = CliRunner()
+RAD_S_PER_RPM = math.pi / 30.0
+
+
+def _job() -> ElectricTruckJob:
+    job = read_declaration_xml(BEV_XML)
+    assert isinstance(job, ElectricTruckJob)
+    return job
+
+
+def _truck(**keys: object) -> _core.MapTruck:
+    return load_electric_truck(_job(), truck_values(keys)).core
+
+
+@needs_bev
+def test_a_measured_point_of_the_map_is_reproduced_for_both_machines() -> None:
+    """VECTO's `ElectricMotorMapReader.Create` scales torque and power by `Count`, and its
+    `EfficiencyMapNew.LookupElectricPower` is exact at a measured point: the file's last row, one
+    machine at 8276.06 rpm and 750 Nm drawing 739.46 kW, is 1500 Nm drawing 1478.92 kW for two."""
+    point = _truck().machine_point(8276.06, 1500.0)
+    assert point["electric_power_w"] == pytest.approx(2 * 739_460.0, rel=1e-9)
+    assert point["loss_w"] == pytest.approx(2 * 739_460.0 - 1500.0 * 8276.06 * RAD_S_PER_RPM, rel=1e-9)
+
+
+@needs_bev
+def test_between_two_measured_points_the_loss_torque_is_interpolated_linearly() -> None:
+    """Halfway along a grid edge of the map (2069.01 rpm, 300 and 337.5 Nm per machine) VECTO's
+    Delaunay lookup interpolates the loss torque (P_el/ω − T) linearly, whatever diagonal the cells
+    take: worked by hand from the file's two rows."""
+    level = _job().machine.voltage_levels[0]
+    rows = {(n, t): p for n, t, p in level.power_map}
+    n = 2069.01
+    omega = n * RAD_S_PER_RPM
+    loss_torque = [rows[(n, t)] / omega - t for t in (300.0, 337.5)]
+    expected_w = 2 * omega * (318.75 + 0.5 * sum(loss_torque))
+    assert _truck().machine_point(n, 2 * 318.75)["electric_power_w"] == pytest.approx(expected_w, rel=1e-9)
+
+
+@needs_bev
+def test_torque_limits_drag_and_the_battery_follow_the_file_and_declaration_mode() -> None:
+    """Limits and drag ×2 (`ElectricMotorFullLoadCurveReader`, `DragCurveReader` scaled by the
+    count); the usable window 8-92 % narrowed by 5 % of its width for ageing and the run started in
+    its middle (VECTO's `CreateBatteryData`); the current solving P = U·I − R·I² at 40 mΩ."""
+    truck = _truck()
+    at_low = truck.machine_point(1000.0, 0.0)
+    assert (at_low["max_drive_nm"], at_low["max_brake_nm"]) == (1500.0, -1500.0)
+    # The drag curve's row at 2069.01 rpm: -6.5 Nm per machine.
+    assert truck.machine_point(2069.01, 0.0)["drag_nm"] == pytest.approx(-13.0)
+    facts = truck.electric_facts
+    assert facts["usable_window_pct"] == pytest.approx([10.1, 89.9])
+    assert facts["soc_start_pct"] == pytest.approx(50.0)
+    assert facts["battery_ocv_v"] == pytest.approx(778.61)  # the file's OCV at 50 %
+    u, r, p = 778.61, 0.040, 200_000.0
+    current = (u - math.sqrt(u * u - 4 * r * p)) / (2 * r)
+    point = truck.machine_point(4000.0, p / (4000.0 * RAD_S_PER_RPM))
+    assert point["battery_current_a"] == pytest.approx(current * point["electric_power_w"] / p, rel=0.05)
+    assert point["battery_internal_w"] == pytest.approx(u * point["battery_current_a"], rel=1e-12)
+    assert _truck(soc_start_pct=30.0).electric_facts["battery_ocv_v"] == pytest.approx(771.85)
+
+
+@needs_bev
+def test_every_controller_drives_it_and_reports_battery_energy_not_fuel(tmp_path: Path) -> None:
+    out = tmp_path / "o"
+    args = ["simulate", "--vehicle", str(BEV_XML), "--controller", "pi,vecto_cc,pcc,mpc", "--out", str(out)]
+    result = runner.invoke(app, args)
+    assert result.exit_code == 0, result.output
+    assert "battery energy [kWh]" in result.output and "fuel [kg]" not in result.output
+    doc = json.loads((out / "summary.json").read_text())
+    for name in ("pi", "vecto_cc", "pcc", "mpc"):
+        run = doc[name]
+        assert "fuel_kg" not in run and not run["stalled"], name
+        # A 37 t tractor at 85 km/h on the test track: between 90 and 180 kWh per 100 km.
+        assert 90.0 < run["energy_kwh_per_100km"] < 180.0, (name, run["energy_kwh_per_100km"])
+        used_pct = run["soc_start_pct"] - run["soc_end_pct"]
+        # The state of charge falls by the energy over what the battery holds at its held voltage.
+        assert used_pct == pytest.approx(100 * run["energy_kwh"] / (1555.5 * 778.61 / 1000), rel=1e-9)
+    assert doc["mpc"]["energy_kwh"] < doc["pi"]["energy_kwh"]
+
+
+@needs_bev
+def test_a_trip_the_battery_cannot_finish_ends_where_the_usable_charge_ends(tmp_path: Path) -> None:
+    out = tmp_path / "o"
+    args = ["simulate", "--vehicle", str(BEV_XML), "--controller", "pi", "--set", "soc_start_pct=10.2", "--out"]
+    result = runner.invoke(app, [*args, str(out)])
+    assert result.exit_code == 0, result.output
+    run = json.loads((out / "summary.json").read_text())["pi"]
+    assert run["stalled"] and run["soc_end_pct"] == pytest.approx(10.1, abs=0.01)
+    assert run["message"].startswith("battery empty at km ")
+    # 0.1 % of 1211 kWh is 1.2 kWh: under 1 km of the 8.5 km track at about 1.4 kWh/km.
+    assert 0.5e3 < run["stall_distance_m"] < 1.2e3, run["stall_distance_m"]
+    refused = runner.invoke(app, [*args[:-2], "--set", "soc_start_pct=5", "--out", str(tmp_path / "p")])
+    assert refused.exit_code == 2 and "soc_start_pct" in refused.output, refused.output
+    assert len(refused.output.strip().splitlines()) == 1, refused.output
