@@ -114,3 +114,18 @@ def test_a_trip_the_battery_cannot_finish_ends_where_the_usable_charge_ends(tmp_
     refused = runner.invoke(app, [*args[:-2], "--set", "soc_start_pct=5", "--out", str(tmp_path / "p")])
     assert refused.exit_code == 2 and "soc_start_pct" in refused.output, refused.output
     assert len(refused.output.strip().splitlines()) == 1, refused.output
+
+
+@needs_bev
+def test_the_whole_road_plan_knows_what_braking_returns(tmp_path: Path) -> None:
+    """The optimum's plan, driven on the DP's own stage model, uses within 0.1 % of the battery
+    energy the plant draws on the bundled test track: its brake arcs charge the energy braking returns,
+    and its coasting arcs the auxiliaries'."""
+    out = tmp_path / "o"
+    args = ["simulate", "--vehicle", str(BEV_XML), "--controller", "optimal", "--out", str(out)]
+    result = runner.invoke(app, args)
+    assert result.exit_code == 0, result.output
+    run = json.loads((out / "summary.json").read_text())["optimal"]
+    assert run["recovered_kwh"] > 0.0
+    assert run["plan_energy_kwh"] == pytest.approx(run["energy_kwh"], rel=1e-3)
+    assert "plan_fuel_kg" not in run

@@ -31,9 +31,20 @@ CARRIED = {
 DP controllers their solves, the whole-road optimum its plan)."""
 
 
-def declared(controller: str, legs: bool = False) -> set[str]:
-    runs = CARRIED[controller] | ({"legs"} if legs else set())
-    return {spec.name for spec in SUMMARY_SPECS if spec.runs in runs}
+BATTERY_ONLY = {"energy_kwh", "energy_kwh_per_100km", "energy_corrected_kwh", "plan_energy_kwh"}
+"""A battery-electric truck's figures; its runs carry them in place of the fuel's."""
+FUEL_ONLY = {"fuel_kg", "fuel_kg_per_100km", "fuel_corrected_kg", "plan_fuel_kg"}
+
+
+def declared(controller: str, legs: bool = False, electric: bool = False) -> set[str]:
+    runs = CARRIED[controller] | ({"legs"} if legs else set()) | ({"electric"} if electric else set())
+    names = {spec.name for spec in SUMMARY_SPECS if spec.runs in runs}
+    return names - (FUEL_ONLY if electric else BATTERY_ONLY)
+
+
+def declared_columns(electric: bool = False) -> list[str]:
+    runs = {"every", "electric"} if electric else {"every"}
+    return [spec.name for spec in TRACE_SPECS if spec.runs in runs and not (electric and spec.name == "fuel_g")]
 
 
 @pytest.fixture(scope="module")
@@ -45,8 +56,8 @@ def config():
 def test_a_run_gives_exactly_the_declared_figures_and_columns(config, controller: str) -> None:
     result = simulate(make_section("hill", 1500, 2.0), config, controller)
     assert set(result.summary) == declared(controller)
-    assert list(result.trace) == list(TRACE_COLUMNS)
-    assert trace_csv(result).splitlines()[0] == ",".join(TRACE_COLUMNS)
+    assert list(result.trace) == declared_columns()
+    assert trace_csv(result).splitlines()[0] == ",".join(declared_columns())
 
 
 def test_a_road_with_a_stop_gives_the_legs_figures_too(config) -> None:
@@ -78,8 +89,11 @@ def test_a_spec_reads_as_the_core_declares_it() -> None:
 
 def test_the_trace_columns_are_the_csv_files_columns_in_order() -> None:
     expected = "distance_m time_s speed_kmh gear pedal brake engine_speed_rpm slope altitude_m fuel_g brake_energy_kj"
+    battery = "battery_energy_kwh soc_pct battery_power_kw"
     assert tuple(expected.split()) == TRACE_COLUMNS
-    assert [spec.name for spec in TRACE_SPECS if spec.merge == "continued"] == ["time_s", "fuel_g", "brake_energy_kj"]
+    assert [spec.name for spec in TRACE_SPECS] == [*expected.split(), *battery.split()]
+    continued = [spec.name for spec in TRACE_SPECS if spec.merge == "continued"]
+    assert continued == ["time_s", "fuel_g", "brake_energy_kj", "battery_energy_kwh"]
 
 
 def test_the_sweeps_figure_columns_keep_their_order() -> None:
@@ -179,3 +193,18 @@ def test_the_reference_page_lists_every_declared_output() -> None:
         assert f"| `{output.name}` | " in page, output.name
     with pytest.raises(Exception, match="outputs:NAME"):
         hook.outputs_page(source.replace("<!-- outputs:trace -->", ""))
+
+
+BEV_XML = Path(__file__).resolve().parents[2] / "shared/vehicles/vecto-generic-class5-bev/Group5_PEV_E4.xml"
+
+
+@pytest.mark.skipif(not BEV_XML.is_file(), reason="VECTO's generic electric tractor (../shared) not present")
+@pytest.mark.parametrize("controller", list(CARRIED))
+def test_a_battery_electric_truck_s_run_gives_battery_figures_in_place_of_fuel(controller: str) -> None:
+    result = simulate(make_section("hill", 1500, 2.0), load_run_config(BEV_XML), controller)
+    assert set(result.summary) == declared(controller, electric=True)
+    assert list(result.trace) == declared_columns(electric=True)
+    trace = result.trace
+    # The trace's last sample is the run's end: the summary's energy and state of charge.
+    assert trace["battery_energy_kwh"][-1] == pytest.approx(result.summary["energy_kwh"], rel=1e-12)
+    assert trace["soc_pct"][-1] == pytest.approx(result.summary["soc_end_pct"], rel=1e-12)

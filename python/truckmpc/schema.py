@@ -67,8 +67,9 @@ SUMMARY: dict[str, OutputSpec] = {spec.name: spec for spec in SUMMARY_SPECS}
 TRACE_SPECS: tuple[OutputSpec, ...] = tuple(OutputSpec(**record) for record in _core.declaration("trace"))
 """Every column of a run's trace, in the CSV's order."""
 
-TRACE_COLUMNS: tuple[str, ...] = tuple(spec.name for spec in TRACE_SPECS)
-"""The trace's columns, in the CSV's order (``gear`` int64, the others float64)."""
+TRACE_COLUMNS: tuple[str, ...] = tuple(spec.name for spec in TRACE_SPECS if spec.runs == "every")
+"""The trace's columns every run carries, in the CSV's order (``gear`` int64, the others float64); a
+battery-electric truck's runs carry its battery's columns in place of ``fuel_g``."""
 
 _RUNS = {
     "every": "every run",

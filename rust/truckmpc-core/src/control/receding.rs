@@ -188,7 +188,7 @@ impl RecedingController {
                 stopped = true;
                 break;
             }
-            fuel_g += stage::fuel_g(model, &self.vehicle, (v_mps, v_next), u.pedal, u.gear, h);
+            fuel_g += stage::energy_of(model, &self.vehicle, (v_mps, v_next), u, h);
             time_s += stage::time_s(model, (v_mps, v_next), h);
             self.shifts.record(gear, u.gear);
             (v_mps, gear, held) = (v_next, u.gear, u);

@@ -160,6 +160,17 @@ pub fn brake_energy(
     }
 }
 
+/// Energy of a stage from `v_i` to `v_j` [m/s] over `h_m` under control `u`, in the store's unit:
+/// [`brake_energy`] where the brake is on and braking draws energy, else [`fuel_g`] at the pedal.
+#[inline]
+pub fn energy_of(model: StageModel, vehicle: &Vehicle, v: (f64, f64), u: Control, h_m: f64) -> f64 {
+    if u.brake > 0.0 && vehicle.brake_draws_energy() {
+        brake_energy(model, vehicle, v, u.brake, u.gear, h_m)
+    } else {
+        fuel_g(model, vehicle, v, u.pedal, u.gear, h_m)
+    }
+}
+
 /// Time [s] of a stage from `v_i` to `v_j` [m/s] over `h_m`.
 #[inline]
 pub fn time_s(model: StageModel, (v_i, v_j): (f64, f64), h_m: f64) -> f64 {

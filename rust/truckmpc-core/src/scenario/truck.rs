@@ -171,8 +171,9 @@ const ELECTRIC_KEYS: [&str; 1] = ["soc_start_pct"];
 
 /// With a battery-electric truck the DP's usable speeds are its machines': `n_min_rpm` and
 /// `n_max_rpm` (an engine's window) become the speed below which the cruise has stopped and the
-/// machines' top speed. Refused, naming the key: either set to another value, or a diesel
-/// driveline's key set.
+/// machines' top speed; and the PCC has no eco-roll (`eco_roll` false, as VECTO's for such a
+/// truck). Refused, naming the key: either speed set to another value, or a diesel driveline's key
+/// set.
 pub(super) fn electric_speed_window(settings: &mut RunSettings, vehicle: &Vehicle) -> CoreResult<()> {
     let defaults = VectoParams::default();
     for key in DIESEL_KEYS {
@@ -195,5 +196,7 @@ pub(super) fn electric_speed_window(settings: &mut RunSettings, vehicle: &Vehicl
         }
     }
     (settings.mpc.n_min_rpm, settings.mpc.n_max_rpm) = window;
+    // VECTO's predictive cruise control has no eco-roll for a battery-electric truck.
+    settings.pcc.eco_roll = false;
     Ok(())
 }

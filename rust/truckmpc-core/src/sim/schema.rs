@@ -304,6 +304,24 @@ const fn python(
     SummaryFigure { spec, read: None }
 }
 
+/// A trace column only `runs` carry (their trace's samples; other runs' are empty, and left out).
+#[allow(clippy::too_many_arguments)]
+const fn column_of(
+    runs: Runs,
+    name: &'static str,
+    unit: &'static str,
+    decimals: u8,
+    merge: Merge,
+    label: &'static str,
+    doc: &'static str,
+    take: fn(&mut Trace) -> Column,
+) -> TraceColumn {
+    let decimals = Some(decimals);
+    let spec =
+        OutputSpec { name, unit, label, doc, kind: Number, runs, source: Source::Core, merge, sweep: No, decimals };
+    TraceColumn { spec, take }
+}
+
 /// A trace column of `decimals` decimals in the CSV (None: a whole number).
 const fn column(
     name: &'static str,
@@ -446,7 +464,10 @@ pub const SUMMARY: &[SummaryFigure] = &[
         |s| solver(s, |x| Figure::Number(x.fallback_rescue_m))),
     core("plan_fuel_kg", "kg", Number, Optimal, Sum, No, "plan fuel",
         "Fuel of following the whole-road plan on the DP's own stage model (NaN where it has no path).",
-        |s| plan(s, |p| Figure::Number(p.fuel_kg))),
+        |s| s.battery.is_none().then(|| plan(s, |p| Figure::Number(p.fuel_kg))).flatten()),
+    core("plan_energy_kwh", "kWh", Number, Optimal, Sum, No, "plan battery energy",
+        "A battery-electric truck's net battery energy of following the whole-road plan on the DP's own stage model.",
+        |s| s.battery.and_then(|_| plan(s, |p| Figure::Number(p.fuel_kg * 1000.0 / 3.6e6)))),
     core("plan_time_s", "s", Number, Optimal, Sum, No, "plan trip time",
         "Trip time of following the whole-road plan on the DP's own stage model.",
         |s| plan(s, |p| Figure::Number(p.time_s))),
@@ -486,11 +507,18 @@ pub const TRACE: &[TraceColumn] = &[
         |t| numbers(&mut t.slope)),
     column("altitude_m", "m", Some(4), Joined, "altitude", "The road's altitude.",
         |t| numbers(&mut t.altitude_m)),
-    column("fuel_g", "g", Some(4), Continued, "fuel", "Fuel used since the run's start.",
+    column("fuel_g", "g", Some(4), Continued, "fuel", "Fuel used since the run's start (not for a battery-electric truck).",
         |t| numbers(&mut t.fuel_g)),
     column("brake_energy_kj", "kJ", Some(4), Continued, "brake energy",
         "Energy taken by the brakes since the run's start.",
         |t| numbers(&mut t.brake_energy_kj)),
+    column_of(Electric, "battery_energy_kwh", "kWh", 6, Continued, "battery energy",
+        "Net energy drawn from the battery since the run's start.", |t| numbers(&mut t.battery_energy_kwh)),
+    column_of(Electric, "soc_pct", "%", 4, Joined, "state of charge", "The battery's state of charge.",
+        |t| numbers(&mut t.soc_pct)),
+    column_of(Electric, "battery_power_kw", "kW", 3, Joined, "battery power",
+        "Power drawn from the battery under the sample's inputs; negative while braking returns energy.",
+        |t| numbers(&mut t.battery_power_kw)),
 ];
 
 impl RunSummary {
@@ -501,9 +529,11 @@ impl RunSummary {
 }
 
 impl Trace {
-    /// The trace's columns in [`TRACE`]'s order, each with its declaration.
+    /// The trace's columns in [`TRACE`]'s order, each with its declaration; a column this run
+    /// does not carry (no samples: another kind of truck's) is left out.
     pub fn into_columns(mut self) -> impl Iterator<Item = (&'static OutputSpec, Column)> {
-        TRACE.iter().map(move |c| (&c.spec, (c.take)(&mut self)))
+        let carried = |c: &Column| !matches!(c, Column::Number(values) if values.is_empty());
+        TRACE.iter().map(move |c| (&c.spec, (c.take)(&mut self))).filter(move |(_, column)| carried(column))
     }
 }
 

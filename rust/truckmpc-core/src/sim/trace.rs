@@ -2,6 +2,7 @@
 
 use super::{ARRIVAL_TOLERANCE_M, KMH_PER_MPS};
 use crate::plant::{Control, PlantState};
+use crate::powertrain::{EnergyStore, Powertrain};
 use crate::road::Road;
 use crate::vehicle::Vehicle;
 
@@ -19,8 +20,15 @@ pub struct Trace {
     pub engine_speed_rpm: Vec<f64>,
     pub slope: Vec<f64>,
     pub altitude_m: Vec<f64>,
+    /// Fuel used since the start [g] (empty for a battery-electric truck).
     pub fuel_g: Vec<f64>,
     pub brake_energy_kj: Vec<f64>,
+    /// A battery-electric truck's net battery energy since the start [kWh], its state of charge [%]
+    /// and its battery power [kW] (negative while charging) under the sample's inputs; empty for a
+    /// fuel tank.
+    pub battery_energy_kwh: Vec<f64>,
+    pub soc_pct: Vec<f64>,
+    pub battery_power_kw: Vec<f64>,
 }
 
 /// One sample: the interpolated state and the inputs applied over the step that crossed it.
@@ -100,6 +108,7 @@ impl TraceRecorder {
     pub fn into_trace(self, road: &Road, altitude_m: &[f64], vehicle: &Vehicle) -> Trace {
         let mut trace = Trace::default();
         let mut segment = 0;
+        let store = vehicle.store();
         for x in &self.samples {
             trace.distance_m.push(x.s_m);
             trace.time_s.push(x.t_s);
@@ -111,12 +120,22 @@ impl TraceRecorder {
             segment = road.segment(x.s_m, segment);
             trace.slope.push(road.slopes()[segment]);
             trace.altitude_m.push(interpolate(x.s_m, road.distance_m(), altitude_m));
-            trace.fuel_g.push(x.fuel_g);
+            match store {
+                EnergyStore::FuelTank => trace.fuel_g.push(x.fuel_g),
+                EnergyStore::Battery { .. } => {
+                    trace.battery_energy_kwh.push(x.fuel_g / J_PER_KWH);
+                    trace.soc_pct.push(100.0 * store.state_of_charge(x.fuel_g).unwrap_or(f64::NAN));
+                    trace.battery_power_kw.push(vehicle.energy_rate(x.v_mps, x.control) / 1000.0);
+                }
+            }
             trace.brake_energy_kj.push(x.brake_energy_j / 1000.0);
         }
         trace
     }
 }
+
+/// Joules per kilowatt-hour.
+const J_PER_KWH: f64 = 3.6e6;
 
 /// `x` limited to [0, 1], NaN taken as 0.
 fn unit_fraction(x: f64) -> f64 {
