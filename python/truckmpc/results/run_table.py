@@ -55,7 +55,8 @@ def run_table(summary: Mapping[str, Any], *, verbose: bool = False) -> RunTable:
     """The table of the run a ``summary.json`` document records (as :func:`json.load` returns it);
     ``verbose`` adds the solver statistics, the optimum's plan and the equal-time search."""
     columns = _columns(summary)
-    runs = [summary[name] for name in columns]
+    # A run whose battery emptied did not drive the road: its message says where, no figure shows.
+    runs = [{} if summary[name].get("battery_empty") else summary[name] for name in columns]
     sections = [
         Section("", figure_rows(_HEADLINE, runs) + comparison_rows(summary, columns, _EQUAL_TIME)),
         Section("as driven", comparison_rows(summary, columns, _AS_DRIVEN) + optimum_rows(summary, columns)),
@@ -94,8 +95,8 @@ def render_text(table: RunTable) -> str:
     """The table as plain text: the heading line, a header of the controllers, each section (its
     title on a line of its own after a blank line), then the notes."""
     width = _label_width(table.sections)
-    cell = max(10, *(len(c) + 2 for c in table.columns))
-    cell = max(cell, *(len(v) + 2 for s in table.sections for r in s.rows for v in r.cells))
+    cell = max([10, *(len(c) + 2 for c in table.columns)])
+    cell = max([cell, *(len(v) + 2 for s in table.sections for r in s.rows for v in r.cells)])
     lines = [table.heading, " " * width + "".join(f"{name:>{cell}}" for name in table.columns)]
     for section in table.sections:
         if section.title:
