@@ -35,7 +35,7 @@ def result(name: str, doc: dict[str, object]) -> RunResult:
 
 def test_delta_is_mpc_minus_pi_over_pi_in_percent():
     comparison = compare(summary(20.0, 400.0), summary(19.0, 410.0))
-    assert comparison.delta_fuel_pct == pytest.approx(-5.0, rel=1e-12)
+    assert comparison.delta_consumed_pct == pytest.approx(-5.0, rel=1e-12)
     assert comparison.delta_time_pct == pytest.approx(2.5, rel=1e-12)
     assert comparison.not_comparable is None
 
@@ -50,13 +50,13 @@ def test_delta_is_mpc_minus_pi_over_pi_in_percent():
 )
 def test_no_delta_when_a_run_stalled(pi_stall_m, mpc_stall_m, reason):
     comparison = compare(summary(20.0, 400.0, pi_stall_m), summary(1.0, 40.0, mpc_stall_m))
-    assert (comparison.delta_fuel_pct, comparison.delta_time_pct) == (None, None)
+    assert (comparison.delta_consumed_pct, comparison.delta_time_pct) == (None, None)
     assert comparison.not_comparable == reason
 
 
 def test_no_fuel_delta_against_a_zero_baseline():
     comparison = compare(summary(0.0, 400.0), summary(0.5, 380.0))
-    assert comparison.delta_fuel_pct is None
+    assert comparison.delta_consumed_pct is None
     assert comparison.delta_time_pct == pytest.approx(-5.0, rel=1e-12)
     assert comparison.not_comparable == "not comparable: pi fuel_kg is 0"
 

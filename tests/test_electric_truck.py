@@ -98,6 +98,16 @@ def test_every_controller_drives_it_and_reports_battery_energy_not_fuel(tmp_path
         # The state of charge falls by the energy over what the battery holds at its held voltage.
         assert used_pct == pytest.approx(100 * run["energy_kwh"] / (1555.5 * 778.61 / 1000), rel=1e-9)
     assert doc["mpc"]["energy_kwh"] < doc["pi"]["energy_kwh"]
+    # The comparisons are of battery energy, under keys named for it.
+    against_pcc = next(c for c in doc["comparisons"] if (c["controller"], c["baseline"]) == ("mpc", "pcc"))
+    assert "delta_fuel_pct" not in against_pcc and "saved_kg" not in against_pcc
+    raw = 100 * (doc["mpc"]["energy_kwh"] - doc["pcc"]["energy_kwh"]) / doc["pcc"]["energy_kwh"]
+    assert against_pcc["delta_energy_pct"] == pytest.approx(raw, rel=1e-9)
+    re_run = doc["equal_time_mpc_vs_pcc"]
+    own, base = doc["mpc"]["energy_corrected_kwh"], re_run["pcc_energy_corrected_kwh"]
+    assert against_pcc["headline_pct"] == pytest.approx(100 * (own - base) / base, rel=1e-9)
+    assert against_pcc["saved_kwh"] == pytest.approx(base - own, rel=1e-9)
+    assert "Δenergy at equal trip time and end speed vs PCC [%]" in result.output
 
 
 @needs_bev

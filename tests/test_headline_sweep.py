@@ -35,8 +35,8 @@ def read_csv(path: Path) -> tuple[list[str], list[list[str]]]:
 
 def test_the_headline_is_the_corrected_fuel_against_the_baseline_at_equal_time() -> None:
     quoted = headline(9.5, 10.0)
-    assert quoted.pct == pytest.approx(-5.0) and quoted.saved_kg == pytest.approx(0.5)
-    assert headline(None, 10.0).pct is None and headline(9.5, None).saved_kg is None
+    assert quoted.pct == pytest.approx(-5.0) and quoted.saved == pytest.approx(0.5)
+    assert headline(None, 10.0).pct is None and headline(9.5, None).saved is None
 
 
 def test_sweep_rows_carry_each_look_ahead_headline_against_the_pcc_and_the_pi(descent, tmp_path) -> None:

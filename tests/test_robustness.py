@@ -100,7 +100,7 @@ def test_the_study_quotes_the_headline_from_the_corrected_fuels_at_equal_time():
     config = load_run_config(overrides=COARSE)
     row = rb.run_case(road, config, rb.Case("exact", 40000.0, 40000.0))
     runs = {"pi": simulate(road, config, "pi"), "mpc": simulate(road, config, "mpc")}
-    pi_at_mpc_time = equal_time_baselines(road, config, runs)["mpc"].fuel_corrected_kg
+    pi_at_mpc_time = equal_time_baselines(road, config, runs)["mpc"].consumed_corrected
     own = runs["mpc"].summary["fuel_corrected_kg"]
     assert math.isclose(row["headline_pct"], 100 * (own - pi_at_mpc_time) / pi_at_mpc_time)
     assert math.isclose(row["saved_kg"], pi_at_mpc_time - own)

@@ -15,18 +15,17 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from truckmpc.consumption import consumption_of
 from truckmpc.units import M_PER_KM, PCT_PER_FRACTION
-
-COMPARED = (("fuel", "fuel_kg"), ("time", "time_s"))
-"""What is compared: (name, summary field)."""
 
 
 @dataclass(frozen=True)
 class Comparison:
-    """Δfuel and Δtime [%] of a run against the baseline; None where not comparable, with the reason
-    in ``not_comparable`` (``"not comparable: mpc stalled at km 0.98"``)."""
+    """Δ of what the run consumed (fuel, or battery energy for a battery-electric truck) and Δtime
+    [%] of a run against the baseline; None where not comparable, with the reason in
+    ``not_comparable`` (``"not comparable: mpc stalled at km 0.98"``)."""
 
-    delta_fuel_pct: float | None
+    delta_consumed_pct: float | None
     delta_time_pct: float | None
     not_comparable: str | None = None
 
@@ -34,15 +33,16 @@ class Comparison:
 def compare(
     base: Mapping[str, Any], run: Mapping[str, Any], base_name: str = "pi", run_name: str = "mpc"
 ) -> Comparison:
-    """Compare two run summaries (``fuel_kg``, ``time_s``, ``stalled`` and, if known,
-    ``stall_distance_m`` [m])."""
+    """Compare two run summaries (``fuel_kg`` or ``energy_kwh``, ``time_s``, ``stalled`` and, if
+    known, ``stall_distance_m`` [m])."""
     stalls = [_stall(name, summary) for name, summary in ((base_name, base), (run_name, run)) if summary["stalled"]]
     if stalls:
         return Comparison(None, None, "not comparable: " + " and ".join(stalls))
-    deltas = {name: delta_pct(run[field], base[field]) for name, field in COMPARED}
-    zero = [f"{base_name} {field} is 0" for name, field in COMPARED if deltas[name] is None]
+    compared = (("consumed", consumption_of(run).key), ("time", "time_s"))
+    deltas = {name: delta_pct(run[field], base[field]) for name, field in compared}
+    zero = [f"{base_name} {field} is 0" for name, field in compared if deltas[name] is None]
     reason = "not comparable: " + ", ".join(zero) if zero else None
-    return Comparison(deltas["fuel"], deltas["time"], reason)
+    return Comparison(deltas["consumed"], deltas["time"], reason)
 
 
 def delta_pct(value: float, base: float) -> float | None:
@@ -59,23 +59,24 @@ it: the PCC (what trucks drive today), then the PI."""
 
 @dataclass(frozen=True)
 class Headline:
-    """A run's saving against a baseline at equal trip time and equal end speed: Δfuel [%]
-    (negative is fuel saved) and the fuel saved [kg] (positive is saved); None each where there is
-    no comparison (a run stalled, the baseline did not reach the run's trip time)."""
+    """A run's saving against a baseline at equal trip time and equal end speed: Δ [%] of what it
+    consumes (negative is saved) and what it saved, in the consumption's unit (kg of fuel, kWh of
+    battery energy; positive is saved); None each where there is no comparison (a run stalled, the
+    baseline did not reach the run's trip time)."""
 
     pct: float | None
-    saved_kg: float | None
+    saved: float | None
 
 
-def headline(fuel_corrected_kg: float | None, baseline_fuel_corrected_kg: float | None) -> Headline:
-    """The headline of a run whose end-speed-corrected fuel is `fuel_corrected_kg` [kg] against
-    its baseline re-run at the run's trip time, whose end-speed-corrected fuel is
-    `baseline_fuel_corrected_kg` [kg] (``summary.json``'s ``headline_pct`` and ``saved_kg``, and
-    what every table, CSV and page quotes, read through this one function)."""
-    if fuel_corrected_kg is None or baseline_fuel_corrected_kg is None:
+def headline(corrected: float | None, baseline_corrected: float | None) -> Headline:
+    """The headline of a run whose end-speed-corrected consumption is `corrected` (kg of fuel, kWh
+    of battery energy) against its baseline re-run at the run's trip time, whose end-speed-corrected
+    consumption is `baseline_corrected` (``summary.json``'s ``headline_pct`` and ``saved_kg`` or
+    ``saved_kwh``, and what every table, CSV and page quotes, read through this one function)."""
+    if corrected is None or baseline_corrected is None:
         return Headline(None, None)
-    pct = delta_pct(fuel_corrected_kg, baseline_fuel_corrected_kg)
-    return Headline(pct, None if pct is None else baseline_fuel_corrected_kg - fuel_corrected_kg)
+    pct = delta_pct(corrected, baseline_corrected)
+    return Headline(pct, None if pct is None else baseline_corrected - corrected)
 
 
 def _stall(name: str, summary: Mapping[str, Any]) -> str:

@@ -105,7 +105,7 @@ def convergence_document(
             "stage_m": mpc_settings.stage_m,
             "k_lim": configs[half].settings.derived()["k_lim"],
             "pedal_levels": mpc_settings.pedal_levels,
-            "delta_fuel_pct": moved.delta_fuel_pct,
+            "delta_fuel_pct": moved.delta_consumed_pct,
             "delta_time_pct": moved.delta_time_pct,
             "delta_fuel_equal_time_pct": equal_time_pct.get(half),
             "fuel_kg": summary["fuel_kg"],
@@ -115,7 +115,7 @@ def convergence_document(
         if reason is not None:
             detail["not_comparable"] = reason
         for name, at_run, at_half in (
-            ("fuel", run.delta_fuel_pct, moved.delta_fuel_pct),
+            ("fuel", run.delta_consumed_pct, moved.delta_consumed_pct),
             ("time", run.delta_time_pct, moved.delta_time_pct),
             ("fuel_equal_time", run_equal, detail["delta_fuel_equal_time_pct"]),
         ):

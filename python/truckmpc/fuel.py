@@ -1,4 +1,5 @@
-"""Fuel bookkeeping that the simulation and the comparisons share: the end-speed correction.
+"""Fuel (or battery energy) bookkeeping that the simulation and the comparisons share: the end-speed
+correction, in the unit of what the run consumes (:mod:`truckmpc.consumption`).
 
 **End-speed correction.** Two runs that end at different speeds leave different kinetic energy in
 the truck. At a fixed engine speed, engine torque and fuel rate are both affine in the pedal, so
@@ -19,48 +20,45 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from truckmpc.units import G_PER_KG, J_PER_KWH, KMH_PER_MPS
+from truckmpc.consumption import consumption_of
+from truckmpc.units import KMH_PER_MPS
 
-__all__ = ["corrected_energy_kwh", "corrected_fuel_kg", "kinetic_correction_kg", "summary_corrected_kg"]
+__all__ = ["corrected", "kinetic_correction", "kinetic_correction_kg", "summary_corrected"]
+
+
+def kinetic_correction(summary: Mapping[str, Any], per_half_v2: float) -> float:
+    """What the kinetic energy a run gained from its start to its end speed is worth, in the run's
+    consumption's unit (kg of fuel, kWh of battery energy): c · ½(v_end² − v_start²), c in the
+    core's store unit (grams, joules) per m²/s²."""
+    v_start, v_end = summary["start_speed_kmh"] / KMH_PER_MPS, summary["end_speed_kmh"] / KMH_PER_MPS
+    return float(per_half_v2 * 0.5 * (v_end**2 - v_start**2) / consumption_of(summary).store_per_unit)
 
 
 def kinetic_correction_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
-    """Fuel [kg] worth the kinetic energy a run gained from its start to its end speed:
-    c · ½(v_end² − v_start²), c in grams per m²/s²."""
-    v_start, v_end = summary["start_speed_kmh"] / KMH_PER_MPS, summary["end_speed_kmh"] / KMH_PER_MPS
-    return float(g_per_half_v2 * 0.5 * (v_end**2 - v_start**2) / G_PER_KG)
+    """Fuel [kg] worth the kinetic energy a diesel run gained (:func:`kinetic_correction`)."""
+    return kinetic_correction(summary, g_per_half_v2)
 
 
-def corrected_fuel_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
-    """A run's fuel [kg] with its end speed brought back to its start speed (negative correction
-    when it ends faster than it started)."""
-    return float(summary["fuel_kg"]) - kinetic_correction_kg(summary, g_per_half_v2)
+def corrected(summary: Mapping[str, Any], per_half_v2: float) -> float:
+    """A run's consumption (fuel [kg] or battery energy [kWh]) with its end speed brought back to
+    its start speed (negative correction when it ends faster than it started)."""
+    return float(summary[consumption_of(summary).key]) - kinetic_correction(summary, per_half_v2)
 
 
-def corrected_energy_kwh(summary: Mapping[str, Any], j_per_half_v2: float) -> float:
-    """A battery-electric run's net battery energy [kWh] with its end speed brought back to its
-    start speed, kinetic energy priced in battery energy (`j_per_half_v2`, joules per m²/s², in the
-    one gear)."""
-    v_start, v_end = summary["start_speed_kmh"] / KMH_PER_MPS, summary["end_speed_kmh"] / KMH_PER_MPS
-    return float(summary["energy_kwh"]) - float(j_per_half_v2 * 0.5 * (v_end**2 - v_start**2) / J_PER_KWH)
-
-
-def summary_corrected_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
-    """A run's corrected fuel [kg] (:func:`corrected_fuel_kg`); for a road driven in legs (a road
-    with stops, :mod:`truckmpc.legs`) the sum over its legs, each corrected to its own entry speed.
-    Not the summary's own `fuel_corrected_kg`: that prices kinetic energy in the gear at the run's
-    v_ref, while a re-tuned baseline must be priced at the original run's (`g_per_half_v2`)."""
+def summary_corrected(summary: Mapping[str, Any], per_half_v2: float) -> float:
+    """A run's corrected consumption (:func:`corrected`); for a road driven in legs (a road with
+    stops, :mod:`truckmpc.legs`) the sum over its legs, each corrected to its own entry speed. Not
+    the summary's own `fuel_corrected_kg` (`energy_corrected_kwh`): that prices kinetic energy in
+    the gear at the run's v_ref, while a re-tuned baseline must be priced at the original run's
+    (`per_half_v2`)."""
     legs = summary.get("legs")
     if legs is None:
-        return corrected_fuel_kg(summary, g_per_half_v2)
+        return corrected(summary, per_half_v2)
+    key = consumption_of(summary).key
     return sum(
-        corrected_fuel_kg(
-            {
-                "fuel_kg": leg["fuel_kg"],
-                "start_speed_kmh": leg["entry_speed_kmh"],
-                "end_speed_kmh": leg["exit_speed_kmh"],
-            },
-            g_per_half_v2,
+        corrected(
+            {key: leg[key], "start_speed_kmh": leg["entry_speed_kmh"], "end_speed_kmh": leg["exit_speed_kmh"]},
+            per_half_v2,
         )
         for leg in legs
     )

@@ -102,8 +102,8 @@ def run_case(road: RoadProfile, config: RunConfig, case: Case, controller: str =
     results = {"pi": simulate(road, truth, "pi"), controller: simulate(_with_map(road, told), world, controller)}
     deltas = compare(results["pi"].summary, results[controller].summary, "pi", controller)
     found = equal_time_baselines(road, truth, results).get(controller)
-    equal = None if found is None else found.delta_fuel_pct(results[controller].summary["fuel_kg"])
-    base_kg = found.fuel_corrected_kg if found is not None and found.reached else None
+    equal = None if found is None else found.delta_pct_of(results[controller].summary["fuel_kg"])
+    base_kg = found.consumed_corrected if found is not None and found.reached else None
     quoted = headline(results[controller].summary.get("fuel_corrected_kg"), base_kg)
     return {
         "case": case.label,
@@ -111,11 +111,11 @@ def run_case(road: RoadProfile, config: RunConfig, case: Case, controller: str =
         "controller_mass_kg": case.controller_mass_kg,
         "grade_sigma_pct": case.sigma_pct,
         "seed": case.seed,
-        "delta_fuel_pct": deltas.delta_fuel_pct,
+        "delta_fuel_pct": deltas.delta_consumed_pct,
         "delta_time_pct": deltas.delta_time_pct,
         "delta_fuel_equal_time_pct": equal,
         "headline_pct": quoted.pct,
-        "saved_kg": quoted.saved_kg,
+        "saved_kg": quoted.saved,
         "not_comparable": deltas.not_comparable,
     }
 

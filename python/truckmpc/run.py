@@ -19,6 +19,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from truckmpc.config import RunConfig
+from truckmpc.consumption import consumption_of
 from truckmpc.convergence import convergence_document, run_halves
 from truckmpc.equal_time import BASELINES, EqualTime, compared_with, equal_time_baselines
 from truckmpc.roads import RoadProfile
@@ -96,10 +97,7 @@ def run_controllers(
         with status(f"{name}: driving {road.name}{told}"):
             results[name] = simulate(road, config, name)
     equal_times: dict[str, EqualTime] = {}
-    # A battery-electric truck's runs are reported as driven: the comparisons at equal trip time
-    # price fuel, and their battery-energy form is not built yet.
-    compared = () if config.is_electric else BASELINES
-    for baseline in (name for name in compared if name in results):
+    for baseline in (name for name in BASELINES if name in results):
         with status(f"{baseline} re-tuned to each look-ahead run's trip time: driving {road.name}"):
             found = equal_time_baselines(road, config, results, baseline=baseline)
         suffix = "" if baseline == "pi" else f"_vs_{baseline}"
@@ -124,4 +122,4 @@ def _equal_time_of(road: RoadProfile, config: RunConfig, pi: RunResult, mpc: Run
 
 def _equal_time_pct(run: RunResult, found: EqualTime | None) -> float | None:
     """Δfuel [%] of `run` against the PI driven to its trip time; None where the search missed it."""
-    return None if found is None else found.delta_fuel_pct(float(run.summary["fuel_kg"]))
+    return None if found is None else found.delta_pct_of(float(run.summary[consumption_of(run.summary).key]))

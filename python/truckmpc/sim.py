@@ -30,9 +30,10 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from truckmpc import _core
+from truckmpc.consumption import consumption_of
 from truckmpc.controller import Controller, PlantState
 from truckmpc.errors import ConfigError
-from truckmpc.fuel import corrected_energy_kwh, corrected_fuel_kg
+from truckmpc.fuel import corrected
 from truckmpc.legs import drive_legs
 from truckmpc.schema import TRACE_COLUMNS
 
@@ -102,9 +103,9 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
         (:data:`truckmpc.schema.SUMMARY_SPECS`: name with unit, meaning, which runs carry it, how
         legs join it; the outputs reference page lists them): every run's, the PCC's, the DP
         controllers' (with their `settings`) and the whole-road optimum's plan, `fuel_corrected_kg`
-        (the fuel with the end speed brought back to the start speed,
-        :func:`truckmpc.fuel.corrected_fuel_kg`; None if stalled) and, on a road with stops, `legs`
-        and `stops_not_simulated` (:func:`truckmpc.legs.merge_legs`). A Python controller with a
+        (the fuel with the end speed brought back to the start speed, :func:`truckmpc.fuel.corrected`;
+        None if stalled; `energy_corrected_kwh` for a battery-electric truck) and, on a road with
+        stops, `legs` and `stops_not_simulated` (:func:`truckmpc.legs.merge_legs`). A Python controller with a
         `summary()` method adds its entries. Its trace has the columns :data:`TRACE_COLUMNS`.
     """
     if road.stops:
@@ -135,10 +136,8 @@ def _drive(road: RoadProfile, config: RunConfig, controller: str | Controller) -
         summary_of = getattr(controller, "summary", None)
         name, extra = controller.name, dict(summary_of()) if callable(summary_of) else {}
     summary = {**figures, **extra}
+    # Kinetic energy's price in the core's store unit (grams of fuel, joules of battery energy).
     per_half_v2 = config.settings.derived()["kinetic_fuel_g_per_half_v2"]
-    if "energy_kwh" in summary:  # a battery-electric truck: the price is in joules per unit of ½v²
-        corrected = None if summary["stalled"] else corrected_energy_kwh(summary, per_half_v2)
-        summary["energy_corrected_kwh"] = corrected
-    else:
-        summary["fuel_corrected_kg"] = None if summary["stalled"] else corrected_fuel_kg(summary, per_half_v2)
+    key = consumption_of(summary).corrected_key
+    summary[key] = None if summary["stalled"] else corrected(summary, per_half_v2)
     return RunResult(name=name, road=road.name, summary=summary, trace=dict(trace))

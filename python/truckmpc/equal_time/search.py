@@ -24,7 +24,8 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from truckmpc.compare import delta_pct
-from truckmpc.fuel import summary_corrected_kg
+from truckmpc.consumption import FUEL, Consumption, consumption_of
+from truckmpc.fuel import summary_corrected
 
 if TYPE_CHECKING:
     from truckmpc.sim import RunResult
@@ -57,8 +58,9 @@ target speeds is v_ref − this."""
 class EqualTime:
     """The baseline driven to a target trip time.
 
-    ``setting_kmh`` (the search variable), ``time_s``, ``fuel_kg`` and ``fuel_corrected_kg`` are
-    those of the closest run found; ``reached`` says whether it is within :data:`TIME_TOLERANCE`,
+    ``setting_kmh`` (the search variable), ``time_s``, ``consumed`` and ``consumed_corrected`` (what
+    the run consumed, raw and end-speed corrected, in its ``consumption``'s unit: kg of fuel or kWh
+    of battery energy) are those of the closest run found; ``reached`` says whether it is within :data:`TIME_TOLERANCE`,
     and ``reason`` why not. The search variable is v_ref [km/h]; with ``offset_from_kmh`` set (a
     road with target speeds) it is x = v_ref + target_offset_kmh, ``offset_from_kmh`` the v_ref
     [km/h] kept.
@@ -67,8 +69,9 @@ class EqualTime:
     target_time_s: float
     setting_kmh: float | None = None
     time_s: float | None = None
-    fuel_kg: float | None = None
-    fuel_corrected_kg: float | None = None
+    consumed: float | None = None
+    consumed_corrected: float | None = None
+    consumption: Consumption = FUEL
     runs: int = 0
     reason: str | None = None
     tried: list[tuple[float, float]] = field(default_factory=list)
@@ -78,12 +81,12 @@ class EqualTime:
     def reached(self) -> bool:
         return self.reason is None and self.time_s is not None
 
-    def delta_fuel_pct(self, fuel_kg: float) -> float | None:
-        """Δfuel [%] of a run that burnt `fuel_kg` [kg] against this baseline run; None where the
-        search missed the time."""
-        if not self.reached or self.fuel_kg is None:
+    def delta_pct_of(self, consumed: float) -> float | None:
+        """Δ [%] of a run that consumed `consumed` (in this baseline's unit) against this baseline
+        run; None where the search missed the time."""
+        if not self.reached or self.consumed is None:
             return None
-        return delta_pct(fuel_kg, self.fuel_kg)
+        return delta_pct(consumed, self.consumed)
 
     @property
     def v_ref_kmh(self) -> float | None:
@@ -115,8 +118,8 @@ class EqualTime:
         doc: dict[str, Any] = {
             f"{baseline}_v_ref_kmh": self.v_ref_kmh if found else None,
             f"{baseline}_time_s": self.time_s if found else None,
-            f"{baseline}_fuel_kg": self.fuel_kg if found else None,
-            f"{baseline}_fuel_corrected_kg": self.fuel_corrected_kg if found else None,
+            f"{baseline}_{self.consumption.key}": self.consumed if found else None,
+            f"{baseline}_{self.consumption.corrected_key}": self.consumed_corrected if found else None,
             "target_time_s": self.target_time_s,
             "time_error_pct": delta_pct(self.time_s, self.target_time_s) if found and self.time_s else None,
             f"{baseline}_runs": self.runs,
@@ -191,8 +194,9 @@ class _Search:
         error = time_s - found.target_time_s
         if found.time_s is None or abs(error) < abs(found.time_s - found.target_time_s):
             found.setting_kmh, found.time_s = v_kmh, time_s
-            found.fuel_kg = float(result.summary["fuel_kg"])
-            found.fuel_corrected_kg = summary_corrected_kg(result.summary, self.g_per_half_v2)
+            found.consumption = consumption_of(result.summary)
+            found.consumed = float(result.summary[found.consumption.key])
+            found.consumed_corrected = summary_corrected(result.summary, self.g_per_half_v2)
         self.points.append((v_kmh, error))
         found.tried.append((v_kmh, time_s))
         return error

@@ -60,7 +60,7 @@ def grade_rms_error_pct(imported: RoadProfile, truth: RoadProfile) -> float:
 def delta_fuel_pct(road: RoadProfile, config: RunConfig) -> float | None:
     """Δfuel [%] of the MPC against the PI on `road` (None if either stalled)."""
     comparison = compare(simulate(road, config, "pi").summary, simulate(road, config, "mpc").summary)
-    return comparison.delta_fuel_pct
+    return comparison.delta_consumed_pct
 
 
 def noisy_imports(

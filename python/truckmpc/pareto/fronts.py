@@ -115,7 +115,7 @@ def equal_time_savings(
                 )
             else:
                 quoted = headline(fuel, reference[1])
-                saving = Saving(quoted.pct, saved_kg=quoted.saved_kg)
+                saving = Saving(quoted.pct, saved_kg=quoted.saved)
             out.setdefault(road, {})[controller] = saving
     return out
 

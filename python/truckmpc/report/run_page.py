@@ -102,9 +102,9 @@ def comparison_headline(summary: Mapping[str, Any], comparison: Mapping[str, Any
     quoted = headline(
         own.get("fuel_corrected_kg") if isinstance(own, Mapping) else None, equal.get(f"{base}_fuel_corrected_kg")
     )
-    if comparison.get("not_comparable") or quoted.pct is None or quoted.saved_kg is None:
+    if comparison.get("not_comparable") or quoted.pct is None or quoted.saved is None:
         return None
-    return quoted.pct, quoted.saved_kg
+    return quoted.pct, quoted.saved
 
 
 def _replay_html(run: RunDir) -> str:

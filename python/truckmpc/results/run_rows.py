@@ -9,6 +9,7 @@ from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any, NamedTuple
 
+from truckmpc.consumption import ENERGY, FUEL, Consumption, consumption_of
 from truckmpc.legs import stops_text
 from truckmpc.results.table_model import Row
 from truckmpc.schema import SUMMARY
@@ -35,6 +36,8 @@ LEGEND = (
     "At equal trip time: the baseline re-run at the set speed that matches the column's trip time.",
     "And end speed: each run's fuel less the fuel worth the kinetic energy it ends with above its start speed.",
 )
+LEGEND_ENERGY = LEGEND[2].replace("fuel less the fuel", "battery energy less the energy")
+"""The end-speed line for a battery-electric truck's runs, whose Δ compare battery energy."""
 LEGEND_TARGETS = (LEGEND[0], LEGEND[1].replace("at the set speed", "with its target speeds offset to the speed"))
 LEGEND_PCC = (
     "pcc: its neutral coasting entries are the starts of its use cases 1 (coasting ahead of a descent) and 2 "
@@ -121,17 +124,24 @@ def comparison_rows(
 
 
 def optimum_rows(summary: Mapping[str, Any], columns: Sequence[str]) -> tuple[Row, ...]:
-    """The MPC's fuel above the whole-road optimum's [%], in the MPC's column."""
+    """The MPC's fuel (battery energy) above the whole-road optimum's [%], in the MPC's column."""
     if "gap_to_optimal_pct" not in summary:
         return ()
     gap = _number(summary["gap_to_optimal_pct"], "+.2f")
-    return (Row("Δfuel vs optimum", "%", tuple(gap if name == "mpc" else "" for name in columns)),)
+    word = _consumption(summary, columns).word
+    return (Row(f"Δ{word} vs optimum", "%", tuple(gap if name == "mpc" else "" for name in columns)),)
+
+
+def _consumption(summary: Mapping[str, Any], columns: Sequence[str]) -> Consumption:
+    """What the runs of the table consume (fuel unless its first run is a battery-electric truck's)."""
+    return consumption_of(summary[columns[0]]) if columns else FUEL
 
 
 def equal_time_rows(summary: Mapping[str, Any], columns: Sequence[str]) -> tuple[Row, ...]:
     """Per baseline, what its equal-time search found for each controller: its set speed (or target
-    offset), trip time, fuel, runs and time error, and the end-speed-corrected Δfuel."""
+    offset), trip time, fuel (battery energy), runs and time error, and the end-speed-corrected Δ."""
     rows: list[Row] = []
+    c = _consumption(summary, columns)
     for baseline in _baselines(summary):
         found = [equal_time_of(summary, name, baseline) for name in columns]
         who = f"{NAMES.get(baseline, baseline)} re-run"
@@ -140,14 +150,14 @@ def equal_time_rows(summary: Mapping[str, Any], columns: Sequence[str]) -> tuple
         for label, key, unit, spec in (
             (setting[0], setting[1], "km/h", setting[2]),
             ("trip time", "time_s", "s", ".1f"),
-            ("fuel", "fuel_kg", "kg", ".3f"),
+            (SUMMARY[c.key].label, c.key, c.unit, ".3f"),
             ("search runs", "runs", "", "d"),
         ):
             cells = tuple(_number(entry.get(f"{baseline}_{key}"), spec) for entry in found)
             rows.append(Row(f"{who}: {label}", unit, cells))
         errors = tuple(_number(entry.get("time_error_pct"), "+.3f") for entry in found)
         rows.append(Row(f"{who}: time error", "%", errors))
-        measure = (("delta_fuel_equal_time_corrected_pct", "Δfuel at equal trip time, end speeds corrected"),)
+        measure = ((c.delta_key("_equal_time_corrected"), f"Δ{c.word} at equal trip time, end speeds corrected"),)
         rows += comparison_rows(summary, columns, measure, (baseline,))
     return tuple(rows)
 
@@ -157,11 +167,14 @@ END_SPEED_GAP_PTS = 0.5
 
 
 def end_speed_note(summary: Mapping[str, Any]) -> str | None:
-    """One line when the end speeds move some Δfuel at equal trip time by more than
+    """One line when the end speeds move some Δ at equal trip time by more than
     :data:`END_SPEED_GAP_PTS` points (the headline is the corrected one); None otherwise."""
     moved = []
+    word = "fuel"
     for (name, baseline), entry in _comparisons(summary).items():
-        raw, fair = (_finite(entry.get(key)) for key in ("delta_fuel_equal_time_pct", "headline_pct"))
+        c = consumption_of(summary[name])
+        word = c.word
+        raw, fair = (_finite(entry.get(key)) for key in (c.delta_key("_equal_time"), "headline_pct"))
         if raw is not None and fair is not None and abs(raw - fair) > END_SPEED_GAP_PTS:
             own, other = (summary[n]["end_speed_kmh"] for n in (name, baseline))
             ends = f"{name} ends at {own:.1f} km/h, {baseline} at {other:.1f}"
@@ -169,7 +182,7 @@ def end_speed_note(summary: Mapping[str, Any]) -> str | None:
     if not moved:
         return None
     return (
-        f"end speeds: correcting them moves Δfuel at equal trip time by more than {END_SPEED_GAP_PTS:g} points, "
+        f"end speeds: correcting them moves Δ{word} at equal trip time by more than {END_SPEED_GAP_PTS:g} points, "
         f"{'; '.join(moved)}: quote the figure at equal trip time and end speed."
     )
 
@@ -210,7 +223,9 @@ def notes(summary: Mapping[str, Any], columns: Sequence[str], legend: bool) -> I
         legs = stops.get("legs", max(len(run.get("legs") or ()) for run in runs))
         yield stops_text(stops["count"], stops["total_stop_s"], legs)
     if legend:
-        yield from LEGEND_TARGETS if _has_targets(summary) else LEGEND
+        lines = LEGEND_TARGETS if _has_targets(summary) else LEGEND
+        electric = _consumption(summary, columns) is ENERGY
+        yield from (LEGEND_ENERGY if electric and line is LEGEND[2] else line for line in lines)
     if "pcc" in columns:
         yield LEGEND_PCC
     against: dict[tuple[str, str], list[str]] = {}  # (controller, reason): the baselines

@@ -14,6 +14,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from truckmpc.consumption import FUEL, Consumption, consumption_of
 from truckmpc.convergence import convergence_lines
 from truckmpc.results.run_rows import (
     Figure,
@@ -32,10 +33,16 @@ __all__ = ["Row", "RunTable", "Section", "render_text", "run_table"]
 
 
 _HEADLINE = (Figure("fuel_kg", ".3f"), Figure("energy_kwh", ".2f"), Figure("time_s", ".1f"))
-_EQUAL_TIME = (
-    (HEADLINE, "Δfuel at equal trip time and end speed"),
-    ("delta_fuel_equal_time_pct", "Δfuel at equal trip time"),
-)
+
+
+def _equal_time(c: Consumption) -> tuple[tuple[str, str], ...]:
+    """The headline rows: Δ at equal trip time and end speed, and at equal trip time alone."""
+    return (
+        (HEADLINE, f"Δ{c.word} at equal trip time and end speed"),
+        (c.delta_key("_equal_time"), f"Δ{c.word} at equal trip time"),
+    )
+
+
 _SOLVER = (
     Figure("horizon_solves", "d"),
     Figure("infeasible_solves", "d"),
@@ -47,7 +54,12 @@ _SOLVER = (
     Figure("pcc_events", "d"),
     Figure("compute_time_s", ".2f"),
 )
-_PLAN = (Figure("plan_fuel_kg", ".3f"), Figure("plan_time_s", ".1f"), Figure("plan_solve_s", ".2f"))
+_PLAN = (
+    Figure("plan_fuel_kg", ".3f"),
+    Figure("plan_energy_kwh", ".2f"),
+    Figure("plan_time_s", ".1f"),
+    Figure("plan_solve_s", ".2f"),
+)
 _COMPUTE = (Figure("realtime_ratio", ".2e"),)
 
 
@@ -57,9 +69,10 @@ def run_table(summary: Mapping[str, Any], *, verbose: bool = False) -> RunTable:
     columns = _columns(summary)
     # A run whose battery emptied did not drive the road: its message says where, no figure shows.
     runs = [{} if summary[name].get("battery_empty") else summary[name] for name in columns]
+    c = consumption_of(summary[columns[0]]) if columns else FUEL
     sections = [
-        Section("", figure_rows(_HEADLINE, runs) + comparison_rows(summary, columns, _EQUAL_TIME)),
-        Section("as driven", comparison_rows(summary, columns, _AS_DRIVEN) + optimum_rows(summary, columns)),
+        Section("", figure_rows(_HEADLINE, runs) + comparison_rows(summary, columns, _equal_time(c))),
+        Section("as driven", comparison_rows(summary, columns, _as_driven(c)) + optimum_rows(summary, columns)),
         Section("driving", driving_rows(runs)),
         Section("compute", figure_rows(_SOLVER if verbose else (), runs) + figure_rows(_COMPUTE, runs)),
     ]
@@ -69,26 +82,24 @@ def run_table(summary: Mapping[str, Any], *, verbose: bool = False) -> RunTable:
     shown = tuple(Section(s.title, tuple(r for r in s.rows if any(r.cells))) for s in sections)
     legend = any(row.label.startswith("Δ") for section in shown for row in section.rows)
     lines = list(notes(summary, columns, legend))
-    if any("energy_kwh" in run for run in runs):
-        lines.append(_ELECTRIC)
     if isinstance(summary.get("convergence"), Mapping):
         lines += [_CONVERGENCE, *convergence_lines(summary["convergence"], _label_width(shown))]
     return RunTable(heading(summary), columns, tuple(s for s in shown if s.rows), tuple(lines))
 
 
-_ELECTRIC = (
-    "battery-electric truck: each run as driven; its comparisons against a baseline (raw and at equal trip "
-    "time) are not computed for battery energy yet"
-)
 _CONVERGENCE = (
     "convergence: how far the MPC's Δ vs PI moves at half the speed step δ and at half the stage S "
     "(and at twice pedal_levels)"
 )
-_AS_DRIVEN = (
-    ("delta_fuel_pct", "Δfuel"),
-    ("delta_time_pct", "Δtrip time"),
-    ("delta_fuel_corrected_pct", "Δfuel, end speeds corrected"),
-)
+
+
+def _as_driven(c: Consumption) -> tuple[tuple[str, str], ...]:
+    """The rows of the runs as driven: Δ of what they consumed, Δtrip time, Δ end speeds corrected."""
+    return (
+        (c.delta_key(), f"Δ{c.word}"),
+        ("delta_time_pct", "Δtrip time"),
+        (c.delta_key("_corrected"), f"Δ{c.word}, end speeds corrected"),
+    )
 
 
 def render_text(table: RunTable) -> str:

@@ -19,7 +19,10 @@ the PCC, when they ran (their ``equal_time_<controller>_vs_<baseline>`` objects 
 ``[{"controller", "baseline", "delta_fuel_pct", "delta_time_pct", "delta_fuel_corrected_pct",
 "delta_fuel_equal_time_pct", "delta_fuel_equal_time_corrected_pct", "headline_pct", "saved_kg",
 "not_comparable"?}, ...]``: ``headline_pct`` (:data:`HEADLINE`) is the figure to quote, ``saved_kg``
-(:data:`SAVED`) the same in kilograms.
+(:data:`SAVED`) the same in kilograms. A battery-electric truck's runs compare battery energy under
+keys named for it (:mod:`truckmpc.consumption`): ``delta_energy_pct``, ``delta_energy_corrected_pct``,
+``delta_energy_equal_time_pct``, ``delta_energy_equal_time_corrected_pct``, ``saved_kwh``, and in
+``equal_time`` ``pi_energy_kwh`` and ``pi_energy_corrected_kwh``.
 The end-speed correction is :mod:`truckmpc.fuel`'s, the equal-time search :mod:`truckmpc.equal_time`'s.
 
 The deltas follow the thesis (section 6.1): (x_mpc − x_pi) / x_pi in percent; they are null when a
@@ -32,6 +35,7 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 from truckmpc.compare import compare, delta_pct, headline
+from truckmpc.consumption import consumption_of
 from truckmpc.equal_time import BASELINES, EqualTime, compared_with
 from truckmpc.sim import RunResult
 
@@ -66,10 +70,6 @@ def summary_document(
     doc: dict[str, Any] = {"road": road.name, "length_m": float(road.length_m)}
     for name, result in results.items():
         doc[name] = dict(result.summary)
-    if any("energy_kwh" in result.summary for result in results.values()):
-        # A battery-electric truck's runs as driven: its comparisons are in fuel's keys, not built
-        # for battery energy yet.
-        return {**doc, **({} if run is None else {"run": dict(run)})}
     base = results.get(BASELINE)
     comparisons = []
     for name, result in results.items():
@@ -101,7 +101,7 @@ def _comparison(base: RunResult, run: RunResult, equal: EqualTime | None) -> dic
     entry: dict[str, Any] = {
         "controller": run.name,
         "baseline": base.name,
-        "delta_fuel_pct": comparison.delta_fuel_pct,
+        consumption_of(run.summary).delta_key(): comparison.delta_consumed_pct,
         "delta_time_pct": comparison.delta_time_pct,
     }
     if comparison.not_comparable is not None:
@@ -116,21 +116,23 @@ def _comparison(base: RunResult, run: RunResult, equal: EqualTime | None) -> dic
 def _time_fair_deltas(
     base: Mapping[str, Any], run: Mapping[str, Any], equal: EqualTime | None, baseline: str
 ) -> dict[str, Any]:
-    """Δfuel [%] with both runs' end speeds corrected, and against the baseline at equal trip time
+    """Δ [%] of what the runs consumed (fuel, or battery energy: :mod:`truckmpc.consumption` names
+    the keys) with both runs' end speeds corrected, and against the baseline at equal trip time
     (raw and corrected), with the ``equal_time`` object; null where the baseline did not reach the
     time."""
     doc: dict[str, Any] = {}
-    if base.get("fuel_corrected_kg") is not None and run.get("fuel_corrected_kg") is not None:
-        doc["delta_fuel_corrected_pct"] = delta_pct(run["fuel_corrected_kg"], base["fuel_corrected_kg"])
+    c = consumption_of(run)
+    if base.get(c.corrected_key) is not None and run.get(c.corrected_key) is not None:
+        doc[c.delta_key("_corrected")] = delta_pct(run[c.corrected_key], base[c.corrected_key])
     if equal is None:
         return doc
-    raw, corrected = equal.fuel_kg, equal.fuel_corrected_kg
+    raw, corrected = equal.consumed, equal.consumed_corrected
     reached = equal.reached and raw is not None and corrected is not None
-    own = run.get("fuel_corrected_kg")
-    doc["delta_fuel_equal_time_pct"] = delta_pct(run["fuel_kg"], raw) if reached and raw else None
+    own = run.get(c.corrected_key)
+    doc[c.delta_key("_equal_time")] = delta_pct(run[c.key], raw) if reached and raw else None
     quoted = headline(own, corrected if reached else None)
-    doc["delta_fuel_equal_time_corrected_pct"] = quoted.pct
-    doc[HEADLINE], doc[SAVED] = quoted.pct, quoted.saved_kg
+    doc[c.delta_key("_equal_time_corrected")] = quoted.pct
+    doc[HEADLINE], doc[c.saved_key] = quoted.pct, quoted.saved
     doc["equal_time"] = equal.document(baseline)
     return doc
 
@@ -139,4 +141,4 @@ def _gap_to_optimal(mpc: Mapping[str, Any], optimal: Mapping[str, Any]) -> float
     """How much more fuel the MPC burns than the whole-road optimum, in % of the optimum's fuel
     (None when either stalled)."""
     comparison = compare(optimal, mpc, "optimal", "mpc")
-    return comparison.delta_fuel_pct
+    return comparison.delta_consumed_pct

@@ -30,7 +30,7 @@ def deltas(base: Mapping[str, Any], run: Mapping[str, Any], base_name: str, run_
     figures of `run`), and the headline's ``headline`` [%] and ``saved`` [kg]; None where there is
     none."""
     comparison = compare(base, run, base_name, run_name)
-    out: dict[str, Any] = {"fuel": comparison.delta_fuel_pct, "time": comparison.delta_time_pct}
+    out: dict[str, Any] = {"fuel": comparison.delta_consumed_pct, "time": comparison.delta_time_pct}
     if comparison.not_comparable is not None:
         return out
     _, equal_fuel, equal_corrected = equal_time_fields(base_name)
@@ -38,7 +38,7 @@ def deltas(base: Mapping[str, Any], run: Mapping[str, Any], base_name: str, run_
     out["fuel_equal_time"] = _delta(run["fuel_kg"], run.get(equal_fuel))
     out["fuel_equal_time_corrected"] = _delta(run["fuel_corrected_kg"], run.get(equal_corrected))
     quoted = headline(run.get("fuel_corrected_kg"), run.get(equal_corrected))
-    out.update(headline=quoted.pct, saved=quoted.saved_kg)
+    out.update(headline=quoted.pct, saved=quoted.saved)
     return out
 
 

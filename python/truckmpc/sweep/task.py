@@ -113,7 +113,7 @@ def _equal_time_figures(profile: RoadProfile, config: RunConfig, base: RunResult
         return figures
     found = equal_time_baselines(profile, config, {base.name: base, run.name: run}, base.name).get(run.name)
     if found is not None and found.reached:
-        figures.update(zip(fields, (found.v_ref_kmh, found.fuel_kg, found.fuel_corrected_kg), strict=True))
+        figures.update(zip(fields, (found.v_ref_kmh, found.consumed, found.consumed_corrected), strict=True))
     return figures
 
 

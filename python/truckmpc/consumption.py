@@ -1,0 +1,46 @@
+"""What a run consumes, named for the truck's store: fuel [kg] for an engine-driven truck, net
+battery energy [kWh] for a battery-electric one. The comparisons read a run's consumption through
+:func:`consumption_of`, so their keys are named for what they compare (``delta_fuel_pct`` or
+``delta_energy_pct``, ``saved_kg`` or ``saved_kwh``) and a study mixing both kinds of truck keeps
+them apart.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from truckmpc.units import G_PER_KG, J_PER_KWH
+
+__all__ = ["ENERGY", "FUEL", "Consumption", "consumption_of"]
+
+
+@dataclass(frozen=True)
+class Consumption:
+    """One kind of consumption: its word in keys and labels, its summary keys and unit, and how many
+    of the core's store units (grams of fuel, joules) make one of its unit."""
+
+    word: str
+    key: str
+    corrected_key: str
+    unit: str
+    store_per_unit: float
+
+    def delta_key(self, kind: str = "") -> str:
+        """The key of a Δ [%] of this consumption: ``delta_fuel_pct``, ``delta_energy_equal_time_pct``."""
+        return f"delta_{self.word}{kind}_pct"
+
+    @property
+    def saved_key(self) -> str:
+        """The key of what a run saves against its baseline: ``saved_kg`` or ``saved_kwh``."""
+        return f"saved_{self.unit.lower()}"
+
+
+FUEL = Consumption("fuel", "fuel_kg", "fuel_corrected_kg", "kg", G_PER_KG)
+ENERGY = Consumption("energy", "energy_kwh", "energy_corrected_kwh", "kWh", J_PER_KWH)
+
+
+def consumption_of(summary: Mapping[str, Any]) -> Consumption:
+    """A run's consumption, from its summary: battery energy where it gives ``energy_kwh``, else fuel."""
+    return ENERGY if ENERGY.key in summary else FUEL
