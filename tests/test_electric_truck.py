@@ -8,11 +8,13 @@ import json
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 from typer.testing import CliRunner
 
 from truckmpc import _core
 from truckmpc.cli import app
+from truckmpc.stationary import electric_stationary_point
 from truckmpc.vecto.electric import ElectricTruckJob
 from truckmpc.vecto.electric_truck import load_electric_truck
 from truckmpc.vecto.truck import truck_values
@@ -146,3 +148,24 @@ def test_the_whole_road_plan_knows_what_braking_returns(tmp_path: Path) -> None:
     assert run["recovered_kwh"] > 0.05 * run["energy_kwh"]
     assert run["plan_energy_kwh"] == pytest.approx(run["energy_kwh"], rel=1e-3)
     assert "plan_fuel_kg" not in run
+
+
+@needs_bev
+def test_holding_a_speed_on_a_grade_the_wheels_get_the_road_load_and_the_battery_its_losses_more() -> None:
+    """`model stationary`: at 80 km/h on 1 % the machines give the wheels the road load worked by
+    hand from the declared combination (mass, rolling resistance, drag area at the speed, VECTO's air
+    density), and the battery gives that plus the losses; downhill at -4 % the brake is the machines',
+    who return energy."""
+    truck = load_electric_truck(_job(), truck_values())
+    v = 80 / 3.6
+    for slope_pct in (1.0, -4.0):
+        alpha = math.atan(slope_pct / 100)
+        cda = float(np.interp(v, *zip(*truck.cda_curve, strict=True)))
+        load_n = truck.mass_kg * 9.80665 * (math.sin(alpha) + truck.rolling_resistance * math.cos(alpha))
+        load_n += 0.5 * 1.188 * cda * v * v
+        state = electric_stationary_point(truck, 80.0, slope_pct, 80_000.0)
+        assert state["feasible"]
+        assert state["wheel_power_w"] - state["friction_brake_power_w"] == pytest.approx(load_n * v, rel=1e-6)
+        losses = sum(state[k] for k in ("machine_loss_w", "reduction_loss_w", "battery_loss_w", "aux_power_w"))
+        assert state["battery_power_w"] == pytest.approx(state["wheel_power_w"] + losses, rel=1e-9)
+    assert state["brake"] > 0.0 and state["battery_power_w"] < 0.0 and state["friction_brake_power_w"] == 0.0

@@ -283,6 +283,22 @@ class _ElectricFacts(TypedDict):
     """Declaration mode's window, narrowed for ageing [%]."""
     usable_energy_kwh: float
 
+class _ElectricState(TypedDict):
+    pedal: float
+    brake: float
+    feasible: bool
+    """Whether the machines and the battery give the torque (else the levels are clipped to 1)."""
+    machine_speed_rpm: float
+    machine_torque_nm: float
+    battery_power_w: float
+    """Drawn from the battery's store, negative where braking returns energy [W]."""
+    battery_loss_w: float
+    aux_power_w: float
+    machine_loss_w: float
+    reduction_loss_w: float
+    wheel_power_w: float
+    friction_brake_power_w: float
+
 class _MachinePoint(TypedDict):
     electric_power_w: float
     """From the power map's triangulation of the loss torque, at the battery's voltage [W]."""
@@ -316,6 +332,8 @@ class MapTruck:
     def is_electric(self) -> bool: ...
     def machine_point(self, speed_rpm: float, torque_nm: float) -> _MachinePoint:
         """A battery-electric truck's machines together at `speed_rpm` and `torque_nm`."""
+    def electric_state(self, v_mps: float, slope_rad: float, brake_torque_max_nm: float) -> _ElectricState:
+        """A battery-electric truck holding `v_mps` (> 0) on `slope_rad`."""
     @property
     def electric_facts(self) -> _ElectricFacts:
         """What the battery-electric truck is (ParamError for an engine-driven one)."""

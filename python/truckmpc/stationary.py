@@ -10,8 +10,9 @@ from typing import Any
 from truckmpc.config import RunConfig
 from truckmpc.units import KMH_PER_MPS, PCT_PER_FRACTION
 from truckmpc.vecto import VectoTruck
+from truckmpc.vecto.electric_truck import ElectricVectoTruck
 
-__all__ = ["map_truck_stationary_point", "stationary_point"]
+__all__ = ["electric_stationary_point", "map_truck_stationary_point", "stationary_point"]
 
 
 def stationary_point(config: RunConfig, speed_kmh: float, slope_pct: float, gear: int | None = None) -> dict[str, Any]:
@@ -81,3 +82,17 @@ def map_truck_stationary_point(
         "feasible": bool(op["feasible"]),
         "not_feasible": reason,
     }
+
+
+def electric_stationary_point(
+    truck: ElectricVectoTruck, speed_kmh: float, slope_pct: float, brake_torque_max_nm: float
+) -> dict[str, Any]:
+    """A battery-electric truck holding `speed_kmh` on `slope_pct` (service brakes of
+    `brake_torque_max_nm` [Nm] at the wheels): the pedal or brake level, ``feasible`` (the machines
+    and the battery give the torque), the machines' ``machine_speed_rpm`` and ``machine_torque_nm``,
+    and where the battery's power goes [W]: ``battery_power_w`` (negative where braking returns
+    energy), ``battery_loss_w``, ``aux_power_w``, ``machine_loss_w``, ``reduction_loss_w``,
+    ``wheel_power_w`` and ``friction_brake_power_w``."""
+    v_mps, slope_rad = speed_kmh / KMH_PER_MPS, math.atan(slope_pct / PCT_PER_FRACTION)
+    state = truck.core.electric_state(v_mps, slope_rad, brake_torque_max_nm)
+    return {"speed_kmh": speed_kmh, "slope_pct": slope_pct, **state}

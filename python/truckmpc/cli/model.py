@@ -6,14 +6,16 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
 from truckmpc.cli.options import ConfigOpt, SetOpt, VehicleOpt, run_config_from
-from truckmpc.config.vecto_truck import diesel_truck_from_overrides
+from truckmpc.config import load_run_config
+from truckmpc.config.vecto_truck import diesel_truck_from_overrides, truck_from_overrides
 from truckmpc.errors import VehicleError
-from truckmpc.stationary import map_truck_stationary_point, stationary_point
+from truckmpc.stationary import electric_stationary_point, map_truck_stationary_point, stationary_point
+from truckmpc.vecto.electric_truck import ElectricVectoTruck
 
 __all__ = ["model_app"]
 
@@ -97,6 +99,13 @@ def _map_truck_point(
 ) -> None:
     if config:
         raise VehicleError(f"--config: expected none with a VECTO truck ({job.name}): its keys are set with --set")
+    any_truck = truck_from_overrides(job, set_ or ())
+    if isinstance(any_truck, ElectricVectoTruck):
+        if gear is not None and gear != "1":
+            raise typer.BadParameter(f"expected 1 for a battery-electric truck, got {gear!r}", param_hint="'--gear'")
+        brakes_nm = float(load_run_config(job, overrides=set_ or ()).settings.get("brake_torque_max_nm"))
+        _echo_electric(electric_stationary_point(any_truck, speed_kmh, slope_pct, brakes_nm), as_json)
+        return
     truck = diesel_truck_from_overrides(job, set_ or (), "model stationary")
     gears = truck.core.facts["gears"]
     parsed = _parse_gear(gear, gears)
@@ -113,3 +122,20 @@ def _map_truck_point(
     _echo_engine(doc)
     typer.echo(f"  brakes      {doc['brake_power_w'] / 1e3:.1f} kW at the wheels, beyond the engine's drag")
     typer.echo("  feasible    yes")
+
+
+def _echo_electric(doc: dict[str, Any], as_json: bool) -> None:
+    """A battery-electric truck's stationary point: levels, machines, and the battery's power."""
+    if as_json:
+        typer.echo(json.dumps(doc))
+        return
+    typer.echo(f"speed {doc['speed_kmh']:g} km/h on {doc['slope_pct']:g} %")
+    level = f"pedal {doc['pedal']:.4f}" if doc["brake"] == 0.0 else f"brake {doc['brake']:.4f}"
+    typer.echo(f"  level       {level}" + ("" if doc["feasible"] else " (clipped: the truck cannot hold the speed)"))
+    typer.echo(f"  machines    {doc['machine_speed_rpm']:.0f} rpm, {doc['machine_torque_nm']:.0f} Nm")
+    typer.echo(f"  battery     {doc['battery_power_w'] / 1e3:.2f} kW drawn (negative: taken back)")
+    losses = (doc[k] / 1e3 for k in ("machine_loss_w", "reduction_loss_w", "battery_loss_w", "aux_power_w"))
+    typer.echo("  of which    machines {:.2f}, reduction {:.2f}, battery {:.2f}, auxiliaries {:.2f} kW".format(*losses))
+    typer.echo(
+        f"  brakes      {doc['friction_brake_power_w'] / 1e3:.1f} kW at the wheels, beyond what the machines take"
+    )

@@ -7,7 +7,8 @@ use crate::band::SpeedBand;
 use crate::error::{CoreError, CoreResult};
 use crate::levels;
 use crate::params::{CruiseParams, ParamSet, Value};
-use crate::powertrain::{ElectricTruck, MapTruck, RPM_PER_RAD_S};
+use crate::plant::Control;
+use crate::powertrain::{ElectricModel, ElectricTruck, MapTruck, Powertrain, RPM_PER_RAD_S};
 use crate::road::Road;
 use crate::vehicle::{Vehicle, NEUTRAL};
 
@@ -197,6 +198,51 @@ pub fn machine_point(truck: &ElectricTruck, speed_rpm: f64, torque_nm: f64) -> C
         ("drag_nm", Value::Float(machines.drag_nm(speed_rpm))),
         ("battery_current_a", Value::Float(battery.current_a(electric_w))),
         ("battery_internal_w", Value::Float(battery.internal_power_w(electric_w))),
+    ])
+}
+
+/// A battery-electric truck holding `v_mps` (> 0) on `slope_rad` with service brakes of
+/// `brake_torque_max_nm` [Nm]: the pedal or brake level that holds it (feasible when the machines
+/// and the battery give the torque), the machines' speed and torque, and where the battery's power
+/// goes (see [`PowerFlows`]); the friction brakes' power where braking needs more than the
+/// machines take back.
+pub fn electric_state(
+    truck: &ElectricTruck,
+    v_mps: f64,
+    slope_rad: f64,
+    brake_torque_max_nm: f64,
+) -> CoreResult<Figures> {
+    if !(v_mps.is_finite() && v_mps > 0.0) {
+        return Err(CoreError::invalid("v_mps", "a speed > 0 [m/s]").got(v_mps));
+    }
+    if !slope_rad.is_finite() {
+        return Err(CoreError::invalid("slope_rad", "a finite angle [rad]").got(slope_rad));
+    }
+    let model = ElectricModel::new(truck.clone(), brake_torque_max_nm);
+    let need_nm = model.air_torque_nm(v_mps) + model.slope_torque_nm(slope_rad.tan());
+    let (drag, full, _) = model.wheel_torques_nm(v_mps);
+    let (pedal, brake) = if need_nm >= drag {
+        ((need_nm - drag) / (full - drag), 0.0)
+    } else {
+        (0.0, (drag - need_nm) / brake_torque_max_nm)
+    };
+    let feasible = pedal <= 1.0 && brake <= 1.0;
+    let u = Control { pedal: pedal.min(1.0), brake: brake.min(1.0), gear: 1 };
+    let f = model.power_flows(v_mps, u);
+    let friction_w = model.friction_brake_force_n(v_mps, u) * v_mps;
+    Ok(vec![
+        ("pedal", Value::Float(u.pedal)),
+        ("brake", Value::Float(u.brake)),
+        ("feasible", Value::Bool(feasible)),
+        ("machine_speed_rpm", Value::Float(f.machine_rpm)),
+        ("machine_torque_nm", Value::Float(f.machine_nm)),
+        ("battery_power_w", Value::Float(f.battery_w)),
+        ("battery_loss_w", Value::Float(f.battery_loss_w)),
+        ("aux_power_w", Value::Float(f.aux_w)),
+        ("machine_loss_w", Value::Float(f.machine_loss_w)),
+        ("reduction_loss_w", Value::Float(f.reduction_loss_w)),
+        ("wheel_power_w", Value::Float(f.wheel_w)),
+        ("friction_brake_power_w", Value::Float(friction_w)),
     ])
 }
 

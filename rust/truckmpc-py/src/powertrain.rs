@@ -117,6 +117,18 @@ impl PyMapTruck {
         dict_of(py, &figures::machine_point(truck, speed_rpm, torque_nm).map_err(to_py)?)
     }
 
+    /// The battery-electric truck holding `v_mps` on `slope_rad` (`figures::electric_state`).
+    fn electric_state<'py>(
+        &self,
+        py: Python<'py>,
+        v_mps: f64,
+        slope_rad: f64,
+        brake_torque_max_nm: f64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let truck = self.electric_truck()?;
+        dict_of(py, &figures::electric_state(truck, v_mps, slope_rad, brake_torque_max_nm).map_err(to_py)?)
+    }
+
     /// Whether the truck is battery-electric.
     #[getter]
     fn is_electric(&self) -> bool {
