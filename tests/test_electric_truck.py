@@ -4,9 +4,11 @@ window and start, and runs of every controller reporting battery energy, not fue
 
 from __future__ import annotations
 
+import importlib.util
 import json
 import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -169,3 +171,25 @@ def test_holding_a_speed_on_a_grade_the_wheels_get_the_road_load_and_the_battery
         losses = sum(state[k] for k in ("machine_loss_w", "reduction_loss_w", "battery_loss_w", "aux_power_w"))
         assert state["battery_power_w"] == pytest.approx(state["wheel_power_w"] + losses, rel=1e-9)
     assert state["brake"] > 0.0 and state["battery_power_w"] < 0.0 and state["friction_brake_power_w"] == 0.0
+
+
+def _energy_script() -> Any:
+    path = Path(__file__).resolve().parents[1] / "scripts" / "electric_energy.py"
+    spec = importlib.util.spec_from_file_location("electric_energy", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.mark.slow
+@needs_bev
+@pytest.mark.parametrize("controller", ["pi", "pcc", "mpc"])
+def test_the_battery_energy_balances_on_vecto_108_km(controller: str) -> None:
+    """scripts/electric_energy.py: the net battery energy equals air drag, rolling resistance, the
+    machines', reduction's and battery's losses, the auxiliaries, the friction brakes and the change
+    of kinetic and potential energy, each summed independently of the plant over a 1 m trace, to
+    0.1 % of the battery energy."""
+    terms = _energy_script().energy_balance(VECTO_108, controller)
+    assert abs(terms["residual_pct"]) < 0.1, terms
+    assert terms["machine_loss_w"] > 0.1 * terms["drawn"] and terms["air_drag"] > 0.3 * terms["drawn"]

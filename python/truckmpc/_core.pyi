@@ -282,6 +282,8 @@ class _ElectricFacts(TypedDict):
     usable_window_pct: list[float]
     """Declaration mode's window, narrowed for ageing [%]."""
     usable_energy_kwh: float
+    effective_mass_kg: float
+    """Body, wheels and machines: the mass whose ½·m·v² the truck's kinetic energy is [kg]."""
 
 class _ElectricState(TypedDict):
     pedal: float
@@ -334,6 +336,15 @@ class MapTruck:
         """A battery-electric truck's machines together at `speed_rpm` and `torque_nm`."""
     def electric_state(self, v_mps: float, slope_rad: float, brake_torque_max_nm: float) -> _ElectricState:
         """A battery-electric truck holding `v_mps` (> 0) on `slope_rad`."""
+    def electric_flows(
+        self,
+        v_mps: npt.NDArray[np.float64],
+        pedal: npt.NDArray[np.float64],
+        brake: npt.NDArray[np.float64],
+        brake_torque_max_nm: float,
+    ) -> dict[str, npt.NDArray[np.float64]]:
+        """Where a battery-electric truck's power goes under each control [W]: battery_w,
+        battery_loss_w, aux_w, machine_loss_w, reduction_loss_w, wheel_w, friction_brake_w."""
     @property
     def electric_facts(self) -> _ElectricFacts:
         """What the battery-electric truck is (ParamError for an engine-driven one)."""

@@ -176,7 +176,44 @@ pub fn electric_facts(truck: &ElectricTruck) -> Figures {
             "usable_energy_kwh",
             Value::Float(battery.energy_per_soc_j() * (battery.soc_window.1 - battery.soc_window.0) / 3.6e6),
         ),
+        ("effective_mass_kg", Value::Float(effective_mass_kg(truck))),
     ]
+}
+
+/// The mass [kg] whose kinetic energy ½·m·v² the truck's moves: the body's, and the wheels' and
+/// the machines' inertia seen at the wheels' rim.
+fn effective_mass_kg(truck: &ElectricTruck) -> f64 {
+    let (body, r) = (truck.body(), truck.wheel_radius_m());
+    body.mass_kg + (body.wheels_inertia_kgm2 + truck.machines().inertia_kgm2() * truck.ratio().powi(2)) / (r * r)
+}
+
+/// Where a battery-electric truck's power goes under each control (`pedal`, `brake` at `v_mps`,
+/// element by element; service brakes of `brake_torque_max_nm` [Nm]): the columns of
+/// [`crate::powertrain::electric::PowerFlows`] [W], and the friction brakes' power [W].
+pub fn electric_flows(
+    truck: &ElectricTruck,
+    (v_mps, pedal, brake): (&[f64], &[f64], &[f64]),
+    brake_torque_max_nm: f64,
+) -> CoreResult<Vec<(&'static str, Vec<f64>)>> {
+    if pedal.len() != v_mps.len() || brake.len() != v_mps.len() {
+        return Err(CoreError::invalid("pedal", "one pedal and one brake level per speed").got(pedal.len()));
+    }
+    let model = ElectricModel::new(truck.clone(), brake_torque_max_nm);
+    let names =
+        ["battery_w", "battery_loss_w", "aux_w", "machine_loss_w", "reduction_loss_w", "wheel_w", "friction_brake_w"];
+    let mut columns: Vec<(&'static str, Vec<f64>)> =
+        names.iter().map(|&n| (n, Vec::with_capacity(v_mps.len()))).collect();
+    for ((&v, &p), &b) in v_mps.iter().zip(pedal).zip(brake) {
+        let u = Control { pedal: p, brake: b, gear: 1 };
+        let f = model.power_flows(v, u);
+        let friction_w = model.friction_brake_force_n(v, u) * v;
+        let values =
+            [f.battery_w, f.battery_loss_w, f.aux_w, f.machine_loss_w, f.reduction_loss_w, f.wheel_w, friction_w];
+        for ((_, column), value) in columns.iter_mut().zip(values) {
+            column.push(value);
+        }
+    }
+    Ok(columns)
 }
 
 /// The machines of a battery-electric truck at `speed_rpm` and `torque_nm` (all machines

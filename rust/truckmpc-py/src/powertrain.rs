@@ -3,6 +3,7 @@
 
 use std::sync::Arc;
 
+use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -127,6 +128,26 @@ impl PyMapTruck {
     ) -> PyResult<Bound<'py, PyDict>> {
         let truck = self.electric_truck()?;
         dict_of(py, &figures::electric_state(truck, v_mps, slope_rad, brake_torque_max_nm).map_err(to_py)?)
+    }
+
+    /// Where the battery-electric truck's power goes under each control (`figures::electric_flows`):
+    /// a dict of 1-D arrays [W].
+    fn electric_flows<'py>(
+        &self,
+        py: Python<'py>,
+        v_mps: PyReadonlyArray1<'_, f64>,
+        pedal: PyReadonlyArray1<'_, f64>,
+        brake: PyReadonlyArray1<'_, f64>,
+        brake_torque_max_nm: f64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let truck = self.electric_truck()?;
+        let (v, p, b) = (v_mps.as_slice()?, pedal.as_slice()?, brake.as_slice()?);
+        let columns = figures::electric_flows(truck, (v, p, b), brake_torque_max_nm).map_err(to_py)?;
+        let out = PyDict::new(py);
+        for (name, values) in columns {
+            out.set_item(name, values.into_pyarray(py))?;
+        }
+        Ok(out)
     }
 
     /// Whether the truck is battery-electric.
