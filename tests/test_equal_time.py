@@ -15,7 +15,7 @@ from table_text import parse_table
 from truckmpc import load_road, load_run_config, simulate
 from truckmpc.cli import app
 from truckmpc.equal_time import TIME_TOLERANCE, EqualTime, baseline_runner, equal_time
-from truckmpc.fuel import kinetic_correction_kg
+from truckmpc.fuel import kinetic_correction
 from truckmpc.roads import RoadProfile, make_section
 
 runner = CliRunner()
@@ -97,7 +97,7 @@ def test_end_speed_correction_prices_the_kinetic_energy_of_a_speed_up() -> None:
     steady = simulate(road, load_run_config(), "pi")
     c = load_run_config().settings.derived()["kinetic_fuel_g_per_half_v2"]
     extra_kg = slow.summary["fuel_kg"] - steady.summary["fuel_kg"]
-    priced_kg = kinetic_correction_kg(slow.summary, c)
+    priced_kg = kinetic_correction(slow.summary, c)
     assert priced_kg == pytest.approx(c * 0.5 * ((85 / 3.6) ** 2 - (75 / 3.6) ** 2) / 1000, rel=1e-3)
     assert extra_kg == pytest.approx(priced_kg, rel=0.10)
     assert slow.summary["fuel_corrected_kg"] == pytest.approx(steady.summary["fuel_corrected_kg"], rel=3e-3)

@@ -136,7 +136,8 @@ def test_vehicle_info_shows_the_electric_truck_and_refuses_a_diesel_key_in_one_l
     assert (doc["group"], doc["mass_kg"]) == ("group 5 (tractor 4x2 > 16 t), Long Haul", 10143.0 + 7500.0 + 19300.0)
     lighter = runner.invoke(app, ["vehicle", "info", str(BEV_XML), "--json", "--set", "payload_kg=1000"])
     assert json.loads(lighter.output)["mass_kg"] == 10143.0 + 7500.0 + 1000.0
-    refused_keys = (["--set", "v_ref_kmh=80"], ["--set", "gear_efficiency=0.5"], ["--set", "aux_power_w=5000"])
+    assert "usable 10.1-89.9 % (declaration mode: narrowed for ageing)" in shown.output
+    refused_keys = (["--set", "v_ref_kmh=80"], ["--set", "gear_efficiency=0.5"], ["--set", "use_loss_maps=false"])
     for args in (["vehicle", "info", str(BEV_XML), *key] for key in refused_keys):
         refused = runner.invoke(app, args)
         assert refused.exit_code == 2, refused.output

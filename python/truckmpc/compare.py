@@ -46,7 +46,9 @@ def compare(
 
 
 def delta_pct(value: float, base: float) -> float | None:
-    """(value − base) / base [%]; None for a zero or non-finite base."""
+    """(value − base) / base [%]; None for a zero or non-finite base. A negative base (a
+    battery-electric truck that took back more than it drew, or a corrected fuel on a long descent)
+    flips the sign's meaning: read such a Δ with the figures beside it."""
     if not base or not math.isfinite(base):
         return None
     return PCT_PER_FRACTION * (value - base) / base
@@ -81,4 +83,5 @@ def headline(corrected: float | None, baseline_corrected: float | None) -> Headl
 
 def _stall(name: str, summary: Mapping[str, Any]) -> str:
     where_m = summary.get("stall_distance_m")
-    return f"{name} stalled" + (f" at km {where_m / M_PER_KM:.2f}" if isinstance(where_m, (int, float)) else "")
+    what = "'s battery emptied" if summary.get("battery_empty") else " stalled"
+    return f"{name}{what}" + (f" at km {where_m / M_PER_KM:.2f}" if isinstance(where_m, (int, float)) else "")

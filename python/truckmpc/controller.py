@@ -45,7 +45,7 @@ class PlantState(NamedTuple):
     t_s: float
     """Elapsed time [s]."""
     fuel_g: float
-    """Fuel used [g]."""
+    """Fuel used [g]; for a battery-electric truck, the net energy drawn from its battery [J]."""
     brake_energy_j: float
     """Energy dissipated in the service brakes [J]."""
     stalled: bool

@@ -56,6 +56,11 @@ def halved_configs(config: RunConfig) -> dict[str, RunConfig]:
     """The run's configuration at δ/2 and at S/2: weights given per kilometre kept, a Q2 given per
     stage (or by table 6.2's δ rule) held at the run's value, k_lim kept at its spacing in metres;
     with pedal levels K > 0, also at 2K levels (the pedal step halved)."""
+    if config.is_electric:
+        raise ConfigError(
+            "--check-convergence: expected a diesel truck (the check compares fuel; not built for a "
+            "battery-electric truck's energy yet), got a battery-electric truck"
+        )
     settings = config.settings
     derived = settings.derived()
     # Q2 given per kilometre scales with S by itself; per stage (or by the δ rule) it is held.

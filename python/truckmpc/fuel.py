@@ -23,7 +23,7 @@ from typing import Any
 from truckmpc.consumption import consumption_of
 from truckmpc.units import KMH_PER_MPS
 
-__all__ = ["corrected", "kinetic_correction", "kinetic_correction_kg", "summary_corrected"]
+__all__ = ["corrected", "kinetic_correction", "summary_corrected"]
 
 
 def kinetic_correction(summary: Mapping[str, Any], per_half_v2: float) -> float:
@@ -32,11 +32,6 @@ def kinetic_correction(summary: Mapping[str, Any], per_half_v2: float) -> float:
     core's store unit (grams, joules) per m²/s²."""
     v_start, v_end = summary["start_speed_kmh"] / KMH_PER_MPS, summary["end_speed_kmh"] / KMH_PER_MPS
     return float(per_half_v2 * 0.5 * (v_end**2 - v_start**2) / consumption_of(summary).store_per_unit)
-
-
-def kinetic_correction_kg(summary: Mapping[str, Any], g_per_half_v2: float) -> float:
-    """Fuel [kg] worth the kinetic energy a diesel run gained (:func:`kinetic_correction`)."""
-    return kinetic_correction(summary, g_per_half_v2)
 
 
 def corrected(summary: Mapping[str, Any], per_half_v2: float) -> float:

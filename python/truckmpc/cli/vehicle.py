@@ -58,7 +58,9 @@ def info_cmd(
 def _plot_electric(job: ElectricTruckJob, out: Path | None, svg: bool, given: str | None) -> None:
     """Draw a battery-electric truck's machine map; ``given`` names an option it cannot take."""
     if given:
-        raise VehicleError(f"{given}: expected none for a battery-electric truck (it is not driven yet), got one")
+        raise VehicleError(
+            f"{given}: expected none for a battery-electric truck (its plot is the file's machine map), got one"
+        )
     from truckmpc.plot.electric import plot_machine_map  # lazy: matplotlib
 
     written = plot_machine_map(job, out or Path(f"{job.path.stem}-machine-map.png"), svg=svg)
@@ -184,6 +186,8 @@ def _electric_text(d: dict[str, Any]) -> list[str]:
         f"({d['cross_wind']} cross-wind correction)",
         f"  rolling         RRC {d['rolling_resistance']:.5f} (the whole combination at this mass)",
         f"  auxiliaries     {'; '.join(d['auxiliaries'])}",
-        "  note            read only: truckmpc does not drive a battery-electric truck yet",
+        f"  as driven       usable {d['usable_window_pct'][0]:.1f}-{d['usable_window_pct'][1]:.1f} % "
+        f"(declaration mode: narrowed for ageing), {d['usable_energy_kwh']:.0f} kWh at the start's voltage; "
+        f"starts at {d['soc_start_pct']:.1f} %",
     ]
     return lines

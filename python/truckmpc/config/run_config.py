@@ -122,6 +122,11 @@ class RunConfig:
         """v_max = v_ref + v_inc [km/h], above which the PI brakes."""
         return float(self.cruise.v_ref_kmh + self.cruise.v_inc_kmh)
 
+    @property
+    def is_electric(self) -> bool:
+        """Whether the truck is battery-electric (its runs draw battery energy, not fuel)."""
+        return self.truck is not None and self.truck.core.is_electric
+
     def with_values(self, changes: Mapping[str, Any], where: str) -> RunConfig:
         """This configuration with `changes` (key: user value) made and checked by the core, the same
         truck: the runs a study derives from this one. An error names `where` and the key."""

@@ -88,9 +88,9 @@ def diesel_truck_from_overrides(job: Path, overrides: Sequence[str], command: st
     return truck
 
 
-ELECTRIC_KEYS = ("mission", "payload_kg", "trailer_mass_kg", "cross_wind")
-"""The VECTO truck's keys that apply to a battery-electric truck today: its declaration-mode
-combination's (the others describe a diesel driveline or are not modelled for it yet)."""
+ELECTRIC_KEYS = ("mission", "payload_kg", "trailer_mass_kg", "cross_wind", "aux_power_w", "soc_start_pct")
+"""The VECTO truck's keys that apply to a battery-electric truck: its declaration-mode combination's,
+the auxiliaries' power and the state of charge at the start (the others describe a diesel driveline)."""
 
 
 def electric_truck_keys(job: Path, overrides: Sequence[str]) -> dict[str, Any]:

@@ -137,6 +137,12 @@ def _check_truck_axes(config: RunConfig, axes: Sequence[Axis]) -> None:
     """A VECTO truck replaces the thesis's vehicle keys: an axis over one of them would change nothing."""
     if config.truck is None:
         return
+    if config.is_electric:
+        raise SweepError(
+            f"--vehicle {config.truck.job.path.name}: expected a diesel truck for a sweep or a Pareto study "
+            "(their columns compare fuel; a battery-electric truck is compared with truckmpc simulate), "
+            "got a battery-electric truck"
+        )
     replaced = [a.key for a in axes if a.key in VEHICLE_KEYS and a.key not in STILL_APPLIES]
     if replaced:
         raise SweepError(

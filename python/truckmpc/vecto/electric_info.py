@@ -12,6 +12,7 @@ import numpy as np
 from truckmpc.units import KMH_PER_MPS
 from truckmpc.vecto.combination import declared_combination
 from truckmpc.vecto.electric import BatteryData, ElectricMachineData, ElectricTruckJob
+from truckmpc.vecto.electric_truck import load_electric_truck
 
 _REFERENCE_KMH = 80.0
 
@@ -47,7 +48,14 @@ def electric_truck_info(job: ElectricTruckJob, keys: Mapping[str, Any]) -> dict[
         "reduction_loss_map_points": len(job.reduction.loss_map),
         "batteries": [_battery(b) for b in job.batteries],
         "auxiliaries": [f"{name}: {technology}" for name, technology in job.auxiliaries],
+        **_as_driven(job, keys),
     }
+
+
+def _as_driven(job: ElectricTruckJob, keys: Mapping[str, Any]) -> dict[str, Any]:
+    """The battery as a run takes it: declaration mode's usable window, the start, the energy."""
+    facts = load_electric_truck(job, keys).core.electric_facts
+    return {key: facts[key] for key in ("usable_window_pct", "soc_start_pct", "usable_energy_kwh")}
 
 
 def _machines(m: ElectricMachineData) -> dict[str, Any]:

@@ -45,7 +45,7 @@ impl Scenario {
         let mut settings = settings;
         let vehicle = Arc::new(vehicle_of(&settings, truck.as_deref(), None)?);
         if vehicle.is_electric() {
-            truck::electric_speed_window(&mut settings, &vehicle)?;
+            truck::electric_settings(&mut settings, &vehicle)?;
         } else {
             truck::check_no_electric_keys(&settings)?;
         }

@@ -174,7 +174,7 @@ const ELECTRIC_KEYS: [&str; 1] = ["soc_start_pct"];
 /// machines' top speed; and the PCC has no eco-roll (`eco_roll` false, as VECTO's for such a
 /// truck). Refused, naming the key: either speed set to another value, or a diesel driveline's key
 /// set.
-pub(super) fn electric_speed_window(settings: &mut RunSettings, vehicle: &Vehicle) -> CoreResult<()> {
+pub(super) fn electric_settings(settings: &mut RunSettings, vehicle: &Vehicle) -> CoreResult<()> {
     let defaults = VectoParams::default();
     for key in DIESEL_KEYS {
         let value = settings.vecto.get(key).expect("declared");

@@ -8,11 +8,11 @@
 //! `sweep.csv`'s figure columns, which an unfinished sweep resumes by: add entries, never reorder.
 
 use super::shifts::per_100km;
-use super::summary::{BatteryFigures, RunSummary};
+use super::summary::RunSummary;
 use super::trace::Trace;
-use crate::control::{PlanStats, RuleStats, SolverStats};
 use crate::params::Value;
 
+use self::build::{battery, column, column_of, core, count, maybe, num, numbers, plan, python, rules, solver};
 use self::{Kind::*, Merge::*, Runs::*, Sweep::*};
 
 /// Which runs carry a figure.
@@ -271,105 +271,6 @@ pub struct TraceColumn {
     pub take: fn(&mut Trace) -> Column,
 }
 
-/// A figure the core's summary gives.
-#[allow(clippy::too_many_arguments)]
-const fn core(
-    name: &'static str,
-    unit: &'static str,
-    kind: Kind,
-    runs: Runs,
-    merge: Merge,
-    sweep: Sweep,
-    label: &'static str,
-    doc: &'static str,
-    read: ReadFigure,
-) -> SummaryFigure {
-    let spec = OutputSpec { name, unit, label, doc, kind, runs, source: Source::Core, merge, sweep, decimals: None };
-    SummaryFigure { spec, read: Some(read) }
-}
-
-/// A figure the Python package adds to the core's summary.
-#[allow(clippy::too_many_arguments)]
-const fn python(
-    name: &'static str,
-    unit: &'static str,
-    kind: Kind,
-    runs: Runs,
-    merge: Merge,
-    sweep: Sweep,
-    label: &'static str,
-    doc: &'static str,
-) -> SummaryFigure {
-    let spec = OutputSpec { name, unit, label, doc, kind, runs, source: Source::Python, merge, sweep, decimals: None };
-    SummaryFigure { spec, read: None }
-}
-
-/// A trace column only `runs` carry (their trace's samples; other runs' are empty, and left out).
-#[allow(clippy::too_many_arguments)]
-const fn column_of(
-    runs: Runs,
-    name: &'static str,
-    unit: &'static str,
-    decimals: u8,
-    merge: Merge,
-    label: &'static str,
-    doc: &'static str,
-    take: fn(&mut Trace) -> Column,
-) -> TraceColumn {
-    let decimals = Some(decimals);
-    let spec =
-        OutputSpec { name, unit, label, doc, kind: Number, runs, source: Source::Core, merge, sweep: No, decimals };
-    TraceColumn { spec, take }
-}
-
-/// A trace column of `decimals` decimals in the CSV (None: a whole number).
-const fn column(
-    name: &'static str,
-    unit: &'static str,
-    decimals: Option<u8>,
-    merge: Merge,
-    label: &'static str,
-    doc: &'static str,
-    take: fn(&mut Trace) -> Column,
-) -> TraceColumn {
-    let kind = if decimals.is_some() { Number } else { Count };
-    let spec =
-        OutputSpec { name, unit, label, doc, kind, runs: Every, source: Source::Core, merge, sweep: No, decimals };
-    TraceColumn { spec, take }
-}
-
-fn num(x: f64) -> Option<Figure<'static>> {
-    Some(Figure::Number(x))
-}
-
-fn count(n: u64) -> Option<Figure<'static>> {
-    Some(Figure::Count(n))
-}
-
-fn maybe(x: Option<f64>) -> Option<Figure<'static>> {
-    Some(x.map_or(Figure::Null, Figure::Number))
-}
-
-fn numbers(column: &mut Vec<f64>) -> Column {
-    Column::Number(std::mem::take(column))
-}
-
-fn battery(s: &RunSummary, read: fn(&BatteryFigures) -> f64) -> Option<Figure<'static>> {
-    s.battery.as_ref().map(|b| Figure::Number(read(b)))
-}
-
-fn rules(s: &RunSummary, read: fn(&RuleStats) -> Figure<'static>) -> Option<Figure<'static>> {
-    s.rules.as_ref().map(read)
-}
-
-fn solver(s: &RunSummary, read: fn(&SolverStats) -> Figure<'static>) -> Option<Figure<'static>> {
-    s.solver.as_ref().map(read)
-}
-
-fn plan(s: &RunSummary, read: fn(&PlanStats) -> Figure<'static>) -> Option<Figure<'static>> {
-    s.solver.as_ref().and_then(|x| x.plan.as_ref()).map(read)
-}
-
 /// Every figure of a controller's summary, in `summary.json`'s order.
 #[rustfmt::skip]
 pub const SUMMARY: &[SummaryFigure] = &[
@@ -540,5 +441,6 @@ impl Trace {
     }
 }
 
+mod build;
 #[cfg(test)]
 mod tests;

@@ -80,12 +80,13 @@ impl PedalFuel {
     }
 }
 
-/// The fuel per metre [g/m] at `pedal` from an entry of [`PedalFuel`]: zero at fuel cut
-/// (pedal ≤ 0), as the map gives it, else interpolated between the two nodes around it.
+/// The fuel per metre [g/m] at `pedal` from an entry of [`PedalFuel`]: its value at zero pedal
+/// for pedal ≤ 0 (zero at a diesel's fuel cut, the auxiliaries' draw for a battery-electric
+/// truck), else interpolated between the two nodes around it.
 #[inline]
 pub fn interpolate(entry: &[f64], pedal: f64) -> f64 {
     if pedal <= 0.0 {
-        return 0.0;
+        return entry[0];
     }
     let t = (pedal * NODES as f64).min(NODES as f64);
     let k = (t as usize).min(NODES - 1);

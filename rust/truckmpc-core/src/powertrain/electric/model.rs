@@ -175,8 +175,7 @@ impl ElectricModel {
         let n = self.rpm_per_mps * v_mps;
         let omega = n / RPM_PER_RAD_S;
         let (wheel_nm, running) = self.machine_wheel_nm(v_mps, u);
-        let machine_nm = self.truck.machine_nm(n, wheel_nm);
-        let electric_w = if running { machine_nm * omega + self.loss.at(n, machine_nm) } else { 0.0 };
+        let (machine_nm, electric_w) = self.machines_at(n, wheel_nm, running);
         let aux_w = self.aux_power_w(running);
         let battery = self.truck.battery();
         let battery_w = battery.internal_power_w(electric_w + aux_w);
@@ -204,15 +203,19 @@ impl ElectricModel {
     /// Power drawn from the battery's store [W] under control `u` at `v_mps`.
     #[inline]
     pub fn battery_power_w(&self, v_mps: f64, u: Control) -> f64 {
-        let n = self.rpm_per_mps * v_mps;
         let (wheel_nm, running) = self.machine_wheel_nm(v_mps, u);
-        let electric_w = if running {
-            let machine_nm = self.truck.machine_nm(n, wheel_nm);
-            machine_nm * n / RPM_PER_RAD_S + self.loss.at(n, machine_nm)
-        } else {
-            0.0
-        };
+        let (_, electric_w) = self.machines_at(self.rpm_per_mps * v_mps, wheel_nm, running);
         self.truck.battery().internal_power_w(electric_w + self.aux_power_w(running))
+    }
+
+    /// The machines' torque [Nm] and electric power [W] at `n_rpm` giving the wheels `wheel_nm`
+    /// (their drag's torque and no power while they are off).
+    #[inline]
+    fn machines_at(&self, n_rpm: f64, wheel_nm: f64, running: bool) -> (f64, f64) {
+        let machine_nm = self.truck.machine_nm(n_rpm, wheel_nm);
+        let electric_w =
+            if running { machine_nm * n_rpm / RPM_PER_RAD_S + self.loss.at(n_rpm, machine_nm) } else { 0.0 };
+        (machine_nm, electric_w)
     }
 
     /// The auxiliaries' electric power [W], with the machines' conditioning while they run.
