@@ -26,18 +26,12 @@ pub(super) const fn core(
     SummaryFigure { spec, read: Some(read) }
 }
 
+/// What a summary figure declares besides how it is read: name, unit, kind, runs, merge, sweep,
+/// label, doc (the fields of [`OutputSpec`] of those names).
+pub(super) type Declared = (&'static str, &'static str, Kind, Runs, Merge, Sweep, &'static str, &'static str);
+
 /// A figure the Python package adds to the core's summary.
-#[allow(clippy::too_many_arguments)]
-pub(super) const fn python(
-    name: &'static str,
-    unit: &'static str,
-    kind: Kind,
-    runs: Runs,
-    merge: Merge,
-    sweep: Sweep,
-    label: &'static str,
-    doc: &'static str,
-) -> SummaryFigure {
+pub(super) const fn python((name, unit, kind, runs, merge, sweep, label, doc): Declared) -> SummaryFigure {
     let spec = OutputSpec { name, unit, label, doc, kind, runs, source: Source::Python, merge, sweep, decimals: None };
     SummaryFigure { spec, read: None }
 }
