@@ -19,14 +19,37 @@ fn names_are_unique_and_recomputed_figures_name_declared_ones() {
 
 #[test]
 fn a_trace_gives_every_column_once_in_order() {
-    let trace = Trace { gear: vec![3, 0], fuel_g: vec![1.0, 2.0], ..Trace::default() };
-    let columns: Vec<_> = trace.into_columns().collect();
+    let two = vec![1.0, 2.0];
+    let trace = Trace {
+        distance_m: two.clone(),
+        time_s: two.clone(),
+        speed_kmh: two.clone(),
+        gear: vec![3, 0],
+        pedal: two.clone(),
+        brake: two.clone(),
+        engine_speed_rpm: two.clone(),
+        slope: two.clone(),
+        altitude_m: two.clone(),
+        fuel_g: two.clone(),
+        brake_energy_kj: two.clone(),
+        ..Trace::default()
+    };
+    let columns: Vec<_> = trace.clone().into_columns().collect();
     let names: Vec<_> = columns.iter().map(|(spec, _)| spec.name).collect();
     let expected = ["distance_m", "time_s", "speed_kmh", "gear", "pedal", "brake", "engine_speed_rpm", "slope"];
     assert_eq!(names[..8], expected);
-    assert_eq!(names[8..], ["altitude_m", "fuel_g", "brake_energy_kj"]);
+    assert_eq!(names[8..], ["altitude_m", "fuel_g", "brake_energy_kj"], "a fuel tank's run has no battery columns");
     assert_eq!(columns[3].1, Column::Count(vec![3, 0]));
-    assert_eq!(columns[9].1, Column::Number(vec![1.0, 2.0]));
+    assert_eq!(columns[9].1, Column::Number(two.clone()));
+    let battery = Trace {
+        fuel_g: Vec::new(),
+        battery_energy_kwh: two.clone(),
+        soc_pct: two.clone(),
+        battery_power_kw: two,
+        ..trace
+    };
+    let names: Vec<_> = battery.into_columns().map(|(spec, _)| spec.name).collect();
+    assert_eq!(names[8..], ["altitude_m", "brake_energy_kj", "battery_energy_kwh", "soc_pct", "battery_power_kw"]);
 }
 
 #[test]
