@@ -213,3 +213,20 @@ def test_studies_that_compare_fuel_refuse_a_battery_electric_truck_in_one_line(t
         assert refused.exit_code == 2, (args, refused.output)
         assert "Traceback" not in refused.output and len(refused.output.strip().splitlines()) == 1, refused.output
         assert "battery-electric" in refused.output or "state of charge" in refused.output, refused.output
+
+
+@needs_bev
+def test_the_plot_title_and_the_report_quote_battery_energy(tmp_path: Path) -> None:
+    """The figures' title and the report's lead read the comparisons under their energy keys."""
+    from truckmpc.plot.run_title import run_title
+    from truckmpc.report.run_page import comparison_headline
+
+    out = tmp_path / "o"
+    result = runner.invoke(app, ["simulate", "--vehicle", str(BEV_XML), "--controller", "pcc,mpc", "--out", str(out)])
+    assert result.exit_code == 0, result.output
+    doc = json.loads((out / "summary.json").read_text())
+    title = run_title(doc, ["pcc", "mpc"])
+    assert "Δenergy at equal trip time" in title and "no Δ recorded" not in title, title
+    against_pcc = next(c for c in doc["comparisons"] if (c["controller"], c["baseline"]) == ("mpc", "pcc"))
+    pct, saved_kwh = comparison_headline(doc, against_pcc) or (None, None)
+    assert pct == pytest.approx(against_pcc["headline_pct"]) and saved_kwh == pytest.approx(against_pcc["saved_kwh"])

@@ -14,6 +14,7 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from truckmpc.consumption import consumption_of
 from truckmpc.units import M_PER_KM
 
 CONTROLLER_STYLE = {
@@ -88,24 +89,26 @@ def run_title(summary: Mapping[str, Any], names: Sequence[str]) -> str:
 
 
 def headline(entries: Sequence[Mapping[str, Any]], summary: Mapping[str, Any], name: str) -> str:
-    """One controller's Δ against each baseline: Δfuel at equal trip time where there is one,
-    else the raw Δfuel and Δtime, else why the runs are not comparable."""
+    """One controller's Δ against each baseline: Δfuel (Δenergy for a battery-electric truck) at
+    equal trip time where there is one, else the raw Δ and Δtime, else why the runs are not
+    comparable."""
     equal, others = [], []
+    c = consumption_of(summary.get(name) or {})
     for entry in entries:
         baseline = str(entry.get("baseline"))
         base = _SHORT.get(baseline, baseline)
-        equal_pct, raw_pct = entry.get("delta_fuel_equal_time_pct"), entry.get("delta_fuel_pct")
+        equal_pct, raw_pct = entry.get(c.delta_key("_equal_time")), entry.get(c.delta_key())
         stalled = _stalled(summary, name) or _stalled(summary, baseline)
         if _finite(equal_pct) and not stalled:
             equal.append(f"{fmt_pct(equal_pct)} vs {base}")
         elif _finite(raw_pct) and not stalled:
-            others.append(f"Δfuel {fmt_pct(raw_pct)}, Δtime {fmt_pct(entry.get('delta_time_pct'))} vs {base} (raw)")
+            others.append(f"Δ{c.word} {fmt_pct(raw_pct)}, Δtime {fmt_pct(entry.get('delta_time_pct'))} vs {base} (raw)")
         else:
             others.append(f"vs {base}: {stalled or entry.get('not_comparable') or 'no Δ recorded'}")
-    parts = ["Δfuel at equal trip time " + ", ".join(equal)] if equal else []
+    parts = [f"Δ{c.word} at equal trip time " + ", ".join(equal)] if equal else []
     gap = summary.get("gap_to_optimal_pct") if name == "mpc" else None
     if _finite(gap):
-        parts.append(f"{fmt_pct(gap)} fuel against the whole-road optimum")
+        parts.append(f"{fmt_pct(gap)} {c.word} against the whole-road optimum")
     return "; ".join(parts + others)
 
 

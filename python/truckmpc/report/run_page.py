@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from truckmpc.compare import headline
+from truckmpc.consumption import ENERGY, consumption_of
 from truckmpc.report.figures import Figure, figures_html
 from truckmpc.report.html import code_block, definitions, escape, section
 from truckmpc.report.inputs import RunDir
@@ -79,28 +80,32 @@ def _headline(summary: Mapping[str, Any]) -> list[str]:
     for comparison in comparisons:
         run, base = (NAMES.get(str(comparison.get(k)), str(comparison.get(k))) for k in ("controller", "baseline"))
         quoted = comparison_headline(summary, comparison)
+        c = consumption_of(summary.get(str(comparison.get("controller"))) or {})
+        what = "battery energy" if c is ENERGY else "fuel"
         if quoted is not None:
-            pct, kg = quoted
+            pct, amount = quoted
             word = "less" if pct < 0 else "more"
-            saved = f"{kg:.3f} kg saved" if kg >= 0 else f"{-kg:.3f} kg more"
+            saved = f"{amount:.3f} {c.unit} saved" if amount >= 0 else f"{-amount:.3f} {c.unit} more"
             lines.append(
-                f"The {run} uses {abs(pct):.2f} % {word} fuel than the {base} at equal trip time and equal end "
+                f"The {run} uses {abs(pct):.2f} % {word} {what} than the {base} at equal trip time and equal end "
                 f"speed ({saved})."
             )
-        elif isinstance(delta := comparison.get("delta_fuel_pct"), (int, float)):
+        elif isinstance(delta := comparison.get(c.delta_key()), (int, float)):
             word = "less" if delta < 0 else "more"
-            lines.append(f"The {run} uses {abs(delta):.2f} % {word} fuel than the {base} as driven.")
+            lines.append(f"The {run} uses {abs(delta):.2f} % {word} {what} than the {base} as driven.")
     return lines
 
 
 def comparison_headline(summary: Mapping[str, Any], comparison: Mapping[str, Any]) -> tuple[float, float] | None:
-    """A comparison's headline, (Δfuel [%], fuel saved [kg]), from the summary's fuels: its
+    """A comparison's headline, (Δfuel [%], fuel saved [kg]; battery energy and kWh for a
+    battery-electric truck), from the summary's figures: its
     controller's end-speed-corrected fuel and its baseline's re-run at the controller's trip time
     (its ``equal_time`` object), through :func:`truckmpc.compare.headline`; None where there is none."""
     run, base = str(comparison.get("controller")), str(comparison.get("baseline"))
     equal, own = equal_time_of(summary, run, base), summary.get(run)
+    c = consumption_of(own if isinstance(own, Mapping) else {})
     quoted = headline(
-        own.get("fuel_corrected_kg") if isinstance(own, Mapping) else None, equal.get(f"{base}_fuel_corrected_kg")
+        own.get(c.corrected_key) if isinstance(own, Mapping) else None, equal.get(f"{base}_{c.corrected_key}")
     )
     if comparison.get("not_comparable") or quoted.pct is None or quoted.saved is None:
         return None
