@@ -13,6 +13,7 @@ from typer.testing import CliRunner
 from table_text import parse_table
 from truckmpc import load_run_config, simulate
 from truckmpc.cli import app
+from truckmpc.fuel import plan_gap_pct
 from truckmpc.roads import default_test_track, make_section
 from truckmpc.sim import CONTROLLERS
 from truckmpc.units import KMH_PER_MPS
@@ -100,6 +101,7 @@ def test_the_optimum_drives_close_to_its_plan_and_beats_the_pi():
     pi = simulate(road, config, "pi").summary
     assert optimal["fuel_kg"] == pytest.approx(optimal["plan_fuel_kg"], rel=0.01)
     assert optimal["time_s"] == pytest.approx(optimal["plan_time_s"], rel=0.005)
+    assert optimal["plan_gap_pct"] < 0.1
     assert optimal["fuel_kg"] < pi["fuel_kg"]
     assert optimal["plan_stages"] == 8500 / 25 and optimal["plan_table_mb"] > 0
 
@@ -118,3 +120,20 @@ def test_controller_all_reports_the_mpcs_gap_to_the_optimum(tmp_path):
     assert table.row("Δfuel vs optimum [%]") == blank | {"mpc": f"{doc['gap_to_optimal_pct']:+.2f}"}
     assert table.row("plan fuel [kg]") == blank | {"optimal": f"{doc['optimal']['plan_fuel_kg']:.3f}"}
     assert all((tmp_path / "out" / f"trace-{name}.csv").is_file() for name in CONTROLLERS)
+
+
+def test_the_plan_gap_brings_the_run_to_the_plans_end_speed_and_trip_time():
+    """Worked by hand: a run 2 s slower than its plan and 1 m/s slower at the end, 5 g/s for time
+    and 2 g per m²/s² of ½v²: 20 kg + (2·½(21² − 20²) + 5·2) g = 20.051 kg against a 20.1 kg plan."""
+    summary = {
+        "fuel_kg": 20.0,
+        "time_s": 1002.0,
+        "end_speed_kmh": 20.0 * 3.6,
+        "stalled": False,
+        "plan_fuel_kg": 20.1,
+        "plan_time_s": 1000.0,
+        "plan_end_speed_kmh": 21.0 * 3.6,
+    }
+    assert plan_gap_pct(summary, 2.0, 5.0) == pytest.approx(100 * (1 - 20.051 / 20.1), rel=1e-9)
+    assert plan_gap_pct({**summary, "plan_fuel_kg": float("nan")}, 2.0, 5.0) is None
+    assert plan_gap_pct({**summary, "stalled": True}, 2.0, 5.0) is None

@@ -23,7 +23,7 @@ from typing import Any
 from truckmpc.consumption import consumption_of
 from truckmpc.units import KMH_PER_MPS
 
-__all__ = ["corrected", "kinetic_correction", "summary_corrected"]
+__all__ = ["corrected", "kinetic_correction", "plan_gap_pct", "summary_corrected"]
 
 
 def kinetic_correction(summary: Mapping[str, Any], per_half_v2: float) -> float:
@@ -57,3 +57,29 @@ def summary_corrected(summary: Mapping[str, Any], per_half_v2: float) -> float:
         )
         for leg in legs
     )
+
+
+def plan_gap_pct(summary: Mapping[str, Any], per_half_v2: float, beta_per_s: float | None) -> float | None:
+    """How far a whole-road optimum's run is from its plan [%], as a magnitude: the run's consumption
+    brought to the plan's end speed (kinetic energy at ``per_half_v2``) and to the plan's trip time
+    (each second at ``beta_per_s``, the DP's price of time; both in the core's store unit per m²/s²
+    and per second), against the plan's own. The closed loop may settle on another split of energy
+    and time than the plan on a flat optimum (a battery-electric truck's pulse and glide); this
+    compares what the DP minimises. None without a plan, when the plan has no path, or without β (a
+    cost that does not price time so)."""
+    consumption = consumption_of(summary)
+    plan_key = f"plan_{consumption.key}"
+    plan, plan_time_s, plan_end_kmh = (summary.get(k) for k in (plan_key, "plan_time_s", "plan_end_speed_kmh"))
+    if (
+        beta_per_s is None
+        or plan is None
+        or plan_time_s is None
+        or plan_end_kmh is None
+        or summary.get("stalled")
+        or not plan > 0
+    ):
+        return None
+    v_plan, v_end = plan_end_kmh / KMH_PER_MPS, summary["end_speed_kmh"] / KMH_PER_MPS
+    brought = per_half_v2 * 0.5 * (v_plan**2 - v_end**2) + beta_per_s * (summary["time_s"] - plan_time_s)
+    run = float(summary[consumption.key]) + brought / consumption.store_per_unit
+    return float(100.0 * abs(run / plan - 1.0))

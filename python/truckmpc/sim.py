@@ -33,7 +33,7 @@ from truckmpc import _core
 from truckmpc.consumption import consumption_of
 from truckmpc.controller import Controller, PlantState
 from truckmpc.errors import ConfigError
-from truckmpc.fuel import corrected
+from truckmpc.fuel import corrected, plan_gap_pct
 from truckmpc.legs import drive_legs
 from truckmpc.schema import TRACE_COLUMNS
 
@@ -142,7 +142,10 @@ def _drive(road: RoadProfile, config: RunConfig, controller: str | Controller) -
         name, extra = controller.name, dict(summary_of()) if callable(summary_of) else {}
     summary = {**figures, **extra}
     # Kinetic energy's price in the core's store unit (grams of fuel, joules of battery energy).
-    per_half_v2 = config.settings.derived()["kinetic_fuel_g_per_half_v2"]
+    derived = config.settings.derived()
+    per_half_v2 = derived["kinetic_fuel_g_per_half_v2"]
     key = consumption_of(summary).corrected_key
     summary[key] = None if summary["stalled"] else corrected(summary, per_half_v2)
+    if "plan_time_s" in summary:
+        summary["plan_gap_pct"] = plan_gap_pct(summary, per_half_v2, derived["beta_g_per_s"])
     return RunResult(name=name, road=road.name, summary=summary, trace=dict(trace))

@@ -58,6 +58,7 @@ _PLAN = (
     Figure("plan_fuel_kg", ".3f"),
     Figure("plan_energy_kwh", ".2f"),
     Figure("plan_time_s", ".1f"),
+    Figure("plan_gap_pct", ".3f"),
     Figure("plan_solve_s", ".2f"),
 )
 _COMPUTE = (Figure("realtime_ratio", ".2e"),)

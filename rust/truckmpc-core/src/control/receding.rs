@@ -161,19 +161,19 @@ impl RecedingController {
         let table_bytes = plan.table.bytes() as u64;
         self.stored = Some(plan);
         let followed = solution.feasible.then(|| self.follow_plan(road, s0_m, start, stages)).flatten();
-        let (fuel_g, time_s) = followed.unwrap_or((f64::NAN, f64::NAN));
-        let (cost, stages) = (solution.cost, stages as u64);
-        self.stats.plan = Some(PlanStats { fuel_kg: fuel_g / 1000.0, time_s, cost, solve_s, stages, table_bytes });
+        let (fuel_g, time_s, end_v_mps) = followed.unwrap_or((f64::NAN, f64::NAN, f64::NAN));
+        let (cost, stages, fuel_kg) = (solution.cost, stages as u64, fuel_g / 1000.0);
+        self.stats.plan = Some(PlanStats { fuel_kg, time_s, end_v_mps, cost, solve_s, stages, table_bytes });
     }
 
-    /// The fuel [g] and time [s] of driving the stored plan on the DP's own stage model: each
+    /// The fuel [g], time [s] and end speed [m/s] of driving the stored plan on the DP's own stage model: each
     /// stage's control from [`RecedingController::solve`] at the speed and gear the model predicts
     /// there, as the run decides from the plant's (the plan's grid path alone would restart from a
     /// grid speed after each arc); where no solve finds one, the control before is held (what
     /// `on_infeasible: hold` does; a run that rescues drives its rescue policy there instead).
     /// None where the model's truck stops. The run's counts are left as they were; its compute
     /// time includes this, about one more drive's worth of one-stage solves.
-    fn follow_plan(&mut self, road: &Road, s0_m: f64, start: InitialState, stages: usize) -> Option<(f64, f64)> {
+    fn follow_plan(&mut self, road: &Road, s0_m: f64, start: InitialState, stages: usize) -> Option<(f64, f64, f64)> {
         let kept = (self.stats, self.shifts);
         let (model, h_m) = (self.solver.params().mpc.stage_model, self.solver.params().mpc.stage_m);
         let (mut v_mps, mut gear) = (start.v_mps, start.gear);
@@ -194,7 +194,7 @@ impl RecedingController {
             (v_mps, gear, held) = (v_next, u.gear, u);
         }
         (self.stats, self.shifts) = kept;
-        (!stopped).then_some((fuel_g, time_s))
+        (!stopped).then_some((fuel_g, time_s, v_mps))
     }
 
     /// The one-stage solve at the stage starting at `s_m` against the stored cost-to-go (None

@@ -375,6 +375,13 @@ pub const SUMMARY: &[SummaryFigure] = &[
     core("plan_time_s", "s", Number, Optimal, Sum, No, "plan trip time",
         "Trip time of following the whole-road plan on the DP's own stage model.",
         |s| plan(s, |p| Figure::Number(p.time_s))),
+    core("plan_end_speed_kmh", "km/h", Number, Optimal, Last, No, "plan end speed",
+        "Speed at the road's end of following the whole-road plan on the DP's own stage model.",
+        |s| plan(s, |p| Figure::Number(p.end_v_mps * crate::KMH_PER_MPS))),
+    python(("plan_gap_pct", "%", Number, Optimal, Max, No, "plant against plan, at equal time and end speed",
+        "How far what the plant used is from what the plan predicted, with the run brought to the plan's end speed \
+         and trip time (the time priced at β): in % of the plan's fuel or battery energy, as a magnitude (the \
+         largest leg's on a road with stops).")),
     core("plan_cost", "-", Number, Optimal, Sum, No, "plan cost", "The plan's optimal cost J_0.",
         |s| plan(s, |p| Figure::Number(p.cost))),
     core("plan_solve_s", "s", Number, Optimal, Sum, No, "plan solve time", "Wall time of the whole-road solve.",

@@ -38,6 +38,8 @@ pub struct PlanStats {
     pub fuel_kg: f64,
     /// Trip time of following the plan [s], likewise.
     pub time_s: f64,
+    /// Speed at the road's end of following the plan [m/s], likewise.
+    pub end_v_mps: f64,
     /// The plan's optimal cost J_0.
     pub cost: f64,
     /// Wall time of the whole-road solve [s].
