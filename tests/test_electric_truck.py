@@ -213,14 +213,12 @@ def test_the_battery_energy_balances_on_vecto_108_km(controller: str) -> None:
 
 @needs_bev
 def test_studies_that_compare_fuel_refuse_a_battery_electric_truck_in_one_line(tmp_path: Path) -> None:
-    """A sweep (and a Pareto study, run as one) and the convergence check compare fuel: each refuses
-    the electric truck in one line, as does a road with stops, whose legs would each start at the
-    same state of charge."""
+    """A sweep (and a Pareto study, run as one) compares fuel: it refuses the electric truck in one
+    line, as does a road with stops, whose legs would each start at the same state of charge."""
     road = tmp_path / "stop.csv"
     road.write_text("distance_m,altitude_m,target_speed_kmh,stop_s\n0,0,80,0\n2000,5,80,30\n4000,5,80,0\n")
     commands = (
         ["sweep", "--vehicle", str(BEV_XML), "--road", str(VECTO_108), "--grid", "v_ref_kmh=80,85", "--out"],
-        ["simulate", "--vehicle", str(BEV_XML), "--check-convergence", "--out", str(tmp_path / "c")],
         ["simulate", "--vehicle", str(BEV_XML), "--road", str(road), "--out", str(tmp_path / "r")],
     )
     for args in commands:
@@ -229,6 +227,36 @@ def test_studies_that_compare_fuel_refuse_a_battery_electric_truck_in_one_line(t
         assert refused.exit_code == 2, (args, refused.output)
         assert "Traceback" not in refused.output and len(refused.output.strip().splitlines()) == 1, refused.output
         assert "battery-electric" in refused.output or "state of charge" in refused.output, refused.output
+
+
+@needs_bev
+def test_the_convergence_check_moves_battery_energy_under_keys_named_for_it(tmp_path: Path) -> None:
+    """`--check-convergence` with the electric truck: the MPC again at δ/2 and S/2, its moves of
+    Δenergy, Δtime, Δenergy at equal trip time and energy + β·time, none named for fuel."""
+    out = tmp_path / "c"
+    args = ["simulate", "--vehicle", str(BEV_XML), "--controller", "pi,mpc", "--check-convergence", "--out"]
+    result = runner.invoke(app, [*args, str(out)])
+    assert result.exit_code == 0, result.output
+    doc = json.loads((out / "summary.json").read_text())["convergence"]
+    for half in ("half_delta", "half_stage"):
+        for name in ("energy", "time", "energy_equal_time", "cost"):
+            assert isinstance(doc[f"delta_{name}_pct_{half}"], float), (name, half, doc)
+        assert doc[half]["energy_kwh"] > 0 and "fuel_kg" not in doc[half]
+    assert not any("fuel" in key for key in doc), doc
+    assert "Δenergy at equal trip time vs PI δ/2 [pts]" in result.output
+    assert "energy + β·time vs PI S/2 [pts]" in result.output
+
+
+def test_the_cost_move_of_a_battery_is_in_joules_worked_by_hand() -> None:
+    """From a run at 9.0 kWh (end speed corrected) and 100 s to a half at 9.1 kWh and 99 s with
+    β = 100 kJ/s: 0.1 kWh = 360 kJ less 100 kJ for the second saved, over the PI's 10 kWh (36 MJ):
+    +0.7222 %."""
+    from truckmpc.convergence import cost_move_pct
+
+    base = {"energy_kwh": 10.0, "energy_corrected_kwh": 10.0, "time_s": 95.0}
+    run = {"energy_kwh": 9.0, "energy_corrected_kwh": 9.0, "time_s": 100.0}
+    half = {"energy_kwh": 9.1, "energy_corrected_kwh": 9.1, "time_s": 99.0}
+    assert cost_move_pct(base, run, half, 1e5) == pytest.approx(100 * 260e3 / 36e6, rel=1e-12)
 
 
 @needs_bev

@@ -21,6 +21,10 @@ rounding.
                     "half_pedal": {"pedal_levels", ...} and its moves, where pedal_levels > 0,
                     "flag_points": 0.3, "flagged": [<fields beyond it>]}
 
+For a battery-electric truck the same fields compare battery energy and say so: ``energy`` for
+``fuel`` in each key (``delta_energy_pct_half_delta``, ``delta_energy_equal_time_pct``,
+``energy_kwh``), and the cost is battery energy + β·trip time.
+
 Each ``*_half_*`` field is Δ at the halved setting minus Δ of the run, in percentage points; null
 (with ``not_comparable`` in the half's object) when a halved run is not comparable. With the
 fuel_time cost, ``delta_cost_pct_half_*`` is how far what that cost minimises moves, fuel (end speed
@@ -36,10 +40,10 @@ from typing import Any
 
 from truckmpc.compare import compare
 from truckmpc.config import RunConfig
+from truckmpc.consumption import consumption_of
 from truckmpc.errors import ConfigError
 from truckmpc.roads import RoadProfile
 from truckmpc.sim import RunResult, simulate
-from truckmpc.units import G_PER_KG
 
 FLAG_POINTS = 0.3
 """A Δ that moves by more than this many percentage points at a halved setting is flagged."""
@@ -56,11 +60,6 @@ def halved_configs(config: RunConfig) -> dict[str, RunConfig]:
     """The run's configuration at δ/2 and at S/2: weights given per kilometre kept, a Q2 given per
     stage (or by table 6.2's δ rule) held at the run's value, k_lim kept at its spacing in metres;
     with pedal levels K > 0, also at 2K levels (the pedal step halved)."""
-    if config.is_electric:
-        raise ConfigError(
-            "--check-convergence: expected a diesel truck (the check compares fuel; not built for a "
-            "battery-electric truck's energy yet), got a battery-electric truck"
-        )
     settings = config.settings
     derived = settings.derived()
     # Q2 given per kilometre scales with S by itself; per stage (or by the δ rule) it is held.
@@ -96,7 +95,8 @@ def convergence_document(
     halved MPC runs; `equal_time_pct`: Δfuel [%] against the PI re-tuned to the trip time of the
     run (``"mpc"``) and of each half (the keys of `halves`), None where a search missed it."""
     base, mpc = results["pi"].summary, results["mpc"].summary
-    run = compare(base, mpc)
+    run, consumption = compare(base, mpc), consumption_of(mpc)
+    word = consumption.word
     equal_time_pct = equal_time_pct or {}
     run_equal = equal_time_pct.get("mpc")
     doc: dict[str, Any] = {}
@@ -110,19 +110,19 @@ def convergence_document(
             "stage_m": mpc_settings.stage_m,
             "k_lim": configs[half].settings.derived()["k_lim"],
             "pedal_levels": mpc_settings.pedal_levels,
-            "delta_fuel_pct": moved.delta_consumed_pct,
+            consumption.delta_key(): moved.delta_consumed_pct,
             "delta_time_pct": moved.delta_time_pct,
-            "delta_fuel_equal_time_pct": equal_time_pct.get(half),
-            "fuel_kg": summary["fuel_kg"],
+            consumption.delta_key("_equal_time"): equal_time_pct.get(half),
+            consumption.key: summary[consumption.key],
             "time_s": summary["time_s"],
         }
         reason = moved.not_comparable or run.not_comparable
         if reason is not None:
             detail["not_comparable"] = reason
         for name, at_run, at_half in (
-            ("fuel", run.delta_consumed_pct, moved.delta_consumed_pct),
+            (word, run.delta_consumed_pct, moved.delta_consumed_pct),
             ("time", run.delta_time_pct, moved.delta_time_pct),
-            ("fuel_equal_time", run_equal, detail["delta_fuel_equal_time_pct"]),
+            (f"{word}_equal_time", run_equal, detail[consumption.delta_key("_equal_time")]),
         ):
             doc[f"delta_{name}_pct_{half}"] = None if at_run is None or at_half is None else at_half - at_run
         if configs[half].mpc.cost == "fuel_time":
@@ -140,24 +140,29 @@ def cost_move_pct(
     base: Mapping[str, Any], run: Mapping[str, Any], half: Mapping[str, Any], beta_g_per_s: float | None
 ) -> float | None:
     """How far the cost the fuel_time controller minimises moves from `run` to `half` (summaries),
-    in percent of the baseline's fuel: (fuel with the end speed corrected [g] + β·trip time [s]) at
-    the half less at the run, over the baseline's fuel [g]. None without β (another cost) or where a
-    run has no corrected fuel (a stall). The drivability prices (shifts, neutral engagements) are
-    left out: they are not fuel or time."""
-    fuels = (run.get("fuel_corrected_kg"), half.get("fuel_corrected_kg"))
-    if beta_g_per_s is None or fuels[0] is None or fuels[1] is None:
+    in percent of the baseline's consumption: (fuel or battery energy with the end speed corrected +
+    β·trip time [s]) at the half less at the run, over the baseline's, in the core's store unit
+    (grams, joules; β in that unit per second). None without β (another cost) or where a run has no
+    corrected consumption (a stall, an empty battery). The drivability prices (shifts, neutral
+    engagements) are left out: they are not fuel or time."""
+    consumption = consumption_of(base)
+    used = (run.get(consumption.corrected_key), half.get(consumption.corrected_key))
+    if beta_g_per_s is None or used[0] is None or used[1] is None:
         return None
-    moved_g = G_PER_KG * (fuels[1] - fuels[0]) + beta_g_per_s * (half["time_s"] - run["time_s"])
-    return float(100.0 * moved_g / (G_PER_KG * base["fuel_kg"]))
+    unit = consumption.store_per_unit
+    moved = unit * (used[1] - used[0]) + beta_g_per_s * (half["time_s"] - run["time_s"])
+    return float(100.0 * moved / (unit * base[consumption.key]))
 
 
 _MOVED = {
     "fuel": "Δfuel vs PI",
+    "energy": "Δenergy vs PI",
     "time": "Δtrip time vs PI",
     "fuel_equal_time": "Δfuel at equal trip time vs PI",
-    "cost": "fuel + β·time vs PI",
+    "energy_equal_time": "Δenergy at equal trip time vs PI",
+    "cost": "{word} + β·time vs PI",
 }
-"""How each moved Δ is named in the printed lines."""
+"""How each moved Δ is named in the printed lines (``energy``: a battery-electric truck's)."""
 
 
 def convergence_lines(doc: Mapping[str, Any], width: int) -> list[str]:
@@ -166,15 +171,16 @@ def convergence_lines(doc: Mapping[str, Any], width: int) -> list[str]:
     comparable."""
     lines = []
     halves = [(half, label) for half, label in _LABELS.items() if half in doc]
+    word = "energy" if any(key.startswith("delta_energy_") for key in doc) else "fuel"
     longest = max(len(text) for text in _MOVED.values()) + max(len(f" {label} [pts]") for _, label in halves)
     width = max(width, longest + 2)
     for half, label in halves:
-        for name in ("fuel", "time", "fuel_equal_time", "cost"):
+        for name in (word, "time", f"{word}_equal_time", "cost"):
             key = f"delta_{name}_pct_{half}"
             if key not in doc:  # the cost's move, with another cost than fuel_time
                 continue
             value = doc[key]
-            text = f"{_MOVED[name]} {label} [pts]"
+            text = f"{_MOVED[name].format(word=word)} {label} [pts]"
             if value is None:
                 lines.append(f"{text:<{width}}{'n/a':>14}  {doc[half].get('not_comparable', '')}")
                 continue
