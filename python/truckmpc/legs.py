@@ -145,8 +145,8 @@ def _sum_unless_stalled(merged: dict[str, Any], key: str, legs: Legs, stalled: b
 
 
 def _max(merged: dict[str, Any], key: str, legs: Legs, stalled: bool) -> None:
-    if key in merged:
-        merged[key] = max(leg[key] for leg in legs)
+    if key in merged:  # legs without a value (a plan with no path) are left out
+        merged[key] = max((leg[key] for leg in legs if leg.get(key) is not None), default=None)
 
 
 def _any(merged: dict[str, Any], key: str, legs: Legs, stalled: bool) -> None:
