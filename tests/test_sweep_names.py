@@ -13,6 +13,7 @@ import pytest
 
 import truckmpc.sweep.task as sweep_task
 from truckmpc import make_section, run_sweep, simulate, write_road
+from truckmpc.consumption import ENERGY, FUEL
 from truckmpc.sweep import PARTIAL_NAME
 from truckmpc.sweep.columns import ERROR_COLUMN, LOOK_AHEAD, Layout
 
@@ -79,7 +80,8 @@ QUOTED_COLUMN = re.compile(r"`((?:pcc|mpc)_(?:delta|equal_time)_[a-z_]+)`")
 def test_every_sweep_column_the_pages_quote_is_one_a_sweep_writes() -> None:
     pages = [REPO / "README.md", *sorted((REPO / "docs").rglob("*.md"))]
     quoted = {name: page.name for page in pages for name in QUOTED_COLUMN.findall(page.read_text(encoding="utf-8"))}
-    written = set(Layout(LOOK_AHEAD, check_convergence=True).columns)
+    kinds = (FUEL, ENERGY)
+    written = {column for c in kinds for column in Layout(LOOK_AHEAD, check_convergence=True, consumption=c).columns}
     assert quoted, "no page quotes a sweep column"
     assert {name: page for name, page in quoted.items() if name not in written} == {}
 

@@ -14,6 +14,7 @@ from truckmpc.cli.invocation import typed_command
 from truckmpc.cli.options import ConfigOpt, ForceOpt, JobsOpt, QuietOpt, ReverseAllOpt, RoadsOpt, SchedulerOpt, SetOpt
 from truckmpc.cli.study import notice, pooled_study, stop_notes, study_inputs
 from truckmpc.compare import HEADLINE_BASELINES
+from truckmpc.consumption import FUEL, Consumption
 from truckmpc.record import program_record
 from truckmpc.status import status_line
 from truckmpc.sweep import plan_sweep, progress_bar, run_plan
@@ -121,7 +122,8 @@ def sweep_cmd(
     axes = [axis.key for axis in plan.axes]
     for row in result.rows:
         figures = " ".join(f"{key}={row[key]}" for key in ("vehicle", *axes) if key in row)
-        typer.echo(f"{row['road']} {row['direction']} {figures}: {_sweep_deltas(row, plan.controllers)}")
+        deltas = _sweep_deltas(row, plan.controllers, plan.consumption)
+        typer.echo(f"{row['road']} {row['direction']} {figures}: {deltas}")
     runs = [f"{result.runs[name]} {name.upper()}" for name in (*plan.controllers, "pi")]
     lines, files = fleet_outputs(out, plan, result, parquet)
     for line in lines:
@@ -155,22 +157,26 @@ def _sweep_controllers(text: str) -> tuple[str, ...]:
         raise typer.BadParameter(str(err), param_hint="'--controller'") from None
 
 
-def _sweep_deltas(row: Mapping[str, str], controllers: Sequence[str]) -> str:
+def _sweep_deltas(row: Mapping[str, str], controllers: Sequence[str], consumption: Consumption = FUEL) -> str:
     """Each look-ahead controller's headline against the PCC (when it ran) and the PI, `Δfuel -2.31 %
-    (0.123 kg saved)`, then its Δfuel and Δtrip time as driven against the PI; `-` where blank."""
+    (0.123 kg saved)` (`Δenergy … kWh` for battery-electric trucks), then its Δfuel and Δtrip time as
+    driven against the PI; `-` where blank."""
     parts = []
     for name in controllers:
         bases = [base for base in HEADLINE_BASELINES if base != name and (base == "pi" or base in controllers)]
-        quoted = ", ".join(f"against the {base.upper()} {_headline(row, name, base)}" for base in bases)
-        shown = [f"{float(v):+.2f}" if v else "-" for v in (row[delta_column(name, k)] for k in ("fuel", "time"))]
+        quoted = ", ".join(f"against the {base.upper()} {_headline(row, name, base, consumption)}" for base in bases)
+        columns = (delta_column(name, kind, consumption=consumption) for kind in ("fuel", "time"))
+        shown = [f"{float(v):+.2f}" if v else "-" for v in (row[column] for column in columns)]
         parts.append(
-            f"{name} at equal trip time and end speed {quoted}; as driven Δfuel vs PI {shown[0]} %, "
+            f"{name} at equal trip time and end speed {quoted}; as driven Δ{consumption.word} vs PI {shown[0]} %, "
             f"Δtrip time {shown[1]} %"
         )
     return "; ".join(parts)
 
 
-def _headline(row: Mapping[str, str], name: str, base: str) -> str:
+def _headline(row: Mapping[str, str], name: str, base: str, consumption: Consumption) -> str:
     """`Δfuel -2.31 % (0.123 kg saved)` of `name` against `base`, `-` where the row has none."""
-    pct, kg = (row.get(headline_column(name, base, kind), "") for kind in ("headline", "saved"))
-    return f"Δfuel {float(pct):+.2f} % ({float(kg):.3f} kg saved)" if pct and kg else "-"
+    pct, saved = (row.get(headline_column(name, base, kind, consumption), "") for kind in ("headline", "saved"))
+    if not (pct and saved):
+        return "-"
+    return f"Δ{consumption.word} {float(pct):+.2f} % ({float(saved):.3f} {consumption.unit} saved)"

@@ -123,6 +123,11 @@ def plan_pareto(
     vehicle = None if vehicle_path is None else str(vehicle_path)
     configs = tuple(str(p) for p in config_paths)
     base = load_run_config(vehicle, configs, tuple(overrides))
+    if base.is_electric:
+        raise SweepError(
+            f"--vehicle {vehicle}: expected a truck that burns fuel (a Pareto study's fronts are of fuel and "
+            "β in grams per second; a battery-electric truck's sweep is truckmpc sweep), got a battery-electric truck"
+        )
     v_ref = float(base.cruise.v_ref_kmh)
     speeds = [v_ref + d for d in SPEED_OFFSETS_KMH] if speeds_kmh is None else list(speeds_kmh)
     specs = _specs(curves, speeds, betas_g_per_s, v_ref)

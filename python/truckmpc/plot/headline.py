@@ -1,8 +1,8 @@
 """The headline of a sweep, ``headline.png``: each look-ahead controller's Δfuel [%] against the PCC
 and against the PI at equal trip time and equal end speed (the sweep's headline columns), one panel
 per comparison, one group of bars per road and direction, one bar per truck (and combination of
-the grid's values), each bar labelled with the fuel it saves [kg]. A fleet study without a grid has
-no other picture."""
+the grid's values), each bar labelled with the fuel it saves [kg] (battery energy and kWh for
+battery-electric trucks). A fleet study without a grid has no other picture."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from truckmpc.sweep.columns import headline_column
+from truckmpc.sweep.columns import consumption_of_columns, headline_column
 
 Row = Mapping[str, Any]
 
@@ -27,6 +27,8 @@ def headline_figure(Figure: Any, header: Sequence[str], rows: Sequence[Row], axe
     """The picture: a panel per comparison with a headline, grouped bars per road (and direction)
     and per truck and grid combination (the `axes` whose values vary)."""
     comparisons = headline_comparisons(header)
+    consumption = consumption_of_columns(header)
+    word, unit = consumption.word, consumption.unit
     roads = list(dict.fromkeys(_road(row) for row in rows))
     series = list(dict.fromkeys(_series(row, header, axes, rows) for row in rows))
     width_in = min(16.0, max(6.5, 1.0 + len(roads) * (0.8 + 0.45 * len(series))))
@@ -37,18 +39,18 @@ def headline_figure(Figure: Any, header: Sequence[str], rows: Sequence[Row], axe
         for i, name in enumerate(series):
             chosen = {_road(r): r for r in rows if _series(r, header, axes, rows) == name}
             pct = [_number(chosen.get(road), headline_column(run, base, "headline")) for road in roads]
-            kg = [_number(chosen.get(road), headline_column(run, base, "saved")) for road in roads]
+            kg = [_number(chosen.get(road), headline_column(run, base, "saved", consumption)) for road in roads]
             xs = [j - 0.4 + bar * (i + 0.5) for j in range(len(roads))]
             bars = ax.bar(xs, pct, bar, label=name if name and k == 0 else None, color=f"C{i % 10}")
-            ax.bar_label(bars, labels=[_kg_label(v) for v in kg], fontsize="x-small", padding=2)
+            ax.bar_label(bars, labels=[_saved_label(v, unit) for v in kg], fontsize="x-small", padding=2)
         ax.axhline(0.0, color="0.4", lw=0.8)
-        ax.set_ylabel(f"{run.upper()} against the {base.upper()}\nΔfuel [%]")
+        ax.set_ylabel(f"{run.upper()} against the {base.upper()}\nΔ{word} [%]")
         ax.set_xticks(range(len(roads)), roads, rotation=15, ha="right", fontsize="small")
         ax.margins(y=0.2)
         ax.grid(True, axis="y", color="0.88", lw=0.6)
     fig.suptitle(
-        "The headline: Δfuel at equal trip time and equal end speed (below 0 saves fuel)\n"
-        "each bar labelled with the fuel it saves [kg]",
+        f"The headline: Δ{word} at equal trip time and equal end speed (below 0 saves {word})\n"
+        f"each bar labelled with the {word} it saves [{unit}]",
         fontsize="medium",
     )
     if any(series):
@@ -72,5 +74,5 @@ def _number(row: Row | None, column: str) -> float:
     return float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else math.nan
 
 
-def _kg_label(kg: float) -> str:
-    return "" if math.isnan(kg) else f"{kg:.3f} kg"
+def _saved_label(saved: float, unit: str) -> str:
+    return "" if math.isnan(saved) else f"{saved:.3f} {unit}"

@@ -18,10 +18,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from truckmpc.consumption import ENERGY, FUEL
 from truckmpc.plot.figures import PlotError, figure_class, save
 from truckmpc.plot.headline import headline_comparisons, headline_figure
 from truckmpc.plot.sweep_csv import COMPARED, compared_controllers, delta_metrics, grid_axes, read_sweep
-from truckmpc.sweep.columns import RUNS, delta_column
+from truckmpc.sweep.columns import RUNS, consumption_of_columns, delta_column
 
 Row = Mapping[str, Any]
 Panel = tuple[Any, Any]
@@ -92,7 +93,9 @@ def _delta_figures(
     look_ahead = compared[0][1] if len(compared) == 1 else "look-ahead"
     title = f"{subject} against PI: ({look_ahead} − PI) / PI{note}"
     metrics = delta_metrics(compared, header)
-    if any(column == delta_column(name, "fuel_equal_time") for name, _ in compared for column, _ in metrics):
+    consumption = consumption_of_columns(header)
+    equal_time = {delta_column(name, "fuel_equal_time", consumption=consumption) for name, _ in compared}
+    if any(column in equal_time for column, _ in metrics):
         title += f"\nat equal trip time: against the PI re-tuned to the {look_ahead} run's trip time"
     pictures: list[tuple[Sequence[tuple[str, str]], bool, str, Path]] = [(metrics, False, title, out)]
     if REALTIME_COLUMN in header:
@@ -235,8 +238,10 @@ def _share_fuel_limits(grid: Any, metrics: Sequence[tuple[str, str]]) -> None:
             grid[i][0].set_ylim(lo, hi)
 
 
-def _fuel_columns(name: str) -> tuple[str, str]:
-    return delta_column(name, "fuel"), delta_column(name, "fuel_equal_time")
+def _fuel_columns(name: str) -> tuple[str, ...]:
+    """`name`'s raw and equal-time Δ columns of fuel and of battery energy."""
+    kinds = ("fuel", "fuel_equal_time")
+    return tuple(delta_column(name, kind, consumption=c) for c in (FUEL, ENERGY) for kind in kinds)
 
 
 def _draw_lines(ax: Any, layout: _Layout, rows: Sequence[Row], metric: str, log: bool, handles: dict[str, Any]) -> None:

@@ -10,13 +10,14 @@ from pathlib import Path
 from typing import Any
 
 from truckmpc.config import KEYS
+from truckmpc.consumption import ENERGY
 from truckmpc.plot.figures import PlotError
 from truckmpc.sweep.cells import parse_cell
-from truckmpc.sweep.columns import ALL_COLUMNS, delta_column
+from truckmpc.sweep.columns import ALL_COLUMNS, LOOK_AHEAD, Layout, consumption_of_columns, delta_column
 from truckmpc.sweep.renamed import current_name
 
-RESULT_COLUMNS = frozenset({"road", "direction", *ALL_COLUMNS})
-"""Column names of sweep.csv that are not grid axes."""
+RESULT_COLUMNS = frozenset({"road", "direction", *ALL_COLUMNS, *Layout(LOOK_AHEAD, True, ENERGY).columns})
+"""Column names of sweep.csv that are not grid axes (of trucks that burn fuel or draw on a battery)."""
 
 CONFIG_KEYS = frozenset(KEYS)
 """Column names of sweep.csv that can be grid axes: any vehicle, controller or simulation key."""
@@ -46,28 +47,29 @@ def read_sweep(directory: Path) -> tuple[list[str], list[dict[str, Any]]]:
 def compared_controllers(header: Sequence[str]) -> list[tuple[str, str]]:
     """(controller, label) of each look-ahead controller whose Δfuel and Δtime against the PI are
     columns of the sweep."""
+    consumption = consumption_of_columns(header)
     return [
         (name, label)
         for name, label in COMPARED
-        if all(delta_column(name, kind) in header for kind in ("fuel", "time"))
+        if all(delta_column(name, kind, consumption=consumption) in header for kind in ("fuel", "time"))
     ]
 
 
 DELTA_KINDS = (("fuel", "Δfuel [%]"), ("fuel_equal_time", "Δfuel at equal\ntrip time [%]"), ("time", "Δtime [%]"))
 """The kinds of Δ a sweep figure draws, one row of panels each (a sweep's columns name them through
 :func:`truckmpc.sweep.columns.delta_column`), with their y labels: the raw Δfuel, the Δfuel against
-the PI re-tuned to the run's trip time, and the Δtime."""
+the PI re-tuned to the run's trip time, and the Δtime (Δenergy for battery-electric trucks)."""
 
 
 def delta_metrics(compared: Sequence[tuple[str, str]], header: Sequence[str]) -> list[tuple[str, str]]:
     """(column, y label) of each Δ panel row: each controller's Δfuel, its Δfuel at equal trip
     time where the sweep has that column, and its Δtime (the controller named when several)."""
-    named = len(compared) > 1
+    named, consumption = len(compared) > 1, consumption_of_columns(header)
     return [
-        (delta_column(name, kind), f"{label + ' ' if named else ''}{text}")
+        (column, f"{label + ' ' if named else ''}{text.replace('Δfuel', 'Δ' + consumption.word)}")
         for name, label in compared
         for kind, text in DELTA_KINDS
-        if delta_column(name, kind) in header
+        if (column := delta_column(name, kind, consumption=consumption)) in header
     ]
 
 

@@ -16,10 +16,11 @@ __all__ = ["Figure", "draw_figures", "figures_html"]
 CAPTIONS = {
     "run.png": "Over the road: altitude, speed of each controller with the set speed and the allowed band, "
     "gear (N: neutral), pedal and brake.",
-    "sweep.png": "Δfuel and Δtime of each look-ahead controller against the PI, over the sweep's axis.",
-    "headline.png": "The figure to quote: each look-ahead controller's Δfuel against the PCC and against the PI "
-    "at equal trip time and equal end speed, per road and truck (below 0 saves fuel), each bar labelled with the "
-    "fuel it saves.",
+    "sweep.png": "Δfuel (battery energy for battery-electric trucks) and Δtime of each look-ahead controller "
+    "against the PI, over the sweep's axis.",
+    "headline.png": "The figure to quote: each look-ahead controller's Δfuel (battery energy for battery-electric "
+    "trucks) against the PCC and against the PI at equal trip time and equal end speed, per road and truck "
+    "(below 0 saves), each bar labelled with what it saves.",
     "realtime.png": "The MPC's real-time ratio (compute time / driven time) over the sweep's axis; below 1 is "
     "faster than real time.",
 }

@@ -13,6 +13,7 @@ from truckmpc.report.inputs import SweepDir
 from truckmpc.report.replay import typed_line
 from truckmpc.report.settings import is_sections, settings_html
 from truckmpc.report.sweep_table import run_columns, shared_keys, sweep_columns, sweep_table_html
+from truckmpc.sweep.columns import consumption_of_columns
 
 __all__ = ["sweep_body", "sweep_title"]
 
@@ -40,12 +41,14 @@ def sweep_body(sweep: SweepDir, figures: list[Figure], missing: str | None) -> s
     columns = sweep_columns(sweep.header, _axes(sweep), tuple(shared))
     runs = run_columns(sweep.header, _axes(sweep), tuple(shared))
     caption = ", ".join(f"{key} {value}" for key, value in shared.items())
+    used = consumption_of_columns(sweep.header)
+    word = "battery energy" if used.word == "energy" else used.word
     lead = (
         f"{len(sweep.rows)} rows, one per road, direction, truck and combination of the grid. The figure to quote "
-        "is each look-ahead controller's saving at equal trip time and equal end speed: Δfuel [%] = (controller − "
-        "baseline) / baseline with the baseline re-run at the set speed that matches the controller's trip time "
-        "and both runs' end speeds corrected (negative means less fuel than the baseline), and the fuel saved [kg]. "
-        "As driven, the runs are compared as they ended."
+        f"is each look-ahead controller's saving at equal trip time and equal end speed: Δ{used.word} [%] = "
+        "(controller − baseline) / baseline with the baseline re-run at the set speed that matches the controller's "
+        f"trip time and both runs' end speeds corrected (negative means less {word} than the baseline), and the "
+        f"{word} saved [{used.unit}]. As driven, the runs are compared as they ended."
     )
     base = sweep.settings.get("base_config")
     parts = [
@@ -56,7 +59,7 @@ def sweep_body(sweep: SweepDir, figures: list[Figure], missing: str | None) -> s
             "summary",
             "Summary",
             sweep_table_html(sweep.rows, columns, caption)
-            + sweep_table_html(sweep.rows, runs, "Fuel and trip time of each run", ident="runs-table"),
+            + sweep_table_html(sweep.rows, runs, f"{word.capitalize()} and trip time of each run", ident="runs-table"),
         ),
         section("figures", "Figures", figures_html(figures, missing)),
         section("replay", "Repeat the sweep", _replay_html(sweep)),

@@ -1,7 +1,8 @@
 """A sweep's tables, one row per row of ``sweep.csv`` (road, direction, vehicle, the grid's values):
 the summary, each comparison's headline first (Δfuel at equal trip time and equal end speed [%] and
 the fuel saved [kg]), then Δfuel and Δtrip time as driven against the PI [%]; and each run's fuel
-[kg] and trip time [s]. Both fit the page's width: cells wrap rather than scroll sideways."""
+[kg] and trip time [s] (battery energy and kWh for battery-electric trucks). Both fit the page's
+width: cells wrap rather than scroll sideways."""
 
 from __future__ import annotations
 
@@ -9,13 +10,15 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from truckmpc.consumption import Consumption
 from truckmpc.report.html import escape, scalar_text
-from truckmpc.sweep.columns import ERROR_COLUMN, RUNS, VERSUS, headline_column
+from truckmpc.sweep.columns import ERROR_COLUMN, VERSUS, consumption_of_columns, headline_column, runs_of
 
 __all__ = ["Column", "run_columns", "shared_keys", "sweep_columns", "sweep_table_html"]
 
 _FIGURES = (("fuel_kg", "fuel [kg]", ".3f"), ("time_s", "trip time [s]", ".1f"))
 _HEADLINE = (("headline", "Δfuel [%]", "+.2f"), ("saved", "saved [kg]", ".3f"))
+"""A sweep of battery-electric trucks shows battery energy: :func:`_worded`."""
 _HEADLINES = (("mpc", "pcc"), ("mpc", "pi"), ("pcc", "pi"))
 """The comparisons whose headline the table shows, in order: the MPC against the PCC first."""
 _DELTAS = (("fuel", "Δfuel [%]"), ("time", "Δtime [%]"))
@@ -51,29 +54,43 @@ def _keys(header: Sequence[str], axes: Sequence[str], shared: Sequence[str]) -> 
 def sweep_columns(header: Sequence[str], axes: Sequence[str], shared: Sequence[str] = ()) -> list[Column]:
     """The columns of the summary table for a sweep.csv with `header` and grid `axes`, without the
     `shared` keys (said once above the table): each comparison's headline, then as driven."""
+    consumption = consumption_of_columns(header)
     headlines = [
-        Column(f"{run} vs {base}, equal time and end speed", heading, headline_column(run, base, kind), spec)
+        Column(f"{run} vs {base}, equal time and end speed", _worded(heading, consumption), column, spec)
         for run, base in _HEADLINES
         for kind, heading, spec in _HEADLINE
-        if headline_column(run, base, kind) in header
+        if (column := headline_column(run, base, kind, consumption)) in header
     ]
     deltas = [
-        Column(f"{v.run} vs {v.base}, as driven", heading, column, "+.2f")
+        Column(f"{v.run} vs {v.base}, as driven", _worded(heading, consumption), column, "+.2f")
         for v in VERSUS
         if v.base == "pi"
-        for kind, heading in _DELTAS
-        for column in [dict(v.columns).get(kind)]
-        if column is not None and column in header
+        for (kind, heading), (_, column) in zip(_DELTAS, _delta_columns(v, consumption), strict=True)
+        if column in header
     ]
     return _keys(header, axes, shared) + headlines + deltas
 
 
+def _delta_columns(versus: Any, consumption: Consumption) -> list[tuple[str, str]]:
+    """The (kind, column) of `versus`'s raw Δ of consumption and of time, in :data:`_DELTAS` order."""
+    columns = dict(zip(versus.kinds, versus.columns_of(consumption), strict=True))
+    return [columns[kind] for kind, _ in _DELTAS]
+
+
+def _worded(heading: str, consumption: Consumption) -> str:
+    """A heading named for fuel, named for `consumption`: ``Δenergy [%]``, ``saved [kWh]``."""
+    return heading.replace("fuel", consumption.word).replace("[kg]", f"[{consumption.unit}]")
+
+
 def run_columns(header: Sequence[str], axes: Sequence[str], shared: Sequence[str] = ()) -> list[Column]:
     """The columns of the runs' table: each controller's fuel and trip time."""
+    consumption = consumption_of_columns(header)
+    fields = ((consumption.key if field == "fuel_kg" else field, heading, spec) for field, heading, spec in _FIGURES)
+    named = [(field, _worded(heading, consumption), spec) for field, heading, spec in fields]
     figures = [
         Column(name, heading, run.column(field), spec)
-        for name, run in RUNS.items()
-        for field, heading, spec in _FIGURES
+        for name, run in runs_of(consumption).items()
+        for field, heading, spec in named
         if run.column(field) in header
     ]
     return _keys(header, axes, shared) + figures

@@ -29,69 +29,61 @@ from dataclasses import dataclass
 from typing import Any
 
 from truckmpc.compare import compare
-from truckmpc.schema import SUMMARY_SPECS
+from truckmpc.consumption import FUEL, Consumption
 from truckmpc.sweep.cells import cell, error_text, parse_cell
-from truckmpc.sweep.compared import HEADLINE_KINDS, deltas, equal_time_fields
+from truckmpc.sweep.compared import deltas, equal_time_fields, headline_unit, worded
+from truckmpc.sweep.run_columns import (
+    BASELINE,
+    CONVERGENCE_COLUMNS,
+    CONVERGENCE_FIELDS,
+    DEFAULT_CONTROLLERS,
+    EQUAL_TIME_FIELDS,
+    ERROR_COLUMN,
+    LOOK_AHEAD,
+    MPC_FIELDS,
+    PCC_FIELDS,
+    PI_FIELDS,
+    RUNS,
+    WALL_TIME_COLUMNS,
+    RunColumns,
+    check_controllers,
+    consumption_of_columns,
+    convergence_fields,
+    run_column,
+    runs_of,
+    swept_figures,
+)
 
-SWEPT = {"pi": ("all",), "pcc": ("all", "look_ahead"), "mpc": ("all", "look_ahead", "mpc")}
-"""Which of the declared figures (:mod:`truckmpc.schema`, a spec's ``sweep``) go to each
-controller's columns: every controller's, the look-ahead controllers', the MPC's."""
-
-
-def swept_figures(controller: str) -> tuple[str, ...]:
-    """The summary figures of `controller` (``pi``, ``pcc`` or ``mpc``) that go to the CSV, in
-    column order: those declared for every controller's columns, then the look-ahead controllers',
-    then the MPC's, each group in the declaration's order."""
-    return tuple(spec.name for group in SWEPT[controller] for spec in SUMMARY_SPECS if spec.sweep == group)
-
-
-PI_FIELDS = swept_figures("pi")
-"""Figures of a run's summary that go to the CSV for every controller (gear shifts between forward
-gears and entries into neutral apart, each also per 100 km)."""
-
-
-EQUAL_TIME_FIELDS = equal_time_fields("pi")
-"""The PI re-tuned to a look-ahead run's trip time."""
-
-MPC_FIELDS = (*swept_figures("mpc"), *EQUAL_TIME_FIELDS)
-"""Figures of the MPC run's summary that go to the CSV (with its equal-time baseline's)."""
-
-PCC_FIELDS = (*swept_figures("pcc"), *EQUAL_TIME_FIELDS)
-"""Figures of the PCC run's summary that go to the CSV (with its equal-time baseline's)."""
-
-
-@dataclass(frozen=True)
-class RunColumns:
-    """How one controller's run goes to the CSV: its figures, each in the column ``<name>_<figure>``."""
-
-    name: str
-    fields: tuple[str, ...]
-
-    def column(self, field: str) -> str:
-        return f"{self.name}_{field}"
-
-
-RUNS = {
-    "pi": RunColumns("pi", PI_FIELDS),
-    "pcc": RunColumns("pcc", PCC_FIELDS),
-    "mpc": RunColumns("mpc", MPC_FIELDS),
-}
-"""Every controller a sweep can run, in column order."""
-
-
-def run_column(controller: str, field: str) -> str:
-    """The column of `controller`'s figure `field` (``run_column("mpc", "realtime_ratio")``)."""
-    return RUNS[controller].column(field)
-
-
-BASELINE = "pi"
-"""The controller every row runs, that the others are compared with first."""
-
-LOOK_AHEAD = ("pcc", "mpc")
-"""The controllers ``sweep --controller`` takes (the PI always runs, as the baseline)."""
-
-DEFAULT_CONTROLLERS = ("mpc",)
-"""``sweep --controller`` when not given."""
+__all__ = [
+    "ALL_COLUMNS",
+    "BASELINE",
+    "CONVERGENCE_COLUMNS",
+    "CONVERGENCE_FIELDS",
+    "DEFAULT_CONTROLLERS",
+    "EQUAL_TIME_FIELDS",
+    "ERROR_COLUMN",
+    "LOOK_AHEAD",
+    "MPC_FIELDS",
+    "PCC_FIELDS",
+    "PI_FIELDS",
+    "RUNS",
+    "SWEEP_COLUMNS",
+    "VERSUS",
+    "WALL_TIME_COLUMNS",
+    "Layout",
+    "RunColumns",
+    "Versus",
+    "check_controllers",
+    "consumption_of_columns",
+    "convergence_fields",
+    "delta_column",
+    "headline_column",
+    "result_cells",
+    "run_column",
+    "runs_of",
+    "swept_figures",
+    "versus_column",
+]
 
 
 def versus_column(run: str, base: str, kind: str) -> str:
@@ -101,11 +93,11 @@ def versus_column(run: str, base: str, kind: str) -> str:
     return f"{run}_delta_{kind}{against}_pct"
 
 
-def headline_column(run: str, base: str, kind: str) -> str:
-    """The column of `run`'s headline figure `kind` (``headline`` [%], ``saved`` [kg]) against
+def headline_column(run: str, base: str, kind: str, consumption: Consumption = FUEL) -> str:
+    """The column of `run`'s headline figure `kind` (``headline`` [%], ``saved`` [kg or kWh]) against
     `base`: ``<run>_<kind>_<unit>`` against the PI, ``<run>_<kind>_vs_<base>_<unit>`` otherwise."""
     against = "" if base == BASELINE else f"_vs_{base}"
-    return f"{run}_{kind}{against}_{dict(HEADLINE_KINDS)[kind]}"
+    return f"{run}_{kind}{against}_{headline_unit(kind, consumption)}"
 
 
 @dataclass(frozen=True)
@@ -120,12 +112,22 @@ class Versus:
     @property
     def columns(self) -> tuple[tuple[str, str], ...]:
         """(kind, column) of each Δ."""
-        return tuple((kind, versus_column(self.run, self.base, kind)) for kind in self.kinds)
+        return self.columns_of(FUEL)
+
+    def columns_of(self, consumption: Consumption) -> tuple[tuple[str, str], ...]:
+        """(kind, column) of each Δ of a sweep of trucks that consume `consumption`: ``energy`` for
+        ``fuel`` in each kind of a battery-electric truck's."""
+        kinds = (worded(kind, consumption) for kind in self.kinds)
+        return tuple((kind, versus_column(self.run, self.base, kind)) for kind in kinds)
 
     @property
     def headline_columns(self) -> tuple[tuple[str, str], ...]:
         """(kind, column) of the headline's figures, % and kg (:func:`headline_column`)."""
-        return tuple((kind, headline_column(self.run, self.base, kind)) for kind, _ in HEADLINE_KINDS)
+        return self.headline_columns_of(FUEL)
+
+    def headline_columns_of(self, consumption: Consumption) -> tuple[tuple[str, str], ...]:
+        """(kind, column) of the headline's figures, % and kg or kWh."""
+        return tuple((kind, headline_column(self.run, self.base, kind, consumption)) for kind in ("headline", "saved"))
 
     @property
     def equal_time(self) -> bool:
@@ -141,45 +143,13 @@ VERSUS = (
 """The comparisons of a row, in column order; each is there when both its controllers ran."""
 
 
-def delta_column(run: str, kind: str, base: str = "pi") -> str:
-    """The column of `run`'s Δ of `kind` (``fuel``, ``time``, ...) against `base`."""
+def delta_column(run: str, kind: str, base: str = "pi", consumption: Consumption = FUEL) -> str:
+    """The column of `run`'s Δ of `kind` (``fuel``, ``time``, ...) against `base`, in a sweep of
+    trucks that consume `consumption` (``fuel_equal_time`` is ``energy_equal_time`` for a battery)."""
     versus = next(v for v in VERSUS if (v.run, v.base) == (run, base))
     if kind not in versus.kinds:
         raise KeyError(f"no {kind} delta of {run} against {base}")
-    return versus_column(run, base, kind)
-
-
-ERROR_COLUMN = "error"
-"""The first result column: why a row's runs failed (``pi: ...; mpc: ...``), blank when they did
-not; the failed runs' figures and their comparisons are blank."""
-
-WALL_TIME_COLUMNS = frozenset(
-    RUNS["mpc"].column(field) for field in ("realtime_ratio", "solve_ms_mean", "solve_ms_max")
-)
-"""The columns that are measured wall times: they differ between two runs of the same row."""
-
-CONVERGENCE_FIELDS = (
-    *(f"delta_{figure}_pct_half_{half}" for figure in ("fuel", "time", "cost") for half in ("delta", "stage")),
-    *(f"delta_{figure}_pct_half_pedal" for figure in ("fuel", "time", "cost")),
-)
-"""The MPC's figures of :mod:`truckmpc.convergence`."""
-
-CONVERGENCE_COLUMNS = tuple(RUNS["mpc"].column(field) for field in CONVERGENCE_FIELDS)
-"""With ``--check-convergence``: how far Δfuel, Δtime and (with the fuel_time cost) fuel + β·time move
-[points] with the MPC at half δ, at half S and at twice its pedal levels (:mod:`truckmpc.convergence`);
-blank where a halved run is not comparable, and the last three where the row plans no pedal levels."""
-
-
-def check_controllers(names: Sequence[str]) -> tuple[str, ...]:
-    """The look-ahead controllers of a sweep in column order; ValueError (the reason) unless each
-    is one of :data:`LOOK_AHEAD`, once."""
-    given = [name.strip() for name in names]
-    if not given or any(name not in LOOK_AHEAD for name in given) or len(set(given)) < len(given):
-        raise ValueError(
-            f"expected a comma list of {', '.join(LOOK_AHEAD)}, each once (the pi always runs, as the "
-            f"baseline), got {','.join(given)!r}"
-        )
-    return tuple(name for name in LOOK_AHEAD if name in given)
+    return versus_column(run, base, worded(kind, consumption))
 
 
 @dataclass(frozen=True)
@@ -189,6 +159,9 @@ class Layout:
 
     controllers: tuple[str, ...] = DEFAULT_CONTROLLERS
     check_convergence: bool = False
+    consumption: Consumption = FUEL
+    """What the sweep's trucks consume: fuel, or battery energy (battery-electric trucks), which
+    names their figures and comparisons (``pi_energy_kwh``, ``mpc_delta_energy_pct``, ``mpc_saved_kwh``)."""
 
     @functools.cached_property
     def runs(self) -> tuple[str, ...]:
@@ -202,26 +175,35 @@ class Layout:
     def fields(self, controller: str) -> tuple[str, ...]:
         """`controller`'s figures in the CSV: its own, with each baseline other than the PI re-tuned
         to its trip time (:func:`equal_time_fields`), which its headline against that baseline needs."""
-        others = (field for base in self.baselines(controller) if base != BASELINE for field in equal_time_fields(base))
-        return (*RUNS[controller].fields, *others)
+        bases = (base for base in self.baselines(controller) if base != BASELINE)
+        others = (field for base in bases for field in equal_time_fields(base, self.consumption))
+        return (*runs_of(self.consumption)[controller].fields, *others)
 
     @functools.cached_property
     def sources(self) -> tuple[tuple[str, str, str], ...]:
         """(controller, figure, column) of every figure column."""
-        return tuple((name, field, RUNS[name].column(field)) for name in self.runs for field in self.fields(name))
+        runs = runs_of(self.consumption)
+        return tuple((name, field, runs[name].column(field)) for name in self.runs for field in self.fields(name))
+
+    @functools.cached_property
+    def convergence(self) -> tuple[tuple[str, str], ...]:
+        """(figure, column) of the MPC's convergence moves, when checked."""
+        if not self.check_convergence:
+            return ()
+        return tuple((field, RUNS["mpc"].column(field)) for field in convergence_fields(self.consumption))
 
     @functools.cached_property
     def headlines(self) -> tuple[str, ...]:
         """The headline columns, each comparison's % then kg: the MPC's against the PCC first."""
         ordered = sorted(self.versus, key=lambda v: (-LOOK_AHEAD.index(v.run), v.base == BASELINE))
-        return tuple(column for v in ordered for _, column in v.headline_columns)
+        return tuple(column for v in ordered for _, column in v.headline_columns_of(self.consumption))
 
     @functools.cached_property
     def columns(self) -> tuple[str, ...]:
         """The result columns (after ``road``, ``direction`` and the axes)."""
         figures = tuple(column for _, _, column in self.sources)
-        compared = tuple(column for v in self.versus for _, column in v.columns)
-        convergence = CONVERGENCE_COLUMNS if self.check_convergence else ()
+        compared = tuple(column for v in self.versus for _, column in v.columns_of(self.consumption))
+        convergence = tuple(column for _, column in self.convergence)
         return (ERROR_COLUMN, *self.headlines, *figures, *compared, *convergence)
 
     def baselines(self, controller: str) -> tuple[str, ...]:
@@ -238,18 +220,19 @@ class Layout:
         }
         for v in self.versus:
             by_kind = {} if {v.base, v.run} & set(failed) else deltas(runs[v.base], runs[v.run], v.base, v.run)
-            values.update({column: by_kind.get(kind) for kind, column in (*v.columns, *v.headline_columns)})
+            named = (*v.columns_of(self.consumption), *v.headline_columns_of(self.consumption))
+            values.update({column: by_kind.get(kind) for kind, column in named})
         if self.check_convergence:  # the moves of the MPC's deltas against the PI
             comparable = not {"pi", "mpc"} & set(failed) and compare(runs["pi"], runs["mpc"]).not_comparable is None
-            moves = zip(CONVERGENCE_COLUMNS, CONVERGENCE_FIELDS, strict=True)
-            values.update({c: runs["mpc"].get(f) if comparable else None for c, f in moves})
+            values.update({c: runs["mpc"].get(f) if comparable else None for f, c in self.convergence})
         values[ERROR_COLUMN] = error_text(failed)
         return [cell(values[c]) for c in self.columns]
 
     def figures(self, controller: str, cells: Sequence[str]) -> dict[str, Any]:
         """`controller`'s figures read back from a row's result cells."""
         named = dict(zip(self.columns, cells, strict=False))
-        return {field: parse_cell(named[RUNS[controller].column(field)]) for field in self.fields(controller)}
+        column = runs_of(self.consumption)[controller].column
+        return {field: parse_cell(named[column(field)]) for field in self.fields(controller)}
 
     def completed(self, cells: Sequence[str]) -> list[str]:
         """A row's result cells read back with its blank headline cells filled from its own figures
@@ -260,7 +243,7 @@ class Layout:
         runs = {name: self.figures(name, cells) for name in self.runs}
         for v in self.versus:
             by_kind = deltas(runs[v.base], runs[v.run], v.base, v.run)
-            for kind, column in v.headline_columns:
+            for kind, column in v.headline_columns_of(self.consumption):
                 named[column] = named[column] or cell(by_kind.get(kind))
         return [named[column] for column in self.columns]
 

@@ -16,6 +16,7 @@ from truckmpc import _core
 from truckmpc.config import VEHICLE_KEYS, Origin, RunConfig, load_run_config
 from truckmpc.config.vecto_truck import STILL_APPLIES
 from truckmpc.config.yamlfile import load_value
+from truckmpc.consumption import ENERGY, FUEL, Consumption
 from truckmpc.errors import ConfigError
 from truckmpc.roads import RoadProfile, load_road
 from truckmpc.roads.profile import PathLike
@@ -137,15 +138,25 @@ def _check_truck_axes(config: RunConfig, axes: Sequence[Axis]) -> None:
     """A VECTO truck replaces the thesis's vehicle keys: an axis over one of them would change nothing."""
     if config.truck is None:
         return
-    if config.is_electric:
-        raise SweepError(
-            f"--vehicle {config.truck.job.path.name}: expected a diesel truck for a sweep or a Pareto study "
-            "(their columns compare fuel; a battery-electric truck is compared with truckmpc simulate), "
-            "got a battery-electric truck"
-        )
     replaced = [a.key for a in axes if a.key in VEHICLE_KEYS and a.key not in STILL_APPLIES]
     if replaced:
         raise SweepError(
             f"--grid {replaced[0]}: expected a key a VECTO truck uses, got a key of the thesis's truck, which "
             f"{config.truck.job.path.name} replaces (vary its load with one job per load instead)"
         )
+
+
+def consumed_by(configs: Sequence[RunConfig], names: Sequence[str]) -> Consumption:
+    """What the trucks of a sweep consume (their columns are named for it): fuel, or battery energy
+    when every truck is battery-electric; a one-line :class:`SweepError` for a fleet of both, whose
+    rows could not share their columns."""
+    electric = [config.is_electric for config in configs]
+    if all(electric):
+        return ENERGY
+    if any(electric):
+        diesel, battery = (next(n for n, e in zip(names, electric, strict=True) if e is kind) for kind in (False, True))
+        raise SweepError(
+            f"--vehicle: expected trucks that all burn fuel or all draw on a battery (a sweep compares one "
+            f"of them; run each kind as a sweep of its own), got {diesel} (fuel) and {battery} (battery)"
+        )
+    return FUEL

@@ -9,6 +9,7 @@ run per road, an axis over ``v_ref_kmh`` or ``mass_kg`` one per value). Each MPC
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import json
 import os
@@ -17,6 +18,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from truckmpc.config import SPEC_BY_KEY, RunConfig
+from truckmpc.consumption import FUEL, Consumption
 from truckmpc.convergence import halved_configs
 from truckmpc.roads import RoadProfile
 from truckmpc.roads.profile import PathLike
@@ -25,7 +27,7 @@ from truckmpc.sweep.columns import DEFAULT_CONTROLLERS, Layout, check_controller
 from truckmpc.sweep.errors import SweepError
 from truckmpc.sweep.fleet import load_fleet, vehicle_names
 from truckmpc.sweep.grid import Axis, expand_grid
-from truckmpc.sweep.inputs import Base, Combinations, check_size, checked_axes
+from truckmpc.sweep.inputs import Base, Combinations, check_size, checked_axes, consumed_by
 from truckmpc.sweep.task import Road
 from truckmpc.workload import Work, check_trace, run_work
 
@@ -68,11 +70,12 @@ class SweepPlan:
     check_convergence: bool = False
     controllers: tuple[str, ...] = DEFAULT_CONTROLLERS
     vehicle_names: tuple[str, ...] = ("truck-40t",)
+    consumption: Consumption = FUEL
 
     @functools.cached_property
     def layout(self) -> Layout:
         """The result columns and how a row's runs fill them."""
-        return Layout(self.controllers, self.check_convergence)
+        return Layout(self.controllers, self.check_convergence, self.consumption)
 
     @property
     def vehicle_path(self) -> str | None:
@@ -125,6 +128,7 @@ def plan_sweep(
     bases = [Base(v, tuple(str(p) for p in config_paths), tuple(overrides)) for v in vehicles]
     check_size(checked, len(profiles) * len(bases))
     base_configs = [base.config() for base in bases]  # errors in the base name their file or --set
+    layout = dataclasses.replace(layout, consumption=consumed_by(base_configs, names))
     fleet = [_combos(base, config, checked, profiles) for base, config in zip(bases, base_configs, strict=True)]
     rows = _rows(profiles, fleet, layout)
     settings = _settings(profiles, directions, checked, bases, base_configs, layout, names)
@@ -140,6 +144,7 @@ def plan_sweep(
         check_convergence,
         layout.controllers,
         names,
+        layout.consumption,
     )
 
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 import statistics
 from collections.abc import Mapping, Sequence
 
+from truckmpc.consumption import FUEL, Consumption
 from truckmpc.sweep.columns import headline_column
 
 __all__ = ["SAVINGS_FIGURES", "savings", "savings_column"]
@@ -39,12 +40,18 @@ def savings_column(base: str, figure: str) -> str:
 
 
 def savings(
-    rows: Sequence[Mapping[str, str]], controller: str, base: str, lengths_m: Mapping[str, float]
+    rows: Sequence[Mapping[str, str]],
+    controller: str,
+    base: str,
+    lengths_m: Mapping[str, float],
+    consumption: Consumption = FUEL,
 ) -> dict[str, str]:
     """The summary cells (by :func:`savings_column`) of `controller`'s headline against `base` over
     `rows` (cell text), each row weighted by its road's length [m] in `lengths_m` (by road name);
-    blank where no row has one."""
-    pct_column, kg_column = headline_column(controller, base, "headline"), headline_column(controller, base, "saved")
+    blank where no row has one. The ``*_kg`` figures hold kWh for battery-electric trucks
+    (`consumption`); ``summary.csv`` names them so."""
+    pct_column = headline_column(controller, base, "headline", consumption)
+    kg_column = headline_column(controller, base, "saved", consumption)
     found = [row for row in rows if row.get(pct_column) and row.get(kg_column)]
     cells = dict.fromkeys((savings_column(base, figure) for figure in SAVINGS_FIGURES), "")
     cells[savings_column(base, "compared")] = str(len(found))

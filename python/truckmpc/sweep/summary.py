@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 from truckmpc.atomic import atomic_write_text
 from truckmpc.compare import HEADLINE_BASELINES
+from truckmpc.consumption import FUEL, Consumption
 from truckmpc.roads import RoadProfile
 from truckmpc.sweep.cells import parse_cell
 from truckmpc.sweep.columns import ERROR_COLUMN, Layout, delta_column
@@ -54,7 +55,24 @@ SUMMARY_COLUMNS = (
 (``headline_vs_<baseline>_*``, :data:`~truckmpc.sweep.savings.SAVINGS_FIGURES`; blank against a
 baseline the sweep did not run); the standard deviation is the sample's (0 for
 one row); the worst road is the compared row with the largest Δfuel; ``failed_roads`` names the
-roads of the failed rows, ``first_error`` the first one's error."""
+roads of the failed rows, ``first_error`` the first one's error. A sweep of battery-electric trucks
+names them for battery energy (:func:`summary_columns`)."""
+
+
+def summary_columns(consumption: Consumption = FUEL) -> tuple[str, ...]:
+    """The columns of ``summary.csv`` of a sweep of trucks that consume `consumption`: each named
+    for fuel says ``energy`` and ``kwh`` for battery energy (``mean_delta_energy_pct``,
+    ``headline_vs_pi_total_saved_kwh``)."""
+    return tuple(worded_name(column, consumption) for column in SUMMARY_COLUMNS)
+
+
+def worded_name(name: str, consumption: Consumption) -> str:
+    """A summary column named for fuel, named for `consumption`."""
+    if consumption is FUEL:
+        return name
+    name = name.replace("_fuel_", f"_{consumption.word}_")
+    return f"{name.removesuffix('_kg')}_{consumption.unit.lower()}" if name.endswith("saved_kg") else name
+
 
 Rows = Sequence[Mapping[str, str]]
 
@@ -71,25 +89,32 @@ def summary_groups(rows: Rows, axes: Sequence[str]) -> list[tuple[str, str, list
 
 
 def summarise(
-    rows: Rows, axes: Sequence[str], controllers: Sequence[str], lengths_m: Mapping[str, float]
+    rows: Rows,
+    axes: Sequence[str],
+    controllers: Sequence[str],
+    lengths_m: Mapping[str, float],
+    consumption: Consumption = FUEL,
 ) -> list[dict[str, str]]:
     """The summary rows (:data:`SUMMARY_COLUMNS`, as cell text) of a sweep's result rows, each road
-    weighted by its length [m] in `lengths_m` (by road name) in the distance-weighted means."""
+    weighted by its length [m] in `lengths_m` (by road name) in the distance-weighted means; the
+    figures of battery-electric trucks (`consumption`) are of battery energy, under the same keys."""
     versus = Layout(tuple(controllers)).versus
     out = []
     for axis, value, members in summary_groups(rows, axes):
         for controller in controllers:
-            summary = {"axis": axis, "value": value, "controller": controller, **_figures(members, controller)}
+            figures = _figures(members, controller, consumption)
+            summary = {"axis": axis, "value": value, "controller": controller, **figures}
             for base in HEADLINE_BASELINES:
                 ran = any((v.run, v.base) == (controller, base) for v in versus)
-                summary.update(savings(members if ran else [], controller, base, lengths_m))
+                summary.update(savings(members if ran else [], controller, base, lengths_m, consumption))
             out.append(summary)
     return out
 
 
-def _figures(members: Rows, controller: str) -> dict[str, str]:
+def _figures(members: Rows, controller: str, consumption: Consumption) -> dict[str, str]:
     """The summary cells of one group's rows for one controller."""
-    fuel_column, time_column = delta_column(controller, "fuel"), delta_column(controller, "time")
+    fuel_column = delta_column(controller, "fuel", consumption=consumption)
+    time_column = delta_column(controller, "time")
     compared = [row for row in members if row[fuel_column] and row[time_column]]
     failed = [row for row in members if row.get(ERROR_COLUMN)]
     fuel = [float(row[fuel_column]) for row in compared]
@@ -123,28 +148,31 @@ def _number(value: float | None) -> str:
     return "" if value is None else f"{value:.6g}"
 
 
-def write_summary(out: Path, summary: Sequence[Mapping[str, str]]) -> Path:
-    """Write ``summary.csv`` into `out` in one step; its path."""
-    lines = [csv_line(SUMMARY_COLUMNS), *(csv_line([row[c] for c in SUMMARY_COLUMNS]) for row in summary)]
+def write_summary(out: Path, summary: Sequence[Mapping[str, str]], consumption: Consumption = FUEL) -> Path:
+    """Write ``summary.csv`` into `out` in one step, its columns named for `consumption`; its path."""
+    rows = (csv_line([row[c] for c in SUMMARY_COLUMNS]) for row in summary)
+    lines = [csv_line(summary_columns(consumption)), *rows]
     atomic_write_text(out / SUMMARY_NAME, "".join(lines))
     return out / SUMMARY_NAME
 
 
-def summary_lines(summary: Sequence[Mapping[str, str]]) -> list[str]:
+def summary_lines(summary: Sequence[Mapping[str, str]], consumption: Consumption = FUEL) -> list[str]:
     """The lines of each summary row: its headline against each baseline that ran (mean, distance-
     weighted mean, fuel saved, best and worst road), then Δfuel and Δtrip time as driven against the
-    PI with the worst road, and the failed rows."""
+    PI with the worst road, and the failed rows (Δenergy and kWh for battery-electric trucks)."""
     lines = []
+    word = consumption.word
     for row in summary:
         group = "all rows" if row["axis"] == "all" else f"{row['axis']} {row['value']}"
         who = f"{group}, {row['controller']}"
         for base in HEADLINE_BASELINES:
             if row[savings_column(base, "compared")] not in ("", "0"):
-                lines.append(f"{who} against the {base.upper()} at equal trip time and end speed: {_saving(row, base)}")
+                saving = _saving(row, base, consumption)
+                lines.append(f"{who} against the {base.upper()} at equal trip time and end speed: {saving}")
         if row["mean_delta_fuel_pct"]:
             worst = ", ".join(v for v in (row["worst_direction"], row["worst_vehicle"]) if v)
             text = (
-                f"Δfuel {float(row['mean_delta_fuel_pct']):+.2f} % ± {float(row['std_delta_fuel_pct']):.2f}, "
+                f"Δ{word} {float(row['mean_delta_fuel_pct']):+.2f} % ± {float(row['std_delta_fuel_pct']):.2f}, "
                 f"Δtrip time {float(row['mean_delta_time_pct']):+.2f} % over {row['compared']} rows; worst "
                 f"{row['worst_road']} ({worst}) {float(row['worst_delta_fuel_pct']):+.2f} %"
             )
@@ -155,18 +183,20 @@ def summary_lines(summary: Sequence[Mapping[str, str]]) -> list[str]:
     return lines
 
 
-def _saving(row: Mapping[str, str], base: str) -> str:
+def _saving(row: Mapping[str, str], base: str, consumption: Consumption) -> str:
     """One baseline's headline figures of a summary row, in words."""
 
     def figure(name: str) -> float:
         return float(row[savings_column(base, name)])
 
+    word, unit = consumption.word, consumption.unit
     return (
-        f"Δfuel {figure('mean_pct'):+.2f} % on average ({figure('weighted_pct'):+.2f} % weighted by distance), "
-        f"{figure('mean_saved_kg'):.3f} kg saved per road, {figure('total_saved_kg'):.3f} kg in all, over "
+        f"Δ{word} {figure('mean_pct'):+.2f} % on average ({figure('weighted_pct'):+.2f} % weighted by distance), "
+        f"{figure('mean_saved_kg'):.3f} {unit} saved per road, {figure('total_saved_kg'):.3f} {unit} in all, over "
         f"{row[savings_column(base, 'compared')]} rows; best {row[savings_column(base, 'best_road')]} "
-        f"{figure('best_pct'):+.2f} % ({figure('best_saved_kg'):.3f} kg), worst "
-        f"{row[savings_column(base, 'worst_road')]} {figure('worst_pct'):+.2f} % ({figure('worst_saved_kg'):.3f} kg)"
+        f"{figure('best_pct'):+.2f} % ({figure('best_saved_kg'):.3f} {unit}), worst "
+        f"{row[savings_column(base, 'worst_road')]} {figure('worst_pct'):+.2f} % "
+        f"({figure('worst_saved_kg'):.3f} {unit})"
     )
 
 
@@ -205,9 +235,10 @@ def fleet_outputs(out: Path, plan: SweepPlan, result: SweepResult, parquet: bool
     failed = any(row[ERROR_COLUMN] for row in result.rows)
     if len(plan.roads) > 1 or len(plan.vehicle_paths) > 1 or failed:
         lengths_m = {road.name: road.length_m for road in plan.roads if isinstance(road, RoadProfile)}
-        summary = summarise(result.rows, [axis.key for axis in plan.axes], plan.controllers, lengths_m)
-        lines += summary_lines(summary)
-        files.append(write_summary(out, summary))
+        axes, consumption = [axis.key for axis in plan.axes], plan.consumption
+        summary = summarise(result.rows, axes, plan.controllers, lengths_m, consumption)
+        lines += summary_lines(summary, consumption)
+        files.append(write_summary(out, summary, consumption))
     if parquet:
         cells = [[row[column] for column in result.columns] for row in result.rows]
         files.append(write_parquet(out / "sweep.parquet", result.columns, cells))

@@ -10,12 +10,13 @@ from typing import Any, NamedTuple
 
 from truckmpc import sim
 from truckmpc.config import RunConfig, load_run_config
+from truckmpc.consumption import consumption_of
 from truckmpc.convergence import convergence_document, halved_configs, run_halves
 from truckmpc.equal_time import equal_time_baselines
 from truckmpc.errors import RoadError, TruckmpcError
 from truckmpc.roads import RoadProfile
 from truckmpc.sim import RunResult, simulate
-from truckmpc.sweep.columns import CONVERGENCE_FIELDS, ERROR_COLUMN, RUNS
+from truckmpc.sweep.columns import ERROR_COLUMN, convergence_fields, runs_of
 from truckmpc.sweep.compared import equal_time_fields
 
 ERROR = ERROR_COLUMN
@@ -88,7 +89,8 @@ def _figures(profile: RoadProfile, config: RunConfig, task: Task) -> dict[str, A
     look-ahead run's with each of the task's baselines re-tuned to its trip time, unless plain, and
     an MPC run's convergence moves when asked)."""
     result = simulate(profile, config, task.controller)
-    figures = {name: result.summary.get(name) for name in RUNS[task.controller].fields}
+    consumption = consumption_of(result.summary)
+    figures = {name: result.summary.get(name) for name in runs_of(consumption)[task.controller].fields}
     if task.controller == "pi" or task.plain:
         return figures
     # The baselines at v_ref again, in this worker: each equal-time search starts from its baseline's
@@ -99,7 +101,7 @@ def _figures(profile: RoadProfile, config: RunConfig, task: Task) -> dict[str, A
     if task.convergence:
         halves = halved_configs(config)
         moves = convergence_document({"pi": bases["pi"], "mpc": result}, run_halves(profile, halves), halves)
-        figures.update({field: moves.get(field) for field in CONVERGENCE_FIELDS})
+        figures.update({field: moves.get(field) for field in convergence_fields(consumption)})
     return figures
 
 
@@ -107,7 +109,7 @@ def _equal_time_figures(profile: RoadProfile, config: RunConfig, base: RunResult
     """`base`'s controller re-tuned to `run`'s trip time, starting from `base` (its run at v_ref):
     ``equal_time_<base>_*`` (:func:`~truckmpc.sweep.compared.equal_time_fields`), None each where the
     time was not reached."""
-    fields = equal_time_fields(base.name)
+    fields = equal_time_fields(base.name, consumption_of(run.summary))
     figures: dict[str, Any] = dict.fromkeys(fields)
     if run.stalled:
         return figures

@@ -1,0 +1,97 @@
+"""Studies of VECTO's generic battery-electric tractor: a fleet sweep names every figure and
+comparison for battery energy, gives each row what `truckmpc simulate` gives that road, and sums
+its rows into the fleet summary; a fleet of both kinds of truck, and a Pareto study, are refused in
+one line."""
+
+from __future__ import annotations
+
+import csv
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from test_electric_truck import BEV_XML, needs_bev
+from truckmpc.cli import app
+from truckmpc.config.keys import CONFIG_DIR
+
+REPO = Path(__file__).resolve().parents[1]
+ROADS = [REPO / "roads" / "hill_L500_A3.5.csv", REPO / "roads" / "crest_L1500_A2.csv"]
+runner = CliRunner()
+
+
+def _read(path: Path) -> list[dict[str, str]]:
+    with path.open(newline="", encoding="utf-8") as handle:
+        return list(csv.DictReader(handle))
+
+
+@pytest.fixture(scope="module")
+def swept(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, str]:
+    out = tmp_path_factory.mktemp("bev-fleet")
+    args = ["sweep", "--vehicle", str(BEV_XML), *(f"--road={road}" for road in ROADS), "--controller", "pcc,mpc"]
+    result = runner.invoke(app, [*args, "--grid", "v_ref_kmh=80,85", "--jobs", "1", "--out", str(out)])
+    assert result.exit_code == 0, result.output
+    return out, result.output
+
+
+@needs_bev
+def test_a_sweep_of_a_battery_electric_truck_names_everything_for_battery_energy(swept) -> None:
+    out, printed = swept
+    rows = _read(out / "sweep.csv")
+    header = list(rows[0])
+    assert not [column for column in header if "fuel" in column or column.endswith("_kg")], header
+    for column in ("pi_energy_kwh", "mpc_energy_corrected_kwh", "mpc_recovered_kwh", "mpc_soc_end_pct"):
+        assert column in header
+    for column in ("mpc_headline_pct", "mpc_saved_kwh", "mpc_headline_vs_pcc_pct", "mpc_saved_vs_pcc_kwh"):
+        assert all(row[column] for row in rows), column
+    assert "mpc_delta_energy_equal_time_pct" in header and "mpc_equal_time_pi_energy_kwh" in header
+    summary = _read(out / "summary.csv")
+    assert "mean_delta_energy_pct" in summary[0] and "headline_vs_pi_total_saved_kwh" in summary[0]
+    assert "Δenergy" in printed and "kWh saved" in printed and "Δfuel" not in printed
+
+
+@needs_bev
+def test_each_row_is_what_simulate_gives_its_road(swept, tmp_path: Path) -> None:
+    """The second road at 85 km/h driven by `truckmpc simulate`: the same battery energies, and the
+    same headline against the PI and the PCC."""
+    out, _ = swept
+    row = next(r for r in _read(out / "sweep.csv") if r["road"] == ROADS[1].stem and r["v_ref_kmh"] == "85")
+    args = ["simulate", "--vehicle", str(BEV_XML), "--road", str(ROADS[1]), "--controller", "pi,pcc,mpc"]
+    result = runner.invoke(app, [*args, "--set", "v_ref_kmh=85", "--out", str(tmp_path / "s")])
+    assert result.exit_code == 0, result.output
+    doc = json.loads((tmp_path / "s" / "summary.json").read_text())
+    for name in ("pi", "pcc", "mpc"):
+        assert float(row[f"{name}_energy_kwh"]) == pytest.approx(doc[name]["energy_kwh"], rel=1e-12)
+    compared = {(c["controller"], c["baseline"]): c for c in doc["comparisons"]}
+    assert float(row["mpc_headline_pct"]) == pytest.approx(compared["mpc", "pi"]["headline_pct"], abs=1e-9)
+    assert float(row["mpc_saved_vs_pcc_kwh"]) == pytest.approx(compared["mpc", "pcc"]["saved_kwh"], rel=1e-9)
+
+
+@needs_bev
+def test_the_fleet_summary_adds_the_rows_kwh(swept) -> None:
+    out, _ = swept
+    rows = _read(out / "sweep.csv")
+    summary = next(s for s in _read(out / "summary.csv") if s["axis"] == "all" and s["controller"] == "mpc")
+    total = sum(float(row["mpc_saved_vs_pcc_kwh"]) for row in rows)
+    assert float(summary["headline_vs_pcc_total_saved_kwh"]) == pytest.approx(total, rel=1e-5)
+    worst = max(float(row["mpc_delta_energy_pct"]) for row in rows)
+    assert float(summary["worst_delta_energy_pct"]) == pytest.approx(worst, rel=1e-9)
+
+
+@needs_bev
+@pytest.mark.parametrize(
+    ("args", "expected"),
+    [
+        (["sweep", f"--vehicle={CONFIG_DIR / 'truck-40t.yaml'}", f"--vehicle={BEV_XML}"], "all burn fuel or all"),
+        (["pareto", "--vehicle", str(BEV_XML)], "expected a truck that burns fuel"),
+    ],
+    ids=["a fleet of both kinds", "a Pareto study"],
+)
+def test_what_a_battery_electric_truck_cannot_join_is_refused_in_one_line(
+    tmp_path: Path, args: list[str], expected: str
+) -> None:
+    refused = runner.invoke(app, [*args, "--road", str(ROADS[0]), "--out", str(tmp_path / "o")])
+    assert refused.exit_code == 2, refused.output
+    assert len(refused.output.strip().splitlines()) == 1 and expected in refused.output, refused.output
+    assert not (tmp_path / "o").exists()
