@@ -227,6 +227,22 @@ def test_a_road_with_stops_is_refused_in_one_line(tmp_path: Path) -> None:
 
 
 @needs_bev
+def test_the_dp_plans_pedal_levels_for_a_battery_unless_told(tmp_path: Path) -> None:
+    """Pulse and glide needs a finer pedal than the grid gives at short stages: the MPC of a
+    battery-electric truck plans 40 pedal levels off the grid, or as `pedal_levels` says (1: on
+    the grid alone); its speeds are the machines', and the PCC has no eco-roll."""
+    ran = {}
+    for name, extra in (("default", []), ("grid", ["--set", "pedal_levels=1"])):
+        out = tmp_path / name
+        args = ["simulate", "--vehicle", str(BEV_XML), "--controller", "mpc", *extra, "--out", str(out)]
+        result = runner.invoke(app, args)
+        assert result.exit_code == 0, result.output
+        ran[name] = json.loads((out / "summary.json").read_text())["mpc"]["settings"]
+    assert ran["default"]["pedal_levels"] == 40 and ran["grid"]["pedal_levels"] == 1
+    assert ran["default"]["n_max_rpm"] == pytest.approx(8276.0)
+
+
+@needs_bev
 def test_the_convergence_check_moves_battery_energy_under_keys_named_for_it(tmp_path: Path) -> None:
     """`--check-convergence` with the electric truck: the MPC again at δ/2 and S/2, its moves of
     Δenergy, Δtime, Δenergy at equal trip time and energy + β·time, none named for fuel."""

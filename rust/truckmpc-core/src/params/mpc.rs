@@ -131,13 +131,13 @@ declare_params! {
         q_brake_per_km: Option<f64> = Some(4000.0), unit "1/km", range Range::between(0.0, 1e9);
         /// What the controller minimises: the thesis's speed_penalty criterion, or fuel_time (fuel + β·trip time, Q3·|Δv|, Q4 and Q5; q_speed_below unused).
         cost: CostKind = CostKind::FuelTime, unit "-", range Range::ANY;
-        /// β of the fuel_time cost, the fuel worth one second of trip time; null = the β for which steady v_ref is optimal on a flat road.
-        beta_g_per_s: Option<f64> = None, unit "g/s", range Range::between(0.0, 1e4);
+        /// β of the fuel_time cost, the fuel worth one second of trip time (for a battery-electric truck the battery energy, in J/s: about 1e5); null = the β for which steady v_ref is optimal on a flat road.
+        beta_g_per_s: Option<f64> = None, unit "g/s", range Range::between(0.0, 1e6);
         /// The DP's stage model: euler (the thesis's, first order in S) or trapezoid (kinetic energy, fuel and time by the trapezoid rule, second order).
         stage_model: StageModel = StageModel::Trapezoid, unit "-", range Range::ANY;
         /// Fuel cut in a forward gear is also an exact arc: its end speed off the grid, joined to the next stage's grid by neutral_rule (otherwise only the grid point above fuel cut, at a small pedal, or below it within ε).
         fuel_cut_arcs: bool = true, unit "-", range Range::ANY;
-        /// Pedal levels planned off the grid: with K ≥ 2 every forward gear also drives the pedal levels 1/K, 2/K, …, (K−1)/K over a stage as exact arcs, each ending off the speed grid and joined to it by neutral_rule, so the pedal's resolution is 1/K whatever δ; 0 (or 1): only fuel cut, full pedal and the levels that land on grid speeds, about δ·v/(gain·S) apart. At most 120 with --check-convergence, which doubles it.
+        /// Pedal levels planned off the grid: with K ≥ 2 every forward gear also drives the pedal levels 1/K, 2/K, …, (K−1)/K over a stage as exact arcs, each ending off the speed grid and joined to it by neutral_rule, so the pedal's resolution is 1/K whatever δ; 0 (or 1): only fuel cut, full pedal and the levels that land on grid speeds, about δ·v/(gain·S) apart. A battery-electric truck plans 40 unless set. At most 120 with --check-convergence, which doubles it.
         pedal_levels: u32 = 0, unit "levels", range Range::between(0.0, MAX_PEDAL_LEVELS as f64);
         /// Neutral arcs end on the nearest grid point, or interpolate the cost-to-go linearly or through the three nearest points.
         neutral_rule: NeutralRule = NeutralRule::Quadratic, unit "-", range Range::ANY;
