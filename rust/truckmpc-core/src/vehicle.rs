@@ -302,6 +302,14 @@ impl Powertrain for Vehicle {
         dispatch!(self, m => Powertrain::zero_pedal_is_cut(m))
     }
 
+    fn glide_pedal(&self, v_mps: f64, gear: usize) -> Option<f64> {
+        dispatch!(self, m => Powertrain::glide_pedal(m, v_mps, gear))
+    }
+
+    fn glides(&self) -> bool {
+        dispatch!(self, m => Powertrain::glides(m))
+    }
+
     fn kinetic_energy_price(&self, gear: usize) -> Option<f64> {
         dispatch!(self, m => Powertrain::kinetic_energy_price(m, gear))
     }

@@ -154,6 +154,18 @@ pub trait Powertrain {
     /// model jumps between its pedal and fuel-cut branches at P = 0).
     fn zero_pedal_is_cut(&self) -> bool;
 
+    /// The pedal at which the drive gives the wheels no torque at `v_mps` in forward `gear`, where
+    /// gliding there costs less than zero pedal (a battery-electric truck's machines running at
+    /// zero torque, against their drag while switched off); None where zero pedal is the glide.
+    fn glide_pedal(&self, _v_mps: f64, _gear: usize) -> Option<f64> {
+        None
+    }
+
+    /// Whether the drive has a glide pedal ([`Powertrain::glide_pedal`]) at some speeds.
+    fn glides(&self) -> bool {
+        false
+    }
+
     /// The energy per unit of ½v² [m²/s²] the powertrain adds in forward `gear`, where that price
     /// is the same at every speed and load (a closed form); None where it must be found numerically.
     fn kinetic_energy_price(&self, _gear: usize) -> Option<f64> {

@@ -169,20 +169,10 @@ const DIESEL_KEYS: [&str; 5] =
 /// The keys of a truck from VECTO's files that only a battery-electric truck takes.
 const ELECTRIC_KEYS: [&str; 1] = ["soc_start_pct"];
 
-/// Pedal levels the DP plans off the grid for a battery-electric truck unless `pedal_levels` is set.
-///
-/// Its machines' energy is far from affine in the pedal (they run far better near half torque than
-/// at cruising load), so the look-ahead controllers pulse and glide, and on the grid alone the
-/// pedal's resolution (about δ·v/(gain·S)) coarsens as S shrinks: at the defaults the MPC's lead
-/// moved 0.33 points at S/2 on VECTO's 108 km road. With 40 levels every move at δ/2, S/2 and twice
-/// the levels stays within 0.1 point; with 20, 0.14.
-pub const ELECTRIC_PEDAL_LEVELS: u32 = 40;
-
 /// With a battery-electric truck the DP's usable speeds are its machines': `n_min_rpm` and
 /// `n_max_rpm` (an engine's window) become the speed below which the cruise has stopped and the
-/// machines' top speed; the DP plans [`ELECTRIC_PEDAL_LEVELS`] pedal levels unless `pedal_levels`
-/// is set (1 plans on the grid alone, as 0 does for a diesel truck); and the PCC has no eco-roll
-/// (`eco_roll` false, as VECTO's for such a truck). Refused, naming the key: either speed set to
+/// machines' top speed; and the PCC has no eco-roll (`eco_roll` false, as VECTO's for such a
+/// truck). Refused, naming the key: either speed set to
 /// another value, or a diesel driveline's key set.
 pub(super) fn electric_settings(settings: &mut RunSettings, vehicle: &Vehicle) -> CoreResult<()> {
     let defaults = VectoParams::default();
@@ -206,9 +196,6 @@ pub(super) fn electric_settings(settings: &mut RunSettings, vehicle: &Vehicle) -
         }
     }
     (settings.mpc.n_min_rpm, settings.mpc.n_max_rpm) = window;
-    if settings.mpc.pedal_levels == mpc_defaults.pedal_levels {
-        settings.mpc.pedal_levels = ELECTRIC_PEDAL_LEVELS;
-    }
     // VECTO's predictive cruise control has no eco-roll for a battery-electric truck.
     settings.pcc.eco_roll = false;
     Ok(())

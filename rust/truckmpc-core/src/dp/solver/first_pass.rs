@@ -4,10 +4,10 @@
 //! full-pedal and pedal-level ways are exact arcs ([`super::arcs`]). Costs in the units of (5.9).
 
 use super::arcs::{better_by_arc, exact_arc, neutral_choices, ArcJoin};
-use super::choices::{level_flag, Choices, ARC, FULL};
+use super::choices::{glide_flag, level_flag, Choices, ARC, FULL, GLIDE_SHARES};
 use super::grids::StageGrid;
 use super::{stride, Solver, INF};
-use crate::dp::cache::{Block, StageKey, StageRows, LANES, PAD};
+use crate::dp::cache::{Block, CoastArc, StageKey, StageRows, LANES, PAD};
 use crate::dp::params::{DpSettings, StageModel};
 use crate::dp::rows::forward_row;
 use crate::dp::simd::{self, LaneMins, LaneOut};
@@ -65,7 +65,7 @@ impl Solver {
                 transitions += i_hi - i_lo + 1;
                 continue;
             }
-            let to = ArcTarget { gear: g, gears, next, lo, hi };
+            let to = ArcTarget { gear: g, gears, next, lo, hi, glides: vehicle.glides() };
             fill_arcs(p, vehicle, stage, (here, slope_torque), (key_lo, key_hi), &to);
             let (rows, ends) = stage.gear_with_arcs(g, end_slots(gears, g));
             let memo = &mut self.row_memo;
@@ -114,23 +114,40 @@ struct ArcTarget {
     next: StageGrid,
     lo: u32,
     hi: u32,
+    /// Whether the truck glides at zero torque to the wheels ([`Powertrain::glides`]).
+    glides: bool,
+}
+
+/// The input an exact arc holds over its stage: a fixed one, or a share of the glide pedal at its
+/// start speed.
+#[derive(Debug, Clone, Copy)]
+enum ArcInput {
+    Held((Branch, f64)),
+    Glide(f64),
 }
 
 /// The exact arcs into a forward gear: fuel cut, full pedal on trapezoid stages (whose rows stop
-/// there), and the pedal levels l/K between them (`pedal_levels`), as (cache slot, input held, join,
-/// flag of the choice).
-fn arc_kinds<'a>(p: &'a DpSettings, to: &ArcTarget) -> impl Iterator<Item = (usize, (Branch, f64), ArcJoin, u32)> + 'a {
+/// there), the pedal levels l/K between them (`pedal_levels`) and, for a truck that glides, its
+/// glide arcs (`glide_arcs`: shares of the pedal at which its machines give zero torque), as (cache
+/// slot, input, join, flag of the choice).
+fn arc_kinds<'a>(p: &'a DpSettings, to: &ArcTarget) -> impl Iterator<Item = (usize, ArcInput, ArcJoin, u32)> + 'a {
     let (g, gears, next, range) = (to.gear, to.gears, to.next, (to.lo, to.hi));
     let [cut_slot, full_slot] = end_slots(gears, g);
-    let fuel_cut = p.mpc.fuel_cut_arcs.then(|| (cut_slot, (Branch::Brake, 0.0), ArcJoin::new(p, next, range), ARC));
+    let held = |branch, input| ArcInput::Held((branch, input));
+    let fuel_cut = p.mpc.fuel_cut_arcs.then(|| (cut_slot, held(Branch::Brake, 0.0), ArcJoin::new(p, next, range), ARC));
     let full = (p.mpc.stage_model == StageModel::Trapezoid)
-        .then(|| (full_slot, (Branch::Pedal, 1.0), ArcJoin::full_pedal(p, next, range), FULL));
+        .then(|| (full_slot, held(Branch::Pedal, 1.0), ArcJoin::full_pedal(p, next, range), FULL));
     let k_levels = p.mpc.pedal_levels;
     let levels = (1..k_levels.max(1)).map(move |l| {
-        let input = (Branch::Pedal, l as f64 / k_levels as f64);
+        let input = held(Branch::Pedal, l as f64 / k_levels as f64);
         (level_slot(l, gears, g), input, ArcJoin::new(p, next, range), level_flag(l))
     });
-    fuel_cut.into_iter().chain(full).chain(levels)
+    let glides = if to.glides && p.mpc.glide_arcs { GLIDE_SHARES.len() } else { 0 };
+    let glide = (0..glides).map(move |i| {
+        let slot = level_slot(k_levels.max(1) + i as u32, gears, g);
+        (slot, ArcInput::Glide(GLIDE_SHARES[i]), ArcJoin::new(p, next, range), glide_flag(i))
+    });
+    fuel_cut.into_iter().chain(full).chain(levels).chain(glide)
 }
 
 /// Fill the exact arcs ([`arc_kinds`]) into a forward gear from the sources `key_lo..=key_hi` of
@@ -145,9 +162,16 @@ fn fill_arcs(
 ) {
     for (slot, input, _, _) in arc_kinds(p, to) {
         let g = to.gear;
-        stage
-            .arcs(slot)
-            .fill(key_lo, key_hi, |key| exact_arc(p, vehicle, here.index.speed(key), g, slope_torque, input));
+        stage.arcs(slot).fill(key_lo, key_hi, |key| {
+            let v_mps = here.index.speed(key);
+            match input {
+                ArcInput::Held(held) => exact_arc(p, vehicle, v_mps, g, slope_torque, held),
+                ArcInput::Glide(share) => match vehicle.glide_pedal(v_mps, g) {
+                    Some(pedal) => exact_arc(p, vehicle, v_mps, g, slope_torque, (Branch::Pedal, share * pedal)),
+                    None => CoastArc { v_end_mps: v_mps, cost: INF },
+                },
+            }
+        });
     }
 }
 

@@ -328,6 +328,20 @@ impl Powertrain for ElectricModel {
         RateForm::Map
     }
 
+    /// Where the machines give zero torque: the pedal's wheel torque, drag + P·(full − drag), is
+    /// then what the reduction takes turning unloaded. They draw their no-load loss instead of
+    /// turning against their drag while switched off.
+    fn glide_pedal(&self, v_mps: f64, _gear: usize) -> Option<f64> {
+        let (drag, full, _) = self.wheel_torques_nm(v_mps);
+        let unloaded = self.truck.wheel_nm(self.rpm_per_mps * v_mps, 0.0);
+        let pedal = (unloaded - drag) / (full - drag);
+        (pedal > 0.0 && pedal < 1.0).then_some(pedal)
+    }
+
+    fn glides(&self) -> bool {
+        true
+    }
+
     /// At zero pedal the machines are off, as in the brake branch at zero brake.
     fn zero_pedal_is_cut(&self) -> bool {
         true

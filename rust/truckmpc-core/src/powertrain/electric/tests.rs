@@ -264,3 +264,24 @@ fn a_battery_near_its_floor_ends_the_drive_where_the_usable_charge_ends() {
     let usable_j = m.truck().battery().energy_per_soc_j() * (0.102 - 0.101);
     assert!((x.fuel_g - usable_j).abs() < 0.01 * usable_j, "drew {} J of {usable_j} J", x.fuel_g);
 }
+
+/// At the glide pedal the machines give zero torque (the pedal's torque is affine from their drag
+/// to their most driving torque), so the truck loses less speed than with them switched off, which
+/// turn against their drag; and they draw their no-load loss and conditioning.
+#[test]
+fn at_the_glide_pedal_the_machines_give_zero_torque() {
+    let m = model(2000.0);
+    let v = 22.0;
+    let pedal = m.glide_pedal(v, 1).expect("the machines drag at 79 km/h");
+    assert!(pedal > 0.0 && pedal < 0.1, "{pedal}");
+    assert!(m.machine_torque_nm(v, pedal, 1).abs() < 1e-9, "{}", m.machine_torque_nm(v, pedal, 1));
+    let accel = |p: f64| m.accel_on(v, p, 0.0, 1, 0.0);
+    assert!(accel(pedal) > accel(0.0), "the glide loses less speed than coasting");
+    let n = m.rpm_per_mps() * v;
+    let no_load_w = COUNT as f64 * n / RPM_PER_RAD_S * loss_torque(n, 0.0, 1.0);
+    let flows = m.power_flows(v, Control { pedal, brake: 0.0, gear: 1 });
+    let drawn = no_load_w + flows.aux_w;
+    // The loss is read off its resampled grid: to 1e-4 of the draw.
+    assert!((flows.battery_w - flows.battery_loss_w - drawn).abs() < 1e-4 * drawn, "{flows:?} vs {drawn}");
+    assert!(m.glides());
+}
