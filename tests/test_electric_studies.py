@@ -95,3 +95,17 @@ def test_what_a_battery_electric_truck_cannot_join_is_refused_in_one_line(
     assert refused.exit_code == 2, refused.output
     assert len(refused.output.strip().splitlines()) == 1 and expected in refused.output, refused.output
     assert not (tmp_path / "o").exists()
+
+
+@needs_bev
+def test_the_sweep_resumes_and_its_report_speaks_of_battery_energy(swept) -> None:
+    out, _ = swept
+    args = ["sweep", "--vehicle", str(BEV_XML), *(f"--road={road}" for road in ROADS), "--controller", "pcc,mpc"]
+    again = runner.invoke(app, [*args, "--grid", "v_ref_kmh=80,85", "--jobs", "1", "--out", str(out)])
+    assert again.exit_code == 0, again.output
+    assert "4 rows resumed" in again.output
+    report = runner.invoke(app, ["report", str(out)])
+    assert report.exit_code == 0, report.output
+    page = (out / "report.html").read_text(encoding="utf-8")
+    assert "Δenergy [%]" in page and "saved [kWh]" in page and "battery energy saved [kWh]" in page
+    assert "Δfuel [%]" not in page.split("<figure>")[0]

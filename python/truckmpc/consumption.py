@@ -1,8 +1,8 @@
 """What a run consumes, named for the truck's store: fuel [kg] for an engine-driven truck, net
 battery energy [kWh] for a battery-electric one. The comparisons read a run's consumption through
 :func:`consumption_of`, so their keys are named for what they compare (``delta_fuel_pct`` or
-``delta_energy_pct``, ``saved_kg`` or ``saved_kwh``) and a study mixing both kinds of truck keeps
-them apart.
+``delta_energy_pct``, ``saved_kg`` or ``saved_kwh``) and a figure of one is never read as the
+other's.
 """
 
 from __future__ import annotations

@@ -99,8 +99,8 @@ CheckConvergenceOpt = Annotated[
     typer.Option(
         "--check-convergence",
         help="Also run the MPC at half the speed step, at half the stage length and (with pedal_levels) at "
-        "twice the pedal levels, and report how far delta fuel, delta time and fuel + beta*time move "
-        "(flagged beyond 0.3 points).",
+        "twice the pedal levels, and report how far delta fuel (battery energy), delta time and fuel + "
+        "beta*time move (flagged beyond 0.3 points).",
     ),
 ]
 VerboseOpt = Annotated[

@@ -33,8 +33,9 @@ OutOpt = Annotated[
         metavar="DIR",
         help="Output directory: sweep.csv (a row per road and combination, the headline first, each look-ahead "
         "controller's saving at equal trip time and end speed: mpc_headline_vs_pcc_pct, mpc_saved_kg; then each "
-        "figure in a column <controller>_<figure>: pi_fuel_kg, mpc_delta_fuel_pct), sweep.json (and "
-        "sweep.partial.csv while running; summary.csv for a fleet, sweep.parquet with --parquet).",
+        "figure in a column <controller>_<figure>: pi_fuel_kg, mpc_delta_fuel_pct; energy_kwh, delta_energy, "
+        "saved_kwh for battery-electric trucks), sweep.json (and sweep.partial.csv while running; summary.csv "
+        "for a fleet, sweep.parquet with --parquet).",
     ),
 ]
 GridOpt = Annotated[

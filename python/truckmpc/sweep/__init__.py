@@ -28,6 +28,10 @@ may be repeated (a ``vehicle`` column), the roads may be driven both ways; the r
 per axis value (:mod:`~truckmpc.sweep.summary`: ``summary.csv``), led by each truck's headline over
 the roads (:mod:`~truckmpc.sweep.savings`).
 
+The columns (:mod:`~truckmpc.sweep.columns`, each controller's figures in
+:mod:`~truckmpc.sweep.run_columns`) are named for what the sweep's trucks consume: fuel, or battery
+energy when they are all battery-electric.
+
 Modules: :mod:`~truckmpc.sweep.grid` (axes), :mod:`~truckmpc.sweep.inputs` (axes and each
 combination's configuration, checked), :mod:`~truckmpc.sweep.fleet` (roads, directions,
 vehicles), :mod:`~truckmpc.sweep.plan` (rows, run keys), :mod:`~truckmpc.sweep.columns` (CSV columns

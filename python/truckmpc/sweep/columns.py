@@ -31,7 +31,7 @@ from typing import Any
 from truckmpc.compare import compare
 from truckmpc.consumption import FUEL, Consumption
 from truckmpc.sweep.cells import cell, error_text, parse_cell
-from truckmpc.sweep.compared import deltas, equal_time_fields, headline_unit, worded
+from truckmpc.sweep.compared import HEADLINE_KINDS, deltas, equal_time_fields, headline_unit, worded
 from truckmpc.sweep.run_columns import (
     BASELINE,
     CONVERGENCE_COLUMNS,
@@ -127,7 +127,7 @@ class Versus:
 
     def headline_columns_of(self, consumption: Consumption) -> tuple[tuple[str, str], ...]:
         """(kind, column) of the headline's figures, % and kg or kWh."""
-        return tuple((kind, headline_column(self.run, self.base, kind, consumption)) for kind in ("headline", "saved"))
+        return tuple((kind, headline_column(self.run, self.base, kind, consumption)) for kind in HEADLINE_KINDS)
 
     @property
     def equal_time(self) -> bool:

@@ -14,10 +14,9 @@ from truckmpc.consumption import FUEL, Consumption, consumption_of
 
 __all__ = ["HEADLINE_KINDS", "deltas", "equal_time_fields", "headline_unit", "worded"]
 
-HEADLINE_KINDS = (("headline", "pct"), ("saved", "kg"))
-"""The headline's two figures, each with its unit: Δfuel [%] at equal trip time and end speed
-(negative is saved) and the fuel saved [kg] (positive is saved); a battery-electric truck's saved
-battery energy is in kWh (:func:`headline_unit`)."""
+HEADLINE_KINDS = ("headline", "saved")
+"""The headline's two figures: Δfuel [%] at equal trip time and end speed (negative is saved) and
+the fuel saved (positive is saved), in kg, or battery energy in kWh (:func:`headline_unit`)."""
 
 
 def headline_unit(kind: str, consumption: Consumption = FUEL) -> str:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import glob
+import os
 from collections import Counter
 from collections.abc import Sequence
 from pathlib import Path
@@ -103,3 +104,12 @@ def check_unique(names: Sequence[str], option: str, what: str) -> None:
     if repeated:
         key = what.removesuffix("s")
         raise SweepError(f"{option}: two {what} are named {repeated[0]!r} (rows are keyed by {key} name)")
+
+
+def vehicle_paths(given: PathLike | Sequence[PathLike] | None) -> tuple[str | None, ...]:
+    """The vehicle files of a sweep: one, several (at least one), or None (the packaged truck)."""
+    if given is None or isinstance(given, (str, os.PathLike)):
+        return (None if given is None else str(given),)
+    if not given:
+        raise SweepError("--vehicle: expected at least one vehicle file")
+    return tuple(str(path) for path in given)

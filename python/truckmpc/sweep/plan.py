@@ -12,7 +12,6 @@ from __future__ import annotations
 import dataclasses
 import functools
 import json
-import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -25,7 +24,7 @@ from truckmpc.roads.profile import PathLike
 from truckmpc.sweep.cells import cell, yaml_text
 from truckmpc.sweep.columns import DEFAULT_CONTROLLERS, Layout, check_controllers
 from truckmpc.sweep.errors import SweepError
-from truckmpc.sweep.fleet import load_fleet, vehicle_names
+from truckmpc.sweep.fleet import load_fleet, vehicle_names, vehicle_paths
 from truckmpc.sweep.grid import Axis, expand_grid
 from truckmpc.sweep.inputs import Base, Combinations, check_size, checked_axes, consumed_by
 from truckmpc.sweep.task import Road
@@ -123,7 +122,7 @@ def plan_sweep(
     layout = _checked_layout(controllers, check_convergence)
     checked = checked_axes(axes, overrides)
     profiles, directions = load_fleet(roads, reverse)
-    vehicles = _vehicle_paths(vehicle_path)
+    vehicles = vehicle_paths(vehicle_path)
     names = vehicle_names(vehicles)
     bases = [Base(v, tuple(str(p) for p in config_paths), tuple(overrides)) for v in vehicles]
     check_size(checked, len(profiles) * len(bases))
@@ -150,15 +149,6 @@ def plan_sweep(
 
 Combo = tuple[tuple[Any, ...], tuple[str, ...], RunConfig, Mapping[str, Any]]
 """A combination's axis values, overrides, configuration and the values of its shared sections."""
-
-
-def _vehicle_paths(given: PathLike | Sequence[PathLike] | None) -> tuple[str | None, ...]:
-    """The vehicle files of a sweep: one, several (at least one), or None (the packaged truck)."""
-    if given is None or isinstance(given, (str, os.PathLike)):
-        return (None if given is None else str(given),)
-    if not given:
-        raise SweepError("--vehicle: expected at least one vehicle file")
-    return tuple(str(path) for path in given)
 
 
 def _combos(base: Base, base_config: RunConfig, axes: Sequence[Axis], profiles: Sequence[Road]) -> list[Combo]:
