@@ -236,6 +236,32 @@ def test_a_road_with_stops_is_refused_in_one_line(tmp_path: Path) -> None:
 
 
 @needs_bev
+def test_beta_is_given_in_the_unit_of_the_trucks_store(tmp_path: Path) -> None:
+    """β is battery energy per second for a battery-electric truck (`beta_j_per_s`), fuel per second
+    for a diesel one (`beta_g_per_s`): each key is refused in one line on the other kind of truck.
+    A β of twice the derived one buys time: the MPC drives faster and draws more."""
+    runs = {}
+    for name, extra in (("derived", []), ("double", ["--set", "beta_j_per_s=204619"])):
+        out = tmp_path / name
+        result = runner.invoke(
+            app, ["simulate", "--vehicle", str(BEV_XML), "--controller", "mpc", *extra, "--out", str(out)]
+        )
+        assert result.exit_code == 0, result.output
+        runs[name] = json.loads((out / "summary.json").read_text())["mpc"]
+    derived = runs["derived"]["settings"]["beta_j_per_s"]
+    assert 0.9e5 < derived < 1.2e5 and runs["derived"]["settings"]["beta_g_per_s"] is None
+    assert runs["double"]["time_s"] < runs["derived"]["time_s"]
+    assert runs["double"]["energy_kwh"] > runs["derived"]["energy_kwh"]
+    for args, key in (
+        ([f"--vehicle={BEV_XML}", "--set", "beta_g_per_s=5"], "beta_g_per_s"),
+        (["--set", "beta_j_per_s=1e5"], "beta_j_per_s"),
+    ):
+        refused = runner.invoke(app, ["simulate", *args, "--controller", "pi", "--out", str(tmp_path / "r")])
+        assert refused.exit_code == 2 and key in refused.output, refused.output
+        assert len(refused.output.strip().splitlines()) == 1, refused.output
+
+
+@needs_bev
 def test_the_convergence_check_moves_battery_energy_under_keys_named_for_it(tmp_path: Path) -> None:
     """`--check-convergence` with the electric truck: the MPC again at δ/2 and S/2, its moves of
     Δenergy, Δtime, Δenergy at equal trip time and energy + β·time, none named for fuel."""

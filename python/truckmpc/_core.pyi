@@ -62,8 +62,11 @@ class _Derived(TypedDict):
     """The weight on speed below v_min, per stage."""
     q_brake: float
     """The weight on braking, per stage."""
-    beta_g_per_s: float | None
-    """β [g/s]: None with the speed_penalty cost; derived from v_ref when not given."""
+    beta_g_per_s: NotRequired[float | None]
+    """β [g/s] of a truck that burns fuel: None with the speed_penalty cost; derived from v_ref when
+    not given."""
+    beta_j_per_s: NotRequired[float | None]
+    """β [J/s] of a battery-electric truck, in place of beta_g_per_s."""
 
 @final
 class Settings:

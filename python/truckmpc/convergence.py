@@ -42,6 +42,7 @@ from truckmpc.compare import compare
 from truckmpc.config import RunConfig
 from truckmpc.consumption import consumption_of
 from truckmpc.errors import ConfigError
+from truckmpc.fuel import beta_per_s
 from truckmpc.roads import RoadProfile
 from truckmpc.sim import RunResult, simulate
 
@@ -126,7 +127,7 @@ def convergence_document(
         ):
             doc[f"delta_{name}_pct_{half}"] = None if at_run is None or at_half is None else at_half - at_run
         if configs[half].mpc.cost == "fuel_time":
-            beta = configs[half].settings.derived()["beta_g_per_s"]
+            beta = beta_per_s(configs[half].settings.derived())
             doc[f"delta_cost_pct_{half}"] = None if reason is not None else cost_move_pct(base, mpc, summary, beta)
         objects[half] = detail
     moves = {key: value for key, value in doc.items() if value is not None}
@@ -137,7 +138,7 @@ def convergence_document(
 
 
 def cost_move_pct(
-    base: Mapping[str, Any], run: Mapping[str, Any], half: Mapping[str, Any], beta_g_per_s: float | None
+    base: Mapping[str, Any], run: Mapping[str, Any], half: Mapping[str, Any], beta: float | None
 ) -> float | None:
     """How far the cost the fuel_time controller minimises moves from `run` to `half` (summaries),
     in percent of the baseline's consumption: (fuel or battery energy with the end speed corrected +
@@ -147,10 +148,10 @@ def cost_move_pct(
     engagements) are left out: they are not fuel or time."""
     consumption = consumption_of(base)
     used = (run.get(consumption.corrected_key), half.get(consumption.corrected_key))
-    if beta_g_per_s is None or used[0] is None or used[1] is None:
+    if beta is None or used[0] is None or used[1] is None:
         return None
     unit = consumption.store_per_unit
-    moved = unit * (used[1] - used[0]) + beta_g_per_s * (half["time_s"] - run["time_s"])
+    moved = unit * (used[1] - used[0]) + beta * (half["time_s"] - run["time_s"])
     return float(100.0 * moved / (unit * base[consumption.key]))
 
 

@@ -23,7 +23,7 @@ from typing import Any
 from truckmpc.consumption import consumption_of
 from truckmpc.units import KMH_PER_MPS
 
-__all__ = ["corrected", "kinetic_correction", "plan_gap_pct", "summary_corrected"]
+__all__ = ["beta_per_s", "corrected", "kinetic_correction", "plan_gap_pct", "summary_corrected"]
 
 
 def kinetic_correction(summary: Mapping[str, Any], per_half_v2: float) -> float:
@@ -83,3 +83,11 @@ def plan_gap_pct(summary: Mapping[str, Any], per_half_v2: float, beta_per_s: flo
     brought = per_half_v2 * 0.5 * (v_plan**2 - v_end**2) + beta_per_s * (summary["time_s"] - plan_time_s)
     run = float(summary[consumption.key]) + brought / consumption.store_per_unit
     return float(100.0 * abs(run / plan - 1.0))
+
+
+def beta_per_s(derived: Mapping[str, Any]) -> float | None:
+    """β of the fuel_time cost from a run's derived settings, in the core's store unit per second:
+    ``beta_j_per_s`` [J/s] for a battery-electric truck, else ``beta_g_per_s`` [g/s]; None with
+    another cost."""
+    value = derived.get("beta_j_per_s", derived.get("beta_g_per_s"))
+    return None if value is None else float(value)

@@ -33,7 +33,7 @@ from truckmpc import _core
 from truckmpc.consumption import consumption_of
 from truckmpc.controller import Controller, PlantState
 from truckmpc.errors import ConfigError
-from truckmpc.fuel import corrected, plan_gap_pct
+from truckmpc.fuel import beta_per_s, corrected, plan_gap_pct
 from truckmpc.legs import drive_legs
 from truckmpc.schema import TRACE_COLUMNS
 
@@ -147,5 +147,5 @@ def _drive(road: RoadProfile, config: RunConfig, controller: str | Controller) -
     key = consumption_of(summary).corrected_key
     summary[key] = None if summary["stalled"] else corrected(summary, per_half_v2)
     if "plan_time_s" in summary:
-        summary["plan_gap_pct"] = plan_gap_pct(summary, per_half_v2, derived["beta_g_per_s"])
+        summary["plan_gap_pct"] = plan_gap_pct(summary, per_half_v2, beta_per_s(derived))
     return RunResult(name=name, road=road.name, summary=summary, trace=dict(trace))

@@ -71,7 +71,7 @@ impl PySettings {
     }
 
     /// Figures derived from the settings and the truck (`Scenario::derived`), the resolved keys
-    /// (`k_lim`, `q_speed_below`, `q_brake`, `beta_g_per_s`) among them.
+    /// (`k_lim`, `q_speed_below`, `q_brake`, `beta_g_per_s` or a battery-electric truck's `beta_j_per_s`) among them.
     fn derived<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         dict_of(py, &self.inner.derived().map_err(to_py)?)
     }

@@ -9,6 +9,7 @@ pub use crate::params::{CostKind, GridAnchor, NeutralRule, OnInfeasible, StageMo
 use super::fuel_time;
 use crate::band::BandAt;
 use crate::error::{CoreError, CoreResult};
+use crate::powertrain::{EnergyStore, Powertrain};
 use crate::vehicle::Vehicle;
 
 /// Finest grid step [km/h] of the relaxed solve ([`DpSettings::relaxed`]): a finer δ of the
@@ -118,11 +119,29 @@ impl DpSettings {
 
     /// Whether `vehicle` can drive this cost: with fuel_time and no β given, the truck must hold
     /// v_ref on a flat road in a gear within [n_min, n_max] (β is derived there); the error names
-    /// beta_g_per_s.
+    /// beta_g_per_s. β is given in the unit of the truck's store: `beta_j_per_s` for a battery,
+    /// `beta_g_per_s` for fuel; the other key set is refused, naming it.
     pub fn check_vehicle(&self, vehicle: &Vehicle) -> CoreResult<()> {
+        let battery = stores_battery_energy(vehicle);
+        let (wrong, value, expected) = if battery {
+            (
+                "beta_g_per_s",
+                self.mpc.beta_g_per_s,
+                "no value with a battery-electric truck (its β is beta_j_per_s, in J/s)",
+            )
+        } else {
+            (
+                "beta_j_per_s",
+                self.mpc.beta_j_per_s,
+                "no value with a truck that burns fuel (its β is beta_g_per_s, in g/s)",
+            )
+        };
+        if let Some(value) = value {
+            return Err(CoreError::invalid(wrong, expected).got(value));
+        }
         match self.beta_for(vehicle) {
             Some(beta) if !beta.is_finite() => Err(CoreError::invalid(
-                "beta_g_per_s",
+                if battery { "beta_j_per_s" } else { "beta_g_per_s" },
                 "a value: the truck holds v_ref on a flat road in no gear within n_min_rpm..n_max_rpm, so β cannot be derived",
             )
             .got("null")
@@ -131,14 +150,25 @@ impl DpSettings {
         }
     }
 
-    /// β [g/s] of the fuel_time cost as used with `vehicle` (given or derived; NaN where it cannot
-    /// be derived, see [`DpSettings::check_vehicle`]); None for the speed_penalty cost.
+    /// β of the fuel_time cost as used with `vehicle`, in its store's unit per second (g/s of fuel,
+    /// J/s of battery energy; given or derived; NaN where it cannot be derived, see
+    /// [`DpSettings::check_vehicle`]); None for the speed_penalty cost.
     pub fn beta_for(&self, vehicle: &Vehicle) -> Option<f64> {
         (self.mpc.cost == CostKind::FuelTime).then(|| {
             let v_ref = self.v_ref_mps();
             let gear = fuel_time::cruise_gear(vehicle, v_ref, self.mpc.n_min_rpm, self.mpc.n_max_rpm);
-            self.mpc.beta_g_per_s.unwrap_or_else(|| fuel_time::steady_beta_g_per_s(vehicle, v_ref, gear))
+            let given = if stores_battery_energy(vehicle) { self.mpc.beta_j_per_s } else { self.mpc.beta_g_per_s };
+            given.unwrap_or_else(|| fuel_time::steady_beta_g_per_s(vehicle, v_ref, gear))
         })
+    }
+
+    /// The key of β for `vehicle`: `beta_j_per_s` for a battery-electric truck, else `beta_g_per_s`.
+    pub fn beta_key(vehicle: &Vehicle) -> &'static str {
+        if stores_battery_energy(vehicle) {
+            "beta_j_per_s"
+        } else {
+            "beta_g_per_s"
+        }
     }
 
     /// The same settings with the lower speed bound at `v_min_kmh`, no shift limit, no neutral
@@ -223,6 +253,11 @@ impl DpSettings {
     pub fn v_min_mps(&self) -> f64 {
         (self.cruise.v_ref_kmh - self.cruise.v_dec_kmh) / 3.6
     }
+}
+
+/// Whether `vehicle` draws on a battery (its DP prices joules, not grams).
+fn stores_battery_energy(vehicle: &Vehicle) -> bool {
+    matches!(vehicle.store(), EnergyStore::Battery { .. })
 }
 
 #[cfg(test)]

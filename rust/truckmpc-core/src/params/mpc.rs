@@ -131,8 +131,10 @@ declare_params! {
         q_brake_per_km: Option<f64> = Some(4000.0), unit "1/km", range Range::between(0.0, 1e9);
         /// What the controller minimises: the thesis's speed_penalty criterion, or fuel_time (fuel + β·trip time, Q3·|Δv|, Q4 and Q5; q_speed_below unused).
         cost: CostKind = CostKind::FuelTime, unit "-", range Range::ANY;
-        /// β of the fuel_time cost, the fuel worth one second of trip time (for a battery-electric truck the battery energy, in J/s: about 1e5); null = the β for which steady v_ref is optimal on a flat road.
-        beta_g_per_s: Option<f64> = None, unit "g/s", range Range::between(0.0, 1e6);
+        /// β of the fuel_time cost, the fuel worth one second of trip time; null = the β for which steady v_ref is optimal on a flat road.
+        beta_g_per_s: Option<f64> = None, unit "g/s", range Range::between(0.0, 1e4);
+        /// β of a battery-electric truck's fuel_time cost, the battery energy worth one second of trip time (about 1e5 for VECTO's generic tractor at 85 km/h); null = derived as beta_g_per_s is.
+        beta_j_per_s: Option<f64> = None, unit "J/s", range Range::between(0.0, 1e7);
         /// The DP's stage model: euler (the thesis's, first order in S) or trapezoid (kinetic energy, fuel and time by the trapezoid rule, second order).
         stage_model: StageModel = StageModel::Trapezoid, unit "-", range Range::ANY;
         /// Fuel cut in a forward gear is also an exact arc: its end speed off the grid, joined to the next stage's grid by neutral_rule (otherwise only the grid point above fuel cut, at a small pedal, or below it within ε).

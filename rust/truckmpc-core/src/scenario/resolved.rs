@@ -11,17 +11,18 @@ impl Scenario {
     /// The keys whose values the run resolves, with what they resolve to: `k_lim` [stages] (null:
     /// round(200 m / S)), `q_speed_below` per stage (from its per-kilometre weight or the thesis's
     /// δ rule; the fuel_time cost, whose speed band is a hard bound, does not charge it),
-    /// `q_brake` per stage, and `beta_g_per_s` [g/s] (null with the speed_penalty cost; derived
-    /// from v_ref when not given).
+    /// `q_brake` per stage, and `beta_g_per_s` [g/s] (`beta_j_per_s` [J/s] for a battery-electric
+    /// truck; null with the speed_penalty cost; derived from v_ref when not given).
     pub fn resolved(&self) -> CoreResult<Vec<(&'static str, Value)>> {
         let mpc = &self.settings().mpc;
         let dp = DpSettings::new(mpc, &self.settings().cruise)?;
-        let beta = dp.beta_for(self.controller_vehicle()).map_or(Value::Null, Value::Float);
+        let vehicle = self.controller_vehicle();
+        let beta = dp.beta_for(vehicle).map_or(Value::Null, Value::Float);
         Ok(vec![
             ("k_lim", Value::Int(i64::from(mpc.k_lim_stages()))),
             ("q_speed_below", Value::Float(mpc.q_speed_below_weight())),
             ("q_brake", Value::Float(mpc.q_brake_weight())),
-            ("beta_g_per_s", beta),
+            (DpSettings::beta_key(vehicle), beta),
         ])
     }
 
