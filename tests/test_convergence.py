@@ -81,8 +81,10 @@ def test_each_move_is_the_halved_delta_minus_the_runs_delta_in_points(checked):
         # at equal trip time: each against the PI re-tuned to its own trip time
         equal_move = conv[half]["delta_fuel_equal_time_pct"] - doc["delta_fuel_equal_time_pct"]
         assert conv[f"delta_fuel_equal_time_pct_{half}"] == pytest.approx(equal_move, abs=1e-9)
+        # the headline: at equal trip time and end speed, as summary.json quotes it
+        assert conv[f"delta_headline_pct_{half}"] == pytest.approx(conv[half]["headline_pct"] - doc["headline_pct"])
     moves = {k: v for k, v in conv.items() if k.startswith("delta_") and v is not None}
-    assert len(moves) == 6
+    assert len(moves) == 8
     assert conv["flagged"] == [k for k, v in moves.items() if abs(v) > 0.3]
     # The thesis's cost is not fuel + β·time: no move of that cost.
     assert "delta_cost_pct_half_delta" not in conv and "delta_cost_pct_half_stage" not in conv

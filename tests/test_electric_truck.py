@@ -155,9 +155,9 @@ def test_the_whole_road_plan_knows_what_braking_returns(tmp_path: Path) -> None:
 @needs_bev
 def test_the_optimum_pulses_and_glides_and_its_plan_predicts_the_plant(tmp_path: Path) -> None:
     """On the test track the optimum pulses and glides: the machines run far better near half their
-    torque than at the 100 kW a steady 85 km/h takes. With its glide arcs (exact arcs at shares of
-    the pedal where the machines give zero torque) the plant uses what the plan predicts to 0.1 %.
-    Without them (`glide_arcs=false`) the glides are the pedals that land on grid speeds, and the
+    torque than at the 100 kW a steady 85 km/h takes. With its glide arc (an exact arc at the pedal
+    where the machines draw no electric power) the plant uses what the plan predicts to 0.1 %.
+    Without it (`glide_arcs=false`) the glides are the pedals that land on grid speeds, and the
     optimum is flat and coarse: from the plant's speeds between the grid's the closed loop times its
     pulses otherwise than the plan (1.2 % less energy for 2.4 s more and a 1 km/h lower end speed);
     only brought to the plan's trip time (at β) and end speed is it within 0.1 % of the plan."""
@@ -271,7 +271,7 @@ def test_the_convergence_check_moves_battery_energy_under_keys_named_for_it(tmp_
     assert result.exit_code == 0, result.output
     doc = json.loads((out / "summary.json").read_text())["convergence"]
     for half in ("half_delta", "half_stage"):
-        for name in ("energy", "time", "energy_equal_time", "cost"):
+        for name in ("energy", "time", "energy_equal_time", "headline", "cost"):
             assert isinstance(doc[f"delta_{name}_pct_{half}"], float), (name, half, doc)
         assert doc[half]["energy_kwh"] > 0 and "fuel_kg" not in doc[half]
     assert not any("fuel" in key for key in doc), doc

@@ -14,6 +14,7 @@ rounding.
     "convergence": {"delta_fuel_pct_half_delta": <points>, "delta_fuel_pct_half_stage": ...,
                     "delta_time_pct_half_delta": ..., "delta_time_pct_half_stage": ...,
                     "delta_fuel_equal_time_pct_half_delta": ..., "..._half_stage": ...,
+                    "delta_headline_pct_half_delta": ..., "delta_headline_pct_half_stage": ...,
                     "delta_cost_pct_half_delta": ..., "delta_cost_pct_half_stage": ...,
                     "half_delta": {"delta_kmh", "delta_fuel_pct", "delta_time_pct",
                                    "delta_fuel_equal_time_pct", "fuel_kg", "time_s"},
@@ -28,7 +29,10 @@ For a battery-electric truck the same fields compare battery energy and say so: 
 Each ``*_half_*`` field is Δ at the halved setting minus Δ of the run, in percentage points; null
 (with ``not_comparable`` in the half's object) when a halved run is not comparable. With the
 fuel_time cost, ``delta_cost_pct_half_*`` is how far what that cost minimises moves, fuel (end speed
-corrected) + β·trip time, in percent of the PI's fuel; absent with another cost. The equal-time
+corrected) + β·trip time, in percent of the PI's fuel; absent with another cost. The headline's
+move (``truckmpc simulate``'s; a sweep's rows carry the others) is that of the figure to quote, at
+equal trip time and end speed: the equal-time move with both end speeds corrected too, which a run
+ending a little faster or slower at a finer resolution does not move. The equal-time
 move compares each at the PI re-tuned to its own trip time: a finer resolution that trades fuel for
 time along the cost's β moves the raw Δfuel but not this one (null where a search missed its time).
 """
@@ -91,15 +95,19 @@ def convergence_document(
     halves: Mapping[str, RunResult],
     configs: Mapping[str, RunConfig],
     equal_time_pct: Mapping[str, float | None] | None = None,
+    headline_pct: Mapping[str, float | None] | None = None,
 ) -> dict[str, Any]:
     """The ``convergence`` object of ``summary.json`` from the run's PI and MPC results and the
     halved MPC runs; `equal_time_pct`: Δfuel [%] against the PI re-tuned to the trip time of the
-    run (``"mpc"``) and of each half (the keys of `halves`), None where a search missed it."""
+    run (``"mpc"``) and of each half (the keys of `halves`), None where a search missed it;
+    `headline_pct`: the headline [%] likewise (both end speeds corrected too), whose moves are
+    ``delta_headline_pct_<half>``."""
     base, mpc = results["pi"].summary, results["mpc"].summary
     run, consumption = compare(base, mpc), consumption_of(mpc)
     word = consumption.word
     equal_time_pct = equal_time_pct or {}
     run_equal = equal_time_pct.get("mpc")
+    quoted = headline_pct or {}
     doc: dict[str, Any] = {}
     objects: dict[str, dict[str, Any]] = {}
     for half in (half for half in HALVES if half in halves):
@@ -114,6 +122,7 @@ def convergence_document(
             consumption.delta_key(): moved.delta_consumed_pct,
             "delta_time_pct": moved.delta_time_pct,
             consumption.delta_key("_equal_time"): equal_time_pct.get(half),
+            **({"headline_pct": quoted.get(half)} if quoted else {}),
             consumption.key: summary[consumption.key],
             "time_s": summary["time_s"],
         }
@@ -124,6 +133,7 @@ def convergence_document(
             (word, run.delta_consumed_pct, moved.delta_consumed_pct),
             ("time", run.delta_time_pct, moved.delta_time_pct),
             (f"{word}_equal_time", run_equal, detail[consumption.delta_key("_equal_time")]),
+            *((("headline", quoted.get("mpc"), quoted.get(half)),) if quoted else ()),
         ):
             doc[f"delta_{name}_pct_{half}"] = None if at_run is None or at_half is None else at_half - at_run
         if configs[half].mpc.cost == "fuel_time":
@@ -162,6 +172,7 @@ _MOVED = {
     "fuel_equal_time": "Δfuel at equal trip time vs PI",
     "energy_equal_time": "Δenergy at equal trip time vs PI",
     "cost": "{word} + β·time vs PI",
+    "headline": "headline vs PI",
 }
 """How each moved Δ is named in the printed lines (``energy``: a battery-electric truck's)."""
 
@@ -176,7 +187,7 @@ def convergence_lines(doc: Mapping[str, Any], width: int) -> list[str]:
     longest = max(len(text) for text in _MOVED.values()) + max(len(f" {label} [pts]") for _, label in halves)
     width = max(width, longest + 2)
     for half, label in halves:
-        for name in (word, "time", f"{word}_equal_time", "cost"):
+        for name in (word, "time", f"{word}_equal_time", "headline", "cost"):
             key = f"delta_{name}_pct_{half}"
             if key not in doc:  # the cost's move, with another cost than fuel_time
                 continue

@@ -18,6 +18,7 @@ from contextlib import AbstractContextManager
 from dataclasses import dataclass
 from typing import Any
 
+from truckmpc.compare import headline
 from truckmpc.config import RunConfig
 from truckmpc.consumption import consumption_of
 from truckmpc.convergence import convergence_document, run_halves
@@ -111,13 +112,22 @@ def run_controllers(
             searched = {half: _equal_time_of(road, config, results["pi"], run) for half, run in halved.items()}
             equal = {"mpc": equal_times.get("mpc"), **searched}
             pct = {name: _equal_time_pct(runs[name], equal[name]) for name in runs}
-        extra["convergence"] = convergence_document(results, halved, halves, pct)
+            quoted = {name: _headline_pct(runs[name], equal[name]) for name in runs}
+        extra["convergence"] = convergence_document(results, halved, halves, pct, quoted)
     return ControllerRuns(results, equal_times, extra)
 
 
 def _equal_time_of(road: RoadProfile, config: RunConfig, pi: RunResult, mpc: RunResult) -> EqualTime | None:
     """The PI over `road` re-tuned to the trip time of the MPC run `mpc` (None if it stalled)."""
     return equal_time_baselines(road, config, {"pi": pi, "mpc": mpc}).get("mpc")
+
+
+def _headline_pct(run: RunResult, found: EqualTime | None) -> float | None:
+    """The headline [%] of `run` against the PI driven to its trip time, both end speeds corrected;
+    None where the search missed it."""
+    if found is None or not found.reached:
+        return None
+    return headline(run.summary.get(consumption_of(run.summary).corrected_key), found.consumed_corrected).pct
 
 
 def _equal_time_pct(run: RunResult, found: EqualTime | None) -> float | None:

@@ -139,7 +139,7 @@ declare_params! {
         stage_model: StageModel = StageModel::Trapezoid, unit "-", range Range::ANY;
         /// Fuel cut in a forward gear is also an exact arc: its end speed off the grid, joined to the next stage's grid by neutral_rule (otherwise only the grid point above fuel cut, at a small pedal, or below it within ε).
         fuel_cut_arcs: bool = true, unit "-", range Range::ANY;
-        /// For a truck whose drive glides at zero torque to the wheels for less than at zero pedal (a battery-electric truck's machines running, against their drag while off), that glide is also an exact arc: its pedal at each start speed, its end speed off the grid, joined by neutral_rule.
+        /// For a truck whose drive glides for less than at zero pedal (a battery-electric truck's machines drawing no electric power, against their drag while off), that glide is also an exact arc: its pedal at each start speed, its end speed off the grid, joined by neutral_rule.
         glide_arcs: bool = true, unit "-", range Range::ANY;
         /// Pedal levels planned off the grid: with K ≥ 2 every forward gear also drives the pedal levels 1/K, 2/K, …, (K−1)/K over a stage as exact arcs, each ending off the speed grid and joined to it by neutral_rule, so the pedal's resolution is 1/K whatever δ; 0 (or 1): only fuel cut, full pedal and the levels that land on grid speeds, about δ·v/(gain·S) apart. At most 120 with --check-convergence, which doubles it.
         pedal_levels: u32 = 0, unit "levels", range Range::between(0.0, MAX_PEDAL_LEVELS as f64);

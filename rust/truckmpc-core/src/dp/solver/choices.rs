@@ -126,31 +126,16 @@ pub(super) fn level_flag(l: u32) -> u32 {
 /// The pedal level l of a decision's flag byte, if it is a pedal-level arc's.
 #[inline]
 pub(super) fn level_of(arc: u8) -> Option<u32> {
-    (arc as u32 > LEVEL0 && (arc as u32) < GLIDE0).then(|| arc as u32 - LEVEL0)
+    (arc as u32 > LEVEL0 && arc as u32 != GLIDE >> 24).then(|| arc as u32 - LEVEL0)
 }
 
-/// The shares of the glide pedal (the machines at zero torque) at which a truck that glides also
-/// has exact arcs (`glide_arcs`): from a light regenerative glide up to zero torque.
-pub const GLIDE_SHARES: [f64; 4] = [0.25, 0.5, 0.75, 1.0];
+/// Flag on a choice's next-grid index: the way into the target gear is its glide arc, whose end
+/// speed is off the grid and whose control is the glide pedal at the arc's start speed
+/// (`glide_arcs`: a battery-electric truck's machines drawing no electric power).
+pub(super) const GLIDE: u32 = 0xff << 24;
 
-/// The flag byte of the first glide arc: the way into the target gear is the arc at share
-/// `GLIDE_SHARES[i]` of the glide pedal at its start speed, flagged `(GLIDE0 + i) << 24`.
-const GLIDE0: u32 = 0xfc;
-
-/// The flag of glide arc `i` on a choice's next-grid index.
-#[inline]
-pub(super) fn glide_flag(i: usize) -> u32 {
-    (GLIDE0 + i as u32) << 24
-}
-
-/// The glide arc of a decision's flag byte, if it is one's: the index of its share.
-#[inline]
-pub(super) fn glide_of(arc: u8) -> Option<usize> {
-    (arc as u32 >= GLIDE0).then(|| (arc as u32 - GLIDE0) as usize)
-}
-
-// The glides' flags are above every pedal level's and fit the byte.
-const _: () = assert!(LEVEL0 + MAX_PEDAL_LEVELS < GLIDE0 && GLIDE0 + GLIDE_SHARES.len() as u32 - 1 <= u8::MAX as u32);
+// The glide's flag is above every pedal level's.
+const _: () = assert!(LEVEL0 + MAX_PEDAL_LEVELS < GLIDE >> 24);
 
 /// Every flag bit of a choice's next-grid index (its top byte).
 pub(super) const FLAGS: u32 = 0xff00_0000;

@@ -4,7 +4,7 @@
 //! full-pedal and pedal-level ways are exact arcs ([`super::arcs`]). Costs in the units of (5.9).
 
 use super::arcs::{better_by_arc, exact_arc, neutral_choices, ArcJoin};
-use super::choices::{glide_flag, level_flag, Choices, ARC, FULL, GLIDE_SHARES};
+use super::choices::{level_flag, Choices, ARC, FULL, GLIDE};
 use super::grids::StageGrid;
 use super::{stride, Solver, INF};
 use crate::dp::cache::{Block, CoastArc, StageKey, StageRows, LANES, PAD};
@@ -118,18 +118,16 @@ struct ArcTarget {
     glides: bool,
 }
 
-/// The input an exact arc holds over its stage: a fixed one, or a share of the glide pedal at its
-/// start speed.
+/// The input an exact arc holds over its stage: a fixed one, or the glide pedal at its start speed.
 #[derive(Debug, Clone, Copy)]
 enum ArcInput {
     Held((Branch, f64)),
-    Glide(f64),
+    Glide,
 }
 
 /// The exact arcs into a forward gear: fuel cut, full pedal on trapezoid stages (whose rows stop
 /// there), the pedal levels l/K between them (`pedal_levels`) and, for a truck that glides, its
-/// glide arcs (`glide_arcs`: shares of the pedal at which its machines give zero torque), as (cache
-/// slot, input, join, flag of the choice).
+/// glide (`glide_arcs`), as (cache slot, input, join, flag of the choice).
 fn arc_kinds<'a>(p: &'a DpSettings, to: &ArcTarget) -> impl Iterator<Item = (usize, ArcInput, ArcJoin, u32)> + 'a {
     let (g, gears, next, range) = (to.gear, to.gears, to.next, (to.lo, to.hi));
     let [cut_slot, full_slot] = end_slots(gears, g);
@@ -142,11 +140,8 @@ fn arc_kinds<'a>(p: &'a DpSettings, to: &ArcTarget) -> impl Iterator<Item = (usi
         let input = held(Branch::Pedal, l as f64 / k_levels as f64);
         (level_slot(l, gears, g), input, ArcJoin::new(p, next, range), level_flag(l))
     });
-    let glides = if to.glides && p.mpc.glide_arcs { GLIDE_SHARES.len() } else { 0 };
-    let glide = (0..glides).map(move |i| {
-        let slot = level_slot(k_levels.max(1) + i as u32, gears, g);
-        (slot, ArcInput::Glide(GLIDE_SHARES[i]), ArcJoin::new(p, next, range), glide_flag(i))
-    });
+    let glide = (to.glides && p.mpc.glide_arcs)
+        .then(|| (level_slot(k_levels.max(1), gears, g), ArcInput::Glide, ArcJoin::new(p, next, range), GLIDE));
     fuel_cut.into_iter().chain(full).chain(levels).chain(glide)
 }
 
@@ -166,8 +161,8 @@ fn fill_arcs(
             let v_mps = here.index.speed(key);
             match input {
                 ArcInput::Held(held) => exact_arc(p, vehicle, v_mps, g, slope_torque, held),
-                ArcInput::Glide(share) => match vehicle.glide_pedal(v_mps, g) {
-                    Some(pedal) => exact_arc(p, vehicle, v_mps, g, slope_torque, (Branch::Pedal, share * pedal)),
+                ArcInput::Glide => match vehicle.glide_pedal(v_mps, g) {
+                    Some(pedal) => exact_arc(p, vehicle, v_mps, g, slope_torque, (Branch::Pedal, pedal)),
                     None => CoastArc { v_end_mps: v_mps, cost: INF },
                 },
             }

@@ -4,7 +4,7 @@
 #[cfg(target_arch = "x86_64")]
 use super::arcs::{join_nearest_avx2, NeutralOut};
 use super::arcs::{quadratic_to_go, ArcJoin};
-use super::choices::{glide_flag, glide_of, level_flag, level_of, Decision, ARC, FLAGS, FULL, GLIDE_SHARES, NO_GEAR};
+use super::choices::{level_flag, level_of, Decision, ARC, FLAGS, FULL, GLIDE, NO_GEAR};
 use super::first_pass::block_mins;
 #[cfg(target_arch = "x86_64")]
 use super::second_pass::rank_avx2;
@@ -401,17 +401,14 @@ fn a_pedal_levels_flag_gives_its_level_back_and_reads_as_no_other_arc() {
     }
     for other in [0, ARC >> 24, FULL >> 24] {
         assert_eq!(level_of(other as u8), None);
-        assert_eq!(glide_of(other as u8), None);
     }
 }
 
 #[test]
-fn a_glide_flag_gives_its_share_back_and_reads_as_no_pedal_level() {
-    for i in 0..GLIDE_SHARES.len() {
-        let d = Decision::new(1234 | glide_flag(i), 3);
-        assert_eq!((d.j, d.gear, glide_of(d.arc), level_of(d.arc)), (1234, 3, Some(i), None));
-    }
+fn the_glide_flag_reads_as_no_pedal_level() {
+    let d = Decision::new(1234 | GLIDE, 3);
+    assert_eq!((d.j, d.gear, u32::from(d.arc), level_of(d.arc)), (1234, 3, GLIDE >> 24, None));
     for l in 1..MAX_PEDAL_LEVELS {
-        assert_eq!(glide_of((level_flag(l) >> 24) as u8), None);
+        assert_ne!(level_flag(l), GLIDE);
     }
 }

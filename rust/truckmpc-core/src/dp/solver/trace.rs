@@ -1,7 +1,7 @@
 //! The traceback: the stored decisions followed from the initial state, giving the first control
 //! and the predicted trajectory (speeds [m/s], gears, pedal and brake levels [0, 1]).
 
-use super::choices::{glide_of, level_of, ARC, FULL, GLIDE_SHARES};
+use super::choices::{level_of, ARC, FULL, GLIDE};
 use super::{InitialState, Solution, Solver, TrajectoryPoint};
 use crate::dp::params::StageModel;
 use crate::dp::rows::{inputs, Inputs};
@@ -28,10 +28,9 @@ impl Solver {
                 (0.0, 0.0)
             } else if d.arc == (FULL >> 24) as u8 {
                 (1.0, 0.0)
-            } else if let Some(share) = glide_of(d.arc) {
+            } else if d.arc == (GLIDE >> 24) as u8 {
                 // The glide pedal at the speed its arc started from (the grid's, as when filled).
-                let pedal = vehicle.glide_pedal(self.grids[k].speed(i), next_g).unwrap_or(0.0);
-                (GLIDE_SHARES[share] * pedal, 0.0)
+                (vehicle.glide_pedal(self.grids[k].speed(i), next_g).unwrap_or(0.0), 0.0)
             } else if let Some(l) = level_of(d.arc) {
                 debug_assert!(l < self.params.mpc.pedal_levels, "level {l} of {} levels", self.params.mpc.pedal_levels);
                 (l as f64 / self.params.mpc.pedal_levels as f64, 0.0)

@@ -54,6 +54,9 @@ pub struct ElectricModel {
     wheel_drag: Sampled,
     wheel_full: Sampled,
     wheel_regen: Sampled,
+    /// Wheel torque [Nm] over machine speed at the glide, where the machines draw no electric
+    /// power (NaN where there is no such torque).
+    wheel_glide: Sampled,
     /// The machines' loss [W] over (speed, torque), resampled.
     loss: FuelGrid,
 }
@@ -109,7 +112,18 @@ impl ElectricModel {
                 machines.max_brake_nm(n).min(drag),
             )
         };
+        // The glide: the torque between the drag and zero at which the machines draw no electric
+        // power, as the model's loss grid gives it (none below 10 km/h, or where there is none).
+        let glide = |n: f64| {
+            let (drag, omega) = (machines.drag_nm(n), n / RPM_PER_RAD_S);
+            let electric = |t: f64| t * omega + loss.at(n, t);
+            if n < regen_rpm || !(electric(drag) < 0.0 && electric(0.0) > 0.0) {
+                return f64::NAN;
+            }
+            limit_torque(|t| electric(t) <= 0.0, drag, 0.0)
+        };
         let (wheel_drag, wheel_full, wheel_regen) = (wheel(&|n| machines.drag_nm(n)), wheel(&full), wheel(&regen));
+        let wheel_glide = wheel(&glide);
         let weight_torque_nm = body.mass_kg * G_MPS2 * r;
         ElectricModel {
             truck,
@@ -120,6 +134,7 @@ impl ElectricModel {
             wheel_drag,
             wheel_full,
             wheel_regen,
+            wheel_glide,
             loss,
         }
     }
@@ -328,13 +343,13 @@ impl Powertrain for ElectricModel {
         RateForm::Map
     }
 
-    /// Where the machines give zero torque: the pedal's wheel torque, drag + P·(full − drag), is
-    /// then what the reduction takes turning unloaded. They draw their no-load loss instead of
-    /// turning against their drag while switched off.
+    /// Where the machines draw no electric power: they brake the truck less than their drag does
+    /// while switched off, for no more than the conditioning. Between the drag and zero torque they
+    /// generate what their losses take (above 10 km/h, where they recover).
     fn glide_pedal(&self, v_mps: f64, _gear: usize) -> Option<f64> {
+        let glide = self.wheel_glide.at(self.rpm_per_mps * v_mps);
         let (drag, full, _) = self.wheel_torques_nm(v_mps);
-        let unloaded = self.truck.wheel_nm(self.rpm_per_mps * v_mps, 0.0);
-        let pedal = (unloaded - drag) / (full - drag);
+        let pedal = (glide - drag) / (full - drag);
         (pedal > 0.0 && pedal < 1.0).then_some(pedal)
     }
 
