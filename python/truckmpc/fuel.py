@@ -59,10 +59,10 @@ def summary_corrected(summary: Mapping[str, Any], per_half_v2: float) -> float:
     )
 
 
-def plan_gap_pct(summary: Mapping[str, Any], per_half_v2: float, beta_per_s: float | None) -> float | None:
+def plan_gap_pct(summary: Mapping[str, Any], per_half_v2: float, beta: float | None) -> float | None:
     """How far a whole-road optimum's run is from its plan [%], as a magnitude: the run's consumption
     brought to the plan's end speed (kinetic energy at ``per_half_v2``) and to the plan's trip time
-    (each second at ``beta_per_s``, the DP's price of time; both in the core's store unit per m²/s²
+    (each second at ``beta``, the DP's price of time; both in the core's store unit per m²/s²
     and per second), against the plan's own. The closed loop may settle on another split of energy
     and time than the plan on a flat optimum (a battery-electric truck's pulse and glide); this
     compares what the DP minimises. None without a plan, when the plan has no path, or without β (a
@@ -71,7 +71,7 @@ def plan_gap_pct(summary: Mapping[str, Any], per_half_v2: float, beta_per_s: flo
     plan_key = f"plan_{consumption.key}"
     plan, plan_time_s, plan_end_kmh = (summary.get(k) for k in (plan_key, "plan_time_s", "plan_end_speed_kmh"))
     if (
-        beta_per_s is None
+        beta is None
         or plan is None
         or plan_time_s is None
         or plan_end_kmh is None
@@ -80,7 +80,7 @@ def plan_gap_pct(summary: Mapping[str, Any], per_half_v2: float, beta_per_s: flo
     ):
         return None
     v_plan, v_end = plan_end_kmh / KMH_PER_MPS, summary["end_speed_kmh"] / KMH_PER_MPS
-    brought = per_half_v2 * 0.5 * (v_plan**2 - v_end**2) + beta_per_s * (summary["time_s"] - plan_time_s)
+    brought = per_half_v2 * 0.5 * (v_plan**2 - v_end**2) + beta * (summary["time_s"] - plan_time_s)
     run = float(summary[consumption.key]) + brought / consumption.store_per_unit
     return float(100.0 * abs(run / plan - 1.0))
 

@@ -9,7 +9,6 @@ pub use crate::params::{CostKind, GridAnchor, NeutralRule, OnInfeasible, StageMo
 use super::fuel_time;
 use crate::band::BandAt;
 use crate::error::{CoreError, CoreResult};
-use crate::powertrain::{EnergyStore, Powertrain};
 use crate::vehicle::Vehicle;
 
 /// Finest grid step [km/h] of the relaxed solve ([`DpSettings::relaxed`]): a finer δ of the
@@ -122,7 +121,7 @@ impl DpSettings {
     /// beta_g_per_s. β is given in the unit of the truck's store: `beta_j_per_s` for a battery,
     /// `beta_g_per_s` for fuel; the other key set is refused, naming it.
     pub fn check_vehicle(&self, vehicle: &Vehicle) -> CoreResult<()> {
-        let battery = stores_battery_energy(vehicle);
+        let battery = vehicle.is_electric();
         let (wrong, value, expected) = if battery {
             (
                 "beta_g_per_s",
@@ -157,14 +156,14 @@ impl DpSettings {
         (self.mpc.cost == CostKind::FuelTime).then(|| {
             let v_ref = self.v_ref_mps();
             let gear = fuel_time::cruise_gear(vehicle, v_ref, self.mpc.n_min_rpm, self.mpc.n_max_rpm);
-            let given = if stores_battery_energy(vehicle) { self.mpc.beta_j_per_s } else { self.mpc.beta_g_per_s };
+            let given = if vehicle.is_electric() { self.mpc.beta_j_per_s } else { self.mpc.beta_g_per_s };
             given.unwrap_or_else(|| fuel_time::steady_beta_g_per_s(vehicle, v_ref, gear))
         })
     }
 
     /// The key of β for `vehicle`: `beta_j_per_s` for a battery-electric truck, else `beta_g_per_s`.
     pub fn beta_key(vehicle: &Vehicle) -> &'static str {
-        if stores_battery_energy(vehicle) {
+        if vehicle.is_electric() {
             "beta_j_per_s"
         } else {
             "beta_g_per_s"
@@ -253,11 +252,6 @@ impl DpSettings {
     pub fn v_min_mps(&self) -> f64 {
         (self.cruise.v_ref_kmh - self.cruise.v_dec_kmh) / 3.6
     }
-}
-
-/// Whether `vehicle` draws on a battery (its DP prices joules, not grams).
-fn stores_battery_energy(vehicle: &Vehicle) -> bool {
-    matches!(vehicle.store(), EnergyStore::Battery { .. })
 }
 
 #[cfg(test)]

@@ -154,9 +154,9 @@ pub trait Powertrain {
     /// model jumps between its pedal and fuel-cut branches at P = 0).
     fn zero_pedal_is_cut(&self) -> bool;
 
-    /// The pedal at which the drive gives the wheels no torque at `v_mps` in forward `gear`, where
-    /// gliding there costs less than zero pedal (a battery-electric truck's machines running at
-    /// zero torque, against their drag while switched off); None where zero pedal is the glide.
+    /// The pedal at which the drive glides at `v_mps` in forward `gear` for less than at zero pedal
+    /// (a battery-electric truck's machines drawing no electric power, against their drag while
+    /// switched off); None where zero pedal is the glide.
     fn glide_pedal(&self, _v_mps: f64, _gear: usize) -> Option<f64> {
         None
     }

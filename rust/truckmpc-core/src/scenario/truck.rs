@@ -172,8 +172,8 @@ const ELECTRIC_KEYS: [&str; 1] = ["soc_start_pct"];
 /// With a battery-electric truck the DP's usable speeds are its machines': `n_min_rpm` and
 /// `n_max_rpm` (an engine's window) become the speed below which the cruise has stopped and the
 /// machines' top speed; and the PCC has no eco-roll (`eco_roll` false, as VECTO's for such a
-/// truck). Refused, naming the key: either speed set to
-/// another value, or a diesel driveline's key set.
+/// truck). Refused, naming the key: either speed set to another value, or a diesel driveline's
+/// key set.
 pub(super) fn electric_settings(settings: &mut RunSettings, vehicle: &Vehicle) -> CoreResult<()> {
     let defaults = VectoParams::default();
     for key in DIESEL_KEYS {

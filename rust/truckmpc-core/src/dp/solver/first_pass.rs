@@ -114,7 +114,7 @@ struct ArcTarget {
     next: StageGrid,
     lo: u32,
     hi: u32,
-    /// Whether the truck glides at zero torque to the wheels ([`Powertrain::glides`]).
+    /// Whether the truck has a glide pedal ([`Powertrain::glides`]).
     glides: bool,
 }
 
