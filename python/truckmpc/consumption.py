@@ -7,6 +7,7 @@ other's.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -26,6 +27,8 @@ class Consumption:
     corrected_key: str
     unit: str
     store_per_unit: float
+    beta_key: str
+    """The key of β, the look-ahead cost's price of a second, in the store unit per second."""
 
     def delta_key(self, kind: str = "") -> str:
         """The key of a Δ [%] of this consumption: ``delta_fuel_pct``, ``delta_energy_equal_time_pct``."""
@@ -36,11 +39,21 @@ class Consumption:
         """The key of what a run saves against its baseline: ``saved_kg`` or ``saved_kwh``."""
         return f"saved_{self.unit.lower()}"
 
+    def worded(self, name: str) -> str:
+        """A key, kind or heading written for fuel, written for this consumption: ``fuel`` becomes
+        its word and the kilogram its unit (``mpc_saved_kg`` → ``mpc_saved_kwh``,
+        ``fuel_equal_time`` → ``energy_equal_time``, ``Δfuel [%]`` → ``Δenergy [%]``,
+        ``saved [kg]`` → ``saved [kWh]``); β's key becomes this consumption's."""
+        name = name.replace(FUEL.beta_key, self.beta_key).replace(FUEL.word, self.word)
+        name = name.replace(f"[{FUEL.unit}]", f"[{self.unit}]")
+        return re.sub(rf"_{FUEL.unit}(?=_|$)", f"_{self.unit.lower()}", name)
 
-FUEL = Consumption("fuel", "fuel_kg", "fuel_corrected_kg", "kg", G_PER_KG)
-ENERGY = Consumption("energy", "energy_kwh", "energy_corrected_kwh", "kWh", J_PER_KWH)
+
+FUEL = Consumption("fuel", "fuel_kg", "fuel_corrected_kg", "kg", G_PER_KG, "beta_g_per_s")
+ENERGY = Consumption("energy", "energy_kwh", "energy_corrected_kwh", "kWh", J_PER_KWH, "beta_j_per_s")
 
 
 def consumption_of(summary: Mapping[str, Any]) -> Consumption:
-    """A run's consumption, from its summary: battery energy where it gives ``energy_kwh``, else fuel."""
+    """A run's consumption, from its summary (or a CSV row of its figures): battery energy where it
+    gives ``energy_kwh``, else fuel."""
     return ENERGY if ENERGY.key in summary else FUEL

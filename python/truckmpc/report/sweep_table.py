@@ -18,7 +18,7 @@ __all__ = ["Column", "run_columns", "shared_keys", "sweep_columns", "sweep_table
 
 _FIGURES = (("fuel_kg", "fuel [kg]", ".3f"), ("time_s", "trip time [s]", ".1f"))
 _HEADLINE = (("headline", "Δfuel [%]", "+.2f"), ("saved", "saved [kg]", ".3f"))
-"""A sweep of battery-electric trucks shows battery energy: :func:`_worded`."""
+"""A sweep of battery-electric trucks shows battery energy: :meth:`~truckmpc.consumption.Consumption.worded`."""
 _HEADLINES = (("mpc", "pcc"), ("mpc", "pi"), ("pcc", "pi"))
 """The comparisons whose headline the table shows, in order: the MPC against the PCC first."""
 _DELTAS = (("fuel", "Δfuel [%]"), ("time", "Δtime [%]"))
@@ -56,13 +56,13 @@ def sweep_columns(header: Sequence[str], axes: Sequence[str], shared: Sequence[s
     `shared` keys (said once above the table): each comparison's headline, then as driven."""
     consumption = consumption_of_columns(header)
     headlines = [
-        Column(f"{run} vs {base}, equal time and end speed", _worded(heading, consumption), column, spec)
+        Column(f"{run} vs {base}, equal time and end speed", consumption.worded(heading), column, spec)
         for run, base in _HEADLINES
         for kind, heading, spec in _HEADLINE
         if (column := headline_column(run, base, kind, consumption)) in header
     ]
     deltas = [
-        Column(f"{v.run} vs {v.base}, as driven", _worded(heading, consumption), column, "+.2f")
+        Column(f"{v.run} vs {v.base}, as driven", consumption.worded(heading), column, "+.2f")
         for v in VERSUS
         if v.base == "pi"
         for (kind, heading), (_, column) in zip(_DELTAS, _delta_columns(v, consumption), strict=True)
@@ -77,16 +77,11 @@ def _delta_columns(versus: Any, consumption: Consumption) -> list[tuple[str, str
     return [columns[kind] for kind, _ in _DELTAS]
 
 
-def _worded(heading: str, consumption: Consumption) -> str:
-    """A heading named for fuel, named for `consumption`: ``Δenergy [%]``, ``saved [kWh]``."""
-    return heading.replace("fuel", consumption.word).replace("[kg]", f"[{consumption.unit}]")
-
-
 def run_columns(header: Sequence[str], axes: Sequence[str], shared: Sequence[str] = ()) -> list[Column]:
     """The columns of the runs' table: each controller's fuel and trip time."""
     consumption = consumption_of_columns(header)
     fields = ((consumption.key if field == "fuel_kg" else field, heading, spec) for field, heading, spec in _FIGURES)
-    named = [(field, _worded(heading, consumption), spec) for field, heading, spec in fields]
+    named = [(field, consumption.worded(heading), spec) for field, heading, spec in fields]
     figures = [
         Column(name, heading, run.column(field), spec)
         for name, run in runs_of(consumption).items()

@@ -31,7 +31,7 @@ from typing import Any
 from truckmpc.compare import compare
 from truckmpc.consumption import FUEL, Consumption
 from truckmpc.sweep.cells import cell, error_text, parse_cell
-from truckmpc.sweep.compared import HEADLINE_KINDS, deltas, equal_time_fields, headline_unit, worded
+from truckmpc.sweep.compared import HEADLINE_KINDS, deltas, equal_time_fields, headline_unit
 from truckmpc.sweep.run_columns import (
     BASELINE,
     CONVERGENCE_COLUMNS,
@@ -117,7 +117,7 @@ class Versus:
     def columns_of(self, consumption: Consumption) -> tuple[tuple[str, str], ...]:
         """(kind, column) of each Δ of a sweep of trucks that consume `consumption`: ``energy`` for
         ``fuel`` in each kind of a battery-electric truck's."""
-        kinds = (worded(kind, consumption) for kind in self.kinds)
+        kinds = (consumption.worded(kind) for kind in self.kinds)
         return tuple((kind, versus_column(self.run, self.base, kind)) for kind in kinds)
 
     @property
@@ -149,7 +149,7 @@ def delta_column(run: str, kind: str, base: str = "pi", consumption: Consumption
     versus = next(v for v in VERSUS if (v.run, v.base) == (run, base))
     if kind not in versus.kinds:
         raise KeyError(f"no {kind} delta of {run} against {base}")
-    return versus_column(run, base, worded(kind, consumption))
+    return versus_column(run, base, consumption.worded(kind))
 
 
 @dataclass(frozen=True)

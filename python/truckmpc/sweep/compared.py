@@ -12,7 +12,7 @@ from typing import Any
 from truckmpc.compare import compare, delta_pct, headline
 from truckmpc.consumption import FUEL, Consumption, consumption_of
 
-__all__ = ["HEADLINE_KINDS", "deltas", "equal_time_fields", "headline_unit", "worded"]
+__all__ = ["HEADLINE_KINDS", "deltas", "equal_time_fields", "headline_unit"]
 
 HEADLINE_KINDS = ("headline", "saved")
 """The headline's two figures: Δfuel [%] at equal trip time and end speed (negative is saved) and
@@ -23,12 +23,6 @@ def headline_unit(kind: str, consumption: Consumption = FUEL) -> str:
     """The unit in the column name of the headline's figure `kind`: ``pct``, or the consumption's
     (``kg``, ``kwh``) for what is saved."""
     return "pct" if kind == "headline" else consumption.unit.lower()
-
-
-def worded(kind: str, consumption: Consumption) -> str:
-    """A kind of Δ named for what a run consumes: ``fuel_equal_time`` → ``energy_equal_time`` for a
-    battery-electric truck; ``time`` as it is."""
-    return consumption.word + kind.removeprefix(FUEL.word) if kind.startswith(FUEL.word) else kind
 
 
 def equal_time_fields(baseline: str, consumption: Consumption = FUEL) -> tuple[str, ...]:

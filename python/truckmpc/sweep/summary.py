@@ -63,15 +63,7 @@ def summary_columns(consumption: Consumption = FUEL) -> tuple[str, ...]:
     """The columns of ``summary.csv`` of a sweep of trucks that consume `consumption`: each named
     for fuel says ``energy`` and ``kwh`` for battery energy (``mean_delta_energy_pct``,
     ``headline_vs_pi_total_saved_kwh``)."""
-    return tuple(worded_name(column, consumption) for column in SUMMARY_COLUMNS)
-
-
-def worded_name(name: str, consumption: Consumption) -> str:
-    """A summary column named for fuel, named for `consumption`."""
-    if consumption is FUEL:
-        return name
-    name = name.replace("_fuel_", f"_{consumption.word}_")
-    return f"{name.removesuffix('_kg')}_{consumption.unit.lower()}" if name.endswith("saved_kg") else name
+    return tuple(consumption.worded(column) for column in SUMMARY_COLUMNS)
 
 
 Rows = Sequence[Mapping[str, str]]
