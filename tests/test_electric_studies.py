@@ -1,7 +1,7 @@
 """Studies of VECTO's generic battery-electric tractor: a fleet sweep names every figure and
 comparison for battery energy, gives each row what `truckmpc simulate` gives that road, and sums
-its rows into the fleet summary; a fleet of both kinds of truck, and a Pareto study, are refused in
-one line."""
+its rows into the fleet summary; a Pareto study draws battery energy against trip time with β in
+J/s; a fleet of both kinds of truck, and β in grams per second, are refused in one line."""
 
 from __future__ import annotations
 
@@ -13,8 +13,13 @@ import pytest
 from typer.testing import CliRunner
 
 from test_electric_truck import BEV_XML, needs_bev
+from truckmpc import load_run_config, simulate
 from truckmpc.cli import app
 from truckmpc.config.keys import CONFIG_DIR
+from truckmpc.consumption import ENERGY
+from truckmpc.pareto import below, curves
+from truckmpc.pareto.plan import pareto_columns
+from truckmpc.roads import load_road
 
 REPO = Path(__file__).resolve().parents[1]
 ROADS = [REPO / "roads" / "hill_L500_A3.5.csv", REPO / "roads" / "crest_L1500_A2.csv"]
@@ -84,9 +89,9 @@ def test_the_fleet_summary_adds_the_rows_kwh(swept) -> None:
     ("args", "expected"),
     [
         (["sweep", f"--vehicle={CONFIG_DIR / 'truck-40t.yaml'}", f"--vehicle={BEV_XML}"], "all burn fuel or all"),
-        (["pareto", "--vehicle", str(BEV_XML)], "expected a truck that burns fuel"),
+        (["pareto", "--vehicle", str(BEV_XML), "--set", "beta_g_per_s=2"], "its β is beta_j_per_s, in J/s"),
     ],
-    ids=["a fleet of both kinds", "a Pareto study"],
+    ids=["a fleet of both kinds", "a Pareto study's β in g/s"],
 )
 def test_what_a_battery_electric_truck_cannot_join_is_refused_in_one_line(
     tmp_path: Path, args: list[str], expected: str
@@ -109,3 +114,49 @@ def test_the_sweep_resumes_and_its_report_speaks_of_battery_energy(swept) -> Non
     page = (out / "report.html").read_text(encoding="utf-8")
     assert "Δenergy [%]" in page and "saved [kWh]" in page and "battery energy saved [kWh]" in page
     assert "Δfuel [%]" not in page.split("<figure>")[0]
+
+
+@pytest.fixture(scope="module")
+def pareto_study(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, str]:
+    out = tmp_path_factory.mktemp("bev-pareto")
+    args = ["pareto", "--vehicle", str(BEV_XML), "--road", str(ROADS[0]), "--speeds", "82,85,88", "--jobs", "1"]
+    result = runner.invoke(app, [*args, "--curves", "pi,fuel_time", "--out", str(out)])
+    assert result.exit_code == 0, result.output
+    return out, result.output
+
+
+@needs_bev
+def test_a_pareto_study_of_a_battery_electric_truck_is_of_battery_energy(pareto_study) -> None:
+    """The columns are named for battery energy and β in J/s; each PI point is what `simulate`
+    gives at its set speed; the look-ahead curve lies below the PI's at every common trip time, and
+    the printed headline is its energy interpolated at the PI's trip time at 85 km/h."""
+    out, printed = pareto_study
+    rows = _read(out / "pareto.csv")
+    assert tuple(rows[0]) == pareto_columns(ENERGY)
+    assert "beta_j_per_s" in rows[0] and not [c for c in rows[0] if c.endswith("_kg") or "g_per_s" in c]
+    road = load_road(ROADS[0])
+    for row in (r for r in rows if r["controller"] == "pi"):
+        config = load_run_config(str(BEV_XML), overrides=(f"v_ref_kmh={row['v_ref_kmh']}", "start_speed_kmh=85"))
+        expected = simulate(road, config, "pi").summary
+        assert float(row["energy_corrected_kwh"]) == pytest.approx(expected["energy_corrected_kwh"], rel=1e-12)
+    betas = [float(r["beta_j_per_s"]) for r in rows if r["controller"] == "fuel_time"]
+    assert betas == sorted(betas) and betas[0] > 5e4  # β of the order of the cruising power, in W
+    by_controller = curves(rows)[ROADS[0].stem]
+    under, margin_kwh = below(by_controller["fuel_time"], by_controller["pi"])
+    assert under and margin_kwh > 0, margin_kwh
+    pi85 = next(r for r in rows if r["controller"] == "pi" and float(r["value"]) == 85.0)
+    energy = by_controller["fuel_time"].consumed_at(float(pi85["time_s"]))
+    expected_pct = 100 * (energy / float(pi85["energy_corrected_kwh"]) - 1)
+    assert f"Δenergy {expected_pct:+.2f} %" in printed and "kWh saved" in printed and "Δfuel" not in printed
+    assert (out / "pareto.png").stat().st_size > 0
+
+
+@needs_bev
+def test_a_battery_electric_pareto_study_sweeps_beta_in_joules_per_second(tmp_path: Path) -> None:
+    """`--betas` in J/s: each point runs at the β it names, and a higher price of time drives faster."""
+    args = ["pareto", "--vehicle", str(BEV_XML), "--road", str(ROADS[0]), "--speeds", "85", "--jobs", "1"]
+    result = runner.invoke(app, [*args, "--curves", "pi,fuel_time", "--betas", "6e4,2e5", "--out", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    rows = [r for r in _read(tmp_path / "pareto.csv") if r["controller"] == "fuel_time"]
+    assert [(r["parameter"], float(r["beta_j_per_s"])) for r in rows] == [("beta_j_per_s", 6e4), ("beta_j_per_s", 2e5)]
+    assert float(rows[0]["time_s"]) > float(rows[1]["time_s"])

@@ -40,7 +40,7 @@ def test_every_look_ahead_curve_lies_below_the_pi_on_a_hilly_road(study) -> None
     for name in ("mpc", "fuel_time"):
         under, margin_kg = below(by_controller[name], pi)
         assert under, (name, margin_kg)
-        assert margin_kg > 0.005 * pi.fuel_kg.min(), (name, margin_kg)
+        assert margin_kg > 0.005 * pi.consumed.min(), (name, margin_kg)
 
 
 def test_csv_figure_and_equal_time_saving(study) -> None:
@@ -59,7 +59,7 @@ def test_csv_figure_and_equal_time_saving(study) -> None:
     savings = {name: saving.pct for name, saving in equal_time_savings(rows, 85.0)["test-track"].items()}
     pi85 = next(r for r in rows if r["controller"] == "pi" and float(r["value"]) == 85.0)
     mpc = curves(rows)["test-track"]["mpc"]
-    expected = 100 * (mpc.fuel_at(float(pi85["time_s"])) / float(pi85["fuel_corrected_kg"]) - 1)
+    expected = 100 * (mpc.consumed_at(float(pi85["time_s"])) / float(pi85["fuel_corrected_kg"]) - 1)
     assert savings["mpc"] == pytest.approx(expected)
     assert savings["mpc"] < 0 and savings["fuel_time"] < 0
 

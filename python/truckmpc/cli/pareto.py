@@ -4,6 +4,7 @@ the figure drawn."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Annotated
 
@@ -21,6 +22,7 @@ from truckmpc.cli.options import (
     VehicleOpt,
 )
 from truckmpc.cli.study import notice, pooled_study, stop_notes, study_inputs
+from truckmpc.consumption import FUEL, consumption_of
 from truckmpc.errors import TruckmpcError
 from truckmpc.pareto import equal_time_savings, plan_pareto, run_pareto
 from truckmpc.pareto.fronts import BASELINES
@@ -46,8 +48,8 @@ BetasOpt = Annotated[
     typer.Option(
         "--betas",
         metavar="SPEC",
-        help="beta values [g/s] for the fuel_time curve at the configured v_ref (default: the set speeds, "
-        "beta derived from each).",
+        help="beta values for the fuel_time curve at the configured v_ref, in g/s (J/s for a battery-electric "
+        "truck) (default: the set speeds, beta derived from each).",
     ),
 ]
 CurvesOpt = Annotated[
@@ -56,7 +58,7 @@ CurvesOpt = Annotated[
         "--curves",
         metavar="LIST",
         help=f"Curves to run, a comma list of {', '.join(CURVE_CONTROLLERS)} (fuel_time: the MPC with the "
-        "fuel-time cost over beta).",
+        "fuel-time cost, battery energy + beta·time for a battery-electric truck, over beta).",
     ),
 ]
 
@@ -76,9 +78,9 @@ def pareto_cmd(
     quiet: QuietOpt = False,
     force: ForceOpt = False,
 ) -> None:
-    """Fuel against trip time: the PI over set speeds, the PCC and the MPC over set speeds and the
-    fuel-time MPC over set speeds or beta; DIR/pareto.csv, and DIR/pareto.png with the saving at equal
-    trip time.
+    """Fuel (battery energy for a battery-electric truck) against trip time: the PI over set speeds,
+    the PCC and the MPC over set speeds and the fuel-time MPC over set speeds or beta;
+    DIR/pareto.csv, and DIR/pareto.png with the saving at equal trip time.
 
     Rerun the same command with the same --out to resume an interrupted study.
     """
@@ -86,7 +88,7 @@ def pareto_cmd(
         plan = plan_pareto(
             road,
             speeds_kmh=_numbers("--speeds", "v_ref_kmh", speeds),
-            betas_g_per_s=_numbers("--betas", "beta_g_per_s", betas),
+            betas=_numbers("--betas", "beta_g_per_s", betas),
             curves=[c.strip() for c in curves.split(",") if c.strip()],
             **study_inputs(reverse, vehicle, config, set_),
         )
@@ -105,8 +107,9 @@ def pareto_cmd(
 
 def _saving_lines(rows: list[dict[str, str]], v_ref_kmh: float) -> list[str]:
     """Each look-ahead curve's headline on each road against the PCC (when its curve ran) and the PI:
-    at the baseline's trip time at v_ref and equal end speed, in % and kg saved, or why there is none."""
+    at the baseline's trip time at v_ref and equal end speed, in % and kg (kWh) saved, or why there is none."""
     ran = {row["controller"] for row in rows}
+    consumption = consumption_of(rows[0]) if rows else FUEL
     lines = []
     for base in (base for base in BASELINES if base in ran):
         for road_name, by_controller in equal_time_savings(rows, v_ref_kmh, base).items():
@@ -114,7 +117,7 @@ def _saving_lines(rows: list[dict[str, str]], v_ref_kmh: float) -> list[str]:
                 text = (
                     saving.reason
                     if saving.pct is None
-                    else f"Δfuel {saving.pct:+.2f} % ({saving.saved_kg:.3f} kg saved)"
+                    else f"Δ{consumption.word} {saving.pct:+.2f} % ({saving.saved:.3f} {consumption.unit} saved)"
                 )
                 lines.append(
                     f"{road_name}: {name} against the {base.upper()} at equal trip time and end speed (the "
@@ -131,7 +134,18 @@ def _numbers(option: str, key: str, spec: str | None) -> list[float] | None:
         values = parse_axis(f"{key}={spec}").values
     except SweepError as err:  # it speaks of the --grid axis it parsed
         raise SweepError(str(err).replace(f"--grid {key}", option)) from None
-    bad = [v for v in values if isinstance(v, bool) or not isinstance(v, (int, float))]
-    if bad or not values:
+    numbers = [_number(v) for v in values]
+    if None in numbers or not numbers:
         raise typer.BadParameter(f"expected numbers, got {spec!r}", param_hint=f"'{option}'")
-    return [float(v) for v in values]
+    return [float(v) for v in numbers if v is not None]
+
+
+def _number(value: object) -> float | None:
+    """A finite value of a SPEC as a number, or None; YAML reads ``6e4`` (no dot) as text, a number here."""
+    if isinstance(value, bool):
+        return None
+    try:
+        number = float(value) if isinstance(value, (int, float)) else float(str(value))
+    except ValueError:
+        return None
+    return number if math.isfinite(number) else None

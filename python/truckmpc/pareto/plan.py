@@ -1,5 +1,5 @@
-"""The points of a fuel–time Pareto study: which controller runs with which set speed or β on which
-road, each configuration validated before anything runs.
+"""The points of a fuel–time (battery energy–time) Pareto study: which controller runs with which
+set speed or β on which road, each configuration validated before anything runs.
 
 Curves:
 
@@ -8,6 +8,11 @@ Curves:
 - ``mpc``: the configured look-ahead controller (the thesis's cost by default) over the set speeds;
 - ``fuel_time``: the look-ahead controller with the ``fuel_time`` preset, over the set speeds with β
   derived from each, or over ``betas`` at the configured v_ref.
+
+A battery-electric truck's study is of battery energy: its columns are ``energy_kwh``,
+``energy_corrected_kwh`` and ``beta_j_per_s`` (β in J/s) where a diesel truck's are ``fuel_kg``,
+``fuel_corrected_kg`` and ``beta_g_per_s``; the curve is still named ``fuel_time``, as the preset it
+runs (its cost is the battery energy + β·time).
 
 The speed band moves with each set speed (``v_inc_kmh``/``v_dec_kmh`` are offsets); every run starts
 at the configured start speed clipped into its band, and its end-speed-corrected fuel brings it
@@ -24,7 +29,9 @@ from typing import Any
 from truckmpc.config import RunConfig, load_run_config
 from truckmpc.config.keys import PRESET_DIR
 from truckmpc.config.yamlfile import read_mapping
+from truckmpc.consumption import ENERGY, FUEL, Consumption
 from truckmpc.errors import ConfigError
+from truckmpc.fuel import beta_per_s
 from truckmpc.roads import RoadProfile
 from truckmpc.roads.profile import PathLike
 from truckmpc.sweep.cells import cell, yaml_text
@@ -60,9 +67,20 @@ PARETO_COLUMNS = (
     "stalled",
     "error",
 )
-"""Columns of ``pareto.csv``; ``parameter`` names what the curve varies (``v_ref_kmh`` or
-``beta_g_per_s``) and ``value`` its value; ``error`` why the run failed (its figures and ``stalled``
-blank), blank when it did not."""
+"""Columns of a diesel truck's ``pareto.csv``; ``parameter`` names what the curve varies
+(``v_ref_kmh`` or ``beta_g_per_s``) and ``value`` its value; ``error`` why the run failed (its
+figures and ``stalled`` blank), blank when it did not."""
+
+
+def pareto_columns(consumption: Consumption) -> tuple[str, ...]:
+    """The columns of ``pareto.csv`` for trucks that consume `consumption` (:data:`PARETO_COLUMNS`
+    named for battery energy and β in J/s for a battery-electric truck)."""
+    return tuple(consumption.worded(column) for column in PARETO_COLUMNS)
+
+
+def consumption_of_pareto(header: Sequence[str]) -> Consumption | None:
+    """What the study whose ``pareto.csv`` has `header` compares, or None if it is no study's."""
+    return next((c for c in (FUEL, ENERGY) if tuple(header) == pareto_columns(c)), None)
 
 
 @dataclass(frozen=True)
@@ -76,7 +94,8 @@ class Point:
     parameter: str
     value: float
     v_ref_kmh: float
-    beta_g_per_s: float | None
+    beta_per_s: float | None
+    """β of a look-ahead point, in its truck's unit (g/s, or J/s for a battery-electric truck)."""
     overrides: tuple[str, ...]
     work: Work
 
@@ -89,7 +108,7 @@ class Point:
 @dataclass(frozen=True)
 class ParetoPlan:
     """A validated Pareto study: roads (reversed when ``direction`` is reverse), the base files and
-    overrides, the points and the ``pareto.json`` settings."""
+    overrides, the points, the ``pareto.json`` settings and what its trucks consume."""
 
     roads: tuple[RoadProfile, ...]
     direction: str
@@ -98,8 +117,12 @@ class ParetoPlan:
     base_v_ref_kmh: float
     points: tuple[Point, ...]
     settings: dict[str, Any]
+    consumption: Consumption = FUEL
 
-    columns = PARETO_COLUMNS
+    @property
+    def columns(self) -> tuple[str, ...]:
+        """The columns of its ``pareto.csv``."""
+        return pareto_columns(self.consumption)
 
     def point_key(self, point: Point) -> tuple[str, ...]:
         """The cells that identify a point in the CSV."""
@@ -110,27 +133,24 @@ def plan_pareto(
     roads: Sequence[RoadProfile | PathLike],
     *,
     speeds_kmh: Sequence[float] | None = None,
-    betas_g_per_s: Sequence[float] | None = None,
+    betas: Sequence[float] | None = None,
     curves: Sequence[str] = DEFAULT_CURVES,
     reverse: bool = False,
     vehicle_path: PathLike | None = None,
     config_paths: Sequence[PathLike] = (),
     overrides: Sequence[str] = (),
 ) -> ParetoPlan:
-    """Load the roads and validate every point's configuration; errors are one line naming the key."""
-    _check_choices(curves, speeds_kmh, betas_g_per_s)
+    """Load the roads and validate every point's configuration; errors are one line naming the key.
+    `betas` are in the truck's unit of β: g/s, or J/s for a battery-electric truck."""
+    _check_choices(curves, speeds_kmh, betas)
     profiles = load_profiles(roads, reverse)
     vehicle = None if vehicle_path is None else str(vehicle_path)
     configs = tuple(str(p) for p in config_paths)
     base = load_run_config(vehicle, configs, tuple(overrides))
-    if base.is_electric:
-        raise SweepError(
-            f"--vehicle {vehicle}: expected a truck that burns fuel (a Pareto study's fronts are of fuel and "
-            "β in grams per second; a battery-electric truck's sweep is truckmpc sweep), got a battery-electric truck"
-        )
+    consumption = ENERGY if base.is_electric else FUEL
     v_ref = float(base.cruise.v_ref_kmh)
     speeds = [v_ref + d for d in SPEED_OFFSETS_KMH] if speeds_kmh is None else list(speeds_kmh)
-    specs = _specs(curves, speeds, betas_g_per_s, v_ref)
+    specs = _specs(curves, speeds, betas, v_ref, consumption.beta_key)
     points: list[Point] = []
     for r, profile in enumerate(profiles):
         for curve, parameter, value, v in specs:
@@ -141,14 +161,15 @@ def plan_pareto(
             config = _point_config(vehicle, configs, extra, curve, parameter, value)
             check_trace(profile, config)
             controller = CURVE_CONTROLLERS[curve]
-            beta = config.settings.derived()["beta_g_per_s"] if controller == "mpc" else None
+            beta = beta_per_s(config.settings.derived()) if controller == "mpc" else None
             work = run_work(profile, config, controller)
             points.append(Point(len(points), r, curve, parameter, float(value), v, beta, extra, work))
     direction = "reverse" if reverse else "forward"
-    grid = {"curves": list(curves), "speeds_kmh": speeds, "betas_g_per_s": betas_g_per_s and list(betas_g_per_s)}
+    betas_key = consumption.beta_key.replace("beta", "betas", 1)
+    grid = {"curves": list(curves), "speeds_kmh": speeds, betas_key: betas and list(betas)}
     inputs = _Inputs(vehicle, configs, tuple(overrides))
-    settings = study_settings(profiles, direction, grid, base, inputs, PARETO_COLUMNS)
-    return ParetoPlan(tuple(profiles), direction, vehicle, configs, v_ref, tuple(points), settings)
+    settings = study_settings(profiles, direction, grid, base, inputs, pareto_columns(consumption))
+    return ParetoPlan(tuple(profiles), direction, vehicle, configs, v_ref, tuple(points), settings, consumption)
 
 
 def _check_choices(curves: Sequence[str], speeds: Sequence[float] | None, betas: Sequence[float] | None) -> None:
@@ -165,13 +186,13 @@ def _check_choices(curves: Sequence[str], speeds: Sequence[float] | None, betas:
 
 
 def _specs(
-    curves: Sequence[str], speeds: Sequence[float], betas: Sequence[float] | None, v_ref: float
+    curves: Sequence[str], speeds: Sequence[float], betas: Sequence[float] | None, v_ref: float, beta_key: str
 ) -> list[tuple[str, str, float, float]]:
-    """(curve, parameter, value, set speed) of every point on one road."""
+    """(curve, parameter, value, set speed) of every point on one road; β is the key `beta_key`."""
     specs: list[tuple[str, str, float, float]] = []
     for curve in curves:
         if curve == "fuel_time" and betas is not None:
-            specs += [(curve, "beta_g_per_s", float(b), v_ref) for b in betas]
+            specs += [(curve, beta_key, float(b), v_ref) for b in betas]
         else:
             specs += [(curve, "v_ref_kmh", float(v), float(v)) for v in speeds]
     return specs

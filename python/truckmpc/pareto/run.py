@@ -9,7 +9,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from truckmpc.pareto.plan import ParetoPlan, Point
+from truckmpc.consumption import FUEL, Consumption
+from truckmpc.pareto.plan import ParetoPlan, Point, consumption_of_pareto
 from truckmpc.roads.profile import PathLike
 from truckmpc.sweep.cells import cell, parse_cell
 from truckmpc.sweep.errors import SweepInterrupted
@@ -29,8 +30,15 @@ from truckmpc.workload import MAX_WORK_S, WorkError, too_long
 
 STEM = "pareto"
 
-FIGURES = ("fuel_kg", "fuel_corrected_kg", "time_s", "end_speed_kmh", "stalled")
-"""The run's figures that go to ``pareto.csv``."""
+
+def figures_of(consumption: Consumption) -> tuple[str, ...]:
+    """The run's figures that go to ``pareto.csv``: what it consumed, raw and end speed corrected
+    (fuel [kg] or battery energy [kWh]), its trip time, end speed and whether it stalled."""
+    return (consumption.key, consumption.corrected_key, "time_s", "end_speed_kmh", "stalled")
+
+
+FIGURES = figures_of(FUEL)
+"""A diesel truck's figures in ``pareto.csv``."""
 
 
 @dataclass(frozen=True)
@@ -87,8 +95,9 @@ def run_pareto(
 
 def _cells(plan: ParetoPlan, point: Point, figures: dict[str, Any]) -> list[str]:
     """A point's cells: its key, set speed and β, the run's figures (blank if it failed) and error."""
-    own = [cell(point.v_ref_kmh), cell(point.beta_g_per_s)]
-    return [*plan.point_key(point), *own, *(cell(figures.get(name)) for name in FIGURES), cell(figures.get(ERROR))]
+    own = [cell(point.v_ref_kmh), cell(point.beta_per_s)]
+    named = (cell(figures.get(name)) for name in figures_of(plan.consumption))
+    return [*plan.point_key(point), *own, *named, cell(figures.get(ERROR))]
 
 
 def _resumed(plan: ParetoPlan, out: Path, notice: Callable[[str], None] | None) -> dict[int, list[str]]:
@@ -98,7 +107,7 @@ def _resumed(plan: ParetoPlan, out: Path, notice: Callable[[str], None] | None) 
     dropped = []
     for where, cells in finished_rows(out, plan.columns, STEM):
         point = by_key.get(tuple(cells[:5]))
-        problem = "not a point of this study" if point is None else damaged_row(cells)
+        problem = "not a point of this study" if point is None else damaged_row(cells, plan.columns)
         if point is None or problem is not None:
             dropped.append(f"{where}: {problem}")
         elif not cells[plan.columns.index(ERROR)].strip():  # a point whose run failed runs again
@@ -108,22 +117,24 @@ def _resumed(plan: ParetoPlan, out: Path, notice: Callable[[str], None] | None) 
     return done
 
 
-def damaged_row(cells: list[str]) -> str | None:
-    """What is wrong with a ``pareto.csv`` row read back, or None: the study's number of cells, true
-    or false in ``stalled``, numbers in the figures (all of them when the run finished); a failed
-    run's row is its error and blank figures."""
-    if len(cells) != len(ParetoPlan.columns):
-        return f"expected {len(ParetoPlan.columns)} cells, got {len(cells)}"
-    named = dict(zip(ParetoPlan.columns, cells, strict=True))
+def damaged_row(cells: list[str], columns: tuple[str, ...]) -> str | None:
+    """What is wrong with a row read back from a ``pareto.csv`` of `columns` (a study's), or None:
+    the study's number of cells, true or false in ``stalled``, numbers in the figures (all of them
+    when the run finished); a failed run's row is its error and blank figures."""
+    if len(cells) != len(columns):
+        return f"expected {len(columns)} cells, got {len(cells)}"
+    consumption = consumption_of_pareto(columns) or FUEL
+    figures = figures_of(consumption)
+    named = dict(zip(columns, cells, strict=True))
     if named[ERROR].strip():
-        filled = [name for name in FIGURES if named[name].strip()]
+        filled = [name for name in figures if named[name].strip()]
         return f"column {filled[0]!r}: expected blank in a failed run's row" if filled else None
     stalled = parse_cell(named["stalled"])
     if not isinstance(stalled, bool):
         return f"column 'stalled': expected true or false, got {named['stalled']!r}"
-    for column in ("value", "v_ref_kmh", "beta_g_per_s", *FIGURES[:-1]):
+    for column in ("value", "v_ref_kmh", consumption.beta_key, *figures[:-1]):
         value = parse_cell(named[column])
-        required = column not in ("beta_g_per_s",) and not (stalled and column in FIGURES)
+        required = column != consumption.beta_key and not (stalled and column in figures)
         if (value is None and required) or isinstance(value, (bool, str)):
             return f"column {column!r}: expected a number, got {named[column]!r}"
     return None

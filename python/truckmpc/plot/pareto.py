@@ -1,7 +1,7 @@
 """The picture of a Pareto study: ``pareto.png``, one panel per road, trip time [min] on x and
-end-speed-corrected fuel [kg] on y, one curve per controller with its points labelled by set speed
-(or β), the baseline's point at the reference set speed marked, and each look-ahead curve's saving
-at that trip time annotated."""
+end-speed-corrected fuel [kg] (battery energy [kWh] for a battery-electric truck) on y, one curve
+per controller with its points labelled by set speed (or β), the baseline's point at the reference
+set speed marked, and each look-ahead curve's saving at that trip time annotated."""
 
 from __future__ import annotations
 
@@ -12,8 +12,9 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+from truckmpc.consumption import Consumption
 from truckmpc.pareto.fronts import Curve, curves, equal_time_savings, reference_point
-from truckmpc.pareto.plan import PARETO_COLUMNS
+from truckmpc.pareto.plan import PARETO_COLUMNS, consumption_of_pareto
 from truckmpc.pareto.run import damaged_row
 from truckmpc.plot.figures import PlotError, figure_class, save
 
@@ -21,14 +22,17 @@ _STYLES = {"pi": ("tab:gray", "o"), "pcc": ("tab:green", "D"), "mpc": ("tab:blue
 _LABELS = {
     "pi": "PI (set speed)",
     "pcc": "PCC, VECTO rules (set speed)",
-    "mpc": "MPC, thesis cost (set speed)",
+    "mpc": "MPC as configured (set speed)",
     "fuel_time": "MPC, fuel + β·time",
 }
+_STORE = {"fuel": "fuel", "energy": "battery energy"}
+"""How the y axis and title name each consumption."""
 _S_PER_MIN = 60.0
 
 
 def read_rows(path: Path) -> list[dict[str, str]]:
-    """The rows of ``pareto.csv``, each checked: the study's columns, numbers where a run finished."""
+    """The rows of ``pareto.csv``, each checked: a study's columns (a diesel or a battery-electric
+    truck's), numbers where a run finished."""
     try:
         with path.open(newline="", encoding="utf-8") as handle:
             reader = csv.DictReader(handle)
@@ -36,10 +40,12 @@ def read_rows(path: Path) -> list[dict[str, str]]:
             header = list(reader.fieldnames or ())
     except (OSError, UnicodeDecodeError, csv.Error) as err:
         raise PlotError(f"{path}: cannot read it ({err})") from None
-    if header != list(PARETO_COLUMNS):
-        raise PlotError(f"{path}:1: expected the columns {','.join(PARETO_COLUMNS)}, got {','.join(header)}")
+    if consumption_of_pareto(header) is None:
+        expected = ",".join(PARETO_COLUMNS)
+        raise PlotError(f"{path}:1: expected the columns {expected} (or named for energy), got {','.join(header)}")
+    columns = tuple(header)
     for line, row in enumerate(rows, start=2):
-        problem = damaged_row([row.get(c) or "" for c in PARETO_COLUMNS])
+        problem = damaged_row([row.get(c) or "" for c in columns], columns)
         if problem is not None:
             raise PlotError(f"{path}:{line}: {problem}")
     return rows
@@ -59,6 +65,7 @@ def plot_pareto(
 ) -> list[Path]:
     """Draw the fronts of ``directory/pareto.csv`` to `out`, the saving annotated at `v_ref_kmh`."""
     rows = read_rows(Path(directory) / "pareto.csv")
+    consumption = consumption_of_pareto(list(rows[0])) if rows else None
     by_road = curves(rows)
     if not by_road:
         raise PlotError(f"{directory}/pareto.csv: no run that finished the road")
@@ -68,7 +75,7 @@ def plot_pareto(
     figure = figure_class()(figsize=(7.0, 4.8 * len(by_road)), layout="constrained")
     for i, (road, by_controller) in enumerate(by_road.items()):
         ax = figure.add_subplot(len(by_road), 1, i + 1)
-        _draw_road(ax, road, by_controller, rows, v_ref_kmh, savings.get(road, {}))
+        _draw_road(ax, road, by_controller, rows, v_ref_kmh, savings.get(road, {}), consumption)
     return save([(figure, Path(out))], svg)
 
 
@@ -79,30 +86,33 @@ def _draw_road(
     rows: Sequence[Mapping[str, str]],
     v_ref_kmh: float,
     savings: Mapping[str, float | None],
+    consumption: Consumption | None,
 ) -> None:
+    word = "fuel" if consumption is None else consumption.word
+    unit = "kg" if consumption is None else consumption.unit
     for name, curve in by_controller.items():
         color, marker = _STYLES.get(name, ("black", "x"))
         minutes = curve.time_s / _S_PER_MIN
         saving = savings.get(name)
-        label = _LABELS.get(name, name)
+        label = _LABELS.get(name, name).replace("fuel +", f"{_STORE[word]} +")
         if saving is not None and name != "pi":
-            label += f": Δfuel {saving:+.2f} % vs the PI at its trip time".replace("-", "−")
-        ax.plot(minutes, curve.fuel_kg, color=color, marker=marker, label=label)
-        for x, y, value in zip(minutes, curve.fuel_kg, curve.values, strict=True):
+            label += f": Δ{word} {saving:+.2f} % vs the PI at its trip time".replace("-", "−")
+        ax.plot(minutes, curve.consumed, color=color, marker=marker, label=label)
+        for x, y, value in zip(minutes, curve.consumed, curve.values, strict=True):
             ax.annotate(f"{value:g}", (x, y), textcoords="offset points", xytext=(4, 3), fontsize=7, color=color)
     reference = reference_point(rows, road, v_ref_kmh)
     if not isinstance(reference, str):
-        time_s, fuel_kg = reference
+        time_s, consumed = reference
         ax.axvline(time_s / _S_PER_MIN, color="black", linewidth=0.8, linestyle=":")
         ax.annotate(
             f"PI at v_ref {v_ref_kmh:g} km/h",
-            (time_s / _S_PER_MIN, fuel_kg),
+            (time_s / _S_PER_MIN, consumed),
             textcoords="offset points",
             xytext=(6, -12),
             fontsize=8,
         )
-    ax.set_title(f"{road}: fuel against trip time")
+    ax.set_title(f"{road}: {_STORE[word]} against trip time")
     ax.set_xlabel("trip time [min]")
-    ax.set_ylabel("fuel, end speed corrected [kg]")
+    ax.set_ylabel(f"{_STORE[word]}, end speed corrected [{unit}]")
     ax.grid(True, linewidth=0.4)
     ax.legend(fontsize=8)
