@@ -48,8 +48,8 @@ BetasOpt = Annotated[
     typer.Option(
         "--betas",
         metavar="SPEC",
-        help="beta values for the fuel_time curve at the configured v_ref, in g/s (J/s for a battery-electric "
-        "truck) (default: the set speeds, beta derived from each).",
+        help="beta values [g/s] ([J/s] for a battery-electric truck) for the fuel_time curve at the configured "
+        "v_ref (default: the set speeds, beta derived from each).",
     ),
 ]
 CurvesOpt = Annotated[
