@@ -160,3 +160,24 @@ def test_a_battery_electric_pareto_study_sweeps_beta_in_joules_per_second(tmp_pa
     rows = [r for r in _read(tmp_path / "pareto.csv") if r["controller"] == "fuel_time"]
     assert [(r["parameter"], float(r["beta_j_per_s"])) for r in rows] == [("beta_j_per_s", 6e4), ("beta_j_per_s", 2e5)]
     assert float(rows[0]["time_s"]) > float(rows[1]["time_s"])
+
+
+@needs_bev
+def test_the_robustness_study_of_a_battery_electric_truck_speaks_of_battery_energy(tmp_path: Path) -> None:
+    """The exact case's headline is the one `truckmpc simulate` compares (the MPC's corrected
+    battery energy against the PI re-run at its trip time), its keys and table named for energy."""
+    from truckmpc import robustness as rb
+
+    config = load_run_config(str(BEV_XML))
+    mass_kg = float(config.settings.get("mass_kg"))
+    row = rb.run_case(load_road(ROADS[1]), config, rb.Case("exact", mass_kg, mass_kg))
+    assert {"delta_energy_pct", "delta_energy_equal_time_pct", "saved_kwh"} <= set(row)
+    assert not [key for key in row if "fuel" in key or key.endswith("saved_kg")]
+    args = ["simulate", "--vehicle", str(BEV_XML), "--road", str(ROADS[1]), "--controller", "pi,mpc"]
+    result = runner.invoke(app, [*args, "--out", str(tmp_path / "s")])
+    assert result.exit_code == 0, result.output
+    compared = json.loads((tmp_path / "s" / "summary.json").read_text())["comparisons"][0]
+    assert row["headline_pct"] == pytest.approx(compared["headline_pct"], abs=1e-9)
+    assert row["saved_kwh"] == pytest.approx(compared["saved_kwh"], rel=1e-9)
+    table = rb.format_study(rb.kept_shares([row]), "mpc")
+    assert "Δenergy %" in table and "saved kWh" in table and "fuel" not in table

@@ -19,6 +19,7 @@ from truckmpc import robustness as rb
 from truckmpc.cli import app
 from truckmpc.equal_time import equal_time_baselines
 from truckmpc.roads import RoadProfile, concatenate, make_section, write_road
+from vecto_files import write_job
 
 COARSE = ("delta_kmh=0.2", "stage_m=50", "horizon_m=1000")
 runner = CliRunner()
@@ -158,3 +159,45 @@ def test_a_reversed_map_keeps_its_points_along_the_road_and_takes_the_roads_targ
     assert np.interp(1500.0, back.controller_map.distance_m, back.controller_map.altitude_m) == 5.0
     assert back.controller_map.target_speed_kmh is not None
     assert back.controller_map.target_speed_at(np.array([1500.0]))[0] == 85.0
+
+
+def test_a_vecto_trucks_other_mass_is_the_same_truck_at_another_load(tmp_path):
+    """The robustness study's truck of another mass, for a VECTO truck: its payload changed by the
+    difference, so the truck and the run's recorded mass are that mass and nothing else moves;
+    the controller told the declared mass models the truck at it."""
+    job = write_job(tmp_path / "truck")
+    config = load_run_config(job)
+    declared_kg = config.truck.mass_kg
+    truth = rb._truth(config, declared_kg - 5000.0, "truck 5 t lighter")
+    assert truth.truck.mass_kg == declared_kg - 5000.0 == truth.settings.get("mass_kg")
+    assert truth.truck.payload_kg == config.truck.payload_kg - 5000.0
+    # The same as the truck loaded so from its file (its tyres' rolling resistance follows the load).
+    loaded = load_run_config(job, overrides=(f"payload_kg={truth.truck.payload_kg}",))
+    assert truth.settings.values() == {**loaded.settings.values(), "controller_mass_kg": None}
+    road = make_section("hill", 600, 3.0, lead_m=300, tail_m=300)
+    told = truth.with_values({"controller_mass_kg": declared_kg}, "told")
+    # The PI holds its set speed whatever it weighs: the lighter truck burns less.
+    assert simulate(road, truth, "pi").summary["fuel_kg"] < simulate(road, config, "pi").summary["fuel_kg"]
+    assert simulate(road, told, "mpc").summary["fuel_kg"] != simulate(road, truth, "mpc").summary["fuel_kg"]
+
+
+def test_a_vecto_truck_is_made_no_lighter_than_empty(tmp_path, monkeypatch):
+    """At a payload below a quarter of the truck's mass, the lighter truck is the empty truck."""
+    job = write_job(tmp_path / "truck")
+    config = load_run_config(job, overrides=("payload_kg=2600",))
+    seen = []
+    monkeypatch.setattr(rb, "run_case", lambda road, config, case, controller: seen.append(case) or _row(case))
+    rb.study(_road(), config, "mpc", seeds=(1,))
+    masses = sorted({case.mass_kg for case in seen})
+    empty_kg = config.truck.mass_kg - 2600.0
+    assert masses == [empty_kg, config.truck.mass_kg, 1.25 * config.truck.mass_kg]
+    assert any(case.label == f"truck {empty_kg / 1000:.3g} t, told it (reference)" for case in seen)
+
+
+def _row(case: rb.Case) -> dict:
+    return {
+        "mass_kg": case.mass_kg,
+        "controller_mass_kg": case.controller_mass_kg,
+        "grade_sigma_pct": 0.0,
+        "headline_pct": None,
+    }

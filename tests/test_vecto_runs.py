@@ -128,13 +128,7 @@ def test_the_record_names_every_component_file_and_replay_refuses_a_changed_one(
     assert len(refused.output.strip().splitlines()) == 1
 
 
-@pytest.mark.parametrize(
-    "args",
-    [
-        ["sweep", "--grid", "mass_kg=30000,40000"],
-        ["robustness"],
-    ],
-)
+@pytest.mark.parametrize("args", [["sweep", "--grid", "mass_kg=30000,40000"]])
 def test_studies_that_vary_the_thesis_trucks_keys_refuse_a_vecto_truck(job: Path, tmp_path: Path, args) -> None:
     road = tmp_path / "flat.csv"
     road.write_text("distance_m,altitude_m\n0,0\n2000,0\n")

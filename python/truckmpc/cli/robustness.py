@@ -44,7 +44,11 @@ def robustness_cmd(
     ] = None,
 ) -> None:
     """How much of the controller's saving survives a mass it does not know (+-25 %) and a map with
-    grade noise (sigma 0.2, 0.5, 1 %): each case against the PI on the true truck and road."""
+    grade noise (sigma 0.2, 0.5, 1 %): each case against the PI on the true truck and road.
+
+    A VECTO truck's other masses are its payload changed (no lighter than empty); a battery-electric
+    truck's table is of battery energy.
+    """
     if controller not in STUDIED:
         raise typer.BadParameter(
             f"expected one of {', '.join(STUDIED)}, got {controller!r}", param_hint="'--controller'"

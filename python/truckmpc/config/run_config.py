@@ -138,6 +138,21 @@ class RunConfig:
         origins = {**self.origins, **{key: Origin(where, rank) for key in changes}}
         return RunConfig(settings=settings, origins=origins, truck=self.truck)
 
+    def with_truck_values(self, changes: Mapping[str, Any], where: str) -> RunConfig:
+        """This configuration's VECTO truck built again with `changes` to its keys (``payload_kg``:
+        the same truck at another load), the run's keys the truck sets (its mass among them)
+        following it; every other key as it is. An error names `where` and the key."""
+        if self.truck is None:
+            raise ConfigError(f"{where}: expected a VECTO truck, got the thesis's truck (its keys are run keys)")
+        layers = Layers()
+        layers.next_layer()
+        for key, value in {**self.settings.values(), **changes}.items():
+            layers.put(key, value, where)
+        truck = build_truck(self.truck.job.path, layers)
+        for key, value in truck_layer(truck).items():
+            layers.put(key, value, str(truck.job.path))
+        return _build(layers, truck)
+
     def sources(self) -> list[str]:
         """The files and overrides the values came from, in layer order, each once."""
         ordered = sorted(self.origins.values(), key=lambda origin: origin.rank)
