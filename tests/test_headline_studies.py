@@ -42,9 +42,9 @@ def test_pareto_reads_each_curve_against_the_pcc_at_its_trip_time() -> None:
     against_pcc = equal_time_savings(PARETO, 85.0, "pcc")["hill"]
     assert list(against_pcc) == ["mpc"]
     assert against_pcc["mpc"].pct == pytest.approx(100 * (9.7 - 9.8) / 9.8)
-    assert against_pcc["mpc"].saved_kg == pytest.approx(0.1)
+    assert against_pcc["mpc"].saved == pytest.approx(0.1)
     against_pi = equal_time_savings(PARETO, 85.0)["hill"]
-    assert against_pi["mpc"].pct == pytest.approx(-2.0) and against_pi["mpc"].saved_kg == pytest.approx(0.2)
+    assert against_pi["mpc"].pct == pytest.approx(-2.0) and against_pi["mpc"].saved == pytest.approx(0.2)
 
 
 def test_pareto_prints_the_headline_against_the_pcc_then_the_pi() -> None:
