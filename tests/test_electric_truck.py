@@ -14,8 +14,10 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from truckmpc import _core
+from truckmpc import _core, load_run_config, simulate
 from truckmpc.cli import app
+from truckmpc.roads import RoadProfile, Stop
+from truckmpc.roads.stops import leg_road
 from truckmpc.stationary import electric_stationary_point
 from truckmpc.vecto.electric import ElectricTruckJob
 from truckmpc.vecto.electric_truck import load_electric_truck
@@ -221,18 +223,24 @@ def test_the_battery_energy_balances_on_vecto_108_km(controller: str) -> None:
 
 
 @needs_bev
-def test_a_road_with_stops_is_refused_in_one_line(tmp_path: Path) -> None:
-    """A road with stops is driven leg by leg, and each leg would start again at the same state of
-    charge: refused in one line."""
-    road = tmp_path / "stop.csv"
-    road.write_text("distance_m,altitude_m,target_speed_kmh,stop_s\n0,0,80,0\n2000,5,80,30\n4000,5,80,0\n")
-    commands = (["simulate", "--vehicle", str(BEV_XML), "--road", str(road), "--out", str(tmp_path / "r")],)
-    for args in commands:
-        args = [*args, str(tmp_path / "s")] if args[-1] == "--out" else args
-        refused = runner.invoke(app, args)
-        assert refused.exit_code == 2, (args, refused.output)
-        assert "Traceback" not in refused.output and len(refused.output.strip().splitlines()) == 1, refused.output
-        assert "state of charge" in refused.output, refused.output
+@pytest.mark.parametrize("controller", ["pi", "mpc"])
+def test_over_a_stop_the_battery_carries_on(controller: str) -> None:
+    """A road with a stop is driven as two legs and the battery carries over: the second leg is the
+    same truck started, on its own, at the state of charge the first ended at; the run's energy,
+    recovered energy and time are the legs' sums, its state of charge ends where the second's does."""
+    road = RoadProfile(
+        "stop", [0, 1000, 2000, 3000, 4000], [0, 25, 25, 0, 0], target_speed_kmh=[80] * 5, stops=(Stop(2000.0, 30.0),)
+    )
+    config = load_run_config(BEV_XML)
+    whole = simulate(road, config, controller).summary
+    first = simulate(leg_road(road, 0.0, 2000.0, 1), config, controller).summary
+    carried = load_run_config(BEV_XML, overrides=(f"soc_start_pct={first['soc_end_pct']!r}",))
+    second = simulate(leg_road(road, 2000.0, 4000.0, 2), carried, controller).summary
+    assert first["soc_end_pct"] < 50.0 and whole["soc_start_pct"] == 50.0
+    assert whole["soc_end_pct"] == second["soc_end_pct"]
+    for key in ("energy_kwh", "recovered_kwh", "time_s", "energy_corrected_kwh"):
+        assert whole[key] == pytest.approx(first[key] + second[key], rel=1e-12), key
+    assert [leg["energy_kwh"] for leg in whole["legs"]] == [first["energy_kwh"], second["energy_kwh"]]
 
 
 @needs_bev

@@ -9,6 +9,10 @@ results are joined into one :class:`~truckmpc.sim.RunResult`. The summary says s
 (`stops_not_simulated`) and lists the legs (`legs`: each one's start and end [m], entry and exit
 speed [km/h], fuel [kg] and time [s]); the trace runs on across the legs, with two samples at each
 stop (the end of one leg and the start of the next) and the cumulative columns continued.
+
+A battery-electric truck's battery carries over the stops: each leg after the first starts at the
+state of charge the one before ended at (what the auxiliaries draw while the truck stands is not
+simulated, as the diesel truck's idling is not), and a battery that empties ends the run there.
 """
 
 from __future__ import annotations
@@ -63,21 +67,26 @@ def drive_legs(road: RoadProfile, config: RunConfig, drive: Drive) -> RunResult:
     bounds = leg_bounds(road)
     if not bounds:
         raise RoadError(f"{road.source or road.name}: no stop-free leg of at least {MIN_LEG_M:g} m between its stops")
-    results = []
+    results: list[RunResult] = []
     for number, (start_m, end_m) in enumerate(bounds, start=1):
-        result = drive(leg_road(road, start_m, end_m, number), _leg_config(config, number))
+        previous = results[-1].summary if results else None
+        result = drive(leg_road(road, start_m, end_m, number), _leg_config(config, number, previous))
         results.append(result)
         if result.message is not None:
             break
     return merge_legs(road, results, bounds)
 
 
-def _leg_config(config: RunConfig, number: int) -> RunConfig:
-    """The configuration of leg `number` (from 1): a configured start speed is the first leg's;
-    the others start at their entry set speed."""
-    if number == 1 or config.settings.get("start_speed_kmh") is None:
-        return config
-    return config.with_values({"start_speed_kmh": None}, f"leg {number}")
+def _leg_config(config: RunConfig, number: int, previous: Mapping[str, Any] | None) -> RunConfig:
+    """The configuration of leg `number` (from 1), after the leg whose summary is `previous`: a
+    configured start speed is the first leg's, the others start at their entry set speed; a
+    battery-electric truck starts at the state of charge the previous leg ended at."""
+    where = f"leg {number}"
+    if number > 1 and config.settings.get("start_speed_kmh") is not None:
+        config = config.with_values({"start_speed_kmh": None}, where)
+    if previous is not None and config.is_electric:
+        config = config.with_truck_values({"soc_start_pct": previous["soc_end_pct"]}, where)
+    return config
 
 
 def merge_legs(road: RoadProfile, results: Sequence[RunResult], bounds: Sequence[tuple[float, float]]) -> RunResult:

@@ -108,11 +108,6 @@ def simulate(road: RoadProfile, config: RunConfig, controller: str | Controller 
         stops, `legs` and `stops_not_simulated` (:func:`truckmpc.legs.merge_legs`). A Python controller with a
         `summary()` method adds its entries. Its trace has the columns :data:`TRACE_COLUMNS`.
     """
-    if road.stops and config.is_electric:
-        raise ConfigError(
-            f"{road.source or road.name}: expected a road without stops for a battery-electric truck (each "
-            "stop-free leg would start again at the same state of charge), got a road with stops"
-        )
     if road.stops:
         return drive_legs(road, config, lambda leg, leg_config: _drive(leg, leg_config, controller))
     return _drive(road, config, controller)
