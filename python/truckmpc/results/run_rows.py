@@ -176,8 +176,7 @@ def end_speed_note(summary: Mapping[str, Any]) -> str | None:
         word = c.word
         raw, fair = (_finite(entry.get(key)) for key in (c.delta_key("_equal_time"), "headline_pct"))
         if raw is not None and fair is not None and abs(raw - fair) > END_SPEED_GAP_PTS:
-            own, other = (summary[n]["end_speed_kmh"] for n in (name, baseline))
-            ends = f"{name} ends at {own:.1f} km/h, {baseline} at {other:.1f}"
+            ends = _ends(summary[name], summary[baseline], name, baseline)
             moved.append(f"{name} vs {NAMES.get(baseline, baseline)} {raw:+.2f} → {fair:+.2f} % ({ends})")
     if not moved:
         return None
@@ -185,6 +184,17 @@ def end_speed_note(summary: Mapping[str, Any]) -> str | None:
         f"end speeds: correcting them moves Δ{word} at equal trip time by more than {END_SPEED_GAP_PTS:g} points, "
         f"{'; '.join(moved)}: quote the figure at equal trip time and end speed."
     )
+
+
+def _ends(own: Mapping[str, Any], other: Mapping[str, Any], name: str, baseline: str) -> str:
+    """Where two runs end [km/h]; on a road with stops, where each leg ends (each leg is corrected
+    to its own entry speed)."""
+    if own.get("legs") and other.get("legs"):
+        exits = ["/".join(f"{leg['exit_speed_kmh']:.1f}" for leg in run["legs"]) for run in (own, other)]
+        return (
+            f"each leg corrected to its entry speed; legs end at {exits[0]} km/h for {name}, {exits[1]} for {baseline}"
+        )
+    return f"{name} ends at {own['end_speed_kmh']:.1f} km/h, {baseline} at {other['end_speed_kmh']:.1f}"
 
 
 def heading(summary: Mapping[str, Any]) -> str:
