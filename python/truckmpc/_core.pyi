@@ -287,6 +287,12 @@ class _ElectricFacts(TypedDict):
     usable_energy_kwh: float
     effective_mass_kg: float
     """Body, wheels and machines: the mass whose ½·m·v² the truck's kinetic energy is [kg]."""
+    continuous_torque_nm: float | None
+    """The machines' continuous torque, all of them, which they hold while derated [Nm]; None: not rated."""
+    continuous_loss_w: float | None
+    """Their loss at the continuous rating [W]."""
+    overload_buffer_kj: float | None
+    """The heat they may store above it before they derate [kJ]."""
 
 class _ElectricState(TypedDict):
     pedal: float

@@ -190,4 +190,10 @@ def _electric_text(d: dict[str, Any]) -> list[str]:
         f"(declaration mode: narrowed for ageing), {d['usable_energy_kwh']:.0f} kWh at the start's voltage; "
         f"starts at {d['soc_start_pct']:.1f} %",
     ]
+    if d["machines_continuous_torque_nm"] is not None:
+        lines.append(
+            f"  derating        held to {d['machines_continuous_torque_nm']:.0f} Nm once their losses above "
+            f"{d['machines_continuous_loss_w'] / 1e3:.1f} kW fill {d['machines_overload_buffer_kj']:.0f} kJ "
+            "(VECTO's overload buffer)"
+        )
     return lines

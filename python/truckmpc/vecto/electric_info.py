@@ -53,9 +53,17 @@ def electric_truck_info(job: ElectricTruckJob, keys: Mapping[str, Any]) -> dict[
 
 
 def _as_driven(job: ElectricTruckJob, keys: Mapping[str, Any]) -> dict[str, Any]:
-    """The battery as a run takes it: declaration mode's usable window, the start, the energy."""
+    """What a run takes of the truck: the battery's usable window, start and energy; the machines'
+    continuous torque (all of them), their loss there and the thermal buffer above it, at the
+    battery's voltage (their derating)."""
     facts = load_electric_truck(job, keys).core.electric_facts
-    return {key: facts[key] for key in ("usable_window_pct", "soc_start_pct", "usable_energy_kwh")}
+    battery = {key: facts[key] for key in ("usable_window_pct", "soc_start_pct", "usable_energy_kwh")}
+    return {
+        **battery,
+        "machines_continuous_torque_nm": facts["continuous_torque_nm"],
+        "machines_continuous_loss_w": facts["continuous_loss_w"],
+        "machines_overload_buffer_kj": facts["overload_buffer_kj"],
+    }
 
 
 def _machines(m: ElectricMachineData) -> dict[str, Any]:

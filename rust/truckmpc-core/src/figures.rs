@@ -151,7 +151,7 @@ pub fn truck_facts(truck: &MapTruck) -> Figures {
 /// What a battery-electric truck is: its machines' torque and speed, the reduction, the battery
 /// at the start's state of charge.
 pub fn electric_facts(truck: &ElectricTruck) -> Figures {
-    let (machines, battery) = (truck.machines(), truck.battery());
+    let (machines, battery, thermal) = (truck.machines(), truck.battery(), truck.thermal());
     let top = machines.top_rpm();
     let peak_w = (0..=200)
         .map(|k| top * k as f64 / 200.0)
@@ -177,6 +177,9 @@ pub fn electric_facts(truck: &ElectricTruck) -> Figures {
             Value::Float(battery.energy_per_soc_j() * (battery.soc_window.1 - battery.soc_window.0) / 3.6e6),
         ),
         ("effective_mass_kg", Value::Float(effective_mass_kg(truck))),
+        ("continuous_torque_nm", thermal.map_or(Value::Null, |t| Value::Float(t.continuous_nm))),
+        ("continuous_loss_w", thermal.map_or(Value::Null, |t| Value::Float(t.continuous_loss_w))),
+        ("overload_buffer_kj", thermal.map_or(Value::Null, |t| Value::Float(t.buffer_j / 1e3))),
     ]
 }
 

@@ -8,12 +8,14 @@
 //! automated manual gearbox) rolls the truck in neutral at the powertrain's interrupted energy
 //! rate for that time; the thesis's truck shifts instantly. The energy rate is integrated as drawn
 //! from the powertrain's store (fuel for a diesel), the friction brakes' share of the braking as
-//! brake energy; once the store is empty the truck no longer moves.
+//! brake energy; once the store is empty the truck no longer moves. A drive that derates when it
+//! overheats (a battery-electric truck's machines, [`crate::powertrain::thermal`]) fills its
+//! thermal buffer with its heating at each step and, once derated, drives as its derated self.
 
 use std::sync::Arc;
 
 pub use crate::powertrain::Control;
-use crate::powertrain::{EnergyStore, Powertrain};
+use crate::powertrain::{EnergyStore, Powertrain, ThermalState};
 use crate::road::Road;
 use crate::vehicle::{Vehicle, NEUTRAL};
 
@@ -40,8 +42,8 @@ pub struct PlantState {
     pub stalled: bool,
 }
 
-/// Derivatives of (s, v, fuel, brake energy, energy returned) with respect to time.
-type Rates = [f64; 5];
+/// Derivatives of (s, v, fuel, brake energy, energy returned, heat) with respect to time.
+type Rates = [f64; 6];
 
 /// The truck on a road, integrated in time.
 #[derive(Debug, Clone)]
@@ -57,6 +59,10 @@ pub struct Plant<P = Vehicle> {
     interruption_left_s: f64,
     /// The store the energy is drawn from.
     store: EnergyStore,
+    /// The drive's thermal buffer, for one that derates (none: it never does).
+    thermal: Option<ThermalState>,
+    /// The drive derated, built when it first derates.
+    derated: Option<Arc<P>>,
 }
 
 impl<P: Powertrain> Plant<P> {
@@ -67,7 +73,33 @@ impl<P: Powertrain> Plant<P> {
         let stalled = v_mps < stall_speed_mps || store.is_empty(0.0);
         let state = PlantState { s_m, v_mps, t_s: 0.0, fuel_g: 0.0, brake_energy_j: 0.0, returned: 0.0, stalled };
         let (engaged_gear, interruption_left_s) = (None, 0.0);
-        Plant { vehicle, road, state, segment_hint: 0, stall_speed_mps, engaged_gear, interruption_left_s, store }
+        let thermal = vehicle.thermal().map(ThermalState::new);
+        Plant {
+            vehicle,
+            road,
+            state,
+            segment_hint: 0,
+            stall_speed_mps,
+            engaged_gear,
+            interruption_left_s,
+            store,
+            thermal,
+            derated: None,
+        }
+    }
+
+    /// The drive's thermal buffer now (none for a drive that never derates).
+    pub fn thermal(&self) -> Option<ThermalState> {
+        self.thermal
+    }
+
+    /// The drive as it drives now: derated while its thermal buffer says so.
+    #[inline]
+    fn active(&self) -> &P {
+        match (&self.thermal, &self.derated) {
+            (Some(t), Some(derated)) if t.derated => derated,
+            _ => &self.vehicle,
+        }
     }
 
     /// Current state.
@@ -88,14 +120,16 @@ impl<P: Powertrain> Plant<P> {
     /// Time derivatives at speed `v_mps` on a slope given by its wheel torque [Nm].
     #[inline]
     fn rates(&self, slope_torque_nm: f64, v_mps: f64, u: Control) -> Rates {
-        let accel = self.vehicle.accel_on(v_mps, u.pedal, u.brake, u.gear, slope_torque_nm);
+        let vehicle = self.active();
+        let accel = vehicle.accel_on(v_mps, u.pedal, u.brake, u.gear, slope_torque_nm);
         let energy = if self.interruption_left_s > 0.0 {
-            self.vehicle.interrupted_energy_rate(v_mps)
+            vehicle.interrupted_energy_rate(v_mps)
         } else {
-            self.vehicle.energy_rate(v_mps, u)
+            vehicle.energy_rate(v_mps, u)
         };
-        let brake_power = self.vehicle.friction_brake_force_n(v_mps, u) * v_mps;
-        [v_mps, accel, energy, brake_power, (-energy).max(0.0)]
+        let brake_power = vehicle.friction_brake_force_n(v_mps, u) * v_mps;
+        let heat = if self.thermal.is_some() { vehicle.heating_w(v_mps, u) } else { 0.0 };
+        [v_mps, accel, energy, brake_power, (-energy).max(0.0), heat]
     }
 
     /// Advance by `dt_s` with constant inputs. No-op once stalled. The step is split at the road's
@@ -166,9 +200,28 @@ impl<P: Powertrain> Plant<P> {
         self.state.brake_energy_j += d(3);
         self.state.returned += d(4);
         self.state.t_s += dt_s;
+        let binds = self.derating_binds(x.v_mps, u);
+        if let Some(thermal) = self.thermal.as_mut() {
+            thermal.commit(d(5), dt_s, binds);
+            if thermal.derated && self.derated.is_none() {
+                self.derated = self.vehicle.derated().map(Arc::new);
+            }
+        }
         if !(self.state.v_mps >= self.stall_speed_mps) || self.store.is_empty(self.state.fuel_g) {
             self.state.stalled = true;
         }
+    }
+
+    /// Whether the drive runs derated at `v_mps` in `u`'s gear with limits below its rated ones
+    /// (its most driving or most recovering torque lower).
+    fn derating_binds(&self, v_mps: f64, u: Control) -> bool {
+        let (Some(thermal), Some(derated)) = (&self.thermal, &self.derated) else { return false };
+        if !thermal.derated || u.gear == NEUTRAL {
+            return false;
+        }
+        let full = |p: &P| p.pedal_affine(v_mps, u.gear, 0.0).gain;
+        let braked = |p: &P| p.friction_brake_force_n(v_mps, Control { pedal: 0.0, brake: 1.0, gear: u.gear });
+        full(derated) < full(&self.vehicle) || braked(derated) > braked(&self.vehicle)
     }
 
     /// Advance by at most `dt_s` but stop at `s_limit_m`: the last step is shortened so the truck

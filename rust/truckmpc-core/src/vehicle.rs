@@ -10,7 +10,7 @@ pub use crate::params::VehicleParams;
 pub use crate::powertrain::interface::NEUTRAL;
 use crate::powertrain::interface::{AffineAccel, Control, EnergyStore, Powertrain, RateForm};
 pub use crate::powertrain::thesis::GearConstants;
-use crate::powertrain::{ElectricModel, MapModel, ThesisModel, G_MPS2};
+use crate::powertrain::{ElectricModel, MapModel, Thermal, ThesisModel, G_MPS2};
 
 /// The built-in powertrains.
 #[derive(Debug, Clone)]
@@ -321,5 +321,24 @@ impl Powertrain for Vehicle {
 
     fn store(&self) -> EnergyStore {
         dispatch!(self, m => Powertrain::store(m))
+    }
+
+    fn thermal(&self) -> Option<Thermal> {
+        dispatch!(self, m => Powertrain::thermal(m))
+    }
+
+    #[inline]
+    fn heating_w(&self, v_mps: f64, u: Control) -> f64 {
+        dispatch!(self, m => Powertrain::heating_w(m, v_mps, u))
+    }
+
+    /// The same vehicle with its drive derated (a battery-electric truck's machines).
+    fn derated(&self) -> Option<Self> {
+        match &self.model {
+            Model::Electric(m) => {
+                m.derated().map(|derated| Vehicle { model: Model::Electric(Arc::new(derated)), ..self.clone() })
+            }
+            _ => None,
+        }
     }
 }

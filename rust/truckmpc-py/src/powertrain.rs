@@ -9,6 +9,7 @@ use pyo3::types::PyDict;
 
 use truckmpc_core::figures;
 use truckmpc_core::powertrain::electric::{BatteryData, ElectricParts, LevelData, MachineData, ReductionData};
+use truckmpc_core::powertrain::OverloadRating;
 use truckmpc_core::powertrain::{Body, DrivelineData, ElectricTruck, EngineData, MapTruck, TruckParts};
 use truckmpc_core::scenario::ComponentTruck;
 use truckmpc_core::CoreError;
@@ -74,7 +75,22 @@ impl PyMapTruck {
         let mut levels = Vec::new();
         for level in machine.getattr("levels")?.try_iter()? {
             let level = level?;
-            levels.push(read_attrs!(level, LevelData { voltage_v, torque_limits, power_map }));
+            let rating = read_attrs!(
+                level,
+                OverloadRating {
+                    continuous_torque_nm,
+                    continuous_speed_rpm,
+                    overload_torque_nm,
+                    overload_speed_rpm,
+                    overload_duration_s
+                }
+            );
+            levels.push(LevelData {
+                voltage_v: level.getattr("voltage_v")?.extract()?,
+                torque_limits: level.getattr("torque_limits")?.extract()?,
+                power_map: level.getattr("power_map")?.extract()?,
+                rating: Some(rating),
+            });
         }
         let machine = MachineData {
             count: machine.getattr("count")?.extract()?,

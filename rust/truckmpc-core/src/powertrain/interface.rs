@@ -9,6 +9,8 @@
 //! second (fuel [g/s] for a fuel tank, power [W] for a battery) and may be negative where the
 //! powertrain takes energy back while braking.
 
+use crate::powertrain::thermal::Thermal;
+
 /// Gear number of neutral. Forward gears are numbered 1..=n.
 pub const NEUTRAL: usize = 0;
 
@@ -180,4 +182,24 @@ pub trait Powertrain {
 
     /// The store the energy rate draws on.
     fn store(&self) -> EnergyStore;
+
+    /// The thermal limits of a drive that derates when it overheats (a battery-electric truck's
+    /// machines, [`crate::powertrain::thermal`]); None: it never does.
+    fn thermal(&self) -> Option<Thermal> {
+        None
+    }
+
+    /// Power heating the drive under `u` at `v_mps` [W] (the machines' loss while they carry
+    /// current), which fills the thermal buffer.
+    fn heating_w(&self, _v_mps: f64, _u: Control) -> f64 {
+        0.0
+    }
+
+    /// This powertrain derated to its continuous rating; None where it never derates.
+    fn derated(&self) -> Option<Self>
+    where
+        Self: Sized,
+    {
+        None
+    }
 }

@@ -31,6 +31,7 @@ pub mod interface;
 pub mod loss_map;
 pub mod parts;
 mod sampled;
+pub mod thermal;
 pub mod thesis;
 pub mod truck;
 
@@ -49,6 +50,7 @@ pub use fuel_map::FuelMap;
 pub use interface::{AffineAccel, Control, EnergyStore, Powertrain, RateForm, NEUTRAL};
 pub use loss_map::LossMap;
 pub use parts::{DrivelineData, EngineData, TruckParts};
+pub use thermal::{OverloadRating, Thermal, ThermalState};
 pub use thesis::{GearConstants, ThesisModel};
 pub use truck::{Body, MapTruck, OperatingPoint, RoadLoads, G_MPS2};
 

@@ -64,6 +64,7 @@ pub fn run_on_map(
     controller.start(map, &closed.state);
     let last_u = closed.drive(map, controller);
     closed.recorder.finish(&closed.state, last_u);
+    closed.outcome.thermal = closed.plant.thermal();
     let compute_time_s = wall.elapsed().as_secs_f64();
     let summary = RunSummary::new(
         &closed.state,
@@ -131,6 +132,7 @@ impl ClosedLoop {
             stall_speed_mps: vehicle.stall_speed_mps(),
             plant_dt_s: sim.plant_dt_s,
             store: crate::powertrain::Powertrain::store(vehicle.as_ref()),
+            thermal: None,
         };
         ClosedLoop {
             state: plant.state(),

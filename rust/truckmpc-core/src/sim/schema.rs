@@ -297,6 +297,10 @@ pub const SUMMARY: &[SummaryFigure] = &[
         "The battery's state of charge at the start.", |s| battery(s, |b| b.soc_start_pct)),
     core("soc_end_pct", "%", Number, Electric, Last, All, "state of charge at the end",
         "The battery's state of charge at the end.", |s| battery(s, |b| b.soc_end_pct)),
+    core("derated_s", "s", Number, Electric, Sum, No, "machines derated",
+        "Time the machines' thermal buffer held them to their continuous torque where that is below their rated \
+         limits (null: machines not rated).",
+        |s| s.battery.map(|b| b.derated_s.map_or(Figure::Null, Figure::Number))),
     core("battery_empty", "-", Flag, Electric, Any, No, "battery empty",
         "Whether the usable charge ran out before the road's end (the run stopped there: no figure for the trip).",
         |s| s.battery.map(|b| Figure::Flag(b.empty))),

@@ -4,7 +4,7 @@ use super::shifts::{per_100km, GearCounts};
 use super::KMH_PER_MPS;
 use crate::control::{RuleStats, SolverStats};
 use crate::plant::PlantState;
-use crate::powertrain::EnergyStore;
+use crate::powertrain::{EnergyStore, ThermalState};
 
 /// Outcome of a run in figures. Fuel in kg, distances in m, times in s, speeds in km/h, energies
 /// in kJ; the wall-clock fields are measured around the run.
@@ -61,11 +61,15 @@ pub struct BatteryFigures {
     pub soc_end_pct: f64,
     /// Whether the usable charge ran out (the run ended there).
     pub empty: bool,
+    /// Time the machines ran derated below their rated torque limits [s]; None for machines
+    /// that are not rated.
+    pub derated_s: Option<f64>,
 }
 
 impl BatteryFigures {
-    /// The figures of a run drawing on `store` that ended in `last` after `distance_m`.
-    fn new(store: EnergyStore, last: &PlantState, distance_m: f64) -> Option<Self> {
+    /// The figures of a run drawing on `store` that ended in `last` after `distance_m`, its
+    /// machines' thermal buffer ending as `thermal`.
+    fn new(store: EnergyStore, last: &PlantState, distance_m: f64, thermal: Option<ThermalState>) -> Option<Self> {
         let start = store.state_of_charge(0.0)?;
         let end = store.state_of_charge(last.fuel_g)?;
         let energy_kwh = last.fuel_g / J_PER_KWH;
@@ -76,6 +80,7 @@ impl BatteryFigures {
             soc_start_pct: 100.0 * start,
             soc_end_pct: 100.0 * end,
             empty: store.is_empty(last.fuel_g),
+            derated_s: thermal.map(|t| t.derated_s),
         })
     }
 }
@@ -100,6 +105,8 @@ pub struct LoopOutcome {
     pub plant_dt_s: f64,
     /// The store the truck drew on.
     pub store: EnergyStore,
+    /// The drive's thermal buffer at the end (none for a drive that never derates).
+    pub thermal: Option<ThermalState>,
 }
 
 impl RunSummary {
@@ -113,7 +120,7 @@ impl RunSummary {
     ) -> Self {
         let distance_m = last.s_m - outcome.start_m;
         let moved = last.t_s > 0.0;
-        let battery = BatteryFigures::new(outcome.store, last, distance_m);
+        let battery = BatteryFigures::new(outcome.store, last, distance_m, outcome.thermal);
         RunSummary {
             distance_m,
             fuel_kg: last.fuel_g / 1000.0,

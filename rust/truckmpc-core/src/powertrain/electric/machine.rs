@@ -15,6 +15,7 @@
 //! Torques are at the machines' shaft [Nm], positive driving the truck; speeds in rpm; powers in
 //! W, the electric power positive when the machines draw from the battery.
 
+use crate::powertrain::thermal::{OverloadRating, Thermal};
 use crate::powertrain::{Curve, FuelMap, RPM_PER_RAD_S};
 use crate::{CoreError, CoreResult};
 
@@ -28,6 +29,8 @@ pub struct VoltageLevel {
     brake: Curve,
     /// Loss torque [Nm] (electric power less mechanical power, over ω) over (speed, torque).
     loss: FuelMap,
+    /// The continuous and overload rating; none: the machine never derates.
+    rating: Option<OverloadRating>,
 }
 
 impl VoltageLevel {
@@ -55,7 +58,28 @@ impl VoltageLevel {
         let moving = power_map.iter().filter(|p| p.0 > 0.0);
         let loss_points: Vec<_> = moving.map(|&(n, t, p)| (n, t, p * RPM_PER_RAD_S / n - t)).collect();
         let loss = FuelMap::signed(&format!("{key}.power_map"), &loss_points)?;
-        Ok(VoltageLevel { voltage_v, drive, brake, loss })
+        Ok(VoltageLevel { voltage_v, drive, brake, loss, rating: None })
+    }
+
+    /// This level rated `rating`, checked: torques and speeds > 0, a time > 0 (`key` names it).
+    pub fn with_rating(self, key: &str, rating: OverloadRating) -> CoreResult<Self> {
+        let r = rating;
+        let values = [
+            r.continuous_torque_nm,
+            r.continuous_speed_rpm,
+            r.overload_torque_nm,
+            r.overload_speed_rpm,
+            r.overload_duration_s,
+        ];
+        if let Some(bad) = values.into_iter().find(|v| !(v.is_finite() && *v > 0.0)) {
+            return Err(CoreError::invalid(&format!("{key}.rating"), "torques, speeds and a time > 0").got(bad));
+        }
+        Ok(VoltageLevel { rating: Some(rating), ..self })
+    }
+
+    /// One machine's loss [W] at `n_rpm` with `torque_nm`, on this level's map.
+    fn loss_w(&self, n_rpm: f64, torque_nm: f64) -> f64 {
+        n_rpm / RPM_PER_RAD_S * self.loss.extrapolate(n_rpm, torque_nm)
     }
 }
 
@@ -68,6 +92,8 @@ pub struct Machines {
     levels: (VoltageLevel, VoltageLevel, f64),
     drag: Curve,
     top_rpm: f64,
+    /// Torque both ways held to this [Nm] (derated); none: the limits as rated.
+    cap_nm: Option<f64>,
 }
 
 impl Machines {
@@ -93,7 +119,22 @@ impl Machines {
         let drag = Curve::new("machine.drag_curve", drag)?;
         let levels = blend(levels, voltage_v)?;
         let top_rpm = levels.0.drive.x_range().1.min(levels.1.drive.x_range().1);
-        Ok(Machines { count: count as f64, inertia_kgm2, levels, drag, top_rpm })
+        Ok(Machines { count: count as f64, inertia_kgm2, levels, drag, top_rpm, cap_nm: None })
+    }
+
+    /// The machines' thermal limits at the battery's voltage ([`Thermal`], blended as the maps
+    /// are); none unless both levels are rated.
+    pub fn thermal(&self) -> Option<Thermal> {
+        let (lower, upper, w) = &self.levels;
+        let of = |level: &VoltageLevel| {
+            level.rating.map(|rating| Thermal::of(&rating, self.count, |n, t| level.loss_w(n, t)))
+        };
+        Some(of(lower)?.blend(&of(upper)?, *w))
+    }
+
+    /// These machines with their driving and braking torque held to `cap_nm` [Nm, all machines].
+    pub fn derated(&self, cap_nm: f64) -> Self {
+        Machines { cap_nm: Some(cap_nm), ..self.clone() }
     }
 
     /// Rotor inertia of all the machines [kg m²].
@@ -111,12 +152,14 @@ impl Machines {
         if n_rpm > self.top_rpm {
             return 0.0;
         }
-        self.count * self.mix(|l| l.drive.at(n_rpm))
+        let rated = self.count * self.mix(|l| l.drive.at(n_rpm));
+        self.cap_nm.map_or(rated, |cap| rated.min(cap))
     }
 
     /// Most braking torque of all the machines at `n_rpm` [Nm, ≤ 0].
     pub fn max_brake_nm(&self, n_rpm: f64) -> f64 {
-        self.count * self.mix(|l| l.brake.at(n_rpm))
+        let rated = self.count * self.mix(|l| l.brake.at(n_rpm));
+        self.cap_nm.map_or(rated, |cap| rated.max(-cap))
     }
 
     /// Drag torque of all the machines turning without current at `n_rpm` [Nm, ≤ 0].

@@ -24,6 +24,7 @@ use super::battery::Battery;
 use super::truck::ElectricTruck;
 use crate::powertrain::interface::{AffineAccel, Control, EnergyStore, Powertrain, RateForm, NEUTRAL};
 use crate::powertrain::sampled::Sampled;
+use crate::powertrain::thermal::Thermal;
 use crate::powertrain::{FuelGrid, G_MPS2, RPM_PER_RAD_S};
 
 /// Lowest speed at which braking recovers energy [m/s] (VECTO's 10 km/h).
@@ -183,6 +184,19 @@ impl ElectricModel {
         }
         let recovered = (u.brake * self.brake_torque_max_nm).min(drag - regen);
         (drag - recovered, recovered > 0.0)
+    }
+
+    /// The machines' loss [W] under control `u` at `v_mps` while they carry current; zero while
+    /// they are off (VECTO counts no loss then, their drag aside).
+    #[inline]
+    fn heating(&self, v_mps: f64, u: Control) -> f64 {
+        let n = self.rpm_per_mps * v_mps;
+        let (wheel_nm, running) = self.machine_wheel_nm(v_mps, u);
+        if !running {
+            return 0.0;
+        }
+        let (machine_nm, electric_w) = self.machines_at(n, wheel_nm, true);
+        electric_w - machine_nm * n / RPM_PER_RAD_S
     }
 
     /// Where the power of control `u` at `v_mps` goes.
@@ -365,6 +379,19 @@ impl Powertrain for ElectricModel {
     /// Braking returns energy to the battery.
     fn brake_draws_energy(&self) -> bool {
         true
+    }
+
+    fn thermal(&self) -> Option<Thermal> {
+        self.truck.thermal()
+    }
+
+    fn heating_w(&self, v_mps: f64, u: Control) -> f64 {
+        self.heating(v_mps, u)
+    }
+
+    /// The truck with its machines held to their continuous torque, both ways.
+    fn derated(&self) -> Option<Self> {
+        self.truck.derated().map(|truck| ElectricModel::new(truck, self.brake_torque_max_nm))
     }
 
     fn store(&self) -> EnergyStore {

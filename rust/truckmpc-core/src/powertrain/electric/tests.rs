@@ -9,7 +9,7 @@ use std::sync::Arc;
 use super::*;
 use crate::plant::{Control, Plant};
 use crate::powertrain::tests::body;
-use crate::powertrain::{Powertrain, RPM_PER_RAD_S};
+use crate::powertrain::{OverloadRating, Powertrain, Thermal, ThermalState, RPM_PER_RAD_S};
 use crate::road::Road;
 
 const COUNT: usize = 2;
@@ -38,7 +38,7 @@ fn level(voltage_v: f64, k: f64) -> LevelData {
             power_map.push((n, t, p));
         }
     }
-    LevelData { voltage_v, torque_limits, power_map }
+    LevelData { voltage_v, torque_limits, power_map, rating: None }
 }
 
 fn battery(discharge_a: f64) -> BatteryData {
@@ -286,4 +286,80 @@ fn at_the_glide_pedal_the_machines_draw_no_electric_power() {
     let electric_w = flows.battery_w - flows.battery_loss_w - flows.aux_w;
     assert!(electric_w.abs() < 1e-3 * flows.aux_w, "{flows:?}");
     assert!(m.glides() && m.glide_pedal(2.0, 1).is_none(), "no glide below 10 km/h");
+}
+
+/// Machines rated 300 Nm each continuously and 500 Nm for 30 s, both at 1500 rpm.
+fn rated(overload_s: f64) -> ElectricParts {
+    let mut parts = parts(2000.0, 50.0);
+    let rating = OverloadRating {
+        continuous_torque_nm: 300.0,
+        continuous_speed_rpm: 1500.0,
+        overload_torque_nm: 500.0,
+        overload_speed_rpm: 1500.0,
+        overload_duration_s: overload_s,
+    };
+    parts.machine.levels[0].rating = Some(rating);
+    parts
+}
+
+/// VECTO's overload data: the continuous loss is the machines' loss at the continuous torque and
+/// speed, the buffer the loss at the overload point above it times the overload time.
+#[test]
+fn the_thermal_buffer_is_the_overload_points_extra_loss_over_its_time() {
+    let thermal = rated(30.0).build().unwrap().thermal().unwrap();
+    let omega = 1500.0 / RPM_PER_RAD_S;
+    let continuous_w = 2.0 * omega * loss_torque(1500.0, 300.0, 1.0);
+    let peak_w = 2.0 * omega * loss_torque(1500.0, 500.0, 1.0);
+    assert!((thermal.continuous_loss_w - continuous_w).abs() < 1e-9 * continuous_w);
+    assert!((thermal.buffer_j - 30.0 * (peak_w - continuous_w)).abs() < 1e-6);
+    assert_eq!(thermal.continuous_nm, 600.0);
+    assert!(parts(2000.0, 50.0).build().unwrap().thermal().is_none(), "unrated machines never derate");
+}
+
+/// The machines derate once the content exceeds the buffer and recover at 90 % of it; the
+/// content never falls below zero.
+#[test]
+fn the_machines_derate_above_the_buffer_and_recover_at_nine_tenths_of_it() {
+    let limits = Thermal { buffer_j: 100.0, continuous_loss_w: 10.0, continuous_nm: 600.0 };
+    let mut state = ThermalState::new(limits);
+    state.commit(0.0, 5.0, true);
+    assert_eq!(state.content_j, 0.0);
+    state.commit(110.0, 1.0, true); // +100 J: at the buffer, not above it
+    assert!(!state.derated && state.content_j == 100.0);
+    state.commit(11.0, 1.0, true);
+    assert!(state.derated && state.derated_s == 0.0);
+    state.commit(0.0, 1.0, true); // 91 J: still above 90 %
+    assert!(state.derated && state.derated_s == 1.0);
+    state.commit(0.0, 1.0, false); // 81 J: recovered; this second did not bind
+    assert!(!state.derated && state.derated_s == 1.0);
+}
+
+/// Climbing 8 % at full pedal from 18 km/h (about 1 000 rpm, where the machines give 1 600 Nm
+/// against a continuous 600 Nm), rated machines fill their buffer and drive at their derated
+/// limits, which lose less than the continuous loss, until the buffer has cooled: they climb
+/// slower than unrated machines. A buffer the climb never fills changes nothing, bit for bit.
+#[test]
+fn a_long_climb_at_full_pedal_derates_the_machines() {
+    let road = Arc::new(Road::new(vec![0.0, 5_000.0], vec![0.08]).unwrap());
+    let climb = |parts: ElectricParts| {
+        let mut plant =
+            Plant::new(Arc::new(ElectricModel::new(parts.build().unwrap(), 60_000.0)), road.clone(), 0.0, 5.0);
+        for _ in 0..1_200 {
+            plant.step(Control { pedal: 1.0, brake: 0.0, gear: 1 }, 0.05);
+        }
+        (plant.state(), plant.thermal())
+    };
+    let (free, none) = climb(parts(2000.0, 50.0));
+    let (hot, thermal) = climb(rated(30.0));
+    let (cool, never) = climb(rated(1.0e9));
+    assert!(none.is_none() && cool == free && never.unwrap().derated_s == 0.0);
+    let thermal = thermal.unwrap();
+    assert!(thermal.derated_s > 5.0, "{thermal:?}");
+    assert!(hot.s_m < free.s_m - 10.0, "derated {} m, free {} m", hot.s_m, free.s_m);
+    let derated = rated(30.0).build().unwrap().derated().unwrap();
+    let m = ElectricModel::new(derated, 60_000.0);
+    let slope_nm = m.slope_torque_nm(0.08);
+    let expected = m.accel_on(hot.v_mps, 1.0, 0.0, 1, slope_nm);
+    let full = ElectricModel::new(rated(30.0).build().unwrap(), 60_000.0).accel_on(hot.v_mps, 1.0, 0.0, 1, slope_nm);
+    assert!(expected < full, "derated {expected} vs rated {full} m/s²");
 }

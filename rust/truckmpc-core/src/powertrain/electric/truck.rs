@@ -4,6 +4,7 @@
 use super::battery::{Battery, BatteryData};
 use super::machine::{Machines, VoltageLevel};
 use crate::powertrain::parts::Rows;
+use crate::powertrain::thermal::{OverloadRating, Thermal};
 use crate::powertrain::{Body, Curve, LossMap, MapTruck};
 use crate::{CoreError, CoreResult};
 
@@ -16,6 +17,8 @@ pub struct LevelData {
     pub torque_limits: Rows,
     /// (speed [rpm], torque [Nm], electric power [W]).
     pub power_map: Rows,
+    /// Its continuous and overload rating; none: it never derates.
+    pub rating: Option<OverloadRating>,
 }
 
 /// The machines' data: the file's one machine and how many there are.
@@ -85,7 +88,11 @@ impl ElectricParts {
         let mut levels = Vec::with_capacity(m.levels.len());
         for (i, level) in m.levels.iter().enumerate() {
             let key = format!("machine.levels[{i}]");
-            levels.push(VoltageLevel::new(&key, level.voltage_v, &level.torque_limits, &level.power_map)?);
+            let read = VoltageLevel::new(&key, level.voltage_v, &level.torque_limits, &level.power_map)?;
+            levels.push(match level.rating {
+                Some(rating) => read.with_rating(&key, rating)?,
+                None => read,
+            });
         }
         let machines = Machines::new(m.count, m.inertia_kgm2, levels, &m.drag_curve, battery.ocv_v)?;
         let r = &self.reduction;
@@ -172,6 +179,18 @@ impl ElectricTruck {
     #[inline]
     pub fn wheel_nm(&self, n_rpm: f64, machine_nm: f64) -> f64 {
         self.ratio * self.loss.as_ref().map_or(machine_nm, |map| map.passed_nm(n_rpm, machine_nm))
+    }
+
+    /// The machines' thermal limits (none: they never derate).
+    pub fn thermal(&self) -> Option<Thermal> {
+        self.machines.thermal()
+    }
+
+    /// The same truck with its machines derated to their continuous torque; none where they are
+    /// not rated.
+    pub fn derated(&self) -> Option<Self> {
+        let thermal = self.thermal()?;
+        Some(ElectricTruck { machines: self.machines.derated(thermal.continuous_nm), ..self.clone() })
     }
 
     /// The same truck at another total mass [kg], checked as the body is.
