@@ -16,7 +16,7 @@ from typer.testing import CliRunner
 
 from truckmpc import _core, load_run_config, simulate
 from truckmpc.cli import app
-from truckmpc.roads import RoadProfile, Stop
+from truckmpc.roads import RoadProfile, Stop, load_road
 from truckmpc.roads.stops import leg_road
 from truckmpc.stationary import electric_stationary_point
 from truckmpc.vecto.electric import ElectricTruckJob
@@ -314,3 +314,24 @@ def test_the_plot_title_and_the_report_quote_battery_energy(tmp_path: Path) -> N
     against_pcc = next(c for c in doc["comparisons"] if (c["controller"], c["baseline"]) == ("mpc", "pcc"))
     pct, saved_kwh = comparison_headline(doc, against_pcc) or (None, None)
     assert pct == pytest.approx(against_pcc["headline_pct"]) and saved_kwh == pytest.approx(against_pcc["saved_kwh"])
+
+
+@needs_bev
+def test_the_summary_sums_the_machines_and_the_batterys_losses_and_the_trace_gives_the_torque() -> None:
+    """The summary's machine and battery losses are the trace's loss powers (the core's power
+    flows at each 1 m sample) summed by the trapezoid rule in time, to 0.5 %; the trace's machine
+    torque times the machines' speed is the mechanical power the wheels and the reduction take."""
+    road = Path(__file__).resolve().parents[1] / "roads" / "hill_L500_A3.5.csv"
+    config = load_run_config(BEV_XML, overrides=("trace_step_m=1",))
+    result = simulate(load_road(road), config, "mpc")
+    trace = {key: np.asarray(values, dtype=float) for key, values in result.trace.items()}
+    v = trace["speed_kmh"] / 3.6
+    brakes_nm = float(config.settings.get("brake_torque_max_nm"))
+    flows = config.truck.core.electric_flows(v, trace["pedal"], trace["brake"], brakes_nm)
+    dt = np.diff(trace["time_s"])
+    for key, power in (("machine_loss_kwh", "machine_loss_w"), ("battery_loss_kwh", "battery_loss_w")):
+        summed = float(np.sum(0.5 * (flows[power][:-1] + flows[power][1:]) * dt)) / 3.6e6
+        assert result.summary[key] == pytest.approx(summed, rel=5e-3), key
+    omega = trace["engine_speed_rpm"] * math.pi / 30.0
+    mechanical_w = trace["machine_torque_nm"] * omega
+    assert np.allclose(mechanical_w, flows["wheel_w"] + flows["reduction_loss_w"], rtol=1e-9, atol=1e-6)

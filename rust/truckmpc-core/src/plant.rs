@@ -42,8 +42,9 @@ pub struct PlantState {
     pub stalled: bool,
 }
 
-/// Derivatives of (s, v, fuel, brake energy, energy returned, heat) with respect to time.
-type Rates = [f64; 6];
+/// Derivatives of (s, v, fuel, brake energy, energy returned, heat, machine loss, battery loss)
+/// with respect to time.
+type Rates = [f64; 8];
 
 /// The truck on a road, integrated in time.
 #[derive(Debug, Clone)]
@@ -63,6 +64,8 @@ pub struct Plant<P = Vehicle> {
     thermal: Option<ThermalState>,
     /// The drive derated, built when it first derates.
     derated: Option<Arc<P>>,
+    /// Energy lost in the machines and in the battery so far [J] (a battery's store only).
+    losses_j: [f64; 2],
 }
 
 impl<P: Powertrain> Plant<P> {
@@ -85,7 +88,14 @@ impl<P: Powertrain> Plant<P> {
             store,
             thermal,
             derated: None,
+            losses_j: [0.0; 2],
         }
+    }
+
+    /// Energy lost in the machines and in the battery since the start [J] (zero but for a
+    /// battery-electric truck).
+    pub fn losses_j(&self) -> [f64; 2] {
+        self.losses_j
     }
 
     /// The drive's thermal buffer now (none for a drive that never derates).
@@ -129,7 +139,11 @@ impl<P: Powertrain> Plant<P> {
         };
         let brake_power = vehicle.friction_brake_force_n(v_mps, u) * v_mps;
         let heat = if self.thermal.is_some() { vehicle.heating_w(v_mps, u) } else { 0.0 };
-        [v_mps, accel, energy, brake_power, (-energy).max(0.0), heat]
+        let [machine_loss, battery_loss] = match self.store {
+            EnergyStore::Battery { .. } => vehicle.losses_w(v_mps, u),
+            EnergyStore::FuelTank => [0.0; 2],
+        };
+        [v_mps, accel, energy, brake_power, (-energy).max(0.0), heat, machine_loss, battery_loss]
     }
 
     /// Advance by `dt_s` with constant inputs. No-op once stalled. The step is split at the road's
@@ -200,6 +214,8 @@ impl<P: Powertrain> Plant<P> {
         self.state.brake_energy_j += d(3);
         self.state.returned += d(4);
         self.state.t_s += dt_s;
+        self.losses_j[0] += d(6);
+        self.losses_j[1] += d(7);
         let binds = self.derating_binds(x.v_mps, u);
         if let Some(thermal) = self.thermal.as_mut() {
             thermal.commit(d(5), dt_s, binds);

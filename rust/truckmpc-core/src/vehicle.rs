@@ -332,6 +332,14 @@ impl Powertrain for Vehicle {
         dispatch!(self, m => Powertrain::heating_w(m, v_mps, u))
     }
 
+    fn losses_w(&self, v_mps: f64, u: Control) -> [f64; 2] {
+        dispatch!(self, m => Powertrain::losses_w(m, v_mps, u))
+    }
+
+    fn machine_torque_nm(&self, v_mps: f64, u: Control) -> f64 {
+        dispatch!(self, m => Powertrain::machine_torque_nm(m, v_mps, u))
+    }
+
     /// The same vehicle with its drive derated (a battery-electric truck's machines).
     fn derated(&self) -> Option<Self> {
         match &self.model {

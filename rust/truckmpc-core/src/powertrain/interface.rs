@@ -195,6 +195,18 @@ pub trait Powertrain {
         0.0
     }
 
+    /// Power lost in the machines and in the battery [W] under `u` at `v_mps` (the machines' drag
+    /// while they are off), for a battery-electric truck's summary; zero for other powertrains.
+    fn losses_w(&self, _v_mps: f64, _u: Control) -> [f64; 2] {
+        [0.0; 2]
+    }
+
+    /// The machines' torque [Nm] under `u` at `v_mps` (a battery-electric truck's; NaN for
+    /// other powertrains).
+    fn machine_torque_nm(&self, _v_mps: f64, _u: Control) -> f64 {
+        f64::NAN
+    }
+
     /// This powertrain derated to its continuous rating; None where it never derates.
     fn derated(&self) -> Option<Self>
     where

@@ -65,6 +65,7 @@ pub fn run_on_map(
     let last_u = closed.drive(map, controller);
     closed.recorder.finish(&closed.state, last_u);
     closed.outcome.thermal = closed.plant.thermal();
+    closed.outcome.losses_j = closed.plant.losses_j();
     let compute_time_s = wall.elapsed().as_secs_f64();
     let summary = RunSummary::new(
         &closed.state,
@@ -133,6 +134,7 @@ impl ClosedLoop {
             plant_dt_s: sim.plant_dt_s,
             store: crate::powertrain::Powertrain::store(vehicle.as_ref()),
             thermal: None,
+            losses_j: [0.0; 2],
         };
         ClosedLoop {
             state: plant.state(),

@@ -297,6 +297,11 @@ pub const SUMMARY: &[SummaryFigure] = &[
         "The battery's state of charge at the start.", |s| battery(s, |b| b.soc_start_pct)),
     core("soc_end_pct", "%", Number, Electric, Last, All, "state of charge at the end",
         "The battery's state of charge at the end.", |s| battery(s, |b| b.soc_end_pct)),
+    core("machine_loss_kwh", "kWh", Number, Electric, Sum, No, "machine losses",
+        "Energy lost in the electric machines (their drag while switched off included).",
+        |s| battery(s, |b| b.machine_loss_kwh)),
+    core("battery_loss_kwh", "kWh", Number, Electric, Sum, No, "battery losses",
+        "Energy lost in the battery's internal resistance.", |s| battery(s, |b| b.battery_loss_kwh)),
     core("derated_s", "s", Number, Electric, Sum, No, "machines derated",
         "Time the machines' thermal buffer held them to their continuous torque where that is below their rated \
          limits (null: machines not rated).",
@@ -434,6 +439,9 @@ pub const TRACE: &[TraceColumn] = &[
     column_of(Electric, "battery_power_kw", "kW", 3, Joined, "battery power",
         "Power drawn from the battery under the sample's inputs; negative while braking returns energy.",
         |t| numbers(&mut t.battery_power_kw)),
+    column_of(Electric, "machine_torque_nm", "Nm", 2, Joined, "machine torque",
+        "The electric machines' torque under the sample's inputs (all of them; negative while they brake or drag).",
+        |t| numbers(&mut t.machine_torque_nm)),
 ];
 
 impl RunSummary {

@@ -64,12 +64,15 @@ pub struct BatteryFigures {
     /// Time the machines ran derated below their rated torque limits [s]; None for machines
     /// that are not rated.
     pub derated_s: Option<f64>,
+    /// Energy lost in the machines (their drag while off included) and in the battery [kWh].
+    pub machine_loss_kwh: f64,
+    pub battery_loss_kwh: f64,
 }
 
 impl BatteryFigures {
-    /// The figures of a run drawing on `store` that ended in `last` after `distance_m`, its
-    /// machines' thermal buffer ending as `thermal`.
-    fn new(store: EnergyStore, last: &PlantState, distance_m: f64, thermal: Option<ThermalState>) -> Option<Self> {
+    /// The figures of a run drawing on `store` that ended in `last` after `distance_m`, as
+    /// `outcome` ended it (its machines' thermal buffer and losses).
+    fn new(store: EnergyStore, last: &PlantState, distance_m: f64, outcome: &LoopOutcome) -> Option<Self> {
         let start = store.state_of_charge(0.0)?;
         let end = store.state_of_charge(last.fuel_g)?;
         let energy_kwh = last.fuel_g / J_PER_KWH;
@@ -80,7 +83,9 @@ impl BatteryFigures {
             soc_start_pct: 100.0 * start,
             soc_end_pct: 100.0 * end,
             empty: store.is_empty(last.fuel_g),
-            derated_s: thermal.map(|t| t.derated_s),
+            derated_s: outcome.thermal.map(|t| t.derated_s),
+            machine_loss_kwh: outcome.losses_j[0] / J_PER_KWH,
+            battery_loss_kwh: outcome.losses_j[1] / J_PER_KWH,
         })
     }
 }
@@ -107,6 +112,8 @@ pub struct LoopOutcome {
     pub store: EnergyStore,
     /// The drive's thermal buffer at the end (none for a drive that never derates).
     pub thermal: Option<ThermalState>,
+    /// Energy lost in the machines and in the battery [J] (a battery-electric truck's).
+    pub losses_j: [f64; 2],
 }
 
 impl RunSummary {
@@ -120,7 +127,7 @@ impl RunSummary {
     ) -> Self {
         let distance_m = last.s_m - outcome.start_m;
         let moved = last.t_s > 0.0;
-        let battery = BatteryFigures::new(outcome.store, last, distance_m, outcome.thermal);
+        let battery = BatteryFigures::new(outcome.store, last, distance_m, outcome);
         RunSummary {
             distance_m,
             fuel_kg: last.fuel_g / 1000.0,

@@ -29,6 +29,8 @@ pub struct Trace {
     pub battery_energy_kwh: Vec<f64>,
     pub soc_pct: Vec<f64>,
     pub battery_power_kw: Vec<f64>,
+    /// A battery-electric truck's machine torque [Nm] under the sample's inputs.
+    pub machine_torque_nm: Vec<f64>,
 }
 
 /// One sample: the interpolated state and the inputs applied over the step that crossed it.
@@ -126,6 +128,7 @@ impl TraceRecorder {
                     trace.battery_energy_kwh.push(x.fuel_g / J_PER_KWH);
                     trace.soc_pct.push(100.0 * store.state_of_charge(x.fuel_g).unwrap_or(f64::NAN));
                     trace.battery_power_kw.push(vehicle.energy_rate(x.v_mps, x.control) / 1000.0);
+                    trace.machine_torque_nm.push(vehicle.machine_torque_nm(x.v_mps, x.control));
                 }
             }
             trace.brake_energy_kj.push(x.brake_energy_j / 1000.0);

@@ -389,6 +389,15 @@ impl Powertrain for ElectricModel {
         self.heating(v_mps, u)
     }
 
+    fn losses_w(&self, v_mps: f64, u: Control) -> [f64; 2] {
+        let flows = self.power_flows(v_mps, u);
+        [flows.machine_loss_w, flows.battery_loss_w]
+    }
+
+    fn machine_torque_nm(&self, v_mps: f64, u: Control) -> f64 {
+        self.power_flows(v_mps, u).machine_nm
+    }
+
     /// The truck with its machines held to their continuous torque, both ways.
     fn derated(&self) -> Option<Self> {
         self.truck.derated().map(|truck| ElectricModel::new(truck, self.brake_torque_max_nm))
