@@ -141,11 +141,7 @@ def _numbers(option: str, key: str, spec: str | None) -> list[float] | None:
 
 
 def _number(value: object) -> float | None:
-    """A finite value of a SPEC as a number, or None; YAML reads ``6e4`` (no dot) as text, a number here."""
-    if isinstance(value, bool):
+    """A finite number of a SPEC, or None (text, true or false, .nan, .inf)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         return None
-    try:
-        number = float(value) if isinstance(value, (int, float)) else float(str(value))
-    except ValueError:
-        return None
-    return number if math.isfinite(number) else None
+    return float(value)
