@@ -375,12 +375,3 @@ def test_the_thesis_preset_is_an_overlay_by_name(tmp_path: Path, monkeypatch: py
     (tmp_path / "thesis").write_text("pedal_kp: 1.5\n")  # a file of that name wins over the preset
     run = load_run_config(config_paths=["thesis"])
     assert (run.pi.pedal_kp, run.mpc.on_infeasible) == (1.5, "rescue")
-
-
-def test_a_number_with_an_exponent_is_a_number(tmp_path: Path) -> None:
-    """1e5 and 1.5E6 are numbers in --set and in a config file (YAML 1.1 would read them as text)."""
-    overlay = tmp_path / "weights.yaml"
-    overlay.write_text("q_brake_per_km: 4e3\nq_neutral: 3.0E1\n")
-    config = load_run_config(config_paths=[overlay], overrides=["q_gear_shift=6e1", "stage_m=2.5e1"])
-    assert (config.mpc.q_brake_per_km, config.mpc.q_neutral) == (4000.0, 30.0)
-    assert (config.mpc.q_gear_shift, config.mpc.stage_m) == (60.0, 25.0)

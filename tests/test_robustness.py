@@ -164,16 +164,20 @@ def test_a_reversed_map_keeps_its_points_along_the_road_and_takes_the_roads_targ
 def test_a_vecto_trucks_other_mass_is_the_same_truck_at_another_load(tmp_path):
     """The robustness study's truck of another mass, for a VECTO truck: its payload changed by the
     difference, so the truck and the run's recorded mass are that mass and nothing else moves;
-    the controller told the declared mass models the truck at it."""
+    the controller told the declared mass models the truck at it; a key the user set over what the
+    truck sets (the PI's upshift speeds) stays the user's."""
     job = write_job(tmp_path / "truck")
-    config = load_run_config(job)
+    shifted = [None if n is None else n + 50.0 for n in load_run_config(job).settings.get("gear_up_rpm")]
+    own = f"gear_up_rpm={shifted}".replace("None", "null")
+    config = load_run_config(job, overrides=(own,))
     declared_kg = config.truck.mass_kg
     truth = rb._truth(config, declared_kg - 5000.0, "truck 5 t lighter")
     assert truth.truck.mass_kg == declared_kg - 5000.0 == truth.settings.get("mass_kg")
     assert truth.truck.payload_kg == config.truck.payload_kg - 5000.0
     # The same as the truck loaded so from its file (its tyres' rolling resistance follows the load).
-    loaded = load_run_config(job, overrides=(f"payload_kg={truth.truck.payload_kg}",))
+    loaded = load_run_config(job, overrides=(f"payload_kg={truth.truck.payload_kg}", own))
     assert truth.settings.values() == {**loaded.settings.values(), "controller_mass_kg": None}
+    assert list(truth.settings.get("gear_up_rpm")) == shifted
     road = make_section("hill", 600, 3.0, lead_m=300, tail_m=300)
     told = truth.with_values({"controller_mass_kg": declared_kg}, "told")
     # The PI holds its set speed whatever it weighs: the lighter truck burns less.

@@ -89,7 +89,7 @@ def test_a_spec_reads_as_the_core_declares_it() -> None:
 
 def test_the_trace_columns_are_the_csv_files_columns_in_order() -> None:
     expected = "distance_m time_s speed_kmh gear pedal brake engine_speed_rpm slope altitude_m fuel_g brake_energy_kj"
-    battery = "battery_energy_kwh soc_pct battery_power_kw"
+    battery = "battery_energy_kwh soc_pct battery_power_kw machine_torque_nm"
     assert tuple(expected.split()) == TRACE_COLUMNS
     assert [spec.name for spec in TRACE_SPECS] == [*expected.split(), *battery.split()]
     continued = [spec.name for spec in TRACE_SPECS if spec.merge == "continued"]

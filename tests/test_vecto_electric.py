@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from truckmpc import load_run_config
 from truckmpc.cli import app
 from truckmpc.errors import VehicleError
 from truckmpc.vecto.electric import BatteryData, ElectricTruckJob
@@ -100,6 +101,7 @@ def _edited(tmp_path: Path, old: str, new: str) -> tuple[Path, int]:
         ('SoC="100" OCV="800.21"', 'SoC="120" OCV="800.21"', "OCV/Entry", "[0, 100]"),
         ("<SOCmax>92.0<", "<SOCmax>5.0<", "SOCmax", "above SOCmin"),
         (">1555.50</v2.3:RatedCapacity>", ">lots</v2.3:RatedCapacity>", "RatedCapacity", "expected a number"),
+        ("<OverloadTorque>750.00<", "<OverloadTorque>600.00<", "OverloadTorque", "expected an OverloadTorque >="),
     ],
 )
 def test_a_defect_is_one_line_naming_the_file_line_and_element(
@@ -166,3 +168,15 @@ def test_vehicle_plot_draws_the_machine_map_and_refuses_a_run(tmp_path: Path) ->
     assert out.stat().st_size > 10_000
     refused = runner.invoke(app, ["vehicle", "plot", str(BEV_XML), "--run", str(tmp_path)])
     assert refused.exit_code == 2 and "--run: expected none" in refused.output
+
+
+@needs_bev
+def test_a_zero_overload_duration_is_a_machine_without_a_thermal_buffer(tmp_path: Path) -> None:
+    """OverloadDuration 0 at both voltage levels: no buffer, so the machines derate as soon as
+    their loss exceeds the continuous loss; the file still drives, and vehicle info says so."""
+    path, _ = _edited(tmp_path, "<OverloadDuration>120.00<", "<OverloadDuration>0<")
+    path.write_text(path.read_text().replace("<OverloadDuration>120.00<", "<OverloadDuration>0<"))
+    facts = load_run_config(path).truck.core.electric_facts
+    assert facts["overload_buffer_kj"] == 0.0 and facts["continuous_torque_nm"] == 1400.0
+    shown = runner.invoke(app, ["vehicle", "info", str(path)])
+    assert shown.exit_code == 0 and "fill 0 kJ" in shown.output, shown.output

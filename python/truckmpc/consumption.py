@@ -44,9 +44,10 @@ class Consumption:
         its word and the kilogram its unit (``mpc_saved_kg`` → ``mpc_saved_kwh``,
         ``fuel_equal_time`` → ``energy_equal_time``, ``Δfuel [%]`` → ``Δenergy [%]``,
         ``saved [kg]`` → ``saved [kWh]``); β's key becomes this consumption's."""
-        name = name.replace(FUEL.beta_key, self.beta_key).replace(FUEL.word, self.word)
-        name = name.replace(f"[{FUEL.unit}]", f"[{self.unit}]")
-        return re.sub(rf"_{FUEL.unit}(?=_|$)", f"_{self.unit.lower()}", name)
+        name = name.replace(FUEL.beta_key, self.beta_key).replace(f"[{FUEL.unit}]", f"[{self.unit}]")
+        # Only what a consumption names: fuel_kg, fuel_corrected_kg, saved_kg; not mass_kg.
+        name = re.sub(rf"(fuel|corrected|saved)_{FUEL.unit}(?=_|$)", rf"\1_{self.unit.lower()}", name)
+        return re.sub(rf"(?<![a-z]){FUEL.word}(?![a-z])", self.word, name)
 
 
 FUEL = Consumption("fuel", "fuel_kg", "fuel_corrected_kg", "kg", G_PER_KG, "beta_g_per_s")

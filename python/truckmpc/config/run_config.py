@@ -144,13 +144,20 @@ class RunConfig:
         following it; every other key as it is. An error names `where` and the key."""
         if self.truck is None:
             raise ConfigError(f"{where}: expected a VECTO truck, got the thesis's truck (its keys are run keys)")
+        job = self.truck.job.path
         layers = Layers()
-        layers.next_layer()
-        for key, value in {**self.settings.values(), **changes}.items():
+        layers.rank = max((origin.rank for origin in self.origins.values()), default=0) + 1
+        for key, value in self.settings.values().items():
+            origin = self.origins.get(key, Origin(where, 0))
+            layers.put_under(key, value, origin.text, origin.rank)
+        for key, value in changes.items():
             layers.put(key, value, where)
-        truck = build_truck(self.truck.job.path, layers)
+        truck = build_truck(job, layers)
+        # What the old truck set follows the new one; what a user set over it stays.
         for key, value in truck_layer(truck).items():
-            layers.put(key, value, str(truck.job.path))
+            set_by = layers.origins.get(key)
+            if set_by is None or set_by.text == str(job):
+                layers.put_under(key, value, str(job), set_by.rank if set_by else 0)
         return _build(layers, truck)
 
     def sources(self) -> list[str]:

@@ -112,11 +112,19 @@ def _voltage_level(el: Element) -> VoltageLevel:
             raise VehicleError(f"{e.where}: expected a minTorque <= 0 (the most braking torque), got {braking:g}")
     power = table(child(el, "PowerMap"), (("outShaftSpeed", 0.0), ("torque", None), ("electricPower", None)), 4)
     check_once(located(power), "(speed, torque)")
+    continuous_nm = number(child(el, "ContinuousTorque"), positive=True)
+    overload = child(el, "OverloadTorque")
+    overload_nm = number(overload, positive=True)
+    if overload_nm < continuous_nm:
+        raise VehicleError(
+            f"{overload.where}: expected an OverloadTorque >= the ContinuousTorque ({continuous_nm:g} Nm; the "
+            f"machine's thermal buffer is the overload's loss above the continuous one), got {overload_nm:g}"
+        )
     return VoltageLevel(
         voltage_v=number(child(el, "Voltage"), positive=True),
-        continuous_torque_nm=number(child(el, "ContinuousTorque"), positive=True),
+        continuous_torque_nm=continuous_nm,
         continuous_speed_rpm=number(child(el, "TestSpeedContinuousTorque"), positive=True),
-        overload_torque_nm=number(child(el, "OverloadTorque"), positive=True),
+        overload_torque_nm=overload_nm,
         overload_speed_rpm=number(child(el, "TestSpeedOverloadTorque"), positive=True),
         overload_duration_s=number(child(el, "OverloadDuration"), minimum=0.0),
         torque_limits=tuple(v for _, v in limits),

@@ -103,12 +103,20 @@ impl<P: Powertrain> Plant<P> {
         self.thermal
     }
 
-    /// The drive as it drives now: derated while its thermal buffer says so.
+    /// Whether the drive is derated now.
+    pub fn is_derated(&self) -> bool {
+        self.thermal.is_some_and(|t| t.derated)
+    }
+
+    /// The drive as it drives now and the control it takes for `u` at `v_mps`: the derated drive
+    /// ([`derated_control`]) while its thermal buffer says so.
     #[inline]
-    fn active(&self) -> &P {
+    fn active(&self, v_mps: f64, u: Control) -> (&P, Control) {
         match (&self.thermal, &self.derated) {
-            (Some(t), Some(derated)) if t.derated => derated,
-            _ => &self.vehicle,
+            (Some(t), Some(derated)) if t.derated => {
+                (derated, derated_control(self.vehicle.as_ref(), derated.as_ref(), v_mps, u).0)
+            }
+            _ => (&self.vehicle, u),
         }
     }
 
@@ -130,7 +138,7 @@ impl<P: Powertrain> Plant<P> {
     /// Time derivatives at speed `v_mps` on a slope given by its wheel torque [Nm].
     #[inline]
     fn rates(&self, slope_torque_nm: f64, v_mps: f64, u: Control) -> Rates {
-        let vehicle = self.active();
+        let (vehicle, u) = self.active(v_mps, u);
         let accel = vehicle.accel_on(v_mps, u.pedal, u.brake, u.gear, slope_torque_nm);
         let energy = if self.interruption_left_s > 0.0 {
             vehicle.interrupted_energy_rate(v_mps)
@@ -231,13 +239,12 @@ impl<P: Powertrain> Plant<P> {
     /// Whether the drive runs derated at `v_mps` in `u`'s gear with limits below its rated ones
     /// (its most driving or most recovering torque lower).
     fn derating_binds(&self, v_mps: f64, u: Control) -> bool {
-        let (Some(thermal), Some(derated)) = (&self.thermal, &self.derated) else { return false };
-        if !thermal.derated || u.gear == NEUTRAL {
-            return false;
+        match (&self.thermal, &self.derated) {
+            (Some(t), Some(derated)) if t.derated => {
+                derated_control(self.vehicle.as_ref(), derated.as_ref(), v_mps, u).1
+            }
+            _ => false,
         }
-        let full = |p: &P| p.pedal_affine(v_mps, u.gear, 0.0).gain;
-        let braked = |p: &P| p.friction_brake_force_n(v_mps, Control { pedal: 0.0, brake: 1.0, gear: u.gear });
-        full(derated) < full(&self.vehicle) || braked(derated) > braked(&self.vehicle)
     }
 
     /// Advance by at most `dt_s` but stop at `s_limit_m`: the last step is shortened so the truck
@@ -268,4 +275,22 @@ impl<P: Powertrain> Plant<P> {
             }
         }
     }
+}
+
+/// The control the `derated` drive takes for `u` at `v_mps`, and whether de-rating binds there.
+/// De-rating caps the machines' torque; below the cap the pedal gives the rated drive's torque:
+/// the pedal is rescaled by the ratio of the two drives' full-pedal gains and held to full pedal
+/// of the derated drive. It binds where the rated torque asked for is above the cap, or where the
+/// derated drive leaves the friction brakes more of the brake's force than the rated one.
+pub fn derated_control<P: Powertrain>(rated: &P, derated: &P, v_mps: f64, u: Control) -> (Control, bool) {
+    if u.gear == NEUTRAL {
+        return (u, false);
+    }
+    let gain = |p: &P| p.pedal_affine(v_mps, u.gear, 0.0).gain;
+    let (rated_gain, derated_gain) = (gain(rated), gain(derated));
+    let asked = u.pedal * rated_gain;
+    let pedal = if derated_gain > 0.0 { (asked / derated_gain).min(1.0) } else { u.pedal };
+    let braked = |p: &P| p.friction_brake_force_n(v_mps, u);
+    let binds = (u.pedal > 0.0 && asked > derated_gain) || (u.brake > 0.0 && braked(derated) > braked(rated));
+    (Control { pedal, ..u }, binds)
 }

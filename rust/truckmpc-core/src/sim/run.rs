@@ -201,6 +201,7 @@ impl ClosedLoop {
                 }
             };
             if new.s_m >= self.recorder.next_s_m - ARRIVAL_TOLERANCE_M {
+                self.recorder.derated = self.plant.is_derated();
                 self.recorder.cross(&self.state, &new, u);
             }
             self.idle_passes = if new.s_m <= self.state.s_m { self.idle_passes + 1 } else { 0 };

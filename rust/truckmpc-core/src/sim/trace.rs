@@ -1,7 +1,7 @@
 //! The trace of a run: plant states sampled at fixed distances by interpolation across plant steps.
 
 use super::{ARRIVAL_TOLERANCE_M, KMH_PER_MPS};
-use crate::plant::{Control, PlantState};
+use crate::plant::{derated_control, Control, PlantState};
 use crate::powertrain::{EnergyStore, Powertrain};
 use crate::road::Road;
 use crate::vehicle::Vehicle;
@@ -42,6 +42,8 @@ struct Sample {
     fuel_g: f64,
     brake_energy_j: f64,
     control: Control,
+    /// Whether the drive ran derated.
+    derated: bool,
 }
 
 /// Collects states at the trace's sample distances `start_m + k·step_m` (up to `end_m`).
@@ -54,6 +56,8 @@ pub struct TraceRecorder {
     next_index: usize,
     /// The next sample distance [m]; infinite after the last.
     pub next_s_m: f64,
+    /// Whether the drive runs derated over the steps being crossed.
+    pub derated: bool,
     samples: Vec<Sample>,
 }
 
@@ -65,7 +69,7 @@ impl TraceRecorder {
         let count = (0..candidates).take_while(|&k| at(k) <= end_m).count();
         let next_s_m = if count > 0 { start_m } else { f64::INFINITY };
         let samples = Vec::with_capacity(count + 1);
-        TraceRecorder { start_m, step_m, count, next_index: 0, next_s_m, samples }
+        TraceRecorder { start_m, step_m, count, next_index: 0, next_s_m, derated: false, samples }
     }
 
     /// Record every sample in (a.s_m, b.s_m] (a.s_m included for the first one), `u` applied from a
@@ -81,6 +85,7 @@ impl TraceRecorder {
                 fuel_g: a.fuel_g + f * (b.fuel_g - a.fuel_g),
                 brake_energy_j: a.brake_energy_j + f * (b.brake_energy_j - a.brake_energy_j),
                 control: u,
+                derated: self.derated,
             });
             self.next_index += 1;
             self.next_s_m = if self.next_index < self.count {
@@ -101,6 +106,7 @@ impl TraceRecorder {
                 fuel_g: last.fuel_g,
                 brake_energy_j: last.brake_energy_j,
                 control: u,
+                derated: self.derated,
             });
         }
     }
@@ -111,6 +117,7 @@ impl TraceRecorder {
         let mut trace = Trace::default();
         let mut segment = 0;
         let store = vehicle.store();
+        let derated = self.samples.iter().any(|x| x.derated).then(|| vehicle.derated()).flatten();
         for x in &self.samples {
             trace.distance_m.push(x.s_m);
             trace.time_s.push(x.t_s);
@@ -127,8 +134,12 @@ impl TraceRecorder {
                 EnergyStore::Battery { .. } => {
                     trace.battery_energy_kwh.push(x.fuel_g / J_PER_KWH);
                     trace.soc_pct.push(100.0 * store.state_of_charge(x.fuel_g).unwrap_or(f64::NAN));
-                    trace.battery_power_kw.push(vehicle.energy_rate(x.v_mps, x.control) / 1000.0);
-                    trace.machine_torque_nm.push(vehicle.machine_torque_nm(x.v_mps, x.control));
+                    let (drive, u) = match &derated {
+                        Some(d) if x.derated => (d, derated_control(vehicle, d, x.v_mps, x.control).0),
+                        _ => (vehicle, x.control),
+                    };
+                    trace.battery_power_kw.push(drive.energy_rate(x.v_mps, u) / 1000.0);
+                    trace.machine_torque_nm.push(drive.machine_torque_nm(x.v_mps, u));
                 }
             }
             trace.brake_energy_kj.push(x.brake_energy_j / 1000.0);

@@ -61,18 +61,21 @@ impl VoltageLevel {
         Ok(VoltageLevel { voltage_v, drive, brake, loss, rating: None })
     }
 
-    /// This level rated `rating`, checked: torques and speeds > 0, a time > 0 (`key` names it).
+    /// This level rated `rating`, checked: torques and speeds > 0, a time >= 0 (a zero time: no
+    /// buffer), the overload torque at least the continuous one (`key` names it).
     pub fn with_rating(self, key: &str, rating: OverloadRating) -> CoreResult<Self> {
         let r = rating;
-        let values = [
-            r.continuous_torque_nm,
-            r.continuous_speed_rpm,
-            r.overload_torque_nm,
-            r.overload_speed_rpm,
-            r.overload_duration_s,
-        ];
-        if let Some(bad) = values.into_iter().find(|v| !(v.is_finite() && *v > 0.0)) {
-            return Err(CoreError::invalid(&format!("{key}.rating"), "torques, speeds and a time > 0").got(bad));
+        let positive = [r.continuous_torque_nm, r.continuous_speed_rpm, r.overload_torque_nm, r.overload_speed_rpm];
+        let key = format!("{key}.rating");
+        if let Some(bad) = positive.into_iter().find(|v| !(v.is_finite() && *v > 0.0)) {
+            return Err(CoreError::invalid(&key, "torques and speeds > 0").got(bad));
+        }
+        if !(r.overload_duration_s.is_finite() && r.overload_duration_s >= 0.0) {
+            return Err(CoreError::invalid(&key, "an overload duration >= 0 [s]").got(r.overload_duration_s));
+        }
+        if r.overload_torque_nm < r.continuous_torque_nm {
+            let expected = format!("an overload torque >= the continuous torque ({} Nm)", r.continuous_torque_nm);
+            return Err(CoreError::invalid(&key, &expected).got(r.overload_torque_nm));
         }
         Ok(VoltageLevel { rating: Some(rating), ..self })
     }
