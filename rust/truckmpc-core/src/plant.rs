@@ -140,17 +140,12 @@ impl<P: Powertrain> Plant<P> {
     fn rates(&self, slope_torque_nm: f64, v_mps: f64, u: Control) -> Rates {
         let (vehicle, u) = self.active(v_mps, u);
         let accel = vehicle.accel_on(v_mps, u.pedal, u.brake, u.gear, slope_torque_nm);
-        let energy = if self.interruption_left_s > 0.0 {
-            vehicle.interrupted_energy_rate(v_mps)
+        let [energy, heat, machine_loss, battery_loss] = if self.interruption_left_s > 0.0 {
+            [vehicle.interrupted_energy_rate(v_mps), 0.0, 0.0, 0.0]
         } else {
-            vehicle.energy_rate(v_mps, u)
+            vehicle.rates_with_losses(v_mps, u)
         };
         let brake_power = vehicle.friction_brake_force_n(v_mps, u) * v_mps;
-        let heat = if self.thermal.is_some() { vehicle.heating_w(v_mps, u) } else { 0.0 };
-        let [machine_loss, battery_loss] = match self.store {
-            EnergyStore::Battery { .. } => vehicle.losses_w(v_mps, u),
-            EnergyStore::FuelTank => [0.0; 2],
-        };
         [v_mps, accel, energy, brake_power, (-energy).max(0.0), heat, machine_loss, battery_loss]
     }
 

@@ -328,12 +328,8 @@ impl Powertrain for Vehicle {
     }
 
     #[inline]
-    fn heating_w(&self, v_mps: f64, u: Control) -> f64 {
-        dispatch!(self, m => Powertrain::heating_w(m, v_mps, u))
-    }
-
-    fn losses_w(&self, v_mps: f64, u: Control) -> [f64; 2] {
-        dispatch!(self, m => Powertrain::losses_w(m, v_mps, u))
+    fn rates_with_losses(&self, v_mps: f64, u: Control) -> [f64; 4] {
+        dispatch!(self, m => Powertrain::rates_with_losses(m, v_mps, u))
     }
 
     fn machine_torque_nm(&self, v_mps: f64, u: Control) -> f64 {

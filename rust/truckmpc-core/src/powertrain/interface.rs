@@ -189,16 +189,12 @@ pub trait Powertrain {
         None
     }
 
-    /// Power heating the drive under `u` at `v_mps` [W] (the machines' loss while they carry
-    /// current), which fills the thermal buffer.
-    fn heating_w(&self, _v_mps: f64, _u: Control) -> f64 {
-        0.0
-    }
-
-    /// Power lost in the machines and in the battery [W] under `u` at `v_mps` (the machines' drag
-    /// while they are off), for a battery-electric truck's summary; zero for other powertrains.
-    fn losses_w(&self, _v_mps: f64, _u: Control) -> [f64; 2] {
-        [0.0; 2]
+    /// For the plant, the energy rate of control `u` at `v_mps` and where power is lost:
+    /// [energy rate ([`Powertrain::energy_rate`]), power heating a drive that derates (its
+    /// machines' loss while they carry current) [W], loss in the machines (their drag while off
+    /// included) [W], loss in the battery [W]]; the losses are zero for a powertrain without them.
+    fn rates_with_losses(&self, v_mps: f64, u: Control) -> [f64; 4] {
+        [self.energy_rate(v_mps, u), 0.0, 0.0, 0.0]
     }
 
     /// The machines' torque [Nm] under `u` at `v_mps` (a battery-electric truck's; NaN for

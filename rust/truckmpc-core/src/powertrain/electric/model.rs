@@ -80,6 +80,8 @@ pub struct PowerFlows {
     /// Machine speed [rpm] and torque [Nm] (the drag while off).
     pub machine_rpm: f64,
     pub machine_nm: f64,
+    /// Whether the machines carry current (false: off, turning against their drag).
+    pub running: bool,
 }
 
 impl ElectricModel {
@@ -186,19 +188,6 @@ impl ElectricModel {
         (drag - recovered, recovered > 0.0)
     }
 
-    /// The machines' loss [W] under control `u` at `v_mps` while they carry current; zero while
-    /// they are off (VECTO counts no loss then, their drag aside).
-    #[inline]
-    fn heating(&self, v_mps: f64, u: Control) -> f64 {
-        let n = self.rpm_per_mps * v_mps;
-        let (wheel_nm, running) = self.machine_wheel_nm(v_mps, u);
-        if !running {
-            return 0.0;
-        }
-        let (machine_nm, electric_w) = self.machines_at(n, wheel_nm, true);
-        electric_w - machine_nm * n / RPM_PER_RAD_S
-    }
-
     /// Where the power of control `u` at `v_mps` goes.
     pub fn power_flows(&self, v_mps: f64, u: Control) -> PowerFlows {
         let n = self.rpm_per_mps * v_mps;
@@ -218,6 +207,7 @@ impl ElectricModel {
             wheel_w,
             machine_rpm: n,
             machine_nm,
+            running,
         }
     }
 
@@ -385,13 +375,13 @@ impl Powertrain for ElectricModel {
         self.truck.thermal()
     }
 
-    fn heating_w(&self, v_mps: f64, u: Control) -> f64 {
-        self.heating(v_mps, u)
-    }
-
-    fn losses_w(&self, v_mps: f64, u: Control) -> [f64; 2] {
+    /// One evaluation of the power flows: the battery's power (as [`Powertrain::energy_rate`]
+    /// computes it, to the bit), the machines' loss while they run (VECTO heats the thermal buffer
+    /// with nothing while they are off), the machines' and the battery's losses.
+    fn rates_with_losses(&self, v_mps: f64, u: Control) -> [f64; 4] {
         let flows = self.power_flows(v_mps, u);
-        [flows.machine_loss_w, flows.battery_loss_w]
+        let heating = if flows.running { flows.machine_loss_w } else { 0.0 };
+        [flows.battery_w, heating, flows.machine_loss_w, flows.battery_loss_w]
     }
 
     fn machine_torque_nm(&self, v_mps: f64, u: Control) -> f64 {
