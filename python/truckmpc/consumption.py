@@ -29,6 +29,8 @@ class Consumption:
     store_per_unit: float
     beta_key: str
     """The key of β, the look-ahead cost's price of a second, in the store unit per second."""
+    label: str
+    """What it is called in a sentence or on an axis: ``fuel``, ``battery energy``."""
 
     def delta_key(self, kind: str = "") -> str:
         """The key of a Δ [%] of this consumption: ``delta_fuel_pct``, ``delta_energy_equal_time_pct``."""
@@ -50,8 +52,8 @@ class Consumption:
         return re.sub(rf"(?<![a-z]){FUEL.word}(?![a-z])", self.word, name)
 
 
-FUEL = Consumption("fuel", "fuel_kg", "fuel_corrected_kg", "kg", G_PER_KG, "beta_g_per_s")
-ENERGY = Consumption("energy", "energy_kwh", "energy_corrected_kwh", "kWh", J_PER_KWH, "beta_j_per_s")
+FUEL = Consumption("fuel", "fuel_kg", "fuel_corrected_kg", "kg", G_PER_KG, "beta_g_per_s", "fuel")
+ENERGY = Consumption("energy", "energy_kwh", "energy_corrected_kwh", "kWh", J_PER_KWH, "beta_j_per_s", "battery energy")
 
 
 def consumption_of(summary: Mapping[str, Any]) -> Consumption:

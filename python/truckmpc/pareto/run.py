@@ -37,10 +37,6 @@ def figures_of(consumption: Consumption) -> tuple[str, ...]:
     return (consumption.key, consumption.corrected_key, "time_s", "end_speed_kmh", "stalled")
 
 
-FIGURES = figures_of(FUEL)
-"""A diesel truck's figures in ``pareto.csv``."""
-
-
 @dataclass(frozen=True)
 class ParetoResult:
     """A finished study: its CSV and its rows (column -> cell text, plan order)."""

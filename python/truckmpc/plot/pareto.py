@@ -12,7 +12,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from truckmpc.consumption import Consumption
+from truckmpc.consumption import Consumption, consumption_of
 from truckmpc.pareto.fronts import Curve, curves, equal_time_savings, reference_point
 from truckmpc.pareto.plan import PARETO_COLUMNS, consumption_of_pareto
 from truckmpc.pareto.run import damaged_row
@@ -25,8 +25,6 @@ _LABELS = {
     "mpc": "MPC as configured (set speed)",
     "fuel_time": "MPC, fuel + β·time",
 }
-_STORE = {"fuel": "fuel", "energy": "battery energy"}
-"""How the y axis and title name each consumption."""
 _S_PER_MIN = 60.0
 
 
@@ -65,10 +63,10 @@ def plot_pareto(
 ) -> list[Path]:
     """Draw the fronts of ``directory/pareto.csv`` to `out`, the saving annotated at `v_ref_kmh`."""
     rows = read_rows(Path(directory) / "pareto.csv")
-    consumption = consumption_of_pareto(list(rows[0])) if rows else None
     by_road = curves(rows)
     if not by_road:
         raise PlotError(f"{directory}/pareto.csv: no run that finished the road")
+    consumption = consumption_of(rows[0])
     savings = {
         road: {c: saving.pct for c, saving in by.items()} for road, by in equal_time_savings(rows, v_ref_kmh).items()
     }
@@ -86,17 +84,15 @@ def _draw_road(
     rows: Sequence[Mapping[str, str]],
     v_ref_kmh: float,
     savings: Mapping[str, float | None],
-    consumption: Consumption | None,
+    consumption: Consumption,
 ) -> None:
-    word = "fuel" if consumption is None else consumption.word
-    unit = "kg" if consumption is None else consumption.unit
     for name, curve in by_controller.items():
         color, marker = _STYLES.get(name, ("black", "x"))
         minutes = curve.time_s / _S_PER_MIN
         saving = savings.get(name)
-        label = _LABELS.get(name, name).replace("fuel +", f"{_STORE[word]} +")
+        label = _LABELS.get(name, name).replace("fuel +", f"{consumption.label} +")
         if saving is not None and name != "pi":
-            label += f": Δ{word} {saving:+.2f} % vs the PI at its trip time".replace("-", "−")
+            label += f": Δ{consumption.word} {saving:+.2f} % vs the PI at its trip time".replace("-", "−")
         ax.plot(minutes, curve.consumed, color=color, marker=marker, label=label)
         for x, y, value in zip(minutes, curve.consumed, curve.values, strict=True):
             ax.annotate(f"{value:g}", (x, y), textcoords="offset points", xytext=(4, 3), fontsize=7, color=color)
@@ -111,8 +107,8 @@ def _draw_road(
             xytext=(6, -12),
             fontsize=8,
         )
-    ax.set_title(f"{road}: {_STORE[word]} against trip time")
+    ax.set_title(f"{road}: {consumption.label} against trip time")
     ax.set_xlabel("trip time [min]")
-    ax.set_ylabel(f"{_STORE[word]}, end speed corrected [{unit}]")
+    ax.set_ylabel(f"{consumption.label}, end speed corrected [{consumption.unit}]")
     ax.grid(True, linewidth=0.4)
     ax.legend(fontsize=8)

@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from truckmpc.compare import headline
-from truckmpc.consumption import ENERGY, consumption_of
+from truckmpc.consumption import consumption_of
 from truckmpc.report.figures import Figure, figures_html
 from truckmpc.report.html import code_block, definitions, escape, section
 from truckmpc.report.inputs import RunDir
@@ -81,7 +81,7 @@ def _headline(summary: Mapping[str, Any]) -> list[str]:
         run, base = (NAMES.get(str(comparison.get(k)), str(comparison.get(k))) for k in ("controller", "baseline"))
         quoted = comparison_headline(summary, comparison)
         c = consumption_of(summary.get(str(comparison.get("controller"))) or {})
-        what = "battery energy" if c is ENERGY else "fuel"
+        what = c.label
         if quoted is not None:
             pct, amount = quoted
             word = "less" if pct < 0 else "more"

@@ -42,7 +42,7 @@ def sweep_body(sweep: SweepDir, figures: list[Figure], missing: str | None) -> s
     runs = run_columns(sweep.header, _axes(sweep), tuple(shared))
     caption = ", ".join(f"{key} {value}" for key, value in shared.items())
     used = consumption_of_columns(sweep.header)
-    word = "battery energy" if used.word == "energy" else used.word
+    word = used.label
     lead = (
         f"{len(sweep.rows)} rows, one per road, direction, truck and combination of the grid. The figure to quote "
         f"is each look-ahead controller's saving at equal trip time and equal end speed: Δ{used.word} [%] = "

@@ -183,7 +183,10 @@ impl Vehicle {
             Model::Thesis(t) => t.engine_torque_nm(n_rpm, pedal, gear),
             Model::Map(_) if gear == NEUTRAL => 0.0,
             Model::Map(m) => m.engine_torque_nm(n_rpm / self.gears[gear].c4, pedal, gear),
-            Model::Electric(m) => m.machine_torque_nm(n_rpm / m.rpm_per_mps(), pedal, gear),
+            Model::Electric(m) => {
+                let u = Control { pedal, brake: 0.0, gear };
+                Powertrain::machine_torque_nm(m.as_ref(), n_rpm / m.rpm_per_mps(), u)
+            }
         }
     }
 

@@ -10,7 +10,8 @@
 //! - the **buffer** [J]: (loss at the overload torque and speed − continuous loss) × the overload
 //!   time;
 //!
-//! each computed at both voltage levels around the battery's voltage and blended as the maps are.
+//! each computed at both voltage levels around the battery's voltage and blended as the maps are
+//! (`Machines::thermal`).
 //! While it drives, a run adds (loss − continuous loss)·dt to the buffer's content (never below
 //! zero; zero loss while the machines are off). Once the content exceeds the buffer the machines
 //! derate: their driving and their braking torque are held to the continuous torque, until the
@@ -53,16 +54,6 @@ impl Thermal {
             buffer_j: (peak_loss_w - continuous_loss_w) * rating.overload_duration_s,
             continuous_loss_w,
             continuous_nm: count * rating.continuous_torque_nm,
-        }
-    }
-
-    /// `self` and `other` blended with `other`'s weight `w` (the voltage levels' blend).
-    pub fn blend(&self, other: &Thermal, w: f64) -> Self {
-        let mix = |a: f64, b: f64| if w == 0.0 { a } else { (1.0 - w) * a + w * b };
-        Thermal {
-            buffer_j: mix(self.buffer_j, other.buffer_j),
-            continuous_loss_w: mix(self.continuous_loss_w, other.continuous_loss_w),
-            continuous_nm: mix(self.continuous_nm, other.continuous_nm),
         }
     }
 }

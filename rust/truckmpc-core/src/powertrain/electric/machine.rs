@@ -128,11 +128,17 @@ impl Machines {
     /// The machines' thermal limits at the battery's voltage ([`Thermal`], blended as the maps
     /// are); none unless both levels are rated.
     pub fn thermal(&self) -> Option<Thermal> {
-        let (lower, upper, w) = &self.levels;
+        let (lower, upper, _) = &self.levels;
         let of = |level: &VoltageLevel| {
             level.rating.map(|rating| Thermal::of(&rating, self.count, |n, t| level.loss_w(n, t)))
         };
-        Some(of(lower)?.blend(&of(upper)?, *w))
+        let (low, high) = (of(lower)?, of(upper)?);
+        let field = |f: fn(&Thermal) -> f64| self.blended(f(&low), f(&high));
+        Some(Thermal {
+            buffer_j: field(|t| t.buffer_j),
+            continuous_loss_w: field(|t| t.continuous_loss_w),
+            continuous_nm: field(|t| t.continuous_nm),
+        })
     }
 
     /// These machines with their driving and braking torque held to `cap_nm` [Nm, all machines].
@@ -200,7 +206,17 @@ impl Machines {
         if *w == 0.0 {
             return f(lower);
         }
-        (1.0 - w) * f(lower) + w * f(upper)
+        self.blended(f(lower), f(upper))
+    }
+
+    /// A figure of the lower and of the upper level, blended by the voltage's weight.
+    #[inline]
+    fn blended(&self, lower: f64, upper: f64) -> f64 {
+        let w = self.levels.2;
+        if w == 0.0 {
+            return lower;
+        }
+        (1.0 - w) * lower + w * upper
     }
 }
 

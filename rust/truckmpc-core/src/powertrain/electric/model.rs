@@ -211,14 +211,6 @@ impl ElectricModel {
         }
     }
 
-    /// Torque of the machines [Nm] at `v_mps` with `pedal` in `gear` (their drag at zero pedal
-    /// or in neutral).
-    pub fn machine_torque_nm(&self, v_mps: f64, pedal: f64, gear: usize) -> f64 {
-        let n = self.rpm_per_mps * v_mps;
-        let (wheel_nm, _) = self.machine_wheel_nm(v_mps, Control { pedal, brake: 0.0, gear });
-        self.truck.machine_nm(n, wheel_nm)
-    }
-
     /// Power drawn from the battery's store [W] under control `u` at `v_mps`.
     #[inline]
     pub fn battery_power_w(&self, v_mps: f64, u: Control) -> f64 {
@@ -384,8 +376,11 @@ impl Powertrain for ElectricModel {
         [flows.battery_w, heating, flows.machine_loss_w, flows.battery_loss_w]
     }
 
+    /// The machines' torque: the pedal's, their drag at zero pedal or in neutral, less what the
+    /// brake recovers.
     fn machine_torque_nm(&self, v_mps: f64, u: Control) -> f64 {
-        self.power_flows(v_mps, u).machine_nm
+        let (wheel_nm, _) = self.machine_wheel_nm(v_mps, u);
+        self.truck.machine_nm(self.rpm_per_mps * v_mps, wheel_nm)
     }
 
     /// The truck with its machines held to their continuous torque, both ways.

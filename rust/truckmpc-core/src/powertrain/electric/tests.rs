@@ -276,9 +276,10 @@ fn at_the_glide_pedal_the_machines_draw_no_electric_power() {
     let n = m.rpm_per_mps() * v;
     let pedal = m.glide_pedal(v, 1).expect("the machines recover at 79 km/h");
     let expected_nm = -(COUNT as f64) * (5.0 + 0.001 * n) / 0.96;
-    let got_nm = m.machine_torque_nm(v, pedal, 1);
+    let torque_nm = |pedal: f64| m.machine_torque_nm(v, Control { pedal, brake: 0.0, gear: 1 });
+    let got_nm = torque_nm(pedal);
     assert!((got_nm - expected_nm).abs() < 1e-3 * expected_nm.abs(), "{got_nm} vs {expected_nm} Nm");
-    let drag_nm = m.machine_torque_nm(v, 0.0, 1);
+    let drag_nm = torque_nm(0.0);
     assert!(drag_nm < got_nm && got_nm < 0.0, "{drag_nm} < {got_nm} < 0");
     let accel = |p: f64| m.accel_on(v, p, 0.0, 1, 0.0);
     assert!(accel(pedal) > accel(0.0), "the glide loses less speed than coasting");
