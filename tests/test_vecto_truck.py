@@ -172,3 +172,26 @@ def test_a_part_of_the_wrong_type_or_missing_an_attribute_is_named() -> None:
     del engine["fuel_map"]
     with pytest.raises(AttributeError, match="fuel_map"):
         _core.MapTruck(SimpleNamespace(**engine), None, None)  # type: ignore[arg-type]
+
+
+@needs_tractor
+def test_the_xmls_gearbox_retarder_and_axle_lose_what_vecto_charges_at_every_row_in_gear() -> None:
+    """At VECTO's gearbox input (its speed and P_gbx_in) each stage of the declaration XML's
+    driveline loses VECTO's power within 2 % (issue 46 asks for 2 %; the maps are VECTO's, so the
+    check is tighter), and on the steady rows the engine torque and fuel to hold the speed are
+    VECTO's within 0.3 % and 0.5 %."""
+    truck = load_vecto_truck(SHARED_TRACTOR / "Class5_Tractor_DECL.xml").core
+    stages = {
+        "gearbox_loss_w": "P_gbx_loss [kW]",
+        "retarder_loss_w": "P_ret_loss [kW]",
+        "axle_loss_w": "P_axle_loss [kW]",
+    }
+    for r in in_gear(excerpt_rows()):
+        n_rpm = r["n_eng_avg [1/min]"]
+        losses = truck.driveline_point(n_rpm, r["P_gbx_in [kW]"] * 1e3 / (n_rpm * math.pi / 30), int(r["Gear [-]"]))
+        for key, column in stages.items():
+            assert losses[key] / 1e3 == pytest.approx(r[column], rel=2e-3), column
+    for r in (r for r in in_gear(excerpt_rows()) if r["acc [m/s^2]"] == 0.0):
+        op = truck.at(r["v_act [km/h]"] / KMH_PER_MPS, 0.0, math.atan(r["grad [%]"] / 100), int(r["Gear [-]"]))
+        assert op["engine_torque_nm"] == pytest.approx(r["T_eng_fcmap [Nm]"], rel=3e-3)
+        assert op["fuel_rate_g_per_h"] == pytest.approx(r["FC-Map [g/h]"], rel=5e-3)

@@ -168,6 +168,18 @@ CASES: dict[str, Callable[[Path], tuple[int, list[str]]]] = {
         _edit(p, "<TwinTyres>true<", "<TwinTyres>yes<"),
         ['Axle[@axleNumber="2"]/TwinTyres:', "expected true or false, got 'yes'"],
     ),
+    "a retarder type VECTO does not know": lambda p: (
+        _edit(p, "<RetarderType>Transmission Output Retarder<", "<RetarderType>Exhaust brake<"),
+        ["Vehicle/RetarderType:", "expected a retarder type", "got 'Exhaust brake'"],
+    ),
+    "retarder speeds that do not increase": lambda p: (
+        _edit(p, 'retarderSpeed="2000.00"', 'retarderSpeed="500.00"'),
+        ["Retarder/Data/RetarderLossMap/Entry:", "expected a retarder speed above 1000 rpm, got 500"],
+    ),
+    "a negative retarder loss": lambda p: (
+        _edit(p, 'retarderSpeed="1000.00" torqueLoss="20.00"', 'retarderSpeed="1000.00" torqueLoss="-2.00"'),
+        ["RetarderLossMap/Entry/@torqueLoss:", "expected a number >= 0, got '-2.00'"],
+    ),
     "another root element": _not_a_declaration,
     "a DOCTYPE (which could declare entities)": lambda p: (
         _edit(p, "?>", '?><!DOCTYPE VectoInputDeclaration [<!ENTITY e "x">]>'),
@@ -209,3 +221,22 @@ def test_vectos_generic_tractor_reads_as_its_json_job() -> None:
         assert job.gearbox.gear_ratios == json.gearbox.gear_ratios
         assert job.engine.inertia_kgm2 == pytest.approx(json.engine.inertia_kgm2, abs=1e-9)
         assert job.auxiliaries == json.auxiliaries
+
+
+def test_the_retarder_reads_with_its_shaft_ratio_and_loss_map(tmp_path: Path) -> None:
+    path = write_xml_job(tmp_path)
+    retarder = read_xml_job(path).retarder
+    assert retarder is not None
+    assert (retarder.position, retarder.ratio) == ("output", 1.0)
+    assert retarder.loss_map == ((0.0, 10.0), (1000.0, 20.0), (2000.0, 30.0))
+    _edit(path, "<RetarderType>Transmission Output Retarder<", "<RetarderType>Transmission Input Retarder<")
+    _edit(path, "<RetarderRatio>1.000<", "<RetarderRatio>2.000<")
+    retarder = read_xml_job(path).retarder
+    assert retarder is not None and (retarder.position, retarder.ratio) == ("input", 2.0)
+
+
+@pytest.mark.parametrize("kind", ["None", "Losses included in Gearbox", "Engine Retarder"])
+def test_a_retarder_whose_losses_vecto_does_not_charge_adds_none(tmp_path: Path, kind: str) -> None:
+    path = write_xml_job(tmp_path)
+    _edit(path, "<RetarderType>Transmission Output Retarder<", f"<RetarderType>{kind}<")
+    assert read_xml_job(path).retarder is None

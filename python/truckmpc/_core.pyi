@@ -136,7 +136,9 @@ class _EngineData(Protocol):
     def fuel_map(self) -> _Rows: ...
 
 class _DrivelineData(Protocol):
-    """Gearbox and axle ratios, their losses (affine, or loss maps replacing them) and the tyres' radius."""
+    """Gearbox and axle ratios, their losses (affine, or loss maps replacing them), a retarder's loss
+    map (retarder speed [rpm], torque loss [Nm]) with its ratio and gearbox shaft ("input" or
+    "output"), and the tyres' radius."""
 
     @property
     def gear_ratios(self) -> Sequence[float]: ...
@@ -154,6 +156,12 @@ class _DrivelineData(Protocol):
     def gear_loss_maps(self) -> Sequence[_Rows] | None: ...
     @property
     def axle_loss_map(self) -> _Rows | None: ...
+    @property
+    def retarder_loss_map(self) -> Sequence[tuple[float, float]] | None: ...
+    @property
+    def retarder_ratio(self) -> float: ...
+    @property
+    def retarder_position(self) -> str: ...
 
 class _BodyData(Protocol):
     """Mass [kg], wheels' inertia [kg m²], Cd·A [m²] (or a curve over speed [m/s]), air density
@@ -218,6 +226,16 @@ class _EnginePoint(TypedDict):
     """Fuel rate [g/h]: 0 at or below the drag torque, the nearest boundary value outside the map."""
     in_fuel_map: bool
     """Whether the point lies inside the fuel map's convex hull."""
+
+class _DrivelinePoint(TypedDict):
+    gearbox_loss_w: float
+    """Power the gearbox loses [W]."""
+    retarder_loss_w: float
+    """Power the retarder's drag takes [W] (0 without one)."""
+    axle_loss_w: float
+    """Power the axle loses [W]."""
+    wheel_torque_nm: float
+    """Torque at the wheels [Nm]."""
 
 class _LevelData(Protocol):
     """One machine at one voltage [V]: torque limits (speed [rpm], most driving and most braking
@@ -362,6 +380,9 @@ class MapTruck:
         """What the truck is: gears, rated power, what its maps cover, which losses loss maps give."""
     def engine_point(self, speed_rpm: float, torque_nm: float) -> _EnginePoint:
         """The engine at `speed_rpm` and `torque_nm`."""
+    def driveline_point(self, speed_rpm: float, torque_nm: float, gear: int) -> _DrivelinePoint:
+        """The driveline in `gear` (1..=gears) at engine speed `speed_rpm` (> 0) with `torque_nm` at the
+        gearbox input: each stage's lost power and the wheel torque."""
     def at(self, v_mps: float, acc_mps2: float = 0.0, slope_rad: float = 0.0, gear: int | None = None) -> _DrivingState:
         """The truck at `v_mps` (> 0), `acc_mps2` and `slope_rad`: its drag area and road loads, and in
         `gear` (1..=gears) the engine's operating point."""

@@ -13,6 +13,7 @@ from typing import Any
 from truckmpc.errors import VehicleError
 from truckmpc.vecto.checks import Located, check_full_load, check_once
 from truckmpc.vecto.files import json_body, number, numbers_table, text
+from truckmpc.vecto.retarder import RetarderData, retarder_of_vveh
 
 __all__ = ["Axle", "EngineData", "GearboxData", "LossPoints", "VectoJob", "VehicleData", "read_job"]
 
@@ -95,6 +96,8 @@ class VectoJob:
     gearbox: GearboxData
     auxiliaries: tuple[tuple[str, str], ...]
     """(id, technology) of each auxiliary."""
+    retarder: RetarderData | None = None
+    """The retarder whose drag counts, if any."""
 
     @property
     def files(self) -> tuple[Path, ...]:
@@ -122,13 +125,15 @@ def read_job(path: Path) -> VectoJob:
         if not isinstance(entry, dict) or not isinstance(techs, list) or not techs:
             raise VehicleError(f"{path}: Aux[{i}]: expected an object with an ID and a Technology list, got {entry!r}")
         aux.append((str(entry.get("ID", "")), str(techs[0])))
+    vehicle_file = _component(body, "VehicleFile", path)
     return VectoJob(
         path=path,
         declaration_mode=bool(body.get("SavedInDeclMode", False)),
-        vehicle=read_vehicle(_component(body, "VehicleFile", path)),
+        vehicle=read_vehicle(vehicle_file),
         engine=read_engine(_component(body, "EngineFile", path)),
         gearbox=read_gearbox(_component(body, "GearboxFile", path)),
         auxiliaries=tuple(aux),
+        retarder=retarder_of_vveh(json_body(vehicle_file), vehicle_file),
     )
 
 

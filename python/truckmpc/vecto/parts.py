@@ -30,6 +30,12 @@ class Driveline:
     """One loss map per gear, replacing gear_efficiency and loss_torque_nm."""
     axle_loss_map: LossPoints | None = None
     """The axle's loss map, replacing axle_efficiency."""
+    retarder_loss_map: tuple[tuple[float, float], ...] | None = None
+    """The retarder's (retarder speed [rpm], torque loss [Nm]) rows; None: no retarder losses."""
+    retarder_ratio: float = 1.0
+    """The retarder's speed per speed of the shaft it turns with [-]."""
+    retarder_position: str = "output"
+    """The gearbox shaft the retarder turns with: "input" or "output"."""
 
 
 @dataclass(frozen=True)

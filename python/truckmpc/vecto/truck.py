@@ -127,6 +127,10 @@ def _loss_maps(job: VectoJob, keys: Mapping[str, Any]) -> dict[str, Any]:
         out["gear_loss_maps"] = tuple(m for m in gears if m is not None)
     if gearbox.axle_loss_map is not None:
         out["axle_loss_map"] = gearbox.axle_loss_map
+    retarder = job.retarder
+    if retarder is not None and retarder.loss_map is not None:
+        out |= {"retarder_loss_map": retarder.loss_map, "retarder_ratio": retarder.ratio}
+        out["retarder_position"] = retarder.position
     return out
 
 
@@ -147,8 +151,13 @@ def driveline_losses(truck: VectoTruck) -> str:
     """How the truck's driveline losses are modelled, in a sentence."""
     facts = truck.core.facts
     gears, axle = facts["gear_loss_maps"], facts["axle_loss_map"]
+    retarder = truck.job.retarder
     missing = truck.job.gearbox.missing_loss_maps
+    if retarder is not None and retarder.loss_map is None and retarder.file:
+        missing += (retarder.file,)
     named = f"; loss maps named but not found: {', '.join(missing)}" if missing else ""
+    if retarder is not None and retarder.loss_map is not None and truck.keys["use_loss_maps"]:
+        named = f", and the drag of a retarder on the gearbox's {retarder.position}" + named
     if gears and axle:
         return "VECTO's loss maps of every gear and of the axle" + named
     parts = ["the gears' loss maps" if gears else "", "the axle's loss map" if axle else ""]

@@ -4,8 +4,8 @@ and every component in one file, read into the same :class:`~truckmpc.vecto.comp
 interruption of a gear shift (by gearbox type), and the wheels' inertia (by tyre size).
 
 Elements are matched by their local names (``xml_tree``), so later schema versions read where their
-names agree. ``Signature`` elements are ignored; so is the retarder (its losses are not
-modelled). Of a steering pump's technologies (one per steered axle) the first is taken. Every
+names agree. ``Signature`` elements are ignored. Of a steering pump's technologies (one per
+steered axle) the first is taken. The retarder is read by :mod:`truckmpc.vecto.retarder`. Every
 problem is a one-line :class:`~truckmpc.errors.VehicleError` naming the file, the line, the element
 and what was expected.
 """
@@ -18,6 +18,7 @@ from truckmpc.errors import VehicleError
 from truckmpc.vecto import declaration as decl
 from truckmpc.vecto.checks import check_full_load, check_once
 from truckmpc.vecto.components import Axle, EngineData, GearboxData, LossPoints, VectoJob, VehicleData
+from truckmpc.vecto.retarder import retarder_of_xml
 from truckmpc.vecto.xml_tree import (
     Element,
     boolean,
@@ -74,6 +75,7 @@ def job_of(path: Path, vehicle: Element) -> VectoJob:
         engine=engine,
         gearbox=gearbox,
         auxiliaries=tuple((aux_id, text(child(aux, name, "Technology"))) for name, aux_id in _AUXILIARIES.items()),
+        retarder=retarder_of_xml(vehicle, components),
     )
 
 

@@ -124,6 +124,25 @@ pub fn engine_point(truck: &MapTruck, speed_rpm: f64, torque_nm: f64) -> CoreRes
     ])
 }
 
+/// `truck`'s driveline in `gear` (1..=gears) at engine speed `speed_rpm` (> 0) with `torque_nm` at
+/// the gearbox input: the powers [W] each stage loses, `gearbox_loss_w`, `retarder_loss_w` and
+/// `axle_loss_w`, and the `wheel_torque_nm` it gives.
+pub fn driveline_point(truck: &MapTruck, speed_rpm: f64, torque_nm: f64, gear: usize) -> CoreResult<Figures> {
+    let driveline = truck.driveline();
+    check_gear(gear, 1, driveline.gears())?;
+    if !(speed_rpm > 0.0 && speed_rpm.is_finite() && torque_nm.is_finite()) {
+        let got = format!("{speed_rpm}, {torque_nm}");
+        return Err(CoreError::invalid("speed_rpm, torque_nm", "a finite speed > 0 and a finite torque").got(got));
+    }
+    let losses = driveline.stage_losses_w(torque_nm, gear, speed_rpm);
+    Ok(vec![
+        ("gearbox_loss_w", Value::Float(losses.gearbox_w)),
+        ("retarder_loss_w", Value::Float(losses.retarder_w)),
+        ("axle_loss_w", Value::Float(losses.axle_w)),
+        ("wheel_torque_nm", Value::Float(driveline.wheel_torque_nm(torque_nm, gear, speed_rpm))),
+    ])
+}
+
 /// What a map-based truck is, as a table of `truck info` shows it: `gears`, `rated_power_w` (the
 /// most the full-load curve gives) at `rated_speed_rpm`, the speeds the full-load curve covers
 /// (`full_load_speed_range_rpm`), the speeds and torques the fuel map covers

@@ -48,6 +48,9 @@ impl PyMapTruck {
                     wheel_radius_m,
                     gear_loss_maps,
                     axle_loss_map,
+                    retarder_loss_map,
+                    retarder_ratio,
+                    retarder_position,
                 }
             ),
             body: read_attrs!(
@@ -175,6 +178,17 @@ impl PyMapTruck {
     /// The engine at `speed_rpm` and `torque_nm` (`figures::engine_point`).
     fn engine_point<'py>(&self, py: Python<'py>, speed_rpm: f64, torque_nm: f64) -> PyResult<Bound<'py, PyDict>> {
         dict_of(py, &figures::engine_point(self.map_truck()?, speed_rpm, torque_nm).map_err(to_py)?)
+    }
+
+    /// The driveline in `gear` at `speed_rpm` with `torque_nm` at its input (`figures::driveline_point`).
+    fn driveline_point<'py>(
+        &self,
+        py: Python<'py>,
+        speed_rpm: f64,
+        torque_nm: f64,
+        gear: usize,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        dict_of(py, &figures::driveline_point(self.map_truck()?, speed_rpm, torque_nm, gear).map_err(to_py)?)
     }
 
     /// The truck at `v_mps`, `acc_mps2` and `slope_rad`, in `gear` if given (`figures::driving_state`).

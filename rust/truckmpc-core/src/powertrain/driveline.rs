@@ -5,9 +5,11 @@
 //! map of the stage is given it says how much ([`LossMap`]); otherwise the loss is affine in the
 //! torque passed on: a drag torque (churning, bearings; the gearbox's only) plus a share of the
 //! torque (tooth friction), taken from the engine's side when it drives and from the wheels' side
-//! when they drive.
+//! when they drive. A retarder, where there is one, drags on the gearbox's input or output shaft
+//! ([`Retarder`]).
 
 use super::loss_map::LossPoints;
+use super::retarder::{Retarder, RetarderPosition};
 use super::{LossMap, RPM_PER_RAD_S};
 use crate::{CoreError, CoreResult};
 
@@ -24,6 +26,19 @@ pub struct Driveline {
     gear_maps: Option<Vec<LossMap>>,
     /// VECTO's loss map of the axle, replacing the axle efficiency.
     axle_map: Option<LossMap>,
+    /// The retarder's drag, where there is one.
+    retarder: Option<Retarder>,
+}
+
+/// The powers [W] a driveline loses in a gear, each stage's torque loss times its input speed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StageLosses {
+    /// The gearbox's.
+    pub gearbox_w: f64,
+    /// The retarder's drag (0 without one).
+    pub retarder_w: f64,
+    /// The axle's.
+    pub axle_w: f64,
 }
 
 impl Driveline {
@@ -70,7 +85,19 @@ impl Driveline {
             wheel_radius_m,
             gear_maps: None,
             axle_map: None,
+            retarder: None,
         })
+    }
+
+    /// The same driveline with a retarder dragging on its shaft.
+    pub fn with_retarder(mut self, retarder: Retarder) -> Self {
+        self.retarder = Some(retarder);
+        self
+    }
+
+    /// The retarder, if there is one.
+    pub fn retarder(&self) -> Option<&Retarder> {
+        self.retarder.as_ref()
     }
 
     /// The same driveline with VECTO's loss maps: one per gear (first gear first; or none), and
@@ -144,32 +171,99 @@ impl Driveline {
         self.loss_torque_nm
     }
 
+    /// The retarder's drag [Nm] on its shaft where it sits at `position`, the shaft turning at
+    /// `shaft_rpm` (0 without a retarder there).
+    #[inline]
+    fn retarder_nm(&self, position: RetarderPosition, shaft_rpm: f64) -> f64 {
+        match &self.retarder {
+            Some(r) if r.position() == position => r.loss_nm(shaft_rpm),
+            _ => 0.0,
+        }
+    }
+
     /// Wheel torque [Nm] that `engine_torque_nm` at the gearbox input gives in `gear` at engine
     /// speed `n_rpm`: the inverse of [`Driveline::engine_torque_nm`].
     pub fn wheel_torque_nm(&self, engine_torque_nm: f64, gear: usize, n_rpm: f64) -> f64 {
-        let gearbox_out = match &self.gear_maps {
-            Some(maps) => maps[gear - 1].passed_nm(n_rpm, engine_torque_nm),
-            None => passed(engine_torque_nm - self.loss_torque_nm, self.gear_efficiency),
-        } * self.gear_ratios[gear - 1];
-        let axle_out = match &self.axle_map {
-            Some(map) => map.passed_nm(n_rpm / self.gear_ratios[gear - 1], gearbox_out),
-            None => passed(gearbox_out, self.axle_efficiency),
+        let ratio = self.gear_ratios[gear - 1];
+        let gearbox_in = match self.retarder {
+            None => engine_torque_nm,
+            Some(_) => engine_torque_nm - self.retarder_nm(RetarderPosition::GearboxInput, n_rpm),
         };
-        axle_out * self.axle_ratio
+        let gearbox_out = self.gearbox_passed_nm(gearbox_in, gear, n_rpm) * ratio;
+        let axle_in = match self.retarder {
+            None => gearbox_out,
+            Some(_) => gearbox_out - self.retarder_nm(RetarderPosition::GearboxOutput, n_rpm / ratio),
+        };
+        self.axle_passed_nm(axle_in, n_rpm / ratio) * self.axle_ratio
     }
 
     /// Engine torque [Nm] at the gearbox input that gives `wheel_torque_nm` at the wheels in
     /// `gear` at engine speed `n_rpm`.
     pub fn engine_torque_nm(&self, wheel_torque_nm: f64, gear: usize, n_rpm: f64) -> f64 {
+        let ratio = self.gear_ratios[gear - 1];
         let axle_passed = wheel_torque_nm / self.axle_ratio;
         let axle_in = match &self.axle_map {
-            Some(map) => map.input_nm(n_rpm / self.gear_ratios[gear - 1], axle_passed),
+            Some(map) => map.input_nm(n_rpm / ratio, axle_passed),
             None => input(axle_passed, self.axle_efficiency),
         };
-        let gear_passed = axle_in / self.gear_ratios[gear - 1];
-        match &self.gear_maps {
+        let gearbox_out = match self.retarder {
+            None => axle_in,
+            Some(_) => axle_in + self.retarder_nm(RetarderPosition::GearboxOutput, n_rpm / ratio),
+        };
+        let gear_passed = gearbox_out / ratio;
+        let gearbox_in = match &self.gear_maps {
             Some(maps) => maps[gear - 1].input_nm(n_rpm, gear_passed),
             None => input(gear_passed, self.gear_efficiency) + self.loss_torque_nm,
+        };
+        match self.retarder {
+            None => gearbox_in,
+            Some(_) => gearbox_in + self.retarder_nm(RetarderPosition::GearboxInput, n_rpm),
+        }
+    }
+
+    /// Wheel torque [Nm] in neutral at road speed `v_mps` (≤ 0: a drag): the gearbox's output
+    /// shaft passes no torque, so the wheels turn the axle and a retarder on that shaft. Zero
+    /// without an axle loss map or such a retarder.
+    pub fn neutral_wheel_torque_nm(&self, v_mps: f64) -> f64 {
+        let shaft_rpm = v_mps / self.wheel_radius_m * self.axle_ratio * RPM_PER_RAD_S;
+        let axle_in = -self.retarder_nm(RetarderPosition::GearboxOutput, shaft_rpm);
+        self.axle_passed_nm(axle_in, shaft_rpm) * self.axle_ratio
+    }
+
+    /// The powers [W] each stage loses in `gear` at engine speed `n_rpm` with `input_torque_nm`
+    /// at the gearbox input (before an input retarder).
+    pub fn stage_losses_w(&self, input_torque_nm: f64, gear: usize, n_rpm: f64) -> StageLosses {
+        let ratio = self.gear_ratios[gear - 1];
+        let (omega_in, omega_out) = (n_rpm / RPM_PER_RAD_S, n_rpm / ratio / RPM_PER_RAD_S);
+        let input_drag = self.retarder_nm(RetarderPosition::GearboxInput, n_rpm);
+        let gearbox_in = input_torque_nm - input_drag;
+        let gearbox_out = self.gearbox_passed_nm(gearbox_in, gear, n_rpm) * ratio;
+        let output_drag = self.retarder_nm(RetarderPosition::GearboxOutput, n_rpm / ratio);
+        let axle_in = gearbox_out - output_drag;
+        let axle_out = self.axle_passed_nm(axle_in, n_rpm / ratio) * self.axle_ratio;
+        StageLosses {
+            gearbox_w: gearbox_in * omega_in - gearbox_out * omega_out,
+            retarder_w: input_drag * omega_in + output_drag * omega_out,
+            axle_w: axle_in * omega_out - axle_out * omega_out / self.axle_ratio,
+        }
+    }
+
+    /// Torque [Nm] the gearbox passes on (output torque / ratio) from `input_nm` in `gear` at `n_rpm`.
+    #[inline]
+    fn gearbox_passed_nm(&self, input_nm: f64, gear: usize, n_rpm: f64) -> f64 {
+        match &self.gear_maps {
+            Some(maps) => maps[gear - 1].passed_nm(n_rpm, input_nm),
+            None => passed(input_nm - self.loss_torque_nm, self.gear_efficiency),
+        }
+    }
+
+    /// Torque [Nm] the axle passes on (wheel torque / axle ratio) from `input_nm` at its input
+    /// speed `n_in_rpm`.
+    #[inline]
+    fn axle_passed_nm(&self, input_nm: f64, n_in_rpm: f64) -> f64 {
+        match &self.axle_map {
+            Some(map) => map.passed_nm(n_in_rpm, input_nm),
+            None => passed(input_nm, self.axle_efficiency),
         }
     }
 }

@@ -16,6 +16,7 @@
 //! **Slope.** The road's grade Δh/ΔL is turned into the angle α = arctan(grade), as VECTO does.
 
 use super::interface::{AffineAccel, Control, EnergyStore, Powertrain, RateForm, NEUTRAL};
+use super::retarder::RetarderPosition;
 use super::sampled::Sampled;
 use super::{FuelGrid, MapTruck, G_MPS2, RPM_PER_RAD_S};
 
@@ -42,6 +43,10 @@ pub struct MapModel {
     weight_torque_nm: f64,
     /// Fuel rate [g/s] with the engine idling in neutral and driving the auxiliaries.
     idle_fuel_gps: f64,
+    /// Wheel torque [Nm] in neutral over the gearbox output shaft's speed [rpm] and that speed per
+    /// road speed [rpm/(m/s)]: the axle's and an output retarder's drag, where a loss map gives
+    /// one (none: no drag in neutral).
+    neutral: Option<(Sampled, f64)>,
 }
 
 impl MapModel {
@@ -69,7 +74,9 @@ impl MapModel {
         let (curves, speeds) = engine.curves();
         debug_assert!(curves.0.x_range() == speeds);
         let wheel_range = wheel_ranges(&truck, (n_lo, n_hi));
+        let neutral = neutral_drag(&truck, hi / driveline.gear_ratios()[driveline.gears() - 1]);
         MapModel {
+            neutral,
             drag: Sampled::new(curves.1, speeds),
             low_rpm: n_lo,
             top_rpm: hi,
@@ -150,13 +157,26 @@ impl MapModel {
         (cut, full.at(n_rpm).max(cut))
     }
 
+    /// Wheel torque [Nm] in neutral at `v_mps` (≤ 0): the drag of what turns with the wheels, the
+    /// axle and a retarder on the gearbox's output shaft (0 where neither has a loss map).
+    #[inline]
+    pub fn neutral_wheel_torque_nm(&self, v_mps: f64) -> f64 {
+        match &self.neutral {
+            Some((drag, rpm_per_mps)) => drag.at(rpm_per_mps * v_mps),
+            None => 0.0,
+        }
+    }
+
     /// Acceleration [m/s²] at `v_mps` with pedal, brake and gear (0 = neutral), on a slope given
     /// by its wheel torque [Nm].
     #[inline]
     pub fn accel_on(&self, v_mps: f64, pedal: f64, brake: f64, gear: usize, slope_torque_nm: f64) -> f64 {
         let resist = self.brake_torque_max_nm * brake + self.air_torque_nm(v_mps) + slope_torque_nm;
         if gear == 0 {
-            return -self.c1[0] * resist;
+            return match &self.neutral {
+                None => -self.c1[0] * resist,
+                Some(_) => self.c1[0] * (self.neutral_wheel_torque_nm(v_mps) - resist),
+            };
         }
         let (cut, full) = self.wheel_torque_range_nm(self.rpm_per_mps[gear] * v_mps, gear);
         self.c1[gear] * (cut + pedal.max(0.0) * (full - cut) - resist)
@@ -176,7 +196,11 @@ impl MapModel {
     /// `gear` 0): (acceleration without brake, gain per unit of brake).
     #[inline]
     pub fn brake_affine(&self, v_mps: f64, gear: usize, slope_torque_nm: f64) -> (f64, f64) {
-        let cut = if gear == 0 { 0.0 } else { self.wheel_torque_range_nm(self.rpm_per_mps[gear] * v_mps, gear).0 };
+        let cut = if gear == 0 {
+            self.neutral_wheel_torque_nm(v_mps)
+        } else {
+            self.wheel_torque_range_nm(self.rpm_per_mps[gear] * v_mps, gear).0
+        };
         let load = self.air_torque_nm(v_mps) + slope_torque_nm;
         (self.c1[gear] * (cut - load), -self.c1[gear] * self.brake_torque_max_nm)
     }
@@ -305,6 +329,20 @@ impl Powertrain for MapModel {
     fn store(&self) -> EnergyStore {
         EnergyStore::FuelTank
     }
+}
+
+/// The wheel torque [Nm] in neutral over the gearbox output shaft's speed up to `top_rpm`, and
+/// that speed per road speed [rpm/(m/s)]; none where nothing turning with the wheels drags (no
+/// axle loss map and no retarder on the gearbox's output).
+fn neutral_drag(truck: &MapTruck, top_rpm: f64) -> Option<(Sampled, f64)> {
+    let driveline = truck.driveline();
+    let output_retarder = driveline.retarder().is_some_and(|r| r.position() == RetarderPosition::GearboxOutput);
+    if !(driveline.has_loss_maps().1 || output_retarder) {
+        return None;
+    }
+    let rpm_per_mps = driveline.axle_ratio() / driveline.wheel_radius_m() * RPM_PER_RAD_S;
+    let drag = Sampled::from_fn((0.0, top_rpm), |n| driveline.neutral_wheel_torque_nm(n / rpm_per_mps));
+    Some((drag, rpm_per_mps))
 }
 
 /// Per gear (index 0 unused), the wheel torque [Nm] over engine speed in `range_rpm` at fuel cut

@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use super::tests::{plane, plane_points, truck};
+use super::tests::{body, engine, plane, plane_points, truck};
 use super::*;
 use crate::dp::fuel_time::kinetic_fuel_g;
 use crate::levels::{pedal_accel, stationary};
@@ -176,4 +176,56 @@ fn a_loss_map_for_every_gear_or_none() {
     let d = Driveline::new((&[3.0, 2.0], 3.0), (0.97, 0.98, 25.0), 0.5).unwrap();
     let err = d.with_loss_maps(Some(&[affine_points(0.97, 25.0)]), None).unwrap_err();
     assert_eq!(err.key(), "gear_loss_maps");
+}
+
+/// A retarder losing 10 Nm at standstill and 1 Nm more per 100 rpm of its own speed.
+fn retarder(position: RetarderPosition, ratio: f64) -> Retarder {
+    Retarder::new(position, ratio, &[(0.0, 10.0), (3000.0, 40.0)]).unwrap()
+}
+
+#[test]
+fn an_output_retarder_drags_on_the_gearbox_output_in_gear_and_in_neutral() {
+    let plain = Driveline::new((&[3.0, 2.0, 1.0], 3.0), (0.97, 0.98, 25.0), 0.5).unwrap();
+    let with = plain.clone().with_retarder(retarder(RetarderPosition::GearboxOutput, 1.0));
+    let (gear, n_rpm) = (2, 1200.0);
+    // At 1200 rpm in gear 2 the gearbox output turns at 600 rpm: 16 Nm taken there, before the axle.
+    let engine_nm = 800.0;
+    let drop = plain.wheel_torque_nm(engine_nm, gear, n_rpm) - with.wheel_torque_nm(engine_nm, gear, n_rpm);
+    assert!((drop - 16.0 * 0.98 * 3.0).abs() < 1e-9, "{drop}");
+    let back = with.engine_torque_nm(with.wheel_torque_nm(engine_nm, gear, n_rpm), gear, n_rpm);
+    assert!((back - engine_nm).abs() < 1e-9);
+    let losses = with.stage_losses_w(engine_nm, gear, n_rpm);
+    assert!((losses.retarder_w - 16.0 * 600.0 / RPM_PER_RAD_S).abs() < 1e-9);
+    // In neutral at 10 m/s the axle's input turns at 10/0.5·3 rad/s = 573 rpm: the retarder's
+    // 15.73 Nm there, through the driven axle (efficiency 0.98 against the wheels), at the wheels.
+    let shaft_rpm = 10.0 / 0.5 * 3.0 * RPM_PER_RAD_S;
+    let expected = -(10.0 + shaft_rpm / 100.0) / 0.98 * 3.0;
+    assert!((with.neutral_wheel_torque_nm(10.0) - expected).abs() < 1e-9);
+    assert_eq!(plain.neutral_wheel_torque_nm(10.0), 0.0);
+}
+
+#[test]
+fn an_input_retarder_drags_at_engine_speed_through_its_ratio_and_not_in_neutral() {
+    let plain = Driveline::new((&[3.0, 2.0, 1.0], 3.0), (0.97, 0.98, 25.0), 0.5).unwrap();
+    let with = plain.clone().with_retarder(retarder(RetarderPosition::GearboxInput, 2.0));
+    // At 900 rpm the retarder turns at 1800 rpm (28 Nm), twice that seen at its shaft.
+    let extra = with.engine_torque_nm(5000.0, 1, 900.0) - plain.engine_torque_nm(5000.0, 1, 900.0);
+    assert!((extra - 56.0).abs() < 1e-9, "{extra}");
+    assert_eq!(with.neutral_wheel_torque_nm(10.0), 0.0);
+}
+
+#[test]
+fn in_neutral_a_truck_with_an_axle_loss_map_decelerates_by_the_axles_drag() {
+    let ratios = [3.0, 2.0, 1.0];
+    let affine = Driveline::new((&ratios, 3.0), (0.97, 0.98, 25.0), 0.5).unwrap();
+    // An axle map losing 30 Nm at its input whatever the torque.
+    let axle: Vec<(f64, f64, f64)> =
+        [0.0, 3000.0].iter().flat_map(|&n| [-5000.0, 0.0, 5000.0].map(|t| (n, t, 30.0))).collect();
+    let mapped = affine.clone().with_loss_maps(None, Some(&axle)).unwrap();
+    let plain = MapModel::new(MapTruck::new(engine(), affine, body()).unwrap(), 30_000.0, 1.0);
+    let dragged = MapModel::new(MapTruck::new(engine(), mapped, body()).unwrap(), 30_000.0, 1.0);
+    let (v, slope) = (20.0, 0.0);
+    let dv = plain.accel_on(v, 0.0, 0.0, NEUTRAL, slope) - dragged.accel_on(v, 0.0, 0.0, NEUTRAL, slope);
+    // 30 Nm at the axle's input is 90 Nm at the wheels, over the rolling mass's r / inertia.
+    assert!((dv - 90.0 * plain.c1(NEUTRAL)).abs() < 1e-6, "{dv}");
 }

@@ -2,6 +2,7 @@
 //! and the one place that data becomes a [`MapTruck`]: every value is checked by the part it
 //! builds, the error naming the value.
 
+use super::retarder::{Retarder, RetarderPosition};
 use super::{Body, Driveline, Engine, MapTruck};
 use crate::CoreResult;
 
@@ -40,6 +41,13 @@ pub struct DrivelineData {
     pub gear_loss_maps: Option<Vec<Rows>>,
     /// The axle's loss map, as a gear's.
     pub axle_loss_map: Option<Rows>,
+    /// The retarder's loss map, `(retarder speed [rpm], torque loss [Nm])`, or none without a
+    /// retarder whose losses count.
+    pub retarder_loss_map: Option<Vec<(f64, f64)>>,
+    /// The retarder's speed per speed of its shaft [-].
+    pub retarder_ratio: f64,
+    /// Which gearbox shaft it turns with: `input` or `output`.
+    pub retarder_position: String,
 }
 
 /// A truck's parts: engine, driveline, body, and the drag area over speed that replaces the body's
@@ -65,6 +73,13 @@ impl TruckParts {
         let losses = (d.gear_efficiency, d.axle_efficiency, d.loss_torque_nm);
         let driveline = Driveline::new((&d.gear_ratios, d.axle_ratio), losses, d.wheel_radius_m)?
             .with_loss_maps(d.gear_loss_maps.as_deref(), d.axle_loss_map.as_deref())?;
+        let driveline = match &d.retarder_loss_map {
+            Some(map) => {
+                let position = RetarderPosition::named("retarder_position", &d.retarder_position)?;
+                driveline.with_retarder(Retarder::new(position, d.retarder_ratio, map)?)
+            }
+            None => driveline,
+        };
         let truck = MapTruck::new(engine, driveline, self.body)?;
         match &self.cda_curve {
             Some(curve) => truck.with_cda_curve(curve),
@@ -96,6 +111,9 @@ mod tests {
                 wheel_radius_m: 0.5,
                 gear_loss_maps: None,
                 axle_loss_map: None,
+                retarder_loss_map: None,
+                retarder_ratio: 1.0,
+                retarder_position: "output".into(),
             },
             body: body(),
             cda_curve: None,

@@ -114,7 +114,7 @@ fn the_fuel_map_refuses_a_repeated_point_and_points_on_a_line() {
     assert!(matches!(FuelMap::new("fuel_map", &line), Err(CoreError::Invalid { .. })));
 }
 
-fn engine() -> Engine {
+pub(crate) fn engine() -> Engine {
     let full_load = [(600.0, 1000.0, -100.0), (1200.0, 2000.0, -150.0), (1800.0, 1600.0, -200.0)];
     Engine::new(600.0, 4.0, &full_load, &plane_points()).unwrap()
 }
