@@ -6,7 +6,8 @@ Usage: python scripts/vecto_validation.py [JOB.xml|JOB.vecto [EXCERPT.vmod]]
 
 For every row in gear it compares engine speed, the air-drag, rolling, slope and inertia powers,
 the fuel map at VECTO's engine speed and torque, and the power the gearbox, the retarder and the
-axle lose with VECTO's gearbox input (its speed and P_gbx_in); for the rows at steady speed, the
+axle lose with VECTO's gearbox input (its speed and P_gbx_in); for the rows in neutral (a shift's
+traction interruption), the axle's and the retarder's drag; for the rows at steady speed, the
 engine torque and fuel rate the model needs to hold that speed on that grade in VECTO's gear.
 Prints the worst relative error of each with its criterion.
 """
@@ -43,6 +44,7 @@ def main() -> None:
     with vmod.open() as f:
         rows = [{k: float(v) if v else math.nan for k, v in r.items()} for r in csv.DictReader(f)]
     in_gear = [r for r in rows if r["Gear [-]"] > 0]
+    neutral = [r for r in rows if r["Gear [-]"] == 0]
     worst: dict[str, list[float]] = {}
 
     def note(name: str, ours: float, vecto: float) -> None:
@@ -73,13 +75,16 @@ def main() -> None:
             op = truck.at(v_mps, 0.0, slope, gear)
             note("engine torque to hold a steady speed", op["engine_torque_nm"], r["T_eng_fcmap [Nm]"])
             note("fuel to hold a steady speed", op["fuel_rate_g_per_h"], r["FC-Map [g/h]"])
+    for r in neutral:
+        drag_w = truck.at(r["v_act [km/h]"] / KMH_PER_MPS)["neutral_drag_w"]
+        note("drag in neutral (axle and retarder)", drag_w / 1e3, r["P_ret_loss [kW]"] + r["P_axle_loss [kW]"])
     criteria = {
         "engine speed": 0.005,
         "fuel map at VECTO's speed and torque": 0.01,
         "engine torque to hold a steady speed": 0.003,
         "fuel to hold a steady speed": 0.005,
     }
-    criteria.update(dict.fromkeys(STAGES, 0.02))
+    criteria.update(dict.fromkeys([*STAGES, "drag in neutral (axle and retarder)"], 0.02))
     criteria.update({name: tol for name, (_, _, tol) in LOADS.items() if tol})
     print(f"{job.name} against {vmod.name}: {len(in_gear)} rows in gear")
     for name, errors in worst.items():

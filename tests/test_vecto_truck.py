@@ -195,3 +195,17 @@ def test_the_xmls_gearbox_retarder_and_axle_lose_what_vecto_charges_at_every_row
         op = truck.at(r["v_act [km/h]"] / KMH_PER_MPS, 0.0, math.atan(r["grad [%]"] / 100), int(r["Gear [-]"]))
         assert op["engine_torque_nm"] == pytest.approx(r["T_eng_fcmap [Nm]"], rel=3e-3)
         assert op["fuel_rate_g_per_h"] == pytest.approx(r["FC-Map [g/h]"], rel=5e-3)
+
+
+@needs_tractor
+def test_in_neutral_the_axle_and_the_retarder_drag_as_vectos_do() -> None:
+    """VECTO's excerpt has two rows in neutral (a shift's traction interruption): its disengaged
+    gearbox passes no torque, and the wheels still turn the axle and the output retarder."""
+    truck = load_vecto_truck(SHARED_TRACTOR / "Class5_Tractor_DECL.xml").core
+    neutral = [r for r in excerpt_rows() if r["Gear [-]"] == 0]
+    assert len(neutral) == 2
+    for r in neutral:
+        drag_kw = truck.at(r["v_act [km/h]"] / KMH_PER_MPS)["neutral_drag_w"] / 1e3
+        assert drag_kw == pytest.approx(r["P_ret_loss [kW]"] + r["P_axle_loss [kW]"], rel=0.02)
+    # The .vecto job, without its loss map files, has no such drag.
+    assert load_vecto_truck(TRACTOR_JOB).core.at(23.0)["neutral_drag_w"] == 0.0

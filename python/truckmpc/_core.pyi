@@ -192,6 +192,8 @@ class _DrivingState(TypedDict):
     wheels_inertia_w: float
     wheel_w: float
     """Their sum: the power at the wheels [W]."""
+    neutral_drag_w: float
+    """Power the axle and an output retarder take from the wheels in neutral [W]."""
     engine_speed_rpm: NotRequired[float]
     """The engine's figures, in a gear only."""
     engine_torque_nm: NotRequired[float]

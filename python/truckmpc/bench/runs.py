@@ -44,8 +44,9 @@ SHARED = Path("..") / "shared"
 """Where the benchmark's roads and trucks are, relative to the repository root (or the working
 directory): ``roads/`` and ``vehicles/`` in it."""
 
-TRACTOR = "vehicles/vecto-generic-class5-tractor/Class5_Tractor_DECL.vecto"
-"""VECTO's generic long-haul tractor (its declaration job), within :data:`SHARED`."""
+TRACTOR = "vehicles/vecto-generic-class5-tractor/Class5_Tractor_DECL.xml"
+"""VECTO's generic long-haul tractor (its declaration XML, with its loss maps and retarder), within
+:data:`SHARED`."""
 
 VECTO_108 = "roads/eu_vecto_longhaul_2015_108km.csv"
 SE = "roads/se_E6_E20_goteborg_malmo_volvo_chalmers.csv"

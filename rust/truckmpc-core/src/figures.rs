@@ -63,7 +63,8 @@ pub fn engine_torque_nm(vehicle: &Vehicle, v_mps: f64, pedal: f64, gear: usize) 
 
 /// A map-based `truck` at `v_mps` (> 0), `acc_mps2` and `slope_rad`: the drag area `cda_m2` [m²]
 /// at that speed, the road loads [W] `air_w`, `rolling_w`, `slope_w`, `vehicle_inertia_w`,
-/// `wheels_inertia_w` and `wheel_w` (their sum), and, in a `gear` (1..=gears), the engine's
+/// `wheels_inertia_w` and `wheel_w` (their sum), `neutral_drag_w` (what the axle and an output
+/// retarder take from the wheels in neutral), and, in a `gear` (1..=gears), the engine's
 /// operating point: `engine_speed_rpm`, `engine_torque_nm`, `engine_power_w`, `fuel_rate_g_per_h`
 /// (NaN beyond the full-load curve's speeds), `brake_power_w` (at the wheels, beyond the engine's
 /// drag) and `feasible`.
@@ -87,6 +88,10 @@ pub fn driving_state(
         ("vehicle_inertia_w", l.vehicle_inertia_w),
         ("wheels_inertia_w", l.wheels_inertia_w),
         ("wheel_w", l.wheel_w()),
+        (
+            "neutral_drag_w",
+            -truck.driveline().neutral_wheel_torque_nm(v_mps) / truck.driveline().wheel_radius_m() * v_mps,
+        ),
     ]
     .into_iter()
     .map(|(k, x)| (k, Value::Float(x)))
