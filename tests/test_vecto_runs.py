@@ -163,18 +163,21 @@ def test_loss_maps_from_vtlm_files_and_from_the_xml_give_the_hand_computed_engin
     # Both fixtures' loss maps follow loss = base + 2 % of |input torque| at the input of each
     # stage (gear 3: 22 Nm, axle: 30 Nm), so for an input torque > 0 the input is
     # (torque passed on + base) / 0.98, through the axle (ratio 2.5) and then gear 3 (ratio 1).
+    # The XML's retarder on the gearbox output (ratio 1) adds 10 Nm + 1 Nm per 100 rpm there.
     from truckmpc.vecto import load_vecto_truck
     from vecto_xml import write_xml_job
 
     trucks = [load_vecto_truck(write_job(tmp_path / "json", loss_maps=True)), load_vecto_truck(write_xml_job(tmp_path))]
     v_mps, grade, gear = 80.0 / KMH_PER_MPS, 0.01, 3
-    for truck in trucks:
+    for truck, has_retarder in zip(trucks, (False, True), strict=True):
         core = truck.core
         assert (core.facts["gear_loss_maps"], core.facts["axle_loss_map"]) == (True, True)
         loads = core.at(v_mps, 0.0, float(np.arctan(grade)))
         wheel_nm = loads["wheel_w"] / v_mps * truck.wheel_radius_m
         axle_in = (wheel_nm / 2.5 + 30.0) / 0.98
-        gearbox_in = (axle_in / 1.0 + 22.0) / 0.98
+        shaft_rpm = v_mps / truck.wheel_radius_m * 2.5 * 30.0 / np.pi
+        retarder_nm = 10.0 + shaft_rpm / 100.0 if has_retarder else 0.0
+        gearbox_in = ((axle_in + retarder_nm) / 1.0 + 22.0) / 0.98
         point = core.at(v_mps, 0.0, float(np.arctan(grade)), gear)
         omega = point["engine_speed_rpm"] * np.pi / 30.0
         assert point["engine_torque_nm"] == pytest.approx(gearbox_in + truck.aux_power_w / omega, abs=0.5)
@@ -185,7 +188,9 @@ def test_vehicle_info_says_which_losses_the_truck_uses(tmp_path: Path) -> None:
 
     with_maps = runner.invoke(app, ["vehicle", "info", str(write_xml_job(tmp_path)), "--json"])
     assert with_maps.exit_code == 0, with_maps.output
-    assert json.loads(with_maps.output)["driveline_losses"] == "VECTO's loss maps of every gear and of the axle"
+    assert json.loads(with_maps.output)["driveline_losses"] == (
+        "VECTO's loss maps of every gear and of the axle, and the drag of a retarder on the gearbox's output"
+    )
     without = runner.invoke(app, ["vehicle", "info", str(write_job(tmp_path / "j")), "--json"])
     text = json.loads(without.output)["driveline_losses"]
     assert "gear_efficiency 0.9546" in text and "not found: axle.vtlm" in text
