@@ -5,6 +5,7 @@
 //! sampled controller running at the plant step), `Some(s)` until the truck reaches distance `s`
 //! [m] or the road's end (the look-ahead controller of chapter 5, once per stage).
 
+pub mod amt;
 pub mod pcc;
 pub mod pi;
 pub mod receding;

@@ -17,11 +17,13 @@
 //! resistance times VECTO's decision factor; the lower target counts with its overspeed, and
 //! below `vecto_coasting_min_speed_kmh` the driver does not coast but brakes with the band.
 //!
-//! The gear is the PI's gear logic (table A.3 thresholds), which the thesis's truck and a VECTO
-//! truck's shift speeds give; VECTO's own shift strategy is not modelled.
+//! A truck from VECTO's files shifts as VECTO's automated manual gearbox does ([`super::amt`]: its
+//! declaration-mode shift lines and classic AMT strategy); the thesis's truck by the PI's gear
+//! logic (table A.3 thresholds).
 
 use std::sync::Arc;
 
+use super::amt::{AmtShifter, Request, LOOKAHEAD_M};
 use super::pi::{lac_decision_factor, time_to_coast, GearLogic, LAC_PREVIEW_M_PER_KMH};
 use super::{Controller, Decision};
 use crate::band::SpeedBand;
@@ -30,7 +32,7 @@ use crate::levels::{brake_accel, pedal_accel};
 use crate::params::{CruiseParams, PccParams, PiParams};
 use crate::plant::{Control, PlantState};
 use crate::road::Road;
-use crate::vehicle::{Vehicle, NEUTRAL};
+use crate::vehicle::{Model, Vehicle, NEUTRAL};
 use crate::KMH_PER_MPS;
 
 /// VECTO's declaration acceleration limits for trucks: speed [km/h], highest acceleration and
@@ -57,6 +59,10 @@ pub fn driver_limits_mps2(v_mps: f64) -> (f64, f64) {
 pub struct VectoDriver {
     vehicle: Arc<Vehicle>,
     gears: GearLogic,
+    /// VECTO's AMT strategy, for a truck from VECTO's files (it then shifts instead of `gears`).
+    amt: Option<AmtShifter>,
+    /// The control of the last decision: what the driver asked of the gearbox.
+    last: Control,
     cruise: CruiseParams,
     band: SpeedBand,
     band_hint: usize,
@@ -84,8 +90,14 @@ impl VectoDriver {
         pcc: &PccParams,
         plant_dt_s: f64,
     ) -> CoreResult<Self> {
+        let amt = match vehicle.model() {
+            Model::Map(model) => Some(AmtShifter::new(model)),
+            _ => None,
+        };
         Ok(VectoDriver {
             gears: GearLogic::new(&vehicle, pi)?,
+            amt,
+            last: Control { pedal: 0.0, brake: 0.0, gear: NEUTRAL },
             vehicle,
             cruise: cruise.clone(),
             band: SpeedBand::uniform(cruise),
@@ -128,6 +140,30 @@ impl VectoDriver {
         self.slope_hint = 0;
         self.gear = NEUTRAL;
         self.coasting_to = None;
+        self.last = Control { pedal: 0.0, brake: 0.0, gear: NEUTRAL };
+        if let Some(amt) = self.amt.as_mut() {
+            amt.reset();
+        }
+    }
+
+    /// The gear to drive in at `state` on `slope`: VECTO's AMT strategy for a truck from VECTO's
+    /// files, else the gear logic.
+    fn shift(&mut self, road: &Road, state: &PlantState, slope: f64) -> usize {
+        let (Some(amt), Model::Map(model)) = (self.amt.as_mut(), self.vehicle.model()) else {
+            return self.gears.shift(&self.vehicle, self.gear, state.v_mps, slope);
+        };
+        let v = state.v_mps;
+        // The torque the driver last asked of the wheels, at this speed: the road's load where it
+        // coasted in neutral or has not driven yet.
+        let wheel_torque_nm = if self.last.gear == NEUTRAL || self.gear == NEUTRAL {
+            model.air_torque_nm(v) + model.slope_torque_nm(slope)
+        } else {
+            let (cut, full) = model.wheel_torque_range_nm(model.rpm_per_mps(self.gear) * v, self.gear);
+            cut + self.last.pedal.max(0.0) * (full - cut)
+        };
+        let grade_ahead = (road.altitude_at(state.s_m + LOOKAHEAD_M) - road.altitude_at(state.s_m)) / LOOKAHEAD_M;
+        let driving = self.last.pedal > 0.0;
+        amt.gear(model, self.gear, &Request { t_s: state.t_s, v_mps: v, wheel_torque_nm, driving, grade_ahead })
     }
 
     /// The set speed at `s_m` [m/s]: the band's, which ramps down ahead of a lower target.
@@ -170,8 +206,14 @@ impl VectoDriver {
 
     /// One step of driving: accelerate to the set speed, coast in overspeed, brake at the limit.
     pub fn drive(&mut self, road: &Road, state: &PlantState) -> Control {
+        self.last = self.drive_step(road, state);
+        self.last
+    }
+
+    /// [`VectoDriver::drive`]'s decision.
+    fn drive_step(&mut self, road: &Road, state: &PlantState) -> Control {
         let slope = road.slope_at(state.s_m, &mut self.slope_hint);
-        self.gear = self.gears.shift(&self.vehicle, self.gear, state.v_mps, slope);
+        self.gear = self.shift(road, state, slope);
         let target = self.target_mps(state.s_m);
         let limit = self.limit_mps(target);
         if self.band.varies() && self.look_ahead_coasting(road, state) {
@@ -198,10 +240,11 @@ impl VectoDriver {
     /// the gear the logic picks; braking only to stay at the limit.
     pub fn coast(&mut self, road: &Road, state: &PlantState, neutral: bool) -> Control {
         let slope = road.slope_at(state.s_m, &mut self.slope_hint);
-        self.gear = if neutral { NEUTRAL } else { self.gears.shift(&self.vehicle, self.gear, state.v_mps, slope) };
+        self.gear = if neutral { NEUTRAL } else { self.shift(road, state, slope) };
         let target = self.target_mps(state.s_m);
         let limit = self.limit_mps(target);
-        self.coast_below(state.v_mps, limit, self.gear, slope)
+        self.last = self.coast_below(state.v_mps, limit, self.gear, slope);
+        self.last
     }
 
     /// No pedal in `gear`, the brake holding `limit_mps` if coasting would pass it.
