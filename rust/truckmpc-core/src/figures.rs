@@ -358,13 +358,15 @@ mod tests {
         };
         let (v, slope) = (22.0, 0.01_f64.atan());
         let loads = driving_state(&truck, v, 0.1, slope, None).unwrap();
-        assert_eq!(loads.len(), 7, "no engine figures without a gear: {loads:?}");
+        assert_eq!(loads.len(), 8, "no engine figures without a gear: {loads:?}");
+        // The test truck's driveline has no loss map and no retarder: nothing drags in neutral.
+        assert_eq!(figure(&loads, "neutral_drag_w"), 0.0);
         assert_eq!(figure(&loads, "cda_m2"), 6.0);
         let parts = ["air_w", "rolling_w", "slope_w", "vehicle_inertia_w", "wheels_inertia_w"];
         let sum: f64 = parts.iter().map(|k| figure(&loads, k)).sum();
         assert!((sum - figure(&loads, "wheel_w")).abs() < 1e-9 * sum);
         let in_gear = driving_state(&truck, v, 0.1, slope, Some(3)).unwrap();
-        assert_eq!(in_gear[..7], loads[..]);
+        assert_eq!(in_gear[..8], loads[..]);
         let rpm = figure(&in_gear, "engine_speed_rpm");
         assert_eq!(rpm, truck.driveline().engine_speed_rpm(v, 3));
         let power = figure(&in_gear, "engine_torque_nm") * rpm / RPM_PER_RAD_S;

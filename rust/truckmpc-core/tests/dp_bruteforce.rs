@@ -9,6 +9,7 @@
 use std::cell::RefCell;
 use std::collections::HashMap;
 use truckmpc_core::dp::rows::BRAKE_WINDOW;
+use truckmpc_core::dp::shift::interruption;
 use truckmpc_core::dp::space::{grid, intervals, usable_gears, Grid, Intervals};
 use truckmpc_core::dp::{DpSettings, GridAnchor, InitialState, NeutralRule, Solver};
 use truckmpc_core::levels::{brake_accel, brake_for_step, pedal_for_step, stage_fuel_g};
@@ -53,10 +54,28 @@ impl Problem<'_> {
         matches!(usable_gears(self.vehicle, v, self.p.mpc.n_min_rpm, self.p.mpc.n_max_rpm), Some((lo, hi)) if lo <= g && g <= hi)
     }
 
-    /// Cost of one transition (without the speed-deviation term), or None if inadmissible.
+    /// Cost of one transition (without the speed-deviation term), or None if inadmissible. A shift
+    /// between forward gears of a truck that interrupts traction starts with the roll in neutral
+    /// (the DP's [`interruption`], checked against a fine integration in its own tests): the stage
+    /// is then the rest of the stage from the roll's end speed, plus the roll's speed change and
+    /// the time it adds (priced per second with the fuel_time cost).
     fn transition(&self, k: usize, v_i: f64, g_i: usize, j: usize, g_j: usize) -> Option<f64> {
         let p = self.p;
-        let (h, delta) = (p.mpc.stage_m, p.delta_mps());
+        let h = p.mpc.stage_m;
+        if g_i != NEUTRAL && g_j != NEUTRAL && g_i != g_j && self.vehicle.traction_interruption_s() > 0.0 {
+            let torque = self.vehicle.slope_torque_nm(self.slopes[k]);
+            let roll = interruption(self.vehicle, v_i, torque, h)?;
+            let added_s = roll.t_s + (h - roll.d_m) / roll.v_mps - h / v_i;
+            let extra = p.mpc.q_speed_change * (v_i - roll.v_mps).abs() + p.q_time_per_s * added_s;
+            return self.stage(k, (roll.v_mps, h - roll.d_m), j, (g_i, g_j)).map(|c| c + extra);
+        }
+        self.stage(k, (v_i, h), j, (g_i, g_j))
+    }
+
+    /// Cost of a stage of `h` from `v_i` to grid point `j` from gear `g_i` into `g_j`.
+    fn stage(&self, k: usize, (v_i, h): (f64, f64), j: usize, (g_i, g_j): (usize, usize)) -> Option<f64> {
+        let p = self.p;
+        let delta = p.delta_mps();
         let v_j = self.grids[k + 1].speed(j, delta);
         let shift = if g_i != g_j { p.mpc.q_gear_shift } else { 0.0 };
         if g_j == NEUTRAL {
@@ -68,7 +87,7 @@ impl Problem<'_> {
             let fuel = stage_fuel_g(self.vehicle, v_i, 0.0, NEUTRAL, h);
             return Some(p.mpc.q_fuel * fuel + p.mpc.q_speed_change * (v_i - v_end).abs() + shift);
         }
-        let by_pedal_or_brake = self.pedal_or_brake(k, v_i, v_j, g_j).map(|cost| cost + shift);
+        let by_pedal_or_brake = self.pedal_or_brake(k, (v_i, h), v_j, g_j).map(|cost| cost + shift);
         if !p.mpc.fuel_cut_arcs {
             return by_pedal_or_brake;
         }
@@ -82,10 +101,10 @@ impl Problem<'_> {
         }
     }
 
-    /// Cost of joining v_i to v_j in forward gear g_j by pedal or brake (no shift cost).
-    fn pedal_or_brake(&self, k: usize, v_i: f64, v_j: f64, g_j: usize) -> Option<f64> {
+    /// Cost of joining v_i to v_j over `h` in forward gear g_j by pedal or brake (no shift cost).
+    fn pedal_or_brake(&self, k: usize, (v_i, h): (f64, f64), v_j: f64, g_j: usize) -> Option<f64> {
         let p = self.p;
-        let (h, delta, v_max) = (p.mpc.stage_m, p.delta_mps(), p.v_max_mps());
+        let (delta, v_max) = (p.delta_mps(), p.v_max_mps());
         let pedal = pedal_for_step(self.vehicle, v_i, v_j, g_j, self.slopes[k], h);
         // Without a value, ε is the pedal that moves the stage's end speed by half a grid step.
         let epsilon = p.mpc.epsilon.unwrap_or_else(|| {

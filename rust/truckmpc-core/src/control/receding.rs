@@ -18,7 +18,7 @@ use super::pi::GearLogic;
 use super::rescue::Rescue;
 use super::{Controller, Decision};
 use crate::band::SpeedBand;
-use crate::dp::{horizon, stage, DpSettings, InitialState, Solver};
+use crate::dp::{horizon, shift, stage, DpSettings, InitialState, Solver};
 use crate::levels::stationary;
 use crate::params::OnInfeasible;
 use crate::plant::{Control, PlantState};
@@ -183,13 +183,20 @@ impl RecedingController {
             let s_m = s0_m + k as f64 * h_m;
             let h = h_m.min(road.end_m() - s_m);
             let u = self.solve(road, s_m, v_mps, gear).unwrap_or(held);
-            let v_next = horizon::predict_speed((&self.vehicle, model), road, s_m, v_mps, u, h);
+            let (v_next, energy, time) = if shift::interrupts(&self.vehicle, gear, u.gear) {
+                let torque = self.vehicle.slope_torque_nm(road.mean_slope(s_m, s_m + h));
+                shift::drive_stage((&self.vehicle, model), (v_mps, h), gear, u, torque)
+            } else {
+                let v_next = horizon::predict_speed((&self.vehicle, model), road, s_m, v_mps, u, h);
+                let energy = stage::energy_of(model, &self.vehicle, (v_mps, v_next), u, h);
+                (v_next, energy, stage::time_s(model, (v_mps, v_next), h))
+            };
             if !(v_next > 0.0) {
                 stopped = true;
                 break;
             }
-            fuel_g += stage::energy_of(model, &self.vehicle, (v_mps, v_next), u, h);
-            time_s += stage::time_s(model, (v_mps, v_next), h);
+            fuel_g += energy;
+            time_s += time;
             self.shifts.record(gear, u.gear);
             (v_mps, gear, held) = (v_next, u.gear, u);
         }
@@ -329,7 +336,8 @@ impl RecedingController {
                 }
             }
         }
-        let u = self.rescue.step(self.gear, state.v_mps, at.v_max_kmh);
+        let slope = road.slope_at(state.s_m, &mut 0);
+        let u = self.rescue.step(&self.vehicle, self.gear, (state.v_mps, slope), at.v_max_kmh);
         // A shift restarts the limit's count, a new stage adds one: counting plant steps would
         // free the look-ahead to shift back a few metres after the rescue's own shift.
         if u.gear != self.gear || stage > self.rescue_counted {

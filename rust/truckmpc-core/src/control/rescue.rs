@@ -6,6 +6,7 @@
 
 use super::pi::GearLogic;
 use crate::plant::Control;
+use crate::vehicle::Vehicle;
 use crate::KMH_PER_MPS;
 
 /// Brake level per km/h above v_max, and the offset [km/h] that keeps braking just below v_max so
@@ -25,10 +26,13 @@ impl Rescue {
         Rescue { gears }
     }
 
-    /// The inputs for one plant step from `gear` at `v_mps` [m/s] below the band's top
-    /// `v_max_kmh` [km/h] there.
-    pub fn step(&self, gear: usize, v_mps: f64, v_max_kmh: f64) -> Control {
-        let gear = self.gears.next_gear(gear, v_mps);
+    /// The inputs for one plant step of `vehicle` from `gear` at `v_mps` [m/s] on `slope` below
+    /// the band's top `v_max_kmh` [km/h] there. A truck whose shifts interrupt traction shifts up
+    /// only into a gear that still accelerates it at full load ([`GearLogic::shift`]): a shift
+    /// costs it the interruption's speed, and an upshift the truck cannot hold would be followed by
+    /// a downshift.
+    pub fn step(&self, vehicle: &Vehicle, gear: usize, (v_mps, slope): (f64, f64), v_max_kmh: f64) -> Control {
+        let gear = self.gears.shift(vehicle, gear, v_mps, slope);
         let over_kmh = v_mps * KMH_PER_MPS - v_max_kmh;
         if over_kmh > -BRAKE_OFFSET_KMH {
             let brake = ((over_kmh + BRAKE_OFFSET_KMH) * BRAKE_PER_KMH).clamp(0.0, 1.0);

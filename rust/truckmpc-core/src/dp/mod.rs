@@ -6,6 +6,7 @@ pub mod fuel_time;
 pub mod horizon;
 pub mod params;
 pub mod rows;
+pub mod shift;
 pub mod simd;
 pub mod solver;
 pub mod space;

@@ -34,6 +34,7 @@ mod ends;
 mod first_pass;
 mod grids;
 mod second_pass;
+mod shifting;
 #[cfg(test)]
 mod tests;
 mod trace;
@@ -145,6 +146,10 @@ pub struct Solver {
     row_memo: RowMemo,
     /// Rows of the stage being solved when they do not come from the cache.
     scratch_rows: StageRows,
+    /// The memo of a shifting stage's rows (their length after the roll varies with the source).
+    shift_memo: RowMemo,
+    /// Where the first pass over shifting rows writes the choices it does not keep.
+    shift_lanes: (Vec<f64>, Vec<u32>),
     cache: RowCache,
     /// Rows of the whole-road plan's stages (a recording solve off the cache's window), kept by key.
     recent: RecentRows,
@@ -184,6 +189,8 @@ impl Solver {
             scratch: RowScratch::default(),
             row_memo: RowMemo::default(),
             scratch_rows: StageRows::default(),
+            shift_memo: RowMemo::default(),
+            shift_lanes: (Vec::new(), Vec::new()),
             cache: RowCache::default(),
             recent: RecentRows::default(),
             keeps_rows_by_key: false,

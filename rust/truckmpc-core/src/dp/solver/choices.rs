@@ -18,6 +18,11 @@ pub(super) struct Choices {
     pub(super) all_j: Vec<u32>,
     pub(super) shift_cost: Vec<f64>,
     pub(super) shift_j: Vec<u32>,
+    /// For a truck whose gearbox interrupts traction, the same as `shift_cost` and `shift_j` for a
+    /// shift from another forward gear: the stage starts with the interruption's roll in neutral
+    /// ([`crate::dp::shift`]). Leaving neutral has no interruption and takes `shift_cost`.
+    pub(super) ishift_cost: Vec<f64>,
+    pub(super) ishift_j: Vec<u32>,
     /// Per slot, the counter of the neutral choice (the interpolating rule takes the smaller of
     /// the two neighbours', so it is not the counter at all_j).
     pub(super) neutral_counter: Vec<u32>,
@@ -46,12 +51,12 @@ impl Choices {
         self.base_key = key_lo.div_euclid(lanes) * lanes;
         self.width = (key_hi.div_euclid(lanes) * lanes + lanes - self.base_key) as usize;
         let size = gears * self.width;
-        for v in [&mut self.all_cost, &mut self.shift_cost] {
+        for v in [&mut self.all_cost, &mut self.shift_cost, &mut self.ishift_cost] {
             if v.len() < size {
                 v.resize(size, INF);
             }
         }
-        for v in [&mut self.all_j, &mut self.shift_j] {
+        for v in [&mut self.all_j, &mut self.shift_j, &mut self.ishift_j] {
             if v.len() < size {
                 v.resize(size, 0);
             }

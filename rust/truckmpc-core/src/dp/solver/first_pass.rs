@@ -6,6 +6,7 @@
 use super::arcs::{better_by_arc, exact_arc, neutral_choices, ArcJoin};
 use super::choices::{level_flag, Choices, ARC, FULL, GLIDE};
 use super::grids::StageGrid;
+use super::shifting::{fill_shifting_arcs, join_shifting_arcs, shifting_row};
 use super::{stride, Solver, INF};
 use crate::dp::cache::{Block, CoastArc, StageKey, StageRows, LANES, PAD};
 use crate::dp::params::{DpSettings, StageModel};
@@ -54,6 +55,7 @@ impl Solver {
         // gives the same wheel torque as its map at zero pedal.
         let reuse = [p.mpc.fuel_cut_arcs && vehicle.zero_pedal_is_cut(), p.mpc.stage_model == StageModel::Trapezoid];
         let mut transitions = 0;
+        let interrupting = vehicle.traction_interruption_s() > 0.0;
         for &g in active_next {
             let (lo, hi) = self.gear_ranges[(k + 1) * gears + g];
             let out = g * ch.width;
@@ -62,6 +64,12 @@ impl Solver {
                 let arcs = stage.arcs(NEUTRAL);
                 let keys = (key_lo, key_hi);
                 neutral_choices(p, vehicle, arcs, (here, next), slope_torque, keys, (lo, hi), values, self.avx2, ch);
+                if interrupting {
+                    // Into neutral a forward gear disengages without an interruption.
+                    let span = out..out + ch.width;
+                    ch.ishift_cost[span.clone()].copy_from_slice(&ch.shift_cost[span.clone()]);
+                    ch.ishift_j[span.clone()].copy_from_slice(&ch.shift_j[span]);
+                }
                 transitions += i_hi - i_lo + 1;
                 continue;
             }
@@ -101,6 +109,46 @@ impl Solver {
             let block = g * stride(next.count) + PAD;
             let values = (&self.cost_next[block..], &self.counter_next[block..]);
             transitions += join_arcs(p, stage, (key_lo, key_hi), &to, values, ch);
+            if !interrupting {
+                continue;
+            }
+            // The same ways with the shift's interruption first, for a shift from a forward gear.
+            fill_shifting_arcs((vehicle, p), stage, (here, slope_torque), (key_lo, key_hi), &to);
+            let shift_memo = &mut self.shift_memo;
+            let rows = stage.gear(gears + g);
+            *computed += rows.fill(key_lo, key_hi, &mut self.scratch, |key, buf| {
+                let to_next = (next, v_max_next);
+                shifting_row((vehicle, p), here, key, g, slope_torque, to_next, (buf, &mut *shift_memo))
+            });
+            let values = g * stride(next.count)..(g + 1) * stride(next.count);
+            let (blocks, first_key) = rows.get(key_lo, key_hi);
+            let pass = GearPass {
+                blocks,
+                costs: &rows.costs,
+                next_first: next.first,
+                lo,
+                hi,
+                to_go: &self.cost_next[values.clone()],
+                shiftable: &self.shift_next[values],
+                same: self.shift_same_next[g],
+                first_key,
+                key_lo,
+                key_hi,
+            };
+            let lanes = blocks.len() * LANES;
+            let (unkept_cost, unkept_j) = &mut self.shift_lanes;
+            unkept_cost.resize(lanes.max(unkept_cost.len()), INF);
+            unkept_j.resize(lanes.max(unkept_j.len()), 0);
+            let span = out..out + lanes;
+            let choices = GearChoices {
+                all_cost: &mut unkept_cost[..lanes],
+                all_j: &mut unkept_j[..lanes],
+                shift_cost: &mut ch.ishift_cost[span.clone()],
+                shift_j: &mut ch.ishift_j[span],
+            };
+            transitions += gear_pass_dispatch(&pass, choices);
+            let values = (&self.cost_next[block..], &self.counter_next[block..]);
+            transitions += join_shifting_arcs(p, stage, (key_lo, key_hi), &to, values, ch);
         }
         transitions
     }
@@ -108,19 +156,19 @@ impl Solver {
 
 /// A forward target gear of the exact arcs: its number (of `gears`, neutral included), the next
 /// stage's grid and the gear's states `lo..=hi` on it.
-struct ArcTarget {
-    gear: usize,
-    gears: usize,
-    next: StageGrid,
-    lo: u32,
-    hi: u32,
+pub(super) struct ArcTarget {
+    pub(super) gear: usize,
+    pub(super) gears: usize,
+    pub(super) next: StageGrid,
+    pub(super) lo: u32,
+    pub(super) hi: u32,
     /// Whether the truck has a glide pedal ([`Powertrain::glides`]).
-    glides: bool,
+    pub(super) glides: bool,
 }
 
 /// The input an exact arc holds over its stage: a fixed one, or the glide pedal at its start speed.
 #[derive(Debug, Clone, Copy)]
-enum ArcInput {
+pub(super) enum ArcInput {
     Held((Branch, f64)),
     Glide,
 }
@@ -128,7 +176,10 @@ enum ArcInput {
 /// The exact arcs into a forward gear: fuel cut, full pedal on trapezoid stages (whose rows stop
 /// there), the pedal levels l/K between them (`pedal_levels`) and, for a truck that glides, its
 /// glide (`glide_arcs`), as (cache slot, input, join, flag of the choice).
-fn arc_kinds<'a>(p: &'a DpSettings, to: &ArcTarget) -> impl Iterator<Item = (usize, ArcInput, ArcJoin, u32)> + 'a {
+pub(super) fn arc_kinds<'a>(
+    p: &'a DpSettings,
+    to: &ArcTarget,
+) -> impl Iterator<Item = (usize, ArcInput, ArcJoin, u32)> + 'a {
     let (g, gears, next, range) = (to.gear, to.gears, to.next, (to.lo, to.hi));
     let [cut_slot, full_slot] = end_slots(gears, g);
     let held = |branch, input| ArcInput::Held((branch, input));

@@ -31,12 +31,16 @@ impl Solver {
         // Slot of source velocity i.
         let s0 = (here.first - self.choices.base_key) as usize;
         let sources = s0 + i_lo..s0 + i_hi + 1;
-        self.rank_shifts(sources.clone(), active_next);
+        // A shift between forward gears that interrupts traction has its own ways (the stage
+        // starts with the roll); leaving neutral does not, so neutral ranks its exits itself.
+        let interrupting = vehicle.traction_interruption_s() > 0.0;
+        self.rank_shifts(sources.clone(), active_next, interrupting);
         self.source_penalties(k, sources.clone(), i_lo);
         let p = &self.params;
-        let exit_own = active_here.contains(&NEUTRAL) && (p.mpc.neutral_exit_top_gear || !p.mpc.shift_price_neutral);
+        let exit_own = active_here.contains(&NEUTRAL)
+            && (interrupting || p.mpc.neutral_exit_top_gear || !p.mpc.shift_price_neutral);
         if exit_own {
-            self.neutral_exits(vehicle, here, sources, i_lo, active_next);
+            self.neutral_exits(vehicle, here, sources, (i_lo, interrupting), active_next);
         }
         let ch = &self.choices;
         let stride_n = stride(next.count);
@@ -75,7 +79,7 @@ impl Solver {
                 second_gear: ranked_gears[1],
                 neutral_counter: &ch.neutral_counter[slots.clone()],
                 penalty: &ch.penalty[slots],
-                shift_j: &ch.shift_j,
+                shift_j: if interrupting && g_i != NEUTRAL { &ch.ishift_j } else { &ch.shift_j },
                 width: ch.width,
                 counter_next: &self.counter_next[g_i * stride_n + PAD..(g_i + 1) * stride_n],
                 q4,
@@ -96,11 +100,13 @@ impl Solver {
     }
 
     /// The two best shift targets per velocity (choice slots `sources`), so that each state's best
-    /// shift to another gear is O(1). Gears are scanned in order, keeping the first of equal costs.
-    fn rank_shifts(&mut self, sources: Range<usize>, active_next: &[usize]) {
+    /// shift to another gear is O(1): among the ways that start with a shift's interruption where
+    /// `interrupting`. Gears are scanned in order, keeping the first of equal costs.
+    fn rank_shifts(&mut self, sources: Range<usize>, active_next: &[usize], interrupting: bool) {
         let ch = &mut self.choices;
         for &g in active_next {
-            let costs = &ch.shift_cost[g * ch.width + sources.start..g * ch.width + sources.end];
+            let all = if interrupting { &ch.ishift_cost } else { &ch.shift_cost };
+            let costs = &all[g * ch.width + sources.start..g * ch.width + sources.end];
             let first_cost = &mut ch.first_cost[sources.clone()];
             let first_gear = &mut ch.first_gear[sources.clone()];
             let second_cost = &mut ch.second_cost[sources.clone()];
@@ -148,13 +154,14 @@ impl Solver {
     }
 
     /// The neutral state's own two best shifts per velocity (`exit_cost`, `exit2_cost`) where they
-    /// differ from every other state's (choice slots `sources`, the first of velocity `i_lo`).
+    /// differ from every other state's (choice slots `sources`, the first of velocity `i_lo`; with
+    /// `interrupting`, ranked here among the ways without an interruption).
     fn neutral_exits(
         &mut self,
         vehicle: &Vehicle,
         here: StageGrid,
         sources: Range<usize>,
-        i_lo: usize,
+        (i_lo, interrupting): (usize, bool),
         active_next: &[usize],
     ) {
         let p = &self.params;
@@ -172,6 +179,8 @@ impl Solver {
                     _ => (INF, NO_GEAR),
                 };
                 (exit, (INF, NO_GEAR))
+            } else if interrupting {
+                best_two(&ch.shift_cost, ch.width, slot, active_next)
             } else {
                 ((ch.first_cost[slot], ch.first_gear[slot]), (ch.second_cost[slot], ch.second_gear[slot]))
             };
@@ -179,6 +188,21 @@ impl Solver {
             (ch.exit2_cost[slot], ch.exit2_gear[slot]) = (second.0 - free, second.1);
         }
     }
+}
+
+/// The two cheapest of `costs` [gear * width + slot] over the gears `active`, the first of equal
+/// costs kept (as [`Solver::rank_shifts`] ranks): ((cost, gear), (cost, gear)).
+fn best_two(costs: &[f64], width: usize, slot: usize, active: &[usize]) -> ((f64, u32), (f64, u32)) {
+    let (mut first, mut second) = ((INF, NO_GEAR), (INF, NO_GEAR));
+    for &g in active {
+        let c = costs[g * width + slot];
+        if c < first.0 {
+            (second, first) = (first, (c, g as u32));
+        } else if c < second.0 {
+            second = (c, g as u32);
+        }
+    }
+    (first, second)
 }
 
 /// What the second pass reads for the states of one gear at one stage (slices over its states).

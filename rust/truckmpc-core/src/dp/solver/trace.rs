@@ -5,7 +5,8 @@ use super::choices::{level_of, ARC, FULL, GLIDE};
 use super::{InitialState, Solution, Solver, TrajectoryPoint};
 use crate::dp::params::StageModel;
 use crate::dp::rows::{inputs, Inputs};
-use crate::dp::stage;
+use crate::dp::{shift, stage};
+use crate::plant::Control;
 use crate::powertrain::Powertrain;
 use crate::vehicle::{Vehicle, NEUTRAL};
 
@@ -37,19 +38,23 @@ impl Solver {
             } else {
                 let v_max = self.bands[k + 1].v_max_mps();
                 let torque = self.slope_torques[k];
-                let planned = |from: f64| inputs(vehicle, &self.params, (from, v_next, v_max), next_g, torque);
+                let planned = |from: f64| self.stage_inputs(vehicle, (from, v_next, v_max), (g, next_g), torque);
                 let u =
                     planned(v).or_else(|| planned(self.grids[k].speed(i))).unwrap_or(Inputs { pedal: 0.0, brake: 0.0 });
                 (u.pedal, u.brake)
             };
             let v_grid_mps = self.grids[k].speed(i);
             out.trajectory.push(TrajectoryPoint { v_mps: v, v_grid_mps, gear: next_g, pedal, brake });
-            v = if exact {
+            v = if !exact {
+                v_next
+            } else if shift::interrupts(vehicle, g, next_g) {
+                let u = Control { pedal, brake, gear: next_g };
+                let at = (vehicle, self.params.mpc.stage_model);
+                shift::drive_stage(at, (v, self.params.mpc.stage_m), g, u, self.slope_torques[k]).0
+            } else {
                 let h = self.params.mpc.stage_m;
                 let input = (pedal, brake, next_g);
                 stage::end_speed_with(self.params.mpc.stage_model, vehicle, (v, h), input, self.slope_torques[k])
-            } else {
-                v_next
             };
             i = next_i;
             g = next_g;
@@ -60,5 +65,21 @@ impl Solver {
         out.pedal = first.pedal;
         out.brake = first.brake;
         out.gear = first.gear;
+    }
+
+    /// The inputs of a row's stage from `v_i` to `v_j` [m/s] (`v_max` the next band's top) from
+    /// gear `from` into `to`: after the shift's roll where the change interrupts traction.
+    fn stage_inputs(
+        &self,
+        vehicle: &Vehicle,
+        (v_i, v_j, v_max): (f64, f64, f64),
+        (from, to): (usize, usize),
+        torque: f64,
+    ) -> Option<Inputs> {
+        if !shift::interrupts(vehicle, from, to) {
+            return inputs(vehicle, &self.params, (v_i, v_j, v_max), to, torque);
+        }
+        let roll = shift::interruption(vehicle, v_i, torque, self.params.mpc.stage_m)?;
+        inputs(vehicle, &shift::after(&self.params, &roll), (roll.v_mps, v_j, v_max), to, torque)
     }
 }

@@ -1,0 +1,109 @@
+//! The first pass's shifting ways into a forward gear, for a truck whose gearbox interrupts
+//! traction: each source speed's stage starts with the interruption's roll in neutral, then drives
+//! the target gear over the rest of the stage from the speed the roll ends at
+//! ([`crate::dp::shift`]). Its rows and exact arcs are kept beside the ordinary ones (rows in the
+//! target gear's slot plus the gear count, arcs in their slot plus [`shift_slot_offset`]), and its
+//! choices go to the shift choices of a forward source (`ishift_cost`, `ishift_j`).
+
+use super::arcs::exact_arc;
+use super::choices::Choices;
+use super::first_pass::{arc_kinds, ArcInput, ArcTarget};
+use super::grids::StageGrid;
+use crate::dp::cache::{CoastArc, StageRows};
+use crate::dp::params::DpSettings;
+use crate::dp::rows::{forward_row, RowMemo, RowSpan};
+use crate::dp::shift::{after, extra_cost, interruption};
+use crate::vehicle::Vehicle;
+
+use super::INF;
+
+/// Where a shifting way's arcs are kept: after every ordinary slot (neutral's, the fuel-cut and
+/// full-pedal arcs', each pedal level's and the glide's).
+#[inline]
+pub(super) fn shift_slot_offset(p: &DpSettings, gears: usize) -> usize {
+    (p.mpc.pedal_levels as usize + 2) * gears
+}
+
+/// The row of a shifting stage from source `key` of `here` into forward gear `g`: the roll, then
+/// the ordinary row from its end speed over the rest of the stage, each cost with the roll's
+/// extra ([`extra_cost`]). Appends to `out` as [`forward_row`] does; empty where no shift can
+/// start at that speed.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn shifting_row(
+    (vehicle, p): (&Vehicle, &DpSettings),
+    here: StageGrid,
+    key: i64,
+    g: usize,
+    slope_torque: f64,
+    (next, v_max_next): (StageGrid, f64),
+    (out, memo): (&mut Vec<f64>, &mut RowMemo),
+) -> (RowSpan, usize) {
+    let v_i = here.index.speed(key);
+    let Some(roll) = interruption(vehicle, v_i, slope_torque, p.mpc.stage_m) else {
+        return (RowSpan { first: 0, len: 0 }, out.len());
+    };
+    let rest = after(p, &roll);
+    let from = (roll.v_mps, [None, None]);
+    let (span, at) = forward_row(vehicle, &rest, from, g, slope_torque, next.index, v_max_next, (out, memo));
+    for (index, cost) in (span.first..).zip(&mut out[at..at + span.len]) {
+        if cost.is_finite() {
+            *cost += extra_cost(p, &roll, (v_i, next.index.speed(index)));
+        }
+    }
+    (span, at)
+}
+
+/// Fill the shifting stages' exact arcs into forward gear `to.gear` from the sources
+/// `key_lo..=key_hi` of `here`, where missing: each of [`arc_kinds`]' inputs held after the roll,
+/// its cost with the roll's extra. None where no shift starts (a truck that glides has no
+/// interruption).
+pub(super) fn fill_shifting_arcs(
+    (vehicle, p): (&Vehicle, &DpSettings),
+    stage: &mut StageRows,
+    (here, slope_torque): (StageGrid, f64),
+    (key_lo, key_hi): (i64, i64),
+    to: &ArcTarget,
+) {
+    let offset = shift_slot_offset(p, to.gears);
+    for (slot, input, _, _) in arc_kinds(p, to) {
+        stage.arcs(slot + offset).fill(key_lo, key_hi, |key| {
+            let v_i = here.index.speed(key);
+            let none = CoastArc { v_end_mps: v_i, cost: INF };
+            let (ArcInput::Held(held), Some(roll)) = (input, interruption(vehicle, v_i, slope_torque, p.mpc.stage_m))
+            else {
+                return none;
+            };
+            let mut arc = exact_arc(&after(p, &roll), vehicle, roll.v_mps, to.gear, slope_torque, held);
+            if arc.v_end_mps > 0.0 && arc.cost.is_finite() {
+                arc.cost += extra_cost(p, &roll, (v_i, arc.v_end_mps));
+            }
+            arc
+        });
+    }
+}
+
+/// The shifting arcs into `to.gear` (filled by [`fill_shifting_arcs`]) joined to the gear's states
+/// against their cost-to-go and counters (`values`, from state 0), each taking a source's shift
+/// choice where cheaper and allowed. Returns the transitions evaluated.
+pub(super) fn join_shifting_arcs(
+    p: &DpSettings,
+    stage: &mut StageRows,
+    (key_lo, key_hi): (i64, i64),
+    to: &ArcTarget,
+    (cost_next, counter_next): (&[f64], &[u32]),
+    ch: &mut Choices,
+) -> usize {
+    let slot0 = to.gear * ch.width + (key_lo - ch.base_key) as usize;
+    let offset = shift_slot_offset(p, to.gears);
+    let mut transitions = 0;
+    for (slot, _, join, flag) in arc_kinds(p, to) {
+        for (at, arc) in (slot0..).zip(stage.arcs(slot + offset).get(key_lo, key_hi)) {
+            let (cost, j, _) = join.join(arc, cost_next, counter_next);
+            if cost < ch.ishift_cost[at] && counter_next[j as usize] >= p.k_lim {
+                (ch.ishift_cost[at], ch.ishift_j[at]) = (cost, j | flag);
+            }
+        }
+        transitions += (key_hi - key_lo + 1) as usize;
+    }
+    transitions
+}
