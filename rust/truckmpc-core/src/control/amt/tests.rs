@@ -200,3 +200,65 @@ fn init_gear_at_cruise_picks_the_top_gear_on_the_flat() {
     let r = Request { t_s: 0.0, v_mps: v, wheel_torque_nm: road_load, driving: true, grade_ahead: 0.0 };
     assert_eq!(s.gear(&m, 0, &r), 12);
 }
+
+/// VECTO's driver over a 5 % climb of 2 km and a 3 % descent with the generic engine and gearbox: the
+/// gears it drives, with the time of each shift, up to the road's end.
+fn driven_shifts() -> (Vec<(f64, usize, usize, f64)>, f64) {
+    use crate::control::VectoDriver;
+    use crate::params::{CruiseParams, PccParams, PiParams};
+    use crate::plant::Plant;
+    use crate::road::Road;
+    use crate::vehicle::{Vehicle, VehicleParams};
+    use std::sync::Arc;
+
+    let vehicle = Arc::new(Vehicle::from_map(Arc::new(model()), &VehicleParams::default()).unwrap());
+    let road = Arc::new(Road::new(vec![0.0, 1000.0, 3000.0, 5000.0, 7000.0], vec![0.0, 0.05, -0.03, 0.0]).unwrap());
+    // The PI's thresholds (which VECTO's strategy replaces here) as the tool sets them for a VECTO
+    // truck: up at 86 % of the rated speed, down at 63 % or below where the upshift lands.
+    let up = 0.86 * 1736.0;
+    let down = (0..12).map(|g| (g > 0).then(|| (0.63 * 1736.0_f64).min(0.95 * up * RATIOS[g] / RATIOS[g - 1])));
+    let up_rpm = (0..12).map(|g| (g < 11).then_some(up)).collect();
+    let pi = PiParams { gear_down_rpm: down.collect(), gear_up_rpm: up_rpm, ..PiParams::default() };
+    let (cruise, pcc) = (CruiseParams::default(), PccParams::default());
+    let mut driver = VectoDriver::new(vehicle.clone(), &pi, &cruise, &pcc, 0.05).unwrap();
+    driver.start(&road);
+    let mut plant = Plant::new(vehicle.clone(), road.clone(), 0.0, 85.0 / 3.6);
+    let (mut shifts, mut gear, mut lowest_kmh) = (Vec::new(), 0, f64::INFINITY);
+    while plant.state().s_m < 7000.0 && !plant.state().stalled {
+        let state = plant.state();
+        let u = driver.drive(&road, &state);
+        if gear != 0 && u.gear != gear {
+            shifts.push((state.t_s, gear, u.gear, state.v_mps));
+        }
+        (gear, lowest_kmh) = (u.gear, lowest_kmh.min(state.v_mps * 3.6));
+        plant.step(u, 0.05);
+    }
+    assert!(!plant.state().stalled);
+    (shifts, lowest_kmh)
+}
+
+#[test]
+fn in_a_closed_loop_vectos_shifts_keep_its_timing_rules() {
+    let m = model();
+    let (shifts, lowest_kmh) = driven_shifts();
+    // The climb slows the truck below the top gear's downshift line: it shifts down, and back up.
+    assert!(lowest_kmh < 60.0, "{lowest_kmh}");
+    assert!(shifts.len() >= 4, "{shifts:?}");
+    assert!(shifts.iter().any(|s| s.2 < s.1) && shifts.iter().any(|s| s.2 > s.1), "{shifts:?}");
+    let in_range = |gear: usize, v: f64| {
+        let n = m.rpm_per_mps(gear) * v / RPM_PER_RAD_S;
+        (rad(600.0)..AmtShifter::new(&m).lines().n95h_rad_s()).contains(&n)
+    };
+    for w in shifts.windows(2) {
+        let ((t0, from0, to0, _), (t1, from1, to1, v1)) = (w[0], w[1]);
+        // Emergencies (the engine outside idle..n95h in its gear) aside: 1.5 s between shifts
+        // (MinTimeBetweenGearshifts), and 10 s between an upshift and a downshift either way.
+        if !in_range(from1, v1) {
+            continue;
+        }
+        assert!(t1 - t0 >= 1.5 - 1e-9, "{w:?}");
+        if (to0 > from0) != (to1 > from1) {
+            assert!(t1 - t0 >= 10.0 - 1e-9, "{w:?}");
+        }
+    }
+}
