@@ -244,20 +244,41 @@ impl<P: Powertrain> Plant<P> {
 
     /// Advance by at most `dt_s` but stop at `s_limit_m`: the last step is shortened so the truck
     /// ends on the limit (to a few micrometres). Returns the time step taken [s].
-    pub fn step_until(&mut self, u: Control, dt_s: f64, s_limit_m: f64) -> f64 {
+    pub fn step_until(&mut self, u: Control, dt_s: f64, s_limit_m: f64) -> f64
+    where
+        P: Clone,
+    {
+        // A shortened step that passes the limit by more than this is taken again, shorter (a
+        // very light truck's acceleration makes the first-order guess overshoot by millimetres).
+        const OVERSHOOT_M: f64 = 1e-3;
         let remaining = s_limit_m - self.state.s_m;
         if remaining <= 0.0 || self.state.stalled {
             return 0.0;
         }
         let v = self.state.v_mps.max(self.stall_speed_mps);
         // Distance covered in dt with a first-order guess; shorten when it would pass the limit.
-        let dt = if v * dt_s >= remaining { remaining / v } else { dt_s };
+        if v * dt_s < remaining {
+            self.step(u, dt_s);
+            return dt_s;
+        }
+        let dt = remaining / v;
+        let before = self.clone();
         self.step(u, dt);
-        dt
+        let over = self.state.s_m - s_limit_m;
+        if over <= OVERSHOOT_M {
+            return dt;
+        }
+        *self = before;
+        let shorter = dt * remaining / (remaining + over);
+        self.step(u, shorter);
+        shorter
     }
 
     /// Advance with constant inputs until `s_target_m` (or a stall), in steps of at most `dt_s`.
-    pub fn advance_to(&mut self, u: Control, dt_s: f64, s_target_m: f64) {
+    pub fn advance_to(&mut self, u: Control, dt_s: f64, s_target_m: f64)
+    where
+        P: Clone,
+    {
         // The shortened last step lands within a second-order error of the target; a few more
         // tiny steps close the gap. The bound guards against a truck that can no longer move.
         const TOLERANCE_M: f64 = 1e-6;

@@ -175,6 +175,7 @@ fn random_case(
     let mut p = DpSettings::thesis().with_mpc(|m| {
         (m.stage_m, m.horizon_m, m.delta_kmh) = (100.0, 100.0 * stages as f64, 0.5);
         (m.neutral_rule, m.grid, m.epsilon, m.fuel_cut_arcs) = (NeutralRule::Nearest, anchor, epsilon, fuel_cut_arcs);
+        m.plan_interruption = true;
     });
     p.k_lim = k_lim;
     let slopes: Vec<f64> = (0..stages).map(|_| rng.range(-0.04, 0.04)).collect();

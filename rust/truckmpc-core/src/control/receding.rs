@@ -183,7 +183,7 @@ impl RecedingController {
             let s_m = s0_m + k as f64 * h_m;
             let h = h_m.min(road.end_m() - s_m);
             let u = self.solve(road, s_m, v_mps, gear).unwrap_or(held);
-            let (v_next, energy, time) = if shift::interrupts(&self.vehicle, gear, u.gear) {
+            let (v_next, energy, time) = if shift::interrupts(self.solver.params(), &self.vehicle, gear, u.gear) {
                 let torque = self.vehicle.slope_torque_nm(road.mean_slope(s_m, s_m + h));
                 shift::drive_stage((&self.vehicle, model), (v_mps, h), gear, u, torque)
             } else {

@@ -60,10 +60,17 @@ pub fn interruption(vehicle: &Vehicle, v_mps: f64, slope_torque_nm: f64, h_m: f6
     (d < h_m).then_some(Interruption { v_mps: v, d_m: d, t_s, energy })
 }
 
-/// Whether a change from `from` to `to` shifts with an interruption on `vehicle`.
+/// Whether the plan of `p` models the interruption of `vehicle`'s shifts (`plan_interruption`, and
+/// a gearbox that interrupts traction).
 #[inline]
-pub fn interrupts(vehicle: &Vehicle, from: usize, to: usize) -> bool {
-    vehicle.shift_interruption_s(from, to) > 0.0
+pub fn planned(p: &DpSettings, vehicle: &Vehicle) -> bool {
+    p.mpc.plan_interruption && vehicle.traction_interruption_s() > 0.0
+}
+
+/// Whether the plan of `p` drives a change from `from` to `to` with an interruption on `vehicle`.
+#[inline]
+pub fn interrupts(p: &DpSettings, vehicle: &Vehicle, from: usize, to: usize) -> bool {
+    p.mpc.plan_interruption && vehicle.shift_interruption_s(from, to) > 0.0
 }
 
 /// The settings for the part of a shifting stage after its interruption: those of `p` over the
@@ -99,7 +106,8 @@ pub fn drive_stage(
     u: Control,
     slope_torque_nm: f64,
 ) -> (f64, f64, f64) {
-    let roll = interrupts(vehicle, from_gear, u.gear).then(|| interruption(vehicle, v_mps, slope_torque_nm, h_m));
+    let shifts = vehicle.shift_interruption_s(from_gear, u.gear) > 0.0;
+    let roll = shifts.then(|| interruption(vehicle, v_mps, slope_torque_nm, h_m));
     let (v0, h, energy0, time0) = match roll {
         Some(Some(r)) => (r.v_mps, h_m - r.d_m, r.energy, r.t_s),
         Some(None) => return (0.0, 0.0, 0.0),

@@ -4,6 +4,7 @@
 
 use super::params::{DpSettings, GridAnchor};
 use super::rows::GridIndex;
+use super::shift;
 use super::stage::{self, Branch};
 use crate::band::BandAt;
 use crate::vehicle::{Vehicle, NEUTRAL};
@@ -38,16 +39,28 @@ fn reach_gears(vehicle: &Vehicle, params: &DpSettings, v_mps: f64) -> (usize, us
 }
 
 /// Speeds after one stage at full pedal, over the reachability gears: (max, min) [m/s].
-/// Neutral counts towards the maximum when allowed: on a steep descent it can beat a gear.
+/// Neutral counts towards the maximum when allowed: on a steep descent it can beat a gear. For a
+/// truck whose shifts interrupt traction the minimum counts a stage that shifts into the gear
+/// (the roll, then full pedal over the rest): on a climb the band a path must keep to is then wide
+/// enough for a shift's lost speed.
 fn full_pedal_speeds(vehicle: &Vehicle, params: &DpSettings, v_mps: f64, slope: f64) -> (f64, f64) {
     let (lo, hi) = reach_gears(vehicle, params, v_mps);
     let torque = vehicle.slope_torque_nm(slope);
     let mut best = f64::NEG_INFINITY;
     let mut worst = f64::INFINITY;
+    let roll = shift::planned(params, vehicle)
+        .then(|| shift::interruption(vehicle, v_mps, torque, params.mpc.stage_m))
+        .flatten();
     for g in lo..=hi {
         let v1 = end_of_stage(vehicle, params, v_mps, g, torque, (Branch::Pedal, 1.0));
         best = best.max(v1);
         worst = worst.min(v1);
+        if let Some(roll) = &roll {
+            let rest = params.mpc.stage_m - roll.d_m;
+            let model = params.mpc.stage_model;
+            let shifted = stage::end_speed(model, vehicle, (roll.v_mps, rest), g, torque, (Branch::Pedal, 1.0));
+            worst = worst.min(shifted);
+        }
     }
     if params.mpc.allow_neutral {
         best = best.max(end_of_stage(vehicle, params, v_mps, NEUTRAL, torque, (Branch::Brake, 0.0)));

@@ -55,7 +55,7 @@ impl Solver {
         // gives the same wheel torque as its map at zero pedal.
         let reuse = [p.mpc.fuel_cut_arcs && vehicle.zero_pedal_is_cut(), p.mpc.stage_model == StageModel::Trapezoid];
         let mut transitions = 0;
-        let interrupting = vehicle.traction_interruption_s() > 0.0;
+        let interrupting = crate::dp::shift::planned(p, vehicle);
         for &g in active_next {
             let (lo, hi) = self.gear_ranges[(k + 1) * gears + g];
             let out = g * ch.width;

@@ -33,7 +33,7 @@ impl Solver {
         let sources = s0 + i_lo..s0 + i_hi + 1;
         // A shift between forward gears that interrupts traction has its own ways (the stage
         // starts with the roll); leaving neutral does not, so neutral ranks its exits itself.
-        let interrupting = vehicle.traction_interruption_s() > 0.0;
+        let interrupting = crate::dp::shift::planned(&self.params, vehicle);
         self.rank_shifts(sources.clone(), active_next, interrupting);
         self.source_penalties(k, sources.clone(), i_lo);
         let p = &self.params;

@@ -47,7 +47,7 @@ impl Solver {
             out.trajectory.push(TrajectoryPoint { v_mps: v, v_grid_mps, gear: next_g, pedal, brake });
             v = if !exact {
                 v_next
-            } else if shift::interrupts(vehicle, g, next_g) {
+            } else if shift::interrupts(&self.params, vehicle, g, next_g) {
                 let u = Control { pedal, brake, gear: next_g };
                 let at = (vehicle, self.params.mpc.stage_model);
                 shift::drive_stage(at, (v, self.params.mpc.stage_m), g, u, self.slope_torques[k]).0
@@ -76,7 +76,7 @@ impl Solver {
         (from, to): (usize, usize),
         torque: f64,
     ) -> Option<Inputs> {
-        if !shift::interrupts(vehicle, from, to) {
+        if !shift::interrupts(&self.params, vehicle, from, to) {
             return inputs(vehicle, &self.params, (v_i, v_j, v_max), to, torque);
         }
         let roll = shift::interruption(vehicle, v_i, torque, self.params.mpc.stage_m)?;
