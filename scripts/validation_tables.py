@@ -26,7 +26,7 @@ from typing import Any
 
 REPO = Path(__file__).resolve().parent.parent
 SHARED = Path(os.environ.get("TRUCKMPC_SHARED_ROADS", REPO.parent / "shared" / "roads"))
-TRACTOR = SHARED.parent / "vehicles" / "vecto-generic-class5-tractor" / "Class5_Tractor_DECL.vecto"
+TRACTOR = SHARED.parent / "vehicles" / "vecto-generic-class5-tractor" / "Class5_Tractor_DECL.xml"
 TRUCK_20T = ["--set", "mass_kg=20000"]
 VECTO_108 = "eu_vecto_longhaul_2015_108km.csv"
 VECTO_100 = "eu_vecto_longhaul_100km.csv"
