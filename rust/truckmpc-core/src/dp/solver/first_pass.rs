@@ -6,9 +6,9 @@
 use super::arcs::{better_by_arc, exact_arc, neutral_choices, ArcJoin};
 use super::choices::{level_flag, Choices, ARC, FULL, GLIDE};
 use super::grids::StageGrid;
-use super::shifting::{fill_shifting_arcs, join_shifting_arcs, shifting_row};
+use super::shifting::{fill_shifting_arcs, shift_slot_offset, shifting_row};
 use super::{stride, Solver, INF};
-use crate::dp::cache::{Block, CoastArc, StageKey, StageRows, LANES, PAD};
+use crate::dp::cache::{Block, CoastArc, GearBlocks, StageKey, StageRows, LANES, PAD};
 use crate::dp::params::{DpSettings, StageModel};
 use crate::dp::rows::forward_row;
 use crate::dp::simd::{self, LaneMins, LaneOut};
@@ -83,22 +83,10 @@ impl Solver {
                 forward_row(vehicle, p, from, g, slope_torque, next.index, v_max_next, (buf, &mut *memo))
             });
             let values = g * stride(next.count)..(g + 1) * stride(next.count);
-            let (blocks, first_key) = rows.get(key_lo, key_hi);
-            debug_assert_eq!(first_key, ch.base_key);
-            let pass = GearPass {
-                blocks,
-                costs: &rows.costs,
-                next_first: next.first,
-                lo,
-                hi,
-                to_go: &self.cost_next[values.clone()],
-                shiftable: &self.shift_next[values],
-                same: self.shift_same_next[g],
-                first_key,
-                key_lo,
-                key_hi,
-            };
-            let span = out..out + blocks.len() * LANES;
+            let targets = (&self.cost_next[values.clone()], &self.shift_next[values], self.shift_same_next[g]);
+            let pass = GearPass::over(rows, (key_lo, key_hi), (next, lo, hi), targets);
+            debug_assert_eq!(pass.first_key, ch.base_key);
+            let span = out..out + pass.blocks.len() * LANES;
             let choices = GearChoices {
                 all_cost: &mut ch.all_cost[span.clone()],
                 all_j: &mut ch.all_j[span.clone()],
@@ -108,7 +96,7 @@ impl Solver {
             transitions += gear_pass_dispatch(&pass, choices);
             let block = g * stride(next.count) + PAD;
             let values = (&self.cost_next[block..], &self.counter_next[block..]);
-            transitions += join_arcs(p, stage, (key_lo, key_hi), &to, values, ch);
+            transitions += join_arcs(p, stage, (key_lo, key_hi), &to, values, ch, false);
             if !interrupting {
                 continue;
             }
@@ -121,21 +109,9 @@ impl Solver {
                 shifting_row((vehicle, p), here, key, g, slope_torque, to_next, (buf, &mut *shift_memo))
             });
             let values = g * stride(next.count)..(g + 1) * stride(next.count);
-            let (blocks, first_key) = rows.get(key_lo, key_hi);
-            let pass = GearPass {
-                blocks,
-                costs: &rows.costs,
-                next_first: next.first,
-                lo,
-                hi,
-                to_go: &self.cost_next[values.clone()],
-                shiftable: &self.shift_next[values],
-                same: self.shift_same_next[g],
-                first_key,
-                key_lo,
-                key_hi,
-            };
-            let lanes = blocks.len() * LANES;
+            let targets = (&self.cost_next[values.clone()], &self.shift_next[values], self.shift_same_next[g]);
+            let pass = GearPass::over(rows, (key_lo, key_hi), (next, lo, hi), targets);
+            let lanes = pass.blocks.len() * LANES;
             let (unkept_cost, unkept_j) = &mut self.shift_lanes;
             unkept_cost.resize(lanes.max(unkept_cost.len()), INF);
             unkept_j.resize(lanes.max(unkept_j.len()), 0);
@@ -148,7 +124,7 @@ impl Solver {
             };
             transitions += gear_pass_dispatch(&pass, choices);
             let values = (&self.cost_next[block..], &self.counter_next[block..]);
-            transitions += join_shifting_arcs(p, stage, (key_lo, key_hi), &to, values, ch);
+            transitions += join_arcs(p, stage, (key_lo, key_hi), &to, values, ch, true);
         }
         transitions
     }
@@ -222,8 +198,10 @@ fn fill_arcs(
 }
 
 /// The exact arcs into a forward gear from the sources `key_lo..=key_hi` (filled by
-/// [`fill_arcs`]) joined to the gear's states against their cost-to-go and counters (`values`,
-/// from state 0), each taking a source's choice where cheaper. Returns the transitions evaluated.
+/// [`fill_arcs`], or with `shifting` by [`fill_shifting_arcs`]) joined to the gear's states against
+/// their cost-to-go and counters (`values`, from state 0), each taking a source's choice where
+/// cheaper (with `shifting`, its shift choice after an interruption only). Returns the transitions
+/// evaluated.
 fn join_arcs(
     p: &DpSettings,
     stage: &mut StageRows,
@@ -231,15 +209,21 @@ fn join_arcs(
     to: &ArcTarget,
     (cost_next, counter_next): (&[f64], &[u32]),
     ch: &mut Choices,
+    shifting: bool,
 ) -> usize {
     let slot0 = to.gear * ch.width + (key_lo - ch.base_key) as usize;
+    let offset = if shifting { shift_slot_offset(p, to.gears) } else { 0 };
     let mut transitions = 0;
     for (slot, _, join, flag) in arc_kinds(p, to) {
-        for (at, arc) in (slot0..).zip(stage.arcs(slot).get(key_lo, key_hi)) {
+        for (at, arc) in (slot0..).zip(stage.arcs(slot + offset).get(key_lo, key_hi)) {
             // The counter of the grid point the path continues from, not the stencil's
             // smallest (the neutral state's rule): this arc's state is a forward gear's.
             let (cost, j, _) = join.join(arc, cost_next, counter_next);
-            better_by_arc(cost, j | flag, counter_next[j as usize] >= p.k_lim, ch, at);
+            if !shifting {
+                better_by_arc(cost, j | flag, counter_next[j as usize] >= p.k_lim, ch, at);
+            } else if cost < ch.ishift_cost[at] && counter_next[j as usize] >= p.k_lim {
+                (ch.ishift_cost[at], ch.ishift_j[at]) = (cost, j | flag);
+            }
         }
         transitions += (key_hi - key_lo + 1) as usize;
     }
@@ -279,6 +263,33 @@ struct GearPass<'a> {
     /// The source keys with states.
     key_lo: i64,
     key_hi: i64,
+}
+
+impl<'a> GearPass<'a> {
+    /// The pass over the blocks of `rows` holding the sources `key_lo..=key_hi`, towards the target
+    /// gear's states `lo..=hi` of `next`, against its cost-to-go, its shiftable values and whether
+    /// the two are equal bit for bit.
+    fn over(
+        rows: &'a GearBlocks,
+        (key_lo, key_hi): (i64, i64),
+        (next, lo, hi): (StageGrid, u32, u32),
+        (to_go, shiftable, same): (&'a [f64], &'a [f64], bool),
+    ) -> Self {
+        let (blocks, first_key) = rows.get(key_lo, key_hi);
+        GearPass {
+            blocks,
+            costs: &rows.costs,
+            next_first: next.first,
+            lo,
+            hi,
+            to_go,
+            shiftable,
+            same,
+            first_key,
+            key_lo,
+            key_hi,
+        }
+    }
 }
 
 /// Where the first pass writes for one forward target gear: one value per block lane.

@@ -2,11 +2,10 @@
 //! traction: each source speed's stage starts with the interruption's roll in neutral, then drives
 //! the target gear over the rest of the stage from the speed the roll ends at
 //! ([`crate::dp::shift`]). Its rows and exact arcs are kept beside the ordinary ones (rows in the
-//! target gear's slot plus the gear count, arcs in their slot plus [`shift_slot_offset`]), and its
-//! choices go to the shift choices of a forward source (`ishift_cost`, `ishift_j`).
+//! target gear's slot plus the gear count, arcs in their slot plus [`shift_slot_offset`]); the first
+//! pass joins them into the shift choices of a forward source (`ishift_cost`, `ishift_j`).
 
 use super::arcs::exact_arc;
-use super::choices::Choices;
 use super::first_pass::{arc_kinds, ArcInput, ArcTarget};
 use super::grids::StageGrid;
 use crate::dp::cache::{CoastArc, StageRows};
@@ -80,30 +79,4 @@ pub(super) fn fill_shifting_arcs(
             arc
         });
     }
-}
-
-/// The shifting arcs into `to.gear` (filled by [`fill_shifting_arcs`]) joined to the gear's states
-/// against their cost-to-go and counters (`values`, from state 0), each taking a source's shift
-/// choice where cheaper and allowed. Returns the transitions evaluated.
-pub(super) fn join_shifting_arcs(
-    p: &DpSettings,
-    stage: &mut StageRows,
-    (key_lo, key_hi): (i64, i64),
-    to: &ArcTarget,
-    (cost_next, counter_next): (&[f64], &[u32]),
-    ch: &mut Choices,
-) -> usize {
-    let slot0 = to.gear * ch.width + (key_lo - ch.base_key) as usize;
-    let offset = shift_slot_offset(p, to.gears);
-    let mut transitions = 0;
-    for (slot, _, join, flag) in arc_kinds(p, to) {
-        for (at, arc) in (slot0..).zip(stage.arcs(slot + offset).get(key_lo, key_hi)) {
-            let (cost, j, _) = join.join(arc, cost_next, counter_next);
-            if cost < ch.ishift_cost[at] && counter_next[j as usize] >= p.k_lim {
-                (ch.ishift_cost[at], ch.ishift_j[at]) = (cost, j | flag);
-            }
-        }
-        transitions += (key_hi - key_lo + 1) as usize;
-    }
-    transitions
 }
