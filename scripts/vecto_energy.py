@@ -13,10 +13,12 @@ first column's difference from the second over its difference from VECTO's.
 
 The run is traced every 5 m and the terms are summed over the trace: air drag ½ρ·CdA(v)·v²,
 rolling m·g·c_r·cos α and gravity m·g·sin α per metre, the kinetic energy gained, the brakes'
-energy (the run's own), the auxiliaries' power over time, the engine's work above and below zero
-torque, and the gearbox's, the retarder's and the axle's losses at each sample's engine speed and
-gearbox input torque. What the engine's work leaves after all of them is printed as the residual
-(the trace's sampling, and in neutral the axle's and retarder's drag).
+energy (the run's own), the auxiliaries' power over time, the engine's positive work at the fuel
+map (the auxiliaries' share included, idling in neutral too, as VECTO's E_fcmap_pos) and its
+negative work at the clutch (as E_clutch_neg), and the gearbox's, the retarder's and the axle's
+losses at each sample's engine speed and gearbox input torque. What the engine's work leaves after
+all of them is printed as the residual (the trace's sampling, and in neutral the axle's and
+retarder's drag).
 """
 
 from __future__ import annotations
@@ -47,7 +49,7 @@ VSUM_TERMS = {
     "retarder": "E_ret_loss [kWh]",
     "auxiliaries": "E_aux_sum [kWh]",
     "engine work > 0": "E_fcmap_pos [kWh]",
-    "engine work < 0 (drag)": "E_clutch_neg [kWh]",
+    "clutch work < 0 (drag)": "E_clutch_neg [kWh]",
 }
 SPENT = ("air drag", "rolling", "gravity", "kinetic energy gained", "brakes", "gearbox and axle", "retarder")
 
@@ -77,16 +79,21 @@ def ledger(road_path: Path, controller: str, truck_path: Path, v_ref_kmh: float 
     air = sum(
         0.5 * truck.keys["air_density_kgpm3"] * core.at(u)["cda_m2"] * u * u * d for u, d in zip(v_mid, ds, strict=True)
     )
-    work_pos = work_neg = gearbox_axle = retarder = 0.0
+    work_pos = map_neg = clutch_neg = gearbox_axle = retarder = 0.0
     for u, pedal, gear, step in zip(v_mid, t["pedal"][:-1], t["gear"][:-1], dt, strict=True):
-        if gear > 0:
-            n_rpm = vehicle.engine_speed_rpm(u, int(gear))
-            omega = n_rpm * math.pi / 30
-            torque = vehicle.engine_torque_nm(u, pedal, int(gear))
-            work_pos, work_neg = work_pos + max(torque * omega, 0.0) * step, work_neg + min(torque * omega, 0.0) * step
-            losses = core.driveline_point(n_rpm, torque - truck.aux_power_w / omega, int(gear))
-            gearbox_axle += (losses["gearbox_loss_w"] + losses["axle_loss_w"]) * step
-            retarder += losses["retarder_loss_w"] * step
+        if gear == 0:
+            work_pos += truck.aux_power_w * step  # idling, driving the auxiliaries
+            continue
+        n_rpm = vehicle.engine_speed_rpm(u, int(gear))
+        omega = n_rpm * math.pi / 30
+        torque = vehicle.engine_torque_nm(u, pedal, int(gear))
+        clutch_nm = torque - truck.aux_power_w / omega
+        work_pos += max(torque * omega, 0.0) * step
+        map_neg += min(torque * omega, 0.0) * step
+        clutch_neg += min(clutch_nm * omega, 0.0) * step
+        losses = core.driveline_point(n_rpm, clutch_nm, int(gear))
+        gearbox_axle += (losses["gearbox_loss_w"] + losses["axle_loss_w"]) * step
+        retarder += losses["retarder_loss_w"] * step
     summary = result.summary
     terms = {
         "air drag": air,
@@ -98,9 +105,9 @@ def ledger(road_path: Path, controller: str, truck_path: Path, v_ref_kmh: float 
         "retarder": retarder,
         "auxiliaries": truck.aux_power_w * summary["time_s"],
         "engine work > 0": work_pos,
-        "engine work < 0 (drag)": work_neg,
+        "clutch work < 0 (drag)": clutch_neg,
     }
-    terms["residual"] = work_pos + work_neg - terms["auxiliaries"] - sum(terms[k] for k in SPENT)
+    terms["residual"] = work_pos + map_neg - terms["auxiliaries"] - sum(terms[k] for k in SPENT)
     figures = {
         "fuel [g/km]": summary["fuel_kg"] * 1e6 / summary["distance_m"],
         "driving time [s]": summary["time_s"],

@@ -44,7 +44,7 @@ def main() -> None:
     with vmod.open() as f:
         rows = [{k: float(v) if v else math.nan for k, v in r.items()} for r in csv.DictReader(f)]
     in_gear = [r for r in rows if r["Gear [-]"] > 0]
-    neutral = [r for r in rows if r["Gear [-]"] == 0]
+    neutral = [r for r in rows if r["Gear [-]"] == 0 and r["v_act [km/h]"] > 0]
     worst: dict[str, list[float]] = {}
 
     def note(name: str, ours: float, vecto: float) -> None:

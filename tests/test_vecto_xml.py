@@ -235,8 +235,17 @@ def test_the_retarder_reads_with_its_shaft_ratio_and_loss_map(tmp_path: Path) ->
     assert retarder is not None and (retarder.position, retarder.ratio) == ("input", 2.0)
 
 
-@pytest.mark.parametrize("kind", ["None", "Losses included in Gearbox", "Engine Retarder"])
+@pytest.mark.parametrize(
+    "kind", ["None", "Losses included in Gearbox", "Engine Retarder", "LossesIncludedInTransmission"]
+)
 def test_a_retarder_whose_losses_vecto_does_not_charge_adds_none(tmp_path: Path, kind: str) -> None:
     path = write_xml_job(tmp_path)
     _edit(path, "<RetarderType>Transmission Output Retarder<", f"<RetarderType>{kind}<")
     assert read_xml_job(path).retarder is None
+
+
+def test_a_retarder_type_reads_by_vectos_enum_name_too(tmp_path: Path) -> None:
+    path = write_xml_job(tmp_path)
+    _edit(path, "<RetarderType>Transmission Output Retarder<", "<RetarderType>TransmissionInputRetarder<")
+    retarder = read_xml_job(path).retarder
+    assert retarder is not None and retarder.position == "input"

@@ -47,12 +47,20 @@ class RetarderData:
     """The loss map's file as the job names it ("" for a declaration XML)."""
 
 
+_BY_KEY = {name.replace(" ", ""): position for name, position in _POSITIONS.items()} | {
+    "losses included in transmission".replace(" ", ""): None,
+}
+"""The types by their name lower-cased without spaces: VECTO's files write them with spaces (XML)
+or as its enum's names (``TransmissionOutputRetarder``, ``LossesIncludedInTransmission``)."""
+
+
 def _position(kind: str, where: str) -> str | None:
     """The shaft of a retarder type, refusing a type VECTO does not know."""
-    if kind.strip().lower() not in _POSITIONS:
-        names = ", ".join(sorted({k for k in _POSITIONS if " " in k or k == "none"}))
+    key = kind.strip().lower().replace(" ", "")
+    if key not in _BY_KEY:
+        names = ", ".join(sorted(_POSITIONS))
         raise VehicleError(f"{where}: expected a retarder type ({names}), got {kind!r}")
-    return _POSITIONS[kind.strip().lower()]
+    return _BY_KEY[key]
 
 
 def retarder_of_xml(vehicle: Element, components: Element) -> RetarderData | None:

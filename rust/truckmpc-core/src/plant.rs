@@ -243,7 +243,8 @@ impl<P: Powertrain> Plant<P> {
     }
 
     /// Advance by at most `dt_s` but stop at `s_limit_m`: the last step is shortened so the truck
-    /// ends on the limit (to a few micrometres). Returns the time step taken [s].
+    /// ends on the limit (to a second-order error in the step, under a millimetre; [`Plant::advance_to`]
+    /// closes the rest). Returns the time step taken [s].
     pub fn step_until(&mut self, u: Control, dt_s: f64, s_limit_m: f64) -> f64
     where
         P: Clone,

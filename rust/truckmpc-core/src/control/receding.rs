@@ -85,6 +85,8 @@ pub struct RecedingController {
     rescue_from_m: f64,
     /// Position of the latest rescue decision [m].
     rescue_last_m: f64,
+    /// Road segment of the rescue's last slope look-up.
+    rescue_slope_hint: usize,
     /// The last stage the shift limit counted while rescuing (the rescue decides at every plant
     /// step, the limit counts stages).
     rescue_counted: i64,
@@ -125,6 +127,7 @@ impl RecedingController {
             rescuing: None,
             rescue_from_m: 0.0,
             rescue_last_m: 0.0,
+            rescue_slope_hint: 0,
             rescue_counted: 0,
             stats: SolverStats::default(),
             whole_road: false,
@@ -336,7 +339,7 @@ impl RecedingController {
                 }
             }
         }
-        let slope = road.slope_at(state.s_m, &mut 0);
+        let slope = road.slope_at(state.s_m, &mut self.rescue_slope_hint);
         let u = self.rescue.step(&self.vehicle, self.gear, (state.v_mps, slope), at.v_max_kmh);
         // A shift restarts the limit's count, a new stage adds one: counting plant steps would
         // free the look-ahead to shift back a few metres after the rescue's own shift.
@@ -379,6 +382,7 @@ impl Controller for RecedingController {
         self.solver.set_caching(caching);
         self.relaxed = None;
         self.origin_m = state.s_m;
+        self.rescue_slope_hint = 0;
         self.shifts = ShiftCounter::new(self.solver.params().k_lim);
         self.gear = self.start_gears.steady_gear(state.v_mps);
         self.stats = SolverStats::default();

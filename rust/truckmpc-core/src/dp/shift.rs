@@ -1,9 +1,10 @@
 //! A stage that shifts between two forward gears, for a truck whose gearbox interrupts traction
 //! ([`Powertrain::shift_interruption_s`]): the DP models it as the plant drives it. The truck
-//! first rolls in neutral for the interruption (no pedal or brake, at the powertrain's
-//! interrupted energy rate), covering a distance d and reaching a speed v'; then it drives the
-//! new gear with the stage's input over the rest of the stage, h − d, from v'. The stage's energy
-//! and time are the two parts' sums.
+//! first rolls in neutral for the interruption (no pedal, at the powertrain's interrupted energy
+//! rate; without the brake, which the plant would keep applied: a stage that shifts and brakes is
+//! rare), covering a distance d and reaching a speed v'; then it drives the new gear with the
+//! stage's input over the rest of the stage, h − d, from v'. The stage's energy and time are the
+//! two parts' sums.
 //!
 //! The DP prices the second part with its ordinary stage model over h − d, and adds the first
 //! part's energy and the time the shift costs against an ordinary stage's (the DP charges an
@@ -97,8 +98,8 @@ pub fn extra_cost(p: &DpSettings, roll: &Interruption, (v_i, v_j): (f64, f64)) -
 
 /// A stage of `h_m` from `v_mps` under `u` on a slope of wheel torque `slope_torque_nm`, shifting
 /// from `from_gear`: (end speed [m/s], energy in the store's unit, time [s]) as the DP's stage
-/// model gives them, the interruption first where the change has one. The end speed is 0 where the
-/// truck stops.
+/// model gives them, the interruption first where the change has one (an ordinary stage where the
+/// roll would outlast it, a short last stage). The end speed is 0 where the truck stops.
 pub fn drive_stage(
     (vehicle, model): (&Vehicle, StageModel),
     (v_mps, h_m): (f64, f64),
@@ -108,9 +109,8 @@ pub fn drive_stage(
 ) -> (f64, f64, f64) {
     let shifts = vehicle.shift_interruption_s(from_gear, u.gear) > 0.0;
     let roll = shifts.then(|| interruption(vehicle, v_mps, slope_torque_nm, h_m));
-    let (v0, h, energy0, time0) = match roll {
-        Some(Some(r)) => (r.v_mps, h_m - r.d_m, r.energy, r.t_s),
-        Some(None) => return (0.0, 0.0, 0.0),
+    let (v0, h, energy0, time0) = match roll.flatten() {
+        Some(r) => (r.v_mps, h_m - r.d_m, r.energy, r.t_s),
         None => (v_mps, h_m, 0.0, 0.0),
     };
     let v_end = stage::end_speed_with(model, vehicle, (v0, h), (u.pedal, u.brake, u.gear), slope_torque_nm);

@@ -159,7 +159,8 @@ impl AmtShifter {
         model.rpm_per_mps(gear) * v_mps / RPM_PER_RAD_S < self.lines.idle_rad_s
     }
 
-    /// VECTO's `SpeedTooHighForEngine` (no gear of VECTO's files here limits its input speed).
+    /// VECTO's `SpeedTooHighForEngine`, without the gears' own input speed limits (VECTO's
+    /// `MaxInputSpeed`; the files are read without them, and VECTO's generic gearbox has none).
     fn too_high(&self, model: &MapModel, gear: usize, v_mps: f64) -> bool {
         model.rpm_per_mps(gear) * v_mps / RPM_PER_RAD_S >= self.n95h_rad_s
     }

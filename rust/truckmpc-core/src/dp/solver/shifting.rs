@@ -20,7 +20,7 @@ use super::INF;
 /// full-pedal arcs', each pedal level's and the glide's).
 #[inline]
 pub(super) fn shift_slot_offset(p: &DpSettings, gears: usize) -> usize {
-    (p.mpc.pedal_levels as usize + 2) * gears
+    (p.mpc.pedal_levels.max(1) as usize + 2) * gears
 }
 
 /// The row of a shifting stage from source `key` of `here` into forward gear `g`: the roll, then
