@@ -17,7 +17,7 @@
 //! gear's downshift line P2–P6–P3 seen in this gear (speeds times the step and 1.07, torques over
 //! the step), sweeping down from the highest speed to the first point at zero torque.
 
-use super::geometry::{intersect, section, Pt};
+use super::geometry::{intersect, Pt};
 
 /// VECTO's `TruckMaxAllowedSpeed`: the top gear's engine speed at 85 km/h bounds the shift lines.
 const TRUCK_MAX_SPEED_MPS: f64 = 85.0 / 3.6;
@@ -57,9 +57,13 @@ impl ShiftLineInputs {
     /// The full-load torque at `n` [rad/s], linear in its section (extrapolated at the ends),
     /// VECTO's `FullLoadStationaryTorque`.
     pub fn full_load_nm(&self, n: f64) -> f64 {
-        let pts: Vec<Pt> = self.full_load.iter().map(|&(x, y)| Pt { x, y }).collect();
-        let (a, b) = section(&pts, |p| p.x < n);
-        a.y + (b.y - a.y) * (n - a.x) / (b.x - a.x)
+        // VECTO's `GetSection` on the curve's points, without building them (a driver asks this
+        // several times a plant step).
+        let last = self.full_load.len() - 1;
+        let kept = self.full_load.iter().enumerate().position(|(i, p)| !(p.0 < n && i < last)).unwrap_or(last);
+        let i = kept.saturating_sub(1).min(last - 1);
+        let ((x0, y0), (x1, y1)) = (self.full_load[i], self.full_load[i + 1]);
+        y0 + (y1 - y0) * (n - x0) / (x1 - x0)
     }
 
     /// The highest full-load torque [Nm].
