@@ -6,6 +6,9 @@
 //! exactly; with one, the DP's path must be admissible and can only cost more or the same (the
 //! counter rule of 5.6 is a heuristic, NOTES.md).
 
+mod common;
+
+use common::map_vehicle;
 use std::cell::RefCell;
 use std::collections::HashMap;
 use truckmpc_core::dp::rows::BRAKE_WINDOW;
@@ -296,36 +299,6 @@ fn dp_with_shift_limit_is_admissible_and_mostly_optimal() {
     assert!(feasible > 100, "too few feasible cases: {feasible}");
     // The counter heuristic may miss the optimum of the path-dependent limit, but rarely.
     assert!(equal * 10 >= feasible * 9, "dp optimal in only {equal} of {feasible} cases");
-}
-
-/// A truck from component data whose fuel map is curved (not affine in torque), with the thesis's
-/// gearbox and body: the fuel of each pedal level is the map's, not full-pedal fuel × pedal.
-fn map_vehicle() -> Vehicle {
-    use truckmpc_core::powertrain::{Body, Driveline, Engine, MapModel, MapTruck};
-    let full_load =
-        [(500.0, 1000.0, -90.0), (1100.0, 2400.0, -140.0), (1800.0, 2300.0, -200.0), (2500.0, 1500.0, -260.0)];
-    let fuel = |n: f64, t: f64| 1500.0 + 1.2 * n + 17.0 * t + 0.003 * t * t + 2e-3 * n * t;
-    let mut map = Vec::new();
-    for i in 0..11 {
-        for j in 0..10 {
-            let (n, t) = (500.0 + 200.0 * i as f64, -300.0 + 300.0 * j as f64);
-            map.push((n, t, fuel(n, t).max(0.0)));
-        }
-    }
-    let p = VehicleParams::default();
-    let engine = Engine::new(600.0, 3.5, &full_load, &map).unwrap();
-    let driveline =
-        Driveline::new((&p.gear_ratios, p.final_drive_ratio), (0.95, 0.97, 15.0), p.wheel_radius_m).unwrap();
-    let body = Body {
-        mass_kg: 40_000.0,
-        wheels_inertia_kgm2: 32.9,
-        cda_m2: 5.5,
-        air_density_kgpm3: 1.2,
-        rolling_resistance: 0.006,
-        aux_power_w: 4000.0,
-    };
-    let truck = MapTruck::new(engine, driveline, body).unwrap();
-    Vehicle::from_map(std::sync::Arc::new(MapModel::new(truck, p.brake_torque_max_nm, 1.0)), &p).unwrap()
 }
 
 #[test]

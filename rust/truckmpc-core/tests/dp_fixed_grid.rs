@@ -2,6 +2,8 @@
 //! last stages shrink to the full-pedal chain. On a fixed grid that chain must be followed on grid
 //! speeds, or its end lies above what any grid path reaches and every solve there is infeasible.
 
+mod common;
+
 use truckmpc_core::dp::space::{intervals, Intervals};
 use truckmpc_core::dp::{DpSettings, GridAnchor, InitialState, Solver};
 use truckmpc_core::{Vehicle, VehicleParams};
@@ -131,6 +133,35 @@ fn one_stage_solves_against_the_stored_values_follow_the_whole_road_optimum() {
             let same = (step.pedal - point.pedal).abs() < 1e-12 && (step.brake - point.brake).abs() < 1e-12;
             assert!(same || !on_grid, "stage {k}");
             since = if point.gear != state.gear { 1 } else { (since + 1).min(p.k_lim) };
+        }
+    }
+}
+
+/// A truck whose gearbox interrupts traction, with the plan modelling the interruption, over a
+/// road of `grade` for 3 km between flats: the whole road solved at once, on either grid.
+fn climb_plan(vehicle: &Vehicle, grade: f64, grid: GridAnchor) -> truckmpc_core::dp::Solution {
+    let p = DpSettings::default().with_mpc(|m| (m.plan_interruption, m.grid) = (true, grid)).for_vehicle(vehicle).bound();
+    let slopes: Vec<f64> = (0..200).map(|k| if (20..140).contains(&k) { grade } else { 0.0 }).collect();
+    let start = InitialState { v_mps: 85.0 / 3.6, gear: 12, stages_since_shift: p.k_lim };
+    Solver::new(p).solve(vehicle, start, &slopes)
+}
+
+#[test]
+fn a_plan_whose_shifts_interrupt_traction_finds_a_path_over_a_long_climb() {
+    // Full pedal cannot hold v_min up these grades: the truck slows and shifts down on the way up,
+    // and up again after the top, losing a roll's speed at each shift. A band whose bottom follows
+    // the free-shift full-pedal chain within one roll leaves such a path no state (the plan then
+    // found none on the VECTO long-haul cycle's 4.5 % climb).
+    let vehicle = common::map_vehicle();
+    for grid in [GridAnchor::Fixed, GridAnchor::Moving] {
+        for grade in [0.03, 0.045, 0.06] {
+            let plan = climb_plan(&vehicle, grade, grid);
+            assert!(plan.feasible, "{grid:?}, {grade}: no plan");
+            let gears: Vec<usize> = plan.trajectory.iter().map(|point| point.gear).collect();
+            let shifts = gears.windows(2).filter(|pair| pair[0] != pair[1] && pair[0] != 0 && pair[1] != 0).count();
+            let slowest = plan.trajectory.iter().map(|point| point.v_mps).fold(f64::INFINITY, f64::min);
+            assert!(shifts >= 2, "{grid:?}, {grade}: {shifts} shifts between forward gears");
+            assert!(slowest * 3.6 < 77.0, "{grid:?}, {grade}: the climb never slows the truck below v_min");
         }
     }
 }

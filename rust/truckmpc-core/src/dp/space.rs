@@ -273,15 +273,53 @@ fn continuous_forward(
     vehicle: &Vehicle,
     params: &DpSettings,
     band: &BandAt,
-    [lo, hi, _]: [f64; 3],
+    [prev_lo, hi, _]: [f64; 3],
     slope: f64,
 ) -> [f64; 2] {
     let (v_min, v_max) = (band.v_min_mps(), band.v_max_mps());
     let (v_plus, v_plus_low) = full_pedal_speeds(vehicle, params, hi, slope);
-    let v_minus = lowest_speed(vehicle, params, lo, slope);
+    let v_minus = lowest_speed(vehicle, params, prev_lo, slope);
     let hi = v_plus.min(v_max);
     let lo = if v_plus >= v_min { v_minus.max(v_min).min(v_max) } else { v_plus_low.min(hi) };
+    let lo = lagging_low(vehicle, params, (lo, hi), prev_lo, slope).unwrap_or(lo);
     [lo.min(hi), hi]
+}
+
+/// Shifts' lost speed a path may lag the free-shift chain by before the band cuts it.
+const LAGGED_SHIFTS: f64 = 3.0;
+
+/// The bottom `lo` of a stage whose band is `[lo, hi]` [m/s], lowered for a truck whose planned
+/// shifts interrupt traction. The band's top is the chain of full pedal in the best gear at every
+/// stage, as if shifts were free, and its bottom is v_min wherever that chain reaches v_min: on a
+/// climb and after it a path that shifts lags that chain by each shift's roll (downshifts on the
+/// way up, upshifts where the grade eases), and would find no state left. The bottom may lie
+/// [`LAGGED_SHIFTS`] rolls below the top (a roll's loss: a stage of full pedal in the best gear
+/// from the top's speed against one that shifts into it, on this stage's grade), and no higher
+/// than full pedal takes a path from the previous bottom `prev_lo` (a lag carries on until full
+/// pedal makes it up).
+/// None where the plan does not model the interruption or no shift can start.
+fn lagging_low(vehicle: &Vehicle, params: &DpSettings, (lo, hi): (f64, f64), prev_lo: f64, slope: f64) -> Option<f64> {
+    let lost = roll_loss(vehicle, params, hi, slope)?;
+    let from_below = full_pedal_speeds(vehicle, params, prev_lo, slope).0;
+    Some(lo.min(hi - LAGGED_SHIFTS * lost).min(from_below).min(hi))
+}
+
+/// Speed one shift's roll costs over a stage from `v_mps` [m/s]: full pedal in the best gear
+/// against a stage that shifts into it (None where the plan does not model the interruption or no
+/// shift can start).
+fn roll_loss(vehicle: &Vehicle, params: &DpSettings, v_mps: f64, slope: f64) -> Option<f64> {
+    if !shift::planned(params, vehicle) {
+        return None;
+    }
+    let torque = vehicle.slope_torque_nm(slope);
+    let roll = shift::interruption(vehicle, v_mps, torque, params.mpc.stage_m)?;
+    let (lo, hi) = reach_gears(vehicle, params, v_mps);
+    let model = params.mpc.stage_model;
+    let rest = (roll.v_mps, params.mpc.stage_m - roll.d_m);
+    let pedal = (Branch::Pedal, 1.0);
+    let free = (lo..=hi).map(|g| end_of_stage(vehicle, params, v_mps, g, torque, pedal)).fold(f64::MIN, f64::max);
+    let shifted = (lo..=hi).map(|g| stage::end_speed(model, vehicle, rest, g, torque, pedal)).fold(f64::MIN, f64::max);
+    Some((free - shifted).max(0.0))
 }
 
 /// The thesis's backward step: raise lo to the lowest speed that reaches the next stage's lo.
@@ -306,7 +344,13 @@ fn index_of(params: &DpSettings, v_mps: f64) -> i64 {
 /// stage k + 1 is the highest grid speed that full pedal reaches from the top of stage k. Rounding
 /// continuous bounds instead breaks the chain on long climbs: the last stage's bound (the end of
 /// the continuous full-pedal chain) then lies above what any grid path can reach.
-fn grid_forward(vehicle: &Vehicle, params: &DpSettings, band: &BandAt, [lo, hi, _]: [f64; 3], slope: f64) -> [f64; 2] {
+fn grid_forward(
+    vehicle: &Vehicle,
+    params: &DpSettings,
+    band: &BandAt,
+    [prev_lo, hi, _]: [f64; 3],
+    slope: f64,
+) -> [f64; 2] {
     let (v_min_mps, v_max_mps) = (band.v_min_mps(), band.v_max_mps());
     // Multiples of δ: index i is the speed i·δ [m/s].
     let grid = GridIndex { origin_mps: 0.0, delta_mps: params.delta_mps() };
@@ -315,9 +359,13 @@ fn grid_forward(vehicle: &Vehicle, params: &DpSettings, band: &BandAt, [lo, hi, 
     // Only below: above, slack would compound along the full-pedal chain over the horizon, and a
     // final bound raised to v_ref on a climb would then lie beyond every grid path. Below it
     // compounds too, which keeps every state's fuel-cut arc bracketed; the band's v_min cuts it.
-    let v_minus = lowest_speed(vehicle, params, lo, slope) - band_slack_mps(params);
+    let v_minus = lowest_speed(vehicle, params, prev_lo, slope) - band_slack_mps(params);
     let hi = grid.floor(v_plus).min(top);
     let lo = if v_plus >= v_min_mps { grid.ceil(v_minus.max(v_min_mps)) } else { grid.floor(v_plus_low) };
+    let lo = match lagging_low(vehicle, params, (grid.speed(lo), grid.speed(hi)), prev_lo, slope) {
+        Some(lagging) => lo.min(grid.floor(lagging)),
+        None => lo,
+    };
     [grid.speed(lo.min(hi)), grid.speed(hi)]
 }
 
