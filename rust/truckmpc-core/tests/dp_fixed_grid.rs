@@ -140,7 +140,8 @@ fn one_stage_solves_against_the_stored_values_follow_the_whole_road_optimum() {
 /// A truck whose gearbox interrupts traction, with the plan modelling the interruption, over a
 /// road of `grade` for 3 km between flats: the whole road solved at once, on either grid.
 fn climb_plan(vehicle: &Vehicle, grade: f64, grid: GridAnchor) -> truckmpc_core::dp::Solution {
-    let p = DpSettings::default().with_mpc(|m| (m.plan_interruption, m.grid) = (true, grid)).for_vehicle(vehicle).bound();
+    let p =
+        DpSettings::default().with_mpc(|m| (m.plan_interruption, m.grid) = (true, grid)).for_vehicle(vehicle).bound();
     let slopes: Vec<f64> = (0..200).map(|k| if (20..140).contains(&k) { grade } else { 0.0 }).collect();
     let start = InitialState { v_mps: 85.0 / 3.6, gear: 12, stages_since_shift: p.k_lim };
     Solver::new(p).solve(vehicle, start, &slopes)

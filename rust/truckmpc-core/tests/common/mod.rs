@@ -32,4 +32,3 @@ pub fn map_vehicle() -> Vehicle {
     let truck = MapTruck::new(engine, driveline, body).unwrap();
     Vehicle::from_map(std::sync::Arc::new(MapModel::new(truck, p.brake_torque_max_nm, 1.0)), &p).unwrap()
 }
-
