@@ -1,5 +1,7 @@
 //! The closed loop in Rust: runs over whole roads, the trace's samples, stalls.
 
+mod common;
+
 use std::sync::Arc;
 
 use truckmpc_core::control::{GearLogic, PiController, RecedingController, ShiftCounter};
@@ -160,4 +162,25 @@ fn a_failed_controller_ends_the_run_before_its_failed_decision() {
         assert!((out.summary.time_s - steps * SIM.plant_dt_s).abs() < 1e-12, "{}", out.summary.time_s);
         assert!(!out.stopped, "a failure is the controller's, not a stop the host asked");
     }
+}
+
+/// The whole-road optimum of a truck whose gearbox interrupts traction, on a long climb that it
+/// drives with shifts: the plan models each shift's roll, every stage is decided from the stored
+/// plan (no horizon solve after the first), and the plant burns what the plan predicts.
+#[test]
+fn the_whole_road_optimum_of_a_truck_that_interrupts_traction_drives_its_plan() {
+    let vehicle = Arc::new(common::map_vehicle());
+    let road = Road::new(vec![0.0, 500.0, 3500.0, 5000.0], vec![0.0, 0.045, 0.0]).unwrap();
+    let altitude = vec![0.0, 0.0, 135.0, 135.0];
+    let gears = GearLogic::new(&vehicle, &PiParams::default()).unwrap();
+    let params = DpSettings::default();
+    assert!(params.mpc.plan_interruption, "the plan models the interruption by default");
+    let mut optimal = RecedingController::whole_road(vehicle.clone(), params, gears);
+    let out = run(&vehicle, &Arc::new(road), &altitude, &mut optimal, &SIM, 85.0).unwrap();
+    let stats = out.summary.solver.unwrap();
+    let plan = stats.plan.unwrap();
+    assert!(out.summary.gear_shifts >= 2, "the climb is driven with {} shifts", out.summary.gear_shifts);
+    assert_eq!(stats.horizon_solves, 1, "stages decided off the stored plan");
+    let gap = out.summary.fuel_kg / plan.fuel_kg - 1.0;
+    assert!(gap.abs() < 5e-4, "plant {} kg against plan {} kg", out.summary.fuel_kg, plan.fuel_kg);
 }

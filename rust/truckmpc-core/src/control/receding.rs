@@ -178,7 +178,7 @@ impl RecedingController {
     /// time includes this, about one more drive's worth of one-stage solves.
     fn follow_plan(&mut self, road: &Road, s0_m: f64, start: InitialState, stages: usize) -> Option<(f64, f64, f64)> {
         let kept = (self.stats, self.shifts);
-        let (model, h_m) = (self.solver.params().mpc.stage_model, self.solver.params().mpc.stage_m);
+        let h_m = self.solver.params().mpc.stage_m;
         let (mut v_mps, mut gear) = (start.v_mps, start.gear);
         let mut held = self.holding(v_mps, gear);
         let (mut fuel_g, mut time_s, mut stopped) = (0.0, 0.0, false);
@@ -186,14 +186,7 @@ impl RecedingController {
             let s_m = s0_m + k as f64 * h_m;
             let h = h_m.min(road.end_m() - s_m);
             let u = self.solve(road, s_m, v_mps, gear).unwrap_or(held);
-            let (v_next, energy, time) = if shift::interrupts(self.solver.params(), &self.vehicle, gear, u.gear) {
-                let torque = self.vehicle.slope_torque_nm(road.mean_slope(s_m, s_m + h));
-                shift::drive_stage((&self.vehicle, model), (v_mps, h), gear, u, torque)
-            } else {
-                let v_next = horizon::predict_speed((&self.vehicle, model), road, s_m, v_mps, u, h);
-                let energy = stage::energy_of(model, &self.vehicle, (v_mps, v_next), u, h);
-                (v_next, energy, stage::time_s(model, (v_mps, v_next), h))
-            };
+            let (v_next, energy, time) = self.model_stage(road, (s_m, h), (v_mps, gear), u);
             if !(v_next > 0.0) {
                 stopped = true;
                 break;
@@ -205,6 +198,26 @@ impl RecedingController {
         }
         (self.stats, self.shifts) = kept;
         (!stopped).then_some((fuel_g, time_s, v_mps))
+    }
+
+    /// A stage of `h_m` from `s_m` [m] at `v_mps` in `gear` under `u` on the DP's own stage model:
+    /// (end speed [m/s], energy in the store's unit, time [s]), the roll of the interruption first
+    /// where the plan models the change of gear. The end speed is 0 or below where the truck stops.
+    fn model_stage(
+        &self,
+        road: &Road,
+        (s_m, h_m): (f64, f64),
+        (v_mps, gear): (f64, usize),
+        u: Control,
+    ) -> (f64, f64, f64) {
+        let model = self.solver.params().mpc.stage_model;
+        if shift::interrupts(self.solver.params(), &self.vehicle, gear, u.gear) {
+            let torque = self.vehicle.slope_torque_nm(road.mean_slope(s_m, s_m + h_m));
+            return shift::drive_stage((&self.vehicle, model), (v_mps, h_m), gear, u, torque);
+        }
+        let v_next = horizon::predict_speed((&self.vehicle, model), road, s_m, v_mps, u, h_m);
+        let energy = stage::energy_of(model, &self.vehicle, (v_mps, v_next), u, h_m);
+        (v_next, energy, stage::time_s(model, (v_mps, v_next), h_m))
     }
 
     /// The one-stage solve at the stage starting at `s_m` against the stored cost-to-go (None
@@ -311,10 +324,12 @@ impl RecedingController {
     /// Drive `u` until `boundary_m` and solve the stage after it from the speed predicted there
     /// over `h_m` metres.
     fn apply_and_plan(&mut self, road: &Road, state: &PlantState, u: Control, boundary_m: f64, h_m: f64) -> Decision {
+        // The next stage is solved from where the model puts the truck, after the shift's roll
+        // where the plan models it (from the speed before the roll it would plan from a state
+        // the plant never reaches, off the stored plan's grid).
+        let (v_next, _, _) = self.model_stage(road, (state.s_m, h_m), (state.v_mps, self.gear), u);
         self.shifts.record(self.gear, u.gear);
         self.gear = u.gear;
-        let model = self.solver.params().mpc.stage_model;
-        let v_next = horizon::predict_speed((&self.vehicle, model), road, state.s_m, state.v_mps, u, h_m);
         let chosen = if v_next > 0.0 { self.solve(road, boundary_m, v_next, u.gear) } else { None };
         self.rescue_next = chosen.is_none() && self.rescues();
         self.pending = chosen.unwrap_or(u);

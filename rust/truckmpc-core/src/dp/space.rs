@@ -281,7 +281,7 @@ fn continuous_forward(
     let v_minus = lowest_speed(vehicle, params, prev_lo, slope);
     let hi = v_plus.min(v_max);
     let lo = if v_plus >= v_min { v_minus.max(v_min).min(v_max) } else { v_plus_low.min(hi) };
-    let lo = lagging_low(vehicle, params, (lo, hi), prev_lo, slope).unwrap_or(lo);
+    let lo = lagging_low(vehicle, params, (lo, hi), (prev_lo, v_plus >= v_min), slope).unwrap_or(lo);
     [lo.min(hi), hi]
 }
 
@@ -290,18 +290,25 @@ const LAGGED_SHIFTS: f64 = 3.0;
 
 /// The bottom `lo` of a stage whose band is `[lo, hi]` [m/s], lowered for a truck whose planned
 /// shifts interrupt traction. The band's top is the chain of full pedal in the best gear at every
-/// stage, as if shifts were free, and its bottom is v_min wherever that chain reaches v_min: on a
-/// climb and after it a path that shifts lags that chain by each shift's roll (downshifts on the
-/// way up, upshifts where the grade eases), and would find no state left. The bottom may lie
-/// [`LAGGED_SHIFTS`] rolls below the top (a roll's loss: a stage of full pedal in the best gear
-/// from the top's speed against one that shifts into it, on this stage's grade), and no higher
-/// than full pedal takes a path from the previous bottom `prev_lo` (a lag carries on until full
-/// pedal makes it up).
-/// None where the plan does not model the interruption or no shift can start.
-fn lagging_low(vehicle: &Vehicle, params: &DpSettings, (lo, hi): (f64, f64), prev_lo: f64, slope: f64) -> Option<f64> {
-    let lost = roll_loss(vehicle, params, hi, slope)?;
-    let from_below = full_pedal_speeds(vehicle, params, prev_lo, slope).0;
-    Some(lo.min(hi - LAGGED_SHIFTS * lost).min(from_below).min(hi))
+/// stage, as if shifts were free, and its bottom is v_min wherever that chain reaches v_min
+/// (`holds`): on a climb and after it a path that shifts lags that chain by each shift's roll
+/// (downshifts on the way up, upshifts where the grade eases), and would find no state left. On a
+/// climb the bottom may lie [`LAGGED_SHIFTS`] rolls below the top (a roll's loss: a stage of full
+/// pedal in the best gear from the top's speed against one that shifts into it, on this stage's
+/// grade). Where the top holds v_min the bottom stays below v_min only as far as a lag carries
+/// on: no higher than full pedal takes the previous bottom `prev_lo`, nor than the rolls' room
+/// below the top, so a truck that could hold v_min is not planned below it. None where the plan
+/// does not model the interruption or no shift can start.
+fn lagging_low(
+    vehicle: &Vehicle,
+    params: &DpSettings,
+    (lo, hi): (f64, f64),
+    (prev_lo, holds): (f64, bool),
+    slope: f64,
+) -> Option<f64> {
+    let lagged = hi - LAGGED_SHIFTS * roll_loss(vehicle, params, hi, slope)?;
+    let floor = if holds { lagged.max(full_pedal_speeds(vehicle, params, prev_lo, slope).0) } else { lagged };
+    Some(lo.min(floor).min(hi))
 }
 
 /// Speed one shift's roll costs over a stage from `v_mps` [m/s]: full pedal in the best gear
@@ -362,7 +369,8 @@ fn grid_forward(
     let v_minus = lowest_speed(vehicle, params, prev_lo, slope) - band_slack_mps(params);
     let hi = grid.floor(v_plus).min(top);
     let lo = if v_plus >= v_min_mps { grid.ceil(v_minus.max(v_min_mps)) } else { grid.floor(v_plus_low) };
-    let lo = match lagging_low(vehicle, params, (grid.speed(lo), grid.speed(hi)), prev_lo, slope) {
+    let holds = v_plus >= v_min_mps;
+    let lo = match lagging_low(vehicle, params, (grid.speed(lo), grid.speed(hi)), (prev_lo, holds), slope) {
         Some(lagging) => lo.min(grid.floor(lagging)),
         None => lo,
     };
