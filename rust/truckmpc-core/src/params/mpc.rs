@@ -125,8 +125,8 @@ declare_params! {
         shift_price_neutral: bool = false, unit "-", range Range::ANY;
         /// After coasting in neutral, engage only the highest gear usable at the speed (as an automated gearbox does); false: any usable gear.
         neutral_exit_top_gear: bool = true, unit "-", range Range::ANY;
-        /// For a truck whose gearbox interrupts traction at a shift: plan each shift as the plant drives it (a roll in neutral for the interruption, then the new gear); false: the plan shifts without the interruption. Off by default: on long steep climbs the reachable speed band still assumes free shifts, so the plan can find no path and falls back.
-        plan_interruption: bool = false, unit "-", range Range::ANY;
+        /// For a truck whose gearbox interrupts traction at a shift: plan each shift as the plant drives it (a roll in neutral for the interruption, then the new gear); false: the plan shifts instantly, as the thesis's truck does.
+        plan_interruption: bool = true, unit "-", range Range::ANY;
         /// Q5 per stage, weight per unit brake level held over a stage; null = q_brake_per_km × S.
         q_brake: Option<f64> = None, unit "-", range Range::between(0.0, 1e6);
         /// Q5 per kilometre, weight per unit brake level held over a kilometre (used when q_brake is null).
