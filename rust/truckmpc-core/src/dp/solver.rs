@@ -150,6 +150,8 @@ pub struct Solver {
     shift_memo: RowMemo,
     /// Where the first pass over shifting rows writes the choices it does not keep.
     shift_lanes: (Vec<f64>, Vec<u32>),
+    /// The rolls of the stage under way's sources, for its shifting rows and arcs.
+    rolls: shifting::StageRolls,
     cache: RowCache,
     /// Rows of the whole-road plan's stages (a recording solve off the cache's window), kept by key.
     recent: RecentRows,
@@ -191,6 +193,7 @@ impl Solver {
             scratch_rows: StageRows::default(),
             shift_memo: RowMemo::default(),
             shift_lanes: (Vec::new(), Vec::new()),
+            rolls: shifting::StageRolls::default(),
             cache: RowCache::default(),
             recent: RecentRows::default(),
             keeps_rows_by_key: false,

@@ -56,6 +56,10 @@ impl Solver {
         let reuse = [p.mpc.fuel_cut_arcs && vehicle.zero_pedal_is_cut(), p.mpc.stage_model == StageModel::Trapezoid];
         let mut transitions = 0;
         let interrupting = crate::dp::shift::planned(p, vehicle);
+        let rolls = &mut self.rolls;
+        if interrupting {
+            rolls.reset((key_lo, key_hi));
+        }
         for &g in active_next {
             let (lo, hi) = self.gear_ranges[(k + 1) * gears + g];
             let out = g * ch.width;
@@ -101,12 +105,12 @@ impl Solver {
                 continue;
             }
             // The same ways with the shift's interruption first, for a shift from a forward gear.
-            fill_shifting_arcs((vehicle, p), stage, (here, slope_torque), (key_lo, key_hi), &to);
+            fill_shifting_arcs((vehicle, p), stage, (here, slope_torque), (key_lo, key_hi), (&to, &mut *rolls));
             let shift_memo = &mut self.shift_memo;
             let rows = stage.gear(gears + g);
             *computed += rows.fill(key_lo, key_hi, &mut self.scratch, |key, buf| {
                 let to_next = (next, v_max_next);
-                shifting_row((vehicle, p), here, key, g, slope_torque, to_next, (buf, &mut *shift_memo))
+                shifting_row((vehicle, p), here, key, g, slope_torque, to_next, (buf, &mut *shift_memo, &mut *rolls))
             });
             let values = g * stride(next.count)..(g + 1) * stride(next.count);
             let targets = (&self.cost_next[values.clone()], &self.shift_next[values], self.shift_same_next[g]);

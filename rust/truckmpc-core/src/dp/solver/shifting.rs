@@ -11,10 +11,44 @@ use super::grids::StageGrid;
 use crate::dp::cache::{CoastArc, StageRows};
 use crate::dp::params::DpSettings;
 use crate::dp::rows::{forward_row, RowMemo, RowSpan};
-use crate::dp::shift::{after, extra_cost, interruption};
+use crate::dp::shift::{after, extra_cost, interruption, Interruption};
 use crate::vehicle::Vehicle;
 
 use super::INF;
+
+/// The rolls of one stage's sources, each found once: a source's roll depends on its speed, the
+/// stage's grade and length only, and every target gear's row and arcs start with it.
+#[derive(Debug, Clone, Default)]
+pub(super) struct StageRolls {
+    first_key: i64,
+    /// Per source key from `first_key`: None until found, then the roll (None where no shift starts).
+    rolls: Vec<Option<Option<Interruption>>>,
+}
+
+impl StageRolls {
+    /// Forget the rolls of the stage before: sources `key_lo..=key_hi` of a new stage.
+    pub(super) fn reset(&mut self, (key_lo, key_hi): (i64, i64)) {
+        self.first_key = key_lo;
+        self.rolls.clear();
+        self.rolls.resize((key_hi - key_lo + 1).max(0) as usize, None);
+    }
+
+    /// The roll of source `key` of `here`, found on first use (a key outside the sources, which a
+    /// block of rows may reach past their last, is found each time).
+    fn of(
+        &mut self,
+        (vehicle, p): (&Vehicle, &DpSettings),
+        here: StageGrid,
+        key: i64,
+        slope_torque: f64,
+    ) -> Option<Interruption> {
+        let find = || interruption(vehicle, here.index.speed(key), slope_torque, p.mpc.stage_m);
+        match usize::try_from(key - self.first_key).ok().and_then(|i| self.rolls.get_mut(i)) {
+            Some(slot) => *slot.get_or_insert_with(find),
+            None => find(),
+        }
+    }
+}
 
 /// Where a shifting way's arcs are kept: after every ordinary slot (neutral's, the fuel-cut and
 /// full-pedal arcs', each pedal level's and the glide's).
@@ -35,10 +69,10 @@ pub(super) fn shifting_row(
     g: usize,
     slope_torque: f64,
     (next, v_max_next): (StageGrid, f64),
-    (out, memo): (&mut Vec<f64>, &mut RowMemo),
+    (out, memo, rolls): (&mut Vec<f64>, &mut RowMemo, &mut StageRolls),
 ) -> (RowSpan, usize) {
     let v_i = here.index.speed(key);
-    let Some(roll) = interruption(vehicle, v_i, slope_torque, p.mpc.stage_m) else {
+    let Some(roll) = rolls.of((vehicle, p), here, key, slope_torque) else {
         return (RowSpan { first: 0, len: 0 }, out.len());
     };
     let rest = after(p, &roll);
@@ -61,15 +95,17 @@ pub(super) fn fill_shifting_arcs(
     stage: &mut StageRows,
     (here, slope_torque): (StageGrid, f64),
     (key_lo, key_hi): (i64, i64),
-    to: &ArcTarget,
+    (to, rolls): (&ArcTarget, &mut StageRolls),
 ) {
     let offset = shift_slot_offset(p, to.gears);
     for (slot, input, _, _) in arc_kinds(p, to) {
         stage.arcs(slot + offset).fill(key_lo, key_hi, |key| {
             let v_i = here.index.speed(key);
             let none = CoastArc { v_end_mps: v_i, cost: INF };
-            let (ArcInput::Held(held), Some(roll)) = (input, interruption(vehicle, v_i, slope_torque, p.mpc.stage_m))
-            else {
+            let ArcInput::Held(held) = input else {
+                return none;
+            };
+            let Some(roll) = rolls.of((vehicle, p), here, key, slope_torque) else {
                 return none;
             };
             let mut arc = exact_arc(&after(p, &roll), vehicle, roll.v_mps, to.gear, slope_torque, held);
