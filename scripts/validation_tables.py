@@ -6,6 +6,7 @@
     python scripts/validation_tables.py thesis-convergence   # docs/validation/convergence.md, the thesis preset
     python scripts/validation_tables.py shift-price          # docs/validation/pcc.md, the MPC at each Q4
     python scripts/validation_tables.py neutral-price        # docs/validation/pcc.md, the MPC at each q_neutral
+    python scripts/validation_tables.py tractor-shift-price  # docs/validation/pcc.md, VECTO's tractor at each Q4
 
 Each row is one `truckmpc simulate` run on a shared road (../shared/roads from the repository root,
 or $TRUCKMPC_SHARED_ROADS); the command of every row is printed above the table. Δ are in %, moves
@@ -166,20 +167,35 @@ STUDIES: dict[str, Study] = {
 }
 
 
-# A price study: per road (rows), one run of the MPC and the PCC per value of one MPC key (columns).
-PriceStudy = tuple[list[Case], str, list[str], str]
+TRACTOR_BOTH_WAYS: list[Case] = [
+    (f"{label}{', reversed' if way else ''}", road, ["--vehicle", str(TRACTOR), *way])
+    for label, road in (
+        ("VECTO 108 km", VECTO_108),
+        ("VECTO 100 km", VECTO_100),
+        ("SE E6/E20", SE),
+        ("US EPA 20 km", EPA),
+        ("US long-haul 805 km", US_805),
+    )
+    for way in ([], ["--reverse"])
+]
+SHIFTS = ("gear_shifts_per_100km",)
+GEARBOX_OPERATIONS = ("gear_shifts_per_100km", "neutral_engagements_per_100km")
+
+# A price study: per road (rows), one run of the MPC and the PCC per value of one MPC key (columns);
+# per cell the count (the sum of the keys) per 100 km of the PCC and the MPC.
+PriceStudy = tuple[list[Case], str, list[str], tuple[str, ...]]
 PRICES: dict[str, PriceStudy] = {
     "shift-price": (
         [
             ("VECTO 100 km", VECTO_100, []),
             ("US EPA grade 20 km reversed", EPA, ["--reverse"]),
             ("US long-haul 805 km", US_805, []),
-            *PCC_CASES[-4:],
         ],
         "q_gear_shift",
         ["20", "40", "60", "80"],
-        "gear_shifts_per_100km",
+        SHIFTS,
     ),
+    "tractor-shift-price": (TRACTOR_BOTH_WAYS, "q_gear_shift", ["0", "15", "30", "60"], GEARBOX_OPERATIONS),
     "neutral-price": (
         [
             ("SE E6/E20 Göteborg → Malmö", SE, []),
@@ -190,17 +206,17 @@ PRICES: dict[str, PriceStudy] = {
         ],
         "q_neutral",
         ["20", "30", "40", "60"],
-        "neutral_engagements_per_100km",
+        ("neutral_engagements_per_100km",),
     ),
 }
 
 
-def price_cell(summary: dict[str, Any], count: str) -> str:
-    """Δfuel of the MPC against the PCC at equal trip time [%]; then `count` of the PCC and the MPC."""
+def price_cell(summary: dict[str, Any], count: tuple[str, ...]) -> str:
+    """Δfuel of the MPC against the PCC at equal trip time [%]; then the sum of the `count` keys (per
+    100 km) of the PCC and the MPC."""
     found = comparison(summary, "mpc", "pcc")
-    return f"{signed(found.get('delta_fuel_equal_time_pct'))}; " + ", ".join(
-        per_100km(summary, c, count) for c in ("pcc", "mpc")
-    )
+    counts = (sum(summary[c][key] for key in count) for c in ("pcc", "mpc"))
+    return f"{signed(found.get('delta_fuel_equal_time_pct'))}; " + ", ".join(f"{n:.1f}" for n in counts)
 
 
 def table_head(arguments: str, header: list[str]) -> None:
