@@ -65,9 +65,10 @@ impl Problem<'_> {
     fn transition(&self, k: usize, v_i: f64, g_i: usize, j: usize, g_j: usize) -> Option<f64> {
         let p = self.p;
         let h = p.mpc.stage_m;
-        if g_i != NEUTRAL && g_j != NEUTRAL && g_i != g_j && self.vehicle.traction_interruption_s() > 0.0 {
-            let torque = self.vehicle.slope_torque_nm(self.slopes[k]);
-            let roll = interruption(self.vehicle, v_i, torque, h)?;
+        let interrupts = g_i != NEUTRAL && g_j != NEUTRAL && g_i != g_j && self.vehicle.traction_interruption_s() > 0.0;
+        let torque = self.vehicle.slope_torque_nm(self.slopes[k]);
+        // A roll that outlasts the stage: the shift is an ordinary stage.
+        if let Some(roll) = interrupts.then(|| interruption(self.vehicle, v_i, torque, h)).flatten() {
             let added_s = roll.t_s + (h - roll.d_m) / roll.v_mps - h / v_i;
             let extra = p.mpc.q_speed_change * (v_i - roll.v_mps).abs() + p.q_time_per_s * added_s;
             return self.stage(k, (roll.v_mps, h - roll.d_m), j, (g_i, g_j)).map(|c| c + extra);

@@ -138,13 +138,24 @@ fn one_stage_solves_against_the_stored_values_follow_the_whole_road_optimum() {
 }
 
 /// A truck whose gearbox interrupts traction, with the plan modelling the interruption, over a
-/// road of `grade` for 3 km between flats: the whole road solved at once, on either grid.
-fn climb_plan(vehicle: &Vehicle, grade: f64, grid: GridAnchor) -> truckmpc_core::dp::Solution {
-    let p =
-        DpSettings::default().with_mpc(|m| (m.plan_interruption, m.grid) = (true, grid)).for_vehicle(vehicle).bound();
-    let slopes: Vec<f64> = (0..200).map(|k| if (20..140).contains(&k) { grade } else { 0.0 }).collect();
+/// road of `grade` for 3 km between flats (500 m before, 1.5 km after) in stages of `stage_m`: the
+/// whole road solved at once, on either grid.
+fn climb_plan(vehicle: &Vehicle, grade: f64, grid: GridAnchor, stage_m: f64) -> truckmpc_core::dp::Solution {
+    let p = DpSettings::default()
+        .with_mpc(|m| (m.plan_interruption, m.grid, m.stage_m) = (true, grid, stage_m))
+        .for_vehicle(vehicle)
+        .bound();
+    let stages = (5000.0 / stage_m) as usize;
+    let climb = (500.0 / stage_m) as usize..(3500.0 / stage_m) as usize;
+    let slopes: Vec<f64> = (0..stages).map(|k| if climb.contains(&k) { grade } else { 0.0 }).collect();
     let start = InitialState { v_mps: 85.0 / 3.6, gear: 12, stages_since_shift: p.k_lim };
     Solver::new(p).solve(vehicle, start, &slopes)
+}
+
+/// Shifts between forward gears of a plan.
+fn forward_shifts(plan: &truckmpc_core::dp::Solution) -> usize {
+    let gears: Vec<usize> = plan.trajectory.iter().map(|point| point.gear).collect();
+    gears.windows(2).filter(|pair| pair[0] != pair[1] && pair[0] != 0 && pair[1] != 0).count()
 }
 
 #[test]
@@ -156,13 +167,23 @@ fn a_plan_whose_shifts_interrupt_traction_finds_a_path_over_a_long_climb() {
     let vehicle = common::map_vehicle();
     for grid in [GridAnchor::Fixed, GridAnchor::Moving] {
         for grade in [0.03, 0.045, 0.06] {
-            let plan = climb_plan(&vehicle, grade, grid);
+            let plan = climb_plan(&vehicle, grade, grid, 25.0);
             assert!(plan.feasible, "{grid:?}, {grade}: no plan");
-            let gears: Vec<usize> = plan.trajectory.iter().map(|point| point.gear).collect();
-            let shifts = gears.windows(2).filter(|pair| pair[0] != pair[1] && pair[0] != 0 && pair[1] != 0).count();
+            let shifts = forward_shifts(&plan);
             let slowest = plan.trajectory.iter().map(|point| point.v_mps).fold(f64::INFINITY, f64::min);
             assert!(shifts >= 2, "{grid:?}, {grade}: {shifts} shifts between forward gears");
             assert!(slowest * 3.6 < 77.0, "{grid:?}, {grade}: the climb never slows the truck below v_min");
         }
     }
+}
+
+#[test]
+fn where_a_shifts_roll_outlasts_the_stage_the_plan_still_shifts() {
+    // Stages of 12.5 m (the convergence check's S/2) are shorter than a second's roll at cruising
+    // speed: such a shift is planned as an ordinary stage. Without it the plan could not change
+    // gear there at all and found no path up the climb.
+    let vehicle = common::map_vehicle();
+    let plan = climb_plan(&vehicle, 0.045, GridAnchor::Fixed, 12.5);
+    assert!(plan.feasible, "no plan");
+    assert!(forward_shifts(&plan) >= 2, "{} shifts between forward gears", forward_shifts(&plan));
 }

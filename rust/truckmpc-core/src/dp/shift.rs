@@ -34,7 +34,8 @@ pub struct Interruption {
 
 /// The interruption of a shift at `v_mps` on a slope of wheel torque `slope_torque_nm` [Nm], on a
 /// stage of `h_m`: None where the truck does not interrupt traction, where it would stop, or where
-/// the roll would outlast the stage (no stage then shifts).
+/// the roll would outlast the stage (a stage shorter than the roll: the plan then shifts there as
+/// in an ordinary stage).
 pub fn interruption(vehicle: &Vehicle, v_mps: f64, slope_torque_nm: f64, h_m: f64) -> Option<Interruption> {
     let t_s = vehicle.traction_interruption_s();
     if !(t_s > 0.0 && v_mps > 0.0) {

@@ -73,7 +73,9 @@ pub(super) fn shifting_row(
 ) -> (RowSpan, usize) {
     let v_i = here.index.speed(key);
     let Some(roll) = rolls.of((vehicle, p), here, key, slope_torque) else {
-        return (RowSpan { first: 0, len: 0 }, out.len());
+        // The roll outlasts the stage (a short stage, a fast truck) or would stop the truck: the
+        // shift is planned as an ordinary stage, as the model then drives it (`drive_stage`).
+        return forward_row(vehicle, p, (v_i, [None, None]), g, slope_torque, next.index, v_max_next, (out, memo));
     };
     let rest = after(p, &roll);
     let from = (roll.v_mps, [None, None]);
@@ -106,7 +108,8 @@ pub(super) fn fill_shifting_arcs(
                 return none;
             };
             let Some(roll) = rolls.of((vehicle, p), here, key, slope_torque) else {
-                return none;
+                // As an ordinary stage, as the row does.
+                return exact_arc(p, vehicle, v_i, to.gear, slope_torque, held);
             };
             let mut arc = exact_arc(&after(p, &roll), vehicle, roll.v_mps, to.gear, slope_torque, held);
             if arc.v_end_mps > 0.0 && arc.cost.is_finite() {
